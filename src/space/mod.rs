@@ -1,0 +1,566 @@
+//! Spaces: a geometry, a convex fundamental polyhedron and one pairing per face, validated
+//! by Poincaré's polyhedron theorem when built (`DESIGN.md` §2).
+
+mod catalog;
+mod error;
+pub mod invariants;
+
+pub use catalog::{SEED_SPACES, SeedSpace, seed_space};
+pub use error::SpaceError;
+
+use crate::geometry::{Geometry, ORIGIN};
+use glam::{DMat3, DMat4, DVec3, DVec4};
+use std::f64::consts::TAU;
+
+/// Relative tolerance for the combinatorial and validation checks.
+pub const VALIDATION_TOLERANCE: f64 = 1e-9;
+
+/// How a face is glued: to a partner face by an isometry, which maps this face onto the
+/// partner with the cell on the far side (crossing this face applies it to the ray).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pairing {
+    pub partner: usize,
+    pub matrix: DMat4,
+}
+
+/// A face as given to [`Space::new`]: the half-space `normal · x ≤ offset` of the chart and
+/// its pairing (`None` is an error, reported as [`SpaceError::MissingPairing`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FaceSpec {
+    pub normal: DVec3,
+    pub offset: f64,
+    pub pairing: Option<Pairing>,
+}
+
+impl FaceSpec {
+    /// A face glued to `partner` by `matrix`.
+    #[must_use]
+    pub fn paired(normal: DVec3, offset: f64, partner: usize, matrix: DMat4) -> Self {
+        Self {
+            normal,
+            offset,
+            pairing: Some(Pairing { partner, matrix }),
+        }
+    }
+}
+
+/// A face of a validated space.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Face {
+    /// Outward unit normal in the chart.
+    pub normal: DVec3,
+    /// Chart distance of the face plane from the origin.
+    pub offset: f64,
+    /// `N = (n, −r)`: `N·X = 0` on the face, `< 0` inside the cell.
+    pub covector: DVec4,
+    /// The face this one is glued to (itself for a mirror).
+    pub partner: usize,
+    /// The isometry applied to a ray that leaves the cell through this face.
+    pub pairing: DMat4,
+    /// The face's vertices, counter-clockwise seen from outside.
+    pub vertices: Vec<usize>,
+}
+
+impl Face {
+    /// Whether this face is a mirror (glued to itself).
+    #[must_use]
+    pub fn is_mirror(&self, index: usize) -> bool {
+        self.partner == index
+    }
+}
+
+/// An edge of the cell, where two faces meet.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Edge {
+    pub vertices: [usize; 2],
+    pub faces: [usize; 2],
+    /// Interior dihedral angle (radians).
+    pub dihedral: f64,
+    /// Geodesic length.
+    pub length: f64,
+    /// Index into [`Space::edge_cycles`].
+    pub cycle: usize,
+}
+
+/// The edges that are glued together into one edge of the space.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EdgeCycle {
+    /// Edges of the cell in the order the cycle visits them (each once).
+    pub edges: Vec<usize>,
+    /// Sum of the dihedral angles met going once around the cycle.
+    pub angle_sum: f64,
+    /// `k` with `angle_sum = 2π/k` (1 in a manifold; the cone or mirror order otherwise).
+    pub order: u32,
+}
+
+/// A closed 3-manifold or orbifold of constant curvature, as a validated fundamental cell.
+#[derive(Clone, Debug)]
+pub struct Space {
+    pub name: String,
+    pub description: String,
+    pub geometry: Geometry,
+    pub faces: Vec<Face>,
+    /// Vertices in the chart.
+    pub vertices: Vec<DVec3>,
+    pub edges: Vec<Edge>,
+    pub edge_cycles: Vec<EdgeCycle>,
+    /// Classes of vertices glued together.
+    pub vertex_cycles: Vec<Vec<usize>>,
+    /// Every pairing preserves orientation.
+    pub orientable: bool,
+    /// No mirrors, every edge cycle of order 1 and spherical vertex links.
+    pub manifold: bool,
+}
+
+fn edges_label(space_edges: &[(usize, usize)], cycle: &[usize]) -> String {
+    cycle
+        .iter()
+        .map(|&e| format!("{}–{}", space_edges[e].0, space_edges[e].1))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+fn max_abs(m: DMat4) -> f64 {
+    m.to_cols_array()
+        .iter()
+        .fold(0.0_f64, |acc, x| acc.max(x.abs()))
+}
+
+fn union_find_root(parent: &mut [usize], mut i: usize) -> usize {
+    while parent[i] != i {
+        parent[i] = parent[parent[i]];
+        i = parent[i];
+    }
+    i
+}
+
+impl Space {
+    /// Builds and validates a space. Faces are half-spaces of the chart around the origin.
+    ///
+    /// Validation (Poincaré's polyhedron theorem): the faces bound a compact convex
+    /// polyhedron; every pairing is an isometry; partners are mutual and their pairings
+    /// inverse (a mirror's is an involution); each pairing maps its face onto the partner
+    /// face, vertices onto vertices, with the cell on the far side; every edge cycle has
+    /// angle sum `2π/k` and going once around it is an isometry of order `k`; for a
+    /// manifold the vertex links are spheres (Euler characteristic 0).
+    pub fn new(
+        name: impl Into<String>,
+        description: impl Into<String>,
+        geometry: Geometry,
+        specs: &[FaceSpec],
+    ) -> Result<Self, SpaceError> {
+        let tol = VALIDATION_TOLERANCE;
+        if specs.len() < 4 {
+            return Err(SpaceError::TooFewFaces { count: specs.len() });
+        }
+        let mut faces = Vec::with_capacity(specs.len());
+        for (i, spec) in specs.iter().enumerate() {
+            let len = spec.normal.length();
+            if !(len.is_finite() && len > 0.0) {
+                return Err(SpaceError::BadNormal {
+                    face: i,
+                    normal: spec.normal.to_array(),
+                });
+            }
+            let offset = spec.offset / len;
+            if !(offset.is_finite() && offset > 0.0) {
+                return Err(SpaceError::OriginNotInside {
+                    face: i,
+                    offset: spec.offset,
+                });
+            }
+            if geometry == Geometry::Hyperbolic && offset >= 1.0 {
+                return Err(SpaceError::PlaneMissesSpace { face: i, offset });
+            }
+            let pairing = spec.pairing.ok_or(SpaceError::MissingPairing { face: i })?;
+            if pairing.partner >= specs.len() {
+                return Err(SpaceError::PartnerOutOfRange {
+                    face: i,
+                    partner: pairing.partner,
+                    count: specs.len(),
+                });
+            }
+            let normal = spec.normal / len;
+            faces.push(Face {
+                normal,
+                offset,
+                covector: normal.extend(-offset),
+                partner: pairing.partner,
+                pairing: pairing.matrix,
+                vertices: Vec::new(),
+            });
+        }
+        for i in 0..faces.len() {
+            let back = faces[faces[i].partner].partner;
+            if back != i {
+                return Err(SpaceError::PartnerNotMutual {
+                    face: i,
+                    partner: faces[i].partner,
+                    back,
+                });
+            }
+        }
+
+        let vertices = find_vertices(&faces, tol);
+        for v in &vertices {
+            match geometry {
+                Geometry::Hyperbolic if v.length_squared() >= 1.0 - tol => {
+                    return Err(SpaceError::IdealVertex {
+                        point: v.to_array(),
+                    });
+                }
+                _ if !v.is_finite() => {
+                    return Err(SpaceError::VertexOutsideChart {
+                        point: v.to_array(),
+                    });
+                }
+                _ => {}
+            }
+        }
+        // Incidence and the cyclic order of each face's vertices.
+        for (i, face) in faces.iter_mut().enumerate() {
+            let on: Vec<usize> = (0..vertices.len())
+                .filter(|&v| (face.normal.dot(vertices[v]) - face.offset).abs() <= tol * 10.0)
+                .collect();
+            if on.len() < 3 {
+                return Err(SpaceError::DegenerateFace {
+                    face: i,
+                    vertices: on.len(),
+                });
+            }
+            let centre = on.iter().map(|&v| vertices[v]).sum::<DVec3>() / on.len() as f64;
+            let e1 = (vertices[on[0]] - centre).normalize();
+            let e2 = face.normal.cross(e1);
+            let mut sorted = on;
+            sorted.sort_by(|&a, &b| {
+                let angle = |v: usize| {
+                    let d = vertices[v] - centre;
+                    d.dot(e2).atan2(d.dot(e1))
+                };
+                angle(a).total_cmp(&angle(b))
+            });
+            face.vertices = sorted;
+        }
+        // Edges: consecutive vertices of a face, shared by exactly one other face.
+        let mut edge_list: Vec<(usize, usize)> = Vec::new();
+        let mut edge_faces: Vec<[usize; 2]> = Vec::new();
+        for (i, face) in faces.iter().enumerate() {
+            let n = face.vertices.len();
+            for k in 0..n {
+                let (a, b) = (face.vertices[k], face.vertices[(k + 1) % n]);
+                let key = (a.min(b), a.max(b));
+                if let Some(e) = edge_list.iter().position(|&x| x == key) {
+                    edge_faces[e][1] = i;
+                } else {
+                    edge_list.push(key);
+                    edge_faces.push([i, usize::MAX]);
+                }
+            }
+        }
+        let euler = vertices.len() as i64 - edge_list.len() as i64 + faces.len() as i64;
+        if euler != 2 || edge_faces.iter().any(|f| f[1] == usize::MAX) {
+            return Err(SpaceError::NotBounded { euler });
+        }
+
+        let points: Vec<DVec4> = vertices
+            .iter()
+            .map(|&v| geometry.project_point(v.extend(1.0)))
+            .collect();
+        let mut edges: Vec<Edge> = edge_list
+            .iter()
+            .zip(&edge_faces)
+            .map(|(&(a, b), &f)| Edge {
+                vertices: [a, b],
+                faces: f,
+                dihedral: dihedral_angle(geometry, faces[f[0]].covector, faces[f[1]].covector),
+                length: geometry.distance(points[a], points[b]),
+                cycle: usize::MAX,
+            })
+            .collect();
+
+        validate_pairings(geometry, &faces, &vertices, tol)?;
+        let vertex_image = |face: usize, v: usize| -> usize {
+            let image = geometry.to_chart(faces[face].pairing * points[v]);
+            let partner = &faces[faces[face].partner];
+            partner
+                .vertices
+                .iter()
+                .copied()
+                .min_by(|&a, &b| {
+                    (vertices[a] - image)
+                        .length()
+                        .total_cmp(&(vertices[b] - image).length())
+                })
+                .unwrap_or(v)
+        };
+
+        // Edge cycles: walk (edge, face to cross) states until the first one comes back.
+        let edge_of = |a: usize, b: usize| {
+            edge_list
+                .iter()
+                .position(|&x| x == (a.min(b), a.max(b)))
+        };
+        let mut edge_cycles: Vec<EdgeCycle> = Vec::new();
+        for start in 0..edges.len() {
+            for side in 0..2 {
+                if edges[start].cycle != usize::MAX {
+                    continue;
+                }
+                let (mut e, mut f) = (start, edges[start].faces[side]);
+                let mut visited = Vec::new();
+                let mut angle_sum = 0.0;
+                let mut holonomy = DMat4::IDENTITY;
+                let mut closed = false;
+                for _ in 0..=2 * edges.len() {
+                    if !visited.contains(&e) {
+                        visited.push(e);
+                    }
+                    angle_sum += edges[e].dihedral;
+                    holonomy = faces[f].pairing * holonomy;
+                    let [a, b] = edges[e].vertices;
+                    let next = edge_of(vertex_image(f, a), vertex_image(f, b));
+                    let partner = faces[f].partner;
+                    let Some(next) = next.filter(|&n| edges[n].faces.contains(&partner)) else {
+                        return Err(SpaceError::FaceNotMapped {
+                            face: f,
+                            partner,
+                            reason: format!("edge {a}–{b} does not map onto an edge of the partner face"),
+                        });
+                    };
+                    e = next;
+                    f = if edges[e].faces[0] == partner {
+                        edges[e].faces[1]
+                    } else {
+                        edges[e].faces[0]
+                    };
+                    if e == start && f == edges[start].faces[side] {
+                        closed = true;
+                        break;
+                    }
+                }
+                let label = edges_label(&edge_list, &visited);
+                if !closed {
+                    return Err(SpaceError::EdgeHolonomy {
+                        edges: label,
+                        order: 1,
+                        defect: f64::INFINITY,
+                    });
+                }
+                let k = (TAU / angle_sum).round();
+                if !(k >= 1.0 && (angle_sum * k - TAU).abs() < 1e-7) {
+                    return Err(SpaceError::EdgeAngleSum {
+                        edges: label,
+                        angle_sum_deg: angle_sum.to_degrees(),
+                    });
+                }
+                let order = k as u32;
+                let power = (0..order).fold(DMat4::IDENTITY, |m, _| m * holonomy);
+                let defect = max_abs(power - DMat4::IDENTITY);
+                // Going round once must also fix the edge itself (be a rotation about it).
+                let [a, b] = edges[start].vertices;
+                let moved = geometry
+                    .distance(holonomy * points[a], points[a])
+                    .max(geometry.distance(holonomy * points[b], points[b]));
+                if defect > 1e-7 || moved > 1e-7 {
+                    return Err(SpaceError::EdgeHolonomy {
+                        edges: label,
+                        order,
+                        defect: defect.max(moved),
+                    });
+                }
+                let index = edge_cycles.len();
+                for &v in &visited {
+                    edges[v].cycle = index;
+                }
+                edge_cycles.push(EdgeCycle {
+                    edges: visited,
+                    angle_sum,
+                    order,
+                });
+            }
+        }
+
+        // Vertex cycles: union of each vertex with its images under the pairings.
+        let mut parent: Vec<usize> = (0..vertices.len()).collect();
+        for (i, face) in faces.iter().enumerate() {
+            for &v in &face.vertices {
+                let (a, b) = (
+                    union_find_root(&mut parent, v),
+                    union_find_root(&mut parent, vertex_image(i, v)),
+                );
+                parent[a.max(b)] = a.min(b);
+            }
+        }
+        let mut vertex_cycles: Vec<Vec<usize>> = Vec::new();
+        let mut class_of = vec![usize::MAX; vertices.len()];
+        for v in 0..vertices.len() {
+            let root = union_find_root(&mut parent, v);
+            if class_of[root] == usize::MAX {
+                class_of[root] = vertex_cycles.len();
+                vertex_cycles.push(Vec::new());
+            }
+            vertex_cycles[class_of[root]].push(v);
+        }
+
+        let has_mirror = faces.iter().enumerate().any(|(i, f)| f.is_mirror(i));
+        let orientable = faces.iter().all(|f| f.pairing.determinant() > 0.0);
+        let face_pairs = faces
+            .iter()
+            .enumerate()
+            .filter(|(i, f)| f.partner >= *i)
+            .count();
+        let chi = vertex_cycles.len() as i64 - edge_cycles.len() as i64 + face_pairs as i64 - 1;
+        let cone_edges = edge_cycles.iter().any(|c| c.order > 1);
+        if !has_mirror && !cone_edges && chi != 0 {
+            return Err(SpaceError::VertexLinks {
+                chi,
+                vertex_cycles: vertex_cycles.len(),
+                edge_cycles: edge_cycles.len(),
+                face_pairs,
+            });
+        }
+        Ok(Self {
+            name: name.into(),
+            description: description.into(),
+            geometry,
+            faces,
+            vertices,
+            edges,
+            edge_cycles,
+            vertex_cycles,
+            orientable,
+            manifold: !has_mirror && !cone_edges,
+        })
+    }
+
+    /// The model point of vertex `v`.
+    #[must_use]
+    pub fn vertex_point(&self, v: usize) -> DVec4 {
+        self.geometry.project_point(self.vertices[v].extend(1.0))
+    }
+
+    /// Whether a model point lies in the cell, up to `slack` in `N·X` (for unit `X.w`).
+    #[must_use]
+    pub fn contains(&self, p: DVec4, slack: f64) -> bool {
+        let p = p / p.w;
+        self.faces.iter().all(|f| f.covector.dot(p) <= slack)
+    }
+
+    /// The largest `N·X / X.w` over the faces: how far a point is outside the cell
+    /// (negative inside).
+    #[must_use]
+    pub fn outside_by(&self, p: DVec4) -> f64 {
+        let p = p / p.w;
+        self.faces
+            .iter()
+            .map(|f| f.covector.dot(p))
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+
+    /// Whether any face is a mirror.
+    #[must_use]
+    pub fn has_mirrors(&self) -> bool {
+        self.faces.iter().enumerate().any(|(i, f)| f.is_mirror(i))
+    }
+
+    /// The centre of the cell: the chart origin.
+    #[must_use]
+    pub fn centre(&self) -> DVec4 {
+        ORIGIN
+    }
+}
+
+/// Interior dihedral angle between two face planes: `cos α = −B(N, M)/√(B(N,N) B(M,M))`
+/// with `B(N, M) = n·m + κ r_N r_M` the form on covectors dual to ⟨,⟩.
+#[must_use]
+pub fn dihedral_angle(geometry: Geometry, a: DVec4, b: DVec4) -> f64 {
+    let k = geometry.kappa();
+    let form = |x: DVec4, y: DVec4| x.truncate().dot(y.truncate()) + k * x.w * y.w;
+    let c = -form(a, b) / (form(a, a) * form(b, b)).sqrt();
+    c.clamp(-1.0, 1.0).acos()
+}
+
+/// All points where three or more face planes meet inside every other half-space.
+fn find_vertices(faces: &[Face], tol: f64) -> Vec<DVec3> {
+    let mut out: Vec<DVec3> = Vec::new();
+    let n = faces.len();
+    for i in 0..n {
+        for j in i + 1..n {
+            for k in j + 1..n {
+                let m = DMat3::from_cols(faces[i].normal, faces[j].normal, faces[k].normal)
+                    .transpose();
+                if m.determinant().abs() < 1e-9 {
+                    continue;
+                }
+                let x = m.inverse()
+                    * DVec3::new(faces[i].offset, faces[j].offset, faces[k].offset);
+                if faces.iter().all(|f| f.normal.dot(x) <= f.offset + tol)
+                    && !out.iter().any(|v| (*v - x).length() < 1e3 * tol)
+                {
+                    out.push(x);
+                }
+            }
+        }
+    }
+    out
+}
+
+fn validate_pairings(
+    geometry: Geometry,
+    faces: &[Face],
+    vertices: &[DVec3],
+    tol: f64,
+) -> Result<(), SpaceError> {
+    for (i, face) in faces.iter().enumerate() {
+        let g = face.pairing;
+        let defect = geometry.isometry_defect(g);
+        if !(defect < tol) {
+            return Err(SpaceError::NotAnIsometry { face: i, defect });
+        }
+        let partner = &faces[face.partner];
+        let defect = max_abs(partner.pairing * g - DMat4::IDENTITY);
+        if !(defect < tol) {
+            return Err(SpaceError::NotInverse {
+                face: i,
+                partner: face.partner,
+                defect,
+            });
+        }
+        // The pulled-back partner plane must be this face's plane, with the cell outside:
+        // N' ∘ g = −λ N, λ > 0.
+        let pulled = g.transpose() * partner.covector;
+        let lambda = -pulled.dot(face.covector) / face.covector.length_squared();
+        let off_plane = (pulled + lambda * face.covector).length() / pulled.length();
+        if !(lambda > 0.0 && off_plane < tol) {
+            let reason = if off_plane < tol {
+                "it keeps the cell on the same side of the partner face".to_string()
+            } else {
+                format!("the image of the face plane misses the partner's plane by {off_plane:.3e}")
+            };
+            return Err(SpaceError::FaceNotMapped {
+                face: i,
+                partner: face.partner,
+                reason,
+            });
+        }
+        for &v in &face.vertices {
+            let image = geometry.to_chart(g * geometry.project_point(vertices[v].extend(1.0)));
+            let hit = partner
+                .vertices
+                .iter()
+                .any(|&w| (vertices[w] - image).length() < 1e3 * tol);
+            if !hit {
+                return Err(SpaceError::FaceNotMapped {
+                    face: i,
+                    partner: face.partner,
+                    reason: format!(
+                        "vertex {v} at {:?} goes to {:?}, which is no vertex of the partner face",
+                        vertices[v].to_array(),
+                        image.to_array()
+                    ),
+                });
+            }
+        }
+    }
+    Ok(())
+}
