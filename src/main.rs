@@ -1,1 +1,440 @@
-fn main(){}
+//! `curved-spaces`: list, inspect, trace and render closed 3-manifolds and orbifolds.
+//!
+//! Run with no command to render the default space to `curved-spaces.png`.
+
+use bevy_curved_spaces::geometry::Vector4;
+use bevy_curved_spaces::space::file::{SpaceRecord, load_space_file};
+use bevy_curved_spaces::space::invariants::{Invariants, inradius};
+use bevy_curved_spaces::space::{SEED_SPACES, Space, SpaceError, seed_space};
+use bevy_curved_spaces::trace::{
+    Camera, CellWalker, Limit, RenderSettings, Scene, Trace, chart_ray, render,
+};
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use glam::{DVec3, DVec4, Vec4};
+use serde_json::json;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+/// The space shown when none is named.
+const DEFAULT_SPACE: &str = "seifert-weber";
+
+#[derive(Parser)]
+#[command(
+    name = "curved-spaces",
+    version,
+    about = "Ray tracing inside closed 3-manifolds and orbifolds of constant curvature",
+    long_about = "Ray tracing inside closed 3-manifolds and orbifolds of constant curvature.\n\n\
+                  With no command, renders the default space (seifert-weber) to curved-spaces.png.\n\
+                  SPACE is a seed space id (see `curved-spaces list`) or a path to a space file \
+                  (JSON; `curved-spaces export` writes examples)."
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// List the seed spaces.
+    List,
+    /// Show a space's invariants.
+    Info {
+        /// Seed space id or space file.
+        space: String,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Trace one geodesic through the cell and list its face crossings.
+    Trace(TraceArgs),
+    /// Render a picture of a space's default scene.
+    Render(RenderArgs),
+    /// Write a space as a space file (JSON), a template for your own spaces.
+    Export {
+        /// Seed space id or space file.
+        space: String,
+        /// Output file (standard output if omitted).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum Precision {
+    F64,
+    F32,
+}
+
+#[derive(Args)]
+#[command(group = clap::ArgGroup::new("limit").required(true).args(["crossings", "distance"]))]
+struct TraceArgs {
+    /// Seed space id or space file.
+    space: String,
+    /// Chart direction of the ray (normalized to a unit tangent).
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    dir: DVec3,
+    /// Chart start point (inside the cell).
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true, default_value = "0,0,0")]
+    from: DVec3,
+    /// Stop after this many face crossings.
+    #[arg(long)]
+    crossings: Option<usize>,
+    /// Stop at this geodesic distance.
+    #[arg(long, value_parser = parse_positive)]
+    distance: Option<f64>,
+    /// Arithmetic of the walk (f32 is what the GPU uses).
+    #[arg(long, value_enum, default_value = "f64")]
+    precision: Precision,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Args)]
+struct RenderArgs {
+    /// Seed space id or space file.
+    #[arg(default_value = DEFAULT_SPACE)]
+    space: String,
+    /// Use the f64 CPU reference renderer (the only renderer until the GPU plugin lands).
+    #[arg(long)]
+    cpu: bool,
+    /// Image size, WIDTHxHEIGHT.
+    #[arg(long, value_parser = parse_size, default_value = "640x360")]
+    size: (u32, u32),
+    /// Output PNG file.
+    #[arg(long, default_value = "curved-spaces.png")]
+    out: PathBuf,
+    /// Fog distance scale λ (default: three times the inradius). Rays stop at λ·ln 510.
+    #[arg(long, value_parser = parse_positive)]
+    fog: Option<f64>,
+    /// Crossing budget per ray.
+    #[arg(long, default_value_t = 64)]
+    crossings: usize,
+    /// Vertical field of view in degrees.
+    #[arg(long, default_value_t = 70.0, value_parser = parse_fov)]
+    fov: f64,
+    /// Camera position in the chart (default: a view past the centre ball).
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true, requires = "look_at")]
+    eye: Option<DVec3>,
+    /// Chart point the camera looks at.
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true, requires = "eye")]
+    look_at: Option<DVec3>,
+}
+
+fn parse_vec3(s: &str) -> Result<DVec3, String> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    if parts.len() != 3 {
+        return Err(format!("expected three comma-separated numbers like 1,0,0.5, got `{s}`"));
+    }
+    let mut v = [0.0; 3];
+    for (x, p) in v.iter_mut().zip(&parts) {
+        *x = p
+            .parse::<f64>()
+            .ok()
+            .filter(|x| x.is_finite())
+            .ok_or_else(|| format!("`{p}` is not a finite number"))?;
+    }
+    Ok(DVec3::from_array(v))
+}
+
+fn parse_positive(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
+        _ => Err(format!("expected a positive number, got `{s}`")),
+    }
+}
+
+fn parse_fov(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(x) if x > 0.0 && x < 180.0 => Ok(x),
+        _ => Err(format!("expected an angle between 0 and 180 degrees, got `{s}`")),
+    }
+}
+
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let err = || format!("expected WIDTHxHEIGHT like 640x360 (1 to 16384 each), got `{s}`");
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(err)?;
+    let w: u32 = w.trim().parse().map_err(|_| err())?;
+    let h: u32 = h.trim().parse().map_err(|_| err())?;
+    if !(1..=16384).contains(&w) || !(1..=16384).contains(&h) {
+        return Err(err());
+    }
+    Ok((w, h))
+}
+
+/// A seed space by id, or a space file by path.
+fn resolve_space(arg: &str) -> Result<Space, String> {
+    if SEED_SPACES.iter().any(|s| s.id == arg) {
+        return seed_space(arg).map_err(|e| e.to_string());
+    }
+    let path = Path::new(arg);
+    if path.exists() || arg.ends_with(".json") {
+        return load_space_file(path).map_err(|e| e.to_string());
+    }
+    Err(SpaceError::UnknownSpace(arg.to_string()).to_string())
+}
+
+fn list() {
+    println!(
+        "{:<22} {:<11} {:>5} {:>14}  description",
+        "id", "geometry", "faces", "volume"
+    );
+    for seed in SEED_SPACES {
+        match seed.build() {
+            Ok(space) => println!(
+                "{:<22} {:<11} {:>5} {:>14.10}  {}",
+                seed.id,
+                space.geometry.name(),
+                space.faces.len(),
+                bevy_curved_spaces::space::invariants::volume(&space),
+                seed.summary
+            ),
+            Err(e) => println!("{:<22} invalid: {e}", seed.id),
+        }
+    }
+}
+
+fn info(space: &Space, as_json: bool) -> Result<(), String> {
+    let inv = Invariants::compute(space);
+    if as_json {
+        println!("{}", serde_json::to_string_pretty(&inv).map_err(|e| e.to_string())?);
+        return Ok(());
+    }
+    let opt = |x: Option<f64>| x.map_or("–".to_string(), |x| format!("{x:.10}"));
+    let opt_n = |x: Option<usize>| x.map_or("–".to_string(), |x| x.to_string());
+    println!("{} ({})", inv.name, inv.geometry.name());
+    println!("  {}", space.description);
+    println!("  faces               {}", inv.faces.len());
+    println!("  volume              {:.12}", inv.volume);
+    println!("  inradius            {:.10}", inv.inradius);
+    println!("  circumradius        {:.10}", inv.circumradius);
+    println!("  edge length         {}", opt(inv.edge_length));
+    let cycles: Vec<String> = inv
+        .edge_cycles
+        .iter()
+        .map(|c| format!("{}×{:.1}°", c.edges, c.angle_sum.to_degrees()))
+        .collect();
+    println!("  edge cycles         {} ({})", cycles.len(), cycles.join(", "));
+    println!("  vertex cycles       {}", inv.vertex_cycles);
+    println!("  orientable          {}", inv.orientable);
+    println!("  manifold            {}", inv.manifold);
+    println!("  holonomy order      {}", opt_n(inv.holonomy_order));
+    println!("  group order         {}", opt_n(inv.group_order));
+    println!("  injectivity radius  {}", opt(inv.injectivity_radius));
+    if !inv.closed_geodesics.is_empty() {
+        println!("  closed geodesics    length × count");
+        for g in &inv.closed_geodesics {
+            println!("                      {:.10} × {}", g.length, g.count);
+        }
+    }
+    Ok(())
+}
+
+/// The trace in f64 whatever precision it ran in.
+fn trace_f64<V: Vector4>(space: &Space, start: DVec4, dir: DVec4, limit: Limit) -> Trace<DVec4> {
+    let walker = CellWalker::<V>::new(space);
+    let start = bevy_curved_spaces::trace::Ray {
+        point: V::from_f64(start),
+        tangent: V::from_f64(dir),
+    };
+    let t = walker.trace(start, limit);
+    let ray = |r: bevy_curved_spaces::trace::Ray<V>| bevy_curved_spaces::trace::Ray {
+        point: r.point.to_f64(),
+        tangent: r.tangent.to_f64(),
+    };
+    Trace {
+        crossings: t
+            .crossings
+            .iter()
+            .map(|c| bevy_curved_spaces::trace::Crossing {
+                face: c.face,
+                distance: c.distance,
+                ray: ray(c.ray),
+            })
+            .collect(),
+        end: ray(t.end),
+        distance: t.distance,
+    }
+}
+
+fn trace(args: &TraceArgs) -> Result<(), String> {
+    let space = resolve_space(&args.space)?;
+    let g = space.geometry;
+    let start = chart_ray(g, args.from, args.dir).map_err(|e| e.to_string())?;
+    if space.outside_by(start.point) > 1e-12 {
+        return Err(format!(
+            "start point {:?} is outside the cell of {}",
+            args.from.to_array(),
+            space.name
+        ));
+    }
+    let limit = match (args.crossings, args.distance) {
+        (Some(n), _) => Limit::Crossings(n),
+        (None, Some(d)) => Limit::Distance(d),
+        (None, None) => return Err("give --crossings N or --distance D".into()),
+    };
+    let result = match args.precision {
+        Precision::F64 => trace_f64::<DVec4>(&space, start.point, start.tangent, limit),
+        Precision::F32 => trace_f64::<Vec4>(&space, start.point, start.tangent, limit),
+    };
+    let chart = |p: DVec4| g.to_chart(p).to_array();
+    if args.json {
+        let crossings: Vec<_> = result
+            .crossings
+            .iter()
+            .map(|c| {
+                json!({
+                    "face_normal": space.faces[c.face].normal.to_array(),
+                    "distance": c.distance,
+                    "point": chart(c.ray.point),
+                })
+            })
+            .collect();
+        let out = json!({
+            "crossings": crossings,
+            "end": {
+                "point": chart(result.end.point),
+                "direction": g.chart_direction(result.end.point, result.end.tangent).to_array(),
+                "distance": result.distance,
+            }
+        });
+        println!("{}", serde_json::to_string_pretty(&out).map_err(|e| e.to_string())?);
+    } else {
+        println!("{:>5} {:>5} {:>20}  entry point (chart)", "#", "face", "distance");
+        for (i, c) in result.crossings.iter().enumerate() {
+            let p = chart(c.ray.point);
+            println!(
+                "{:>5} {:>5} {:>20.15}  ({:+.15}, {:+.15}, {:+.15})",
+                i + 1,
+                c.face,
+                c.distance,
+                p[0],
+                p[1],
+                p[2]
+            );
+        }
+        let p = chart(result.end.point);
+        println!(
+            "end at distance {:.15}: ({:+.15}, {:+.15}, {:+.15})",
+            result.distance, p[0], p[1], p[2]
+        );
+    }
+    Ok(())
+}
+
+fn render_command(args: &RenderArgs) -> Result<(), String> {
+    let space = resolve_space(&args.space)?;
+    let fog = args.fog.unwrap_or_else(|| default_fog(&space));
+    let scene = Scene::default_for(&space, fog);
+    let camera = match (args.eye, args.look_at) {
+        (Some(eye), Some(target)) => {
+            let probe = space.geometry.from_chart(eye).map_err(|e| e.to_string())?;
+            if space.outside_by(probe) > 1e-12 {
+                return Err(format!(
+                    "camera position {:?} is outside the cell of {}",
+                    eye.to_array(),
+                    space.name
+                ));
+            }
+            Camera::looking_at(space.geometry, eye, target, args.fov).map_err(|e| e.to_string())?
+        }
+        _ => Camera {
+            fov_y_degrees: args.fov,
+            ..Camera::default_for(&space)
+        },
+    };
+    let settings = RenderSettings {
+        width: args.size.0,
+        height: args.size.1,
+        max_crossings: args.crossings,
+    };
+    eprintln!(
+        "rendering {} ({}) at {}×{} with the f64 CPU reference on {} threads (fog λ = {fog:.3}, ≤ {} crossings)…",
+        space.name,
+        space.geometry.name(),
+        settings.width,
+        settings.height,
+        rayon::current_num_threads(),
+        settings.max_crossings
+    );
+    if !args.cpu {
+        eprintln!("note: the GPU renderer comes with the Bevy plugin; using the CPU reference");
+    }
+    let started = Instant::now();
+    let image = render(&space, &scene, &camera, &settings);
+    if let Some(dir) = args.out.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir)
+            .map_err(|e| format!("cannot create folder {}: {e}", dir.display()))?;
+    }
+    image
+        .save(&args.out)
+        .map_err(|e| format!("cannot write {}: {e}", args.out.display()))?;
+    println!(
+        "wrote {} ({}×{}, {:.2} s)",
+        args.out.display(),
+        settings.width,
+        settings.height,
+        started.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+/// Three times the inradius: several cells deep in every space.
+fn default_fog(space: &Space) -> f64 {
+    3.0 * inradius(space)
+}
+
+fn export(space: &Space, out: Option<&Path>) -> Result<(), String> {
+    let text = serde_json::to_string_pretty(&SpaceRecord::from_space(space))
+        .map_err(|e| e.to_string())?;
+    match out {
+        Some(path) => {
+            std::fs::write(path, text + "\n")
+                .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+            println!("wrote {}", path.display());
+        }
+        None => println!("{text}"),
+    }
+    Ok(())
+}
+
+fn run(cli: Cli) -> Result<(), String> {
+    match cli.command {
+        None => {
+            eprintln!(
+                "no command given: rendering the default space to curved-spaces.png \
+                 (see `curved-spaces --help` for more)"
+            );
+            render_command(&RenderArgs {
+                space: DEFAULT_SPACE.into(),
+                cpu: true,
+                size: (640, 360),
+                out: "curved-spaces.png".into(),
+                fog: None,
+                crossings: 64,
+                fov: 70.0,
+                eye: None,
+                look_at: None,
+            })
+        }
+        Some(Command::List) => {
+            list();
+            Ok(())
+        }
+        Some(Command::Info { space, json }) => info(&resolve_space(&space)?, json),
+        Some(Command::Trace(args)) => trace(&args),
+        Some(Command::Render(args)) => render_command(&args),
+        Some(Command::Export { space, out }) => export(&resolve_space(&space)?, out.as_deref()),
+    }
+}
+
+fn main() -> ExitCode {
+    match run(Cli::parse()) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -1,10 +1,11 @@
 use bevy_curved_spaces::prelude::*;
+use bevy_curved_spaces::space::invariants::*;
 
 #[test]
 fn every_seed_space_validates() {
     for s in SEED_SPACES {
         let space = s.build().unwrap_or_else(|e| panic!("{}: {e}", s.id));
-        eprintln!("{}: V{} E{} cycles {:?} vcycles {} orientable {} manifold {}", s.id, space.vertices.len(), space.edges.len(),
-          space.edge_cycles.iter().map(|c| (c.edges.len(), c.angle_sum.to_degrees(), c.order)).collect::<Vec<_>>(), space.vertex_cycles.len(), space.orientable, space.manifold);
+        let t = std::time::Instant::now();
+        eprintln!("{}: vol {:.15} in {:.6} circ {:.6} edge {:?} hol {:?} grp {:?} inj {:?} geo {:?} ({:?})", s.id, volume(&space), inradius(&space), circumradius(&space), edge_length(&space), holonomy_order(&space), group_order(&space), injectivity_radius(&space), closed_geodesics(&space, 3.5), t.elapsed());
     }
 }

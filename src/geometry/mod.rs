@@ -8,7 +8,7 @@
 mod isometry;
 mod real;
 
-pub use isometry::*;
+
 pub use real::{Real, Vector4};
 
 use glam::{DVec3, DVec4};

@@ -3,6 +3,7 @@
 
 mod catalog;
 mod error;
+pub mod file;
 pub mod invariants;
 
 pub use catalog::{SEED_SPACES, SeedSpace, seed_space};

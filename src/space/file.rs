@@ -1,0 +1,166 @@
+//! Space files: a user-defined space as JSON, validated like the seed spaces.
+//!
+//! ```json
+//! {
+//!   "name": "my-torus",
+//!   "description": "optional text",
+//!   "geometry": "euclidean",
+//!   "faces": [
+//!     { "normal": [1, 0, 0], "offset": 0.5, "partner": 1,
+//!       "pairing": [[1,0,0,-1], [0,1,0,0], [0,0,1,0], [0,0,0,1]] },
+//!     { "normal": [0, 0, 1], "offset": 0.5, "mirror": true }
+//!   ]
+//! }
+//! ```
+//!
+//! A face is the chart half-space `normal · x ≤ offset`. `pairing` is the 4×4 isometry, row
+//! by row, applied to a ray leaving through the face (it maps the face onto its `partner`
+//! with the cell on the far side); `"mirror": true` makes the face a mirror instead.
+//! `curved-spaces export SPACE` writes any seed space in this form.
+
+use super::{FaceSpec, Pairing, Space, SpaceError};
+use crate::geometry::Geometry;
+use glam::{DMat4, DVec3};
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// A face of a space file.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FaceRecord {
+    pub normal: [f64; 3],
+    pub offset: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub partner: Option<usize>,
+    /// Row-major 4×4 matrix.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pairing: Option<[[f64; 4]; 4]>,
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub mirror: bool,
+}
+
+/// The contents of a space file.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpaceRecord {
+    pub name: String,
+    #[serde(default)]
+    pub description: String,
+    pub geometry: Geometry,
+    pub faces: Vec<FaceRecord>,
+}
+
+/// Why a space file could not be used.
+#[derive(Debug, thiserror::Error)]
+pub enum SpaceFileError {
+    #[error("cannot read space file {path}: {source}")]
+    Io {
+        path: String,
+        source: std::io::Error,
+    },
+    #[error("space file {path} is not valid: {source}")]
+    Json {
+        path: String,
+        source: serde_json::Error,
+    },
+    #[error("space file {path}, face {face}: {reason}")]
+    Face {
+        path: String,
+        face: usize,
+        reason: String,
+    },
+    #[error("space file {path}: {source}")]
+    Invalid { path: String, source: SpaceError },
+}
+
+impl SpaceRecord {
+    /// The record of a space (pairings written out as matrices).
+    #[must_use]
+    pub fn from_space(space: &Space) -> Self {
+        let faces = space
+            .faces
+            .iter()
+            .enumerate()
+            .map(|(i, f)| {
+                let mirror = f.is_mirror(i);
+                FaceRecord {
+                    normal: f.normal.to_array(),
+                    offset: f.offset,
+                    partner: (!mirror).then_some(f.partner),
+                    pairing: (!mirror).then(|| f.pairing.transpose().to_cols_array_2d()),
+                    mirror,
+                }
+            })
+            .collect();
+        Self {
+            name: space.name.clone(),
+            description: space.description.clone(),
+            geometry: space.geometry,
+            faces,
+        }
+    }
+
+    /// Builds and validates the space; `path` names the source in errors.
+    pub fn build(&self, path: &str) -> Result<Space, SpaceFileError> {
+        let face_error = |face: usize, reason: &str| SpaceFileError::Face {
+            path: path.to_string(),
+            face,
+            reason: reason.to_string(),
+        };
+        let mut specs = Vec::with_capacity(self.faces.len());
+        for (i, f) in self.faces.iter().enumerate() {
+            let normal = DVec3::from_array(f.normal);
+            let pairing = match (f.mirror, f.partner, f.pairing) {
+                (true, None, None) => Some(Pairing {
+                    partner: i,
+                    matrix: self.geometry.reflection(
+                        (normal / normal.length()).extend(-f.offset / normal.length()),
+                    ),
+                }),
+                (true, _, _) => {
+                    return Err(face_error(
+                        i,
+                        "a mirror takes neither `partner` nor `pairing`",
+                    ));
+                }
+                (false, Some(partner), Some(rows)) => Some(Pairing {
+                    partner,
+                    matrix: DMat4::from_cols_array_2d(&rows).transpose(),
+                }),
+                (false, None, None) => None,
+                (false, None, Some(_)) => {
+                    return Err(face_error(i, "`pairing` given without `partner`"));
+                }
+                (false, Some(_), None) => {
+                    return Err(face_error(i, "`partner` given without `pairing`"));
+                }
+            };
+            specs.push(FaceSpec {
+                normal,
+                offset: f.offset,
+                pairing,
+            });
+        }
+        Space::new(&self.name, &self.description, self.geometry, &specs).map_err(|source| {
+            SpaceFileError::Invalid {
+                path: path.to_string(),
+                source,
+            }
+        })
+    }
+}
+
+/// Reads, parses and validates a space file.
+pub fn load_space_file(path: &Path) -> Result<Space, SpaceFileError> {
+    let name = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|source| SpaceFileError::Io {
+        path: name.clone(),
+        source,
+    })?;
+    let record: SpaceRecord =
+        serde_json::from_str(&text).map_err(|source| SpaceFileError::Json {
+            path: name.clone(),
+            source,
+        })?;
+    record.build(&name)
+}

@@ -1,0 +1,333 @@
+//! Scene objects (exact quadrics in all three geometries) and the shading model.
+//!
+//! A ray segment inside the cell is `X(s) ∝ p + s v` for `s` in `[0, T_exit)` (a straight
+//! chart line), and metric balls and tubes around geodesics are quadrics of R⁴, so each
+//! hit is a root of a quadratic in `s`.
+
+use crate::geometry::Geometry;
+use crate::space::Space;
+use glam::{DVec3, DVec4};
+
+/// A metric ball `d(X, centre) ≤ radius`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ball {
+    pub centre: DVec4,
+    pub radius: f64,
+    pub colour: DVec3,
+    /// `C(radius)`.
+    c_radius: f64,
+}
+
+impl Ball {
+    #[must_use]
+    pub fn new(geometry: Geometry, centre: DVec4, radius: f64, colour: DVec3) -> Self {
+        Self {
+            centre,
+            radius,
+            colour,
+            c_radius: geometry.cs(radius).0,
+        }
+    }
+}
+
+/// An equidistant tube `d(X, [a, b]) ≤ radius` around a geodesic segment (without caps:
+/// put balls at the ends to close it).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Tube {
+    pub a: DVec4,
+    pub b: DVec4,
+    pub radius: f64,
+    pub colour: DVec3,
+    /// Unit tangent at `a` towards `b`: with `a` it spans the segment's line.
+    towards_b: DVec4,
+    /// `(C(L), S(L))` of the segment's length `L`.
+    cs_length: (f64, f64),
+    /// `C(radius)²`.
+    c_radius_sq: f64,
+}
+
+impl Tube {
+    #[must_use]
+    pub fn new(geometry: Geometry, a: DVec4, b: DVec4, radius: f64, colour: DVec3) -> Self {
+        Self {
+            a,
+            b,
+            radius,
+            colour,
+            towards_b: geometry.tangent_towards(a, b),
+            cs_length: geometry.cs(geometry.distance(a, b)),
+            c_radius_sq: geometry.cs(radius).0.powi(2),
+        }
+    }
+
+    /// `(σ, γ)` with `σ/γ = S(τ)/C(τ)` for the foot of `x` at distance τ from `a` along the
+    /// line (up to a common positive factor).
+    fn foot_coordinates(&self, geometry: Geometry, x: DVec4) -> (f64, f64) {
+        match geometry {
+            Geometry::Euclidean => (
+                (x.truncate() / x.w - self.a.truncate()).dot(self.towards_b.truncate()),
+                1.0,
+            ),
+            _ => (
+                geometry.form(x, self.towards_b),
+                geometry.kappa() * geometry.form(x, self.a),
+            ),
+        }
+    }
+
+    /// Whether the foot of `x` on the line lies on the segment: `0 ≤ τ ≤ L`, i.e. `σ ≥ 0`
+    /// and `γ S(L) − σ C(L) ≥ 0`.
+    fn over_segment(&self, geometry: Geometry, x: DVec4) -> bool {
+        let (sigma, gamma) = self.foot_coordinates(geometry, x);
+        let (cl, sl) = self.cs_length;
+        sigma >= 0.0 && gamma * sl - sigma * cl >= 0.0
+    }
+
+    /// The point of the line nearest to the model point `x`.
+    fn foot(&self, geometry: Geometry, x: DVec4) -> DVec4 {
+        match geometry {
+            Geometry::Euclidean => self.a + self.foot_coordinates(geometry, x).0 * self.towards_b,
+            _ => geometry.project_point(
+                geometry.kappa() * geometry.form(x, self.a) * self.a
+                    + geometry.form(x, self.towards_b) * self.towards_b,
+            ),
+        }
+    }
+}
+
+/// Anything a ray can hit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Object {
+    Ball(Ball),
+    Tube(Tube),
+}
+
+/// A ray–object hit: the chart ratio `s` along the segment, the point and the object's
+/// outward unit normal there.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    pub s: f64,
+    pub point: DVec4,
+    pub normal: DVec4,
+    pub colour: DVec3,
+}
+
+/// The smallest root of `a s² + b s + c = 0` in `(lo, hi)` that passes `accept`, computed
+/// without cancellation.
+fn first_root(
+    a: f64,
+    b: f64,
+    c: f64,
+    lo: f64,
+    hi: f64,
+    accept: impl Fn(f64) -> bool,
+) -> Option<f64> {
+    let disc = b * b - 4.0 * a * c;
+    if !(disc >= 0.0) {
+        return None;
+    }
+    let q = -0.5 * (b + b.signum() * disc.sqrt());
+    let (r1, r2) = (q / a, c / q);
+    let (r1, r2) = if r1 <= r2 { (r1, r2) } else { (r2, r1) };
+    [r1, r2]
+        .into_iter()
+        .find(|&s| s.is_finite() && s > lo && s < hi && accept(s))
+}
+
+impl Object {
+    /// The first hit along `X(s) ∝ p + s v` with `0 < s < s_max` (`p` on the model, `v` a
+    /// unit tangent at `p`).
+    #[must_use]
+    pub fn intersect(&self, geometry: Geometry, p: DVec4, v: DVec4, s_max: f64) -> Option<Hit> {
+        let k = geometry.kappa();
+        let form = |a: DVec4, b: DVec4| geometry.form(a, b);
+        let (s, foot, colour) = match self {
+            Object::Ball(ball) => {
+                let c = ball.centre;
+                let s = if geometry == Geometry::Euclidean {
+                    let d = p.truncate() - c.truncate();
+                    let v3 = v.truncate();
+                    let c0 = d.length_squared() - ball.radius * ball.radius;
+                    first_root(v3.length_squared(), 2.0 * d.dot(v3), c0, 0.0, s_max, |_| true)
+                } else {
+                    // (⟨p,c⟩ + s⟨v,c⟩)² = C(ρ)² (1 + κ s²), on the sheet where ⟨X,c⟩ has
+                    // the sign of κ C(ρ) (not the antipodal ball of S³).
+                    let (a, b) = (form(p, c), form(v, c));
+                    let cr = ball.c_radius;
+                    let sheet = k * cr;
+                    first_root(b * b - k * cr * cr, 2.0 * a * b, a * a - cr * cr, 0.0, s_max, |s| {
+                        (a + s * b) * sheet > 0.0
+                    })
+                }?;
+                (s, c, ball.colour)
+            }
+            Object::Tube(tube) => {
+                let (a2, b1, c0) = if geometry == Geometry::Euclidean {
+                    let u = tube.towards_b.truncate();
+                    let perp = |x: DVec3| x - x.dot(u) * u;
+                    let d = perp(p.truncate() - tube.a.truncate());
+                    let w = perp(v.truncate());
+                    let r2 = tube.radius * tube.radius;
+                    (w.length_squared(), 2.0 * d.dot(w), d.length_squared() - r2)
+                } else {
+                    // κ⟨X,e1⟩² + ⟨X,e2⟩² = C(ρ)² ⟨X,X⟩ with ⟨X,X⟩ = κ + s², e1 = a.
+                    let (e1, e2) = (tube.a, tube.towards_b);
+                    let (a0, a1) = (form(p, e1), form(v, e1));
+                    let (b0, b1) = (form(p, e2), form(v, e2));
+                    let cr2 = tube.c_radius_sq;
+                    (
+                        k * a1 * a1 + b1 * b1 - cr2,
+                        2.0 * (k * a0 * a1 + b0 * b1),
+                        k * a0 * a0 + b0 * b0 - k * cr2,
+                    )
+                };
+                let s = first_root(a2, b1, c0, 0.0, s_max, |s| {
+                    tube.over_segment(geometry, p + s * v)
+                })?;
+                let point = geometry.project_point(p + s * v);
+                (s, tube.foot(geometry, point), tube.colour)
+            }
+        };
+        let point = geometry.project_point(p + s * v);
+        // Outward normal: the tangent at the hit pointing away from the nearest point of
+        // the ball's centre or the tube's axis.
+        let normal = geometry.unit_tangent(point, point - foot);
+        Some(Hit {
+            s,
+            point,
+            normal,
+            colour,
+        })
+    }
+}
+
+/// A point light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Light {
+    pub position: DVec4,
+    pub colour: DVec3,
+    /// Brightness at distance `d` is `power / S(d)²` (`sin²`, `d²`, `sinh²`).
+    pub power: f64,
+}
+
+/// The shading model, in one place (`DESIGN.md` §1, §3):
+///
+/// ```text
+/// lit     = albedo · (ambient + (1 − ambient) · light · power · max(0, ⟨n, l⟩) / max(S(d_L)², S(r₀)²))
+/// surface = min(lit, 1)                                   per channel
+/// colour  = e^(−d/λ) · surface + (1 − e^(−d/λ)) · fog     d = distance along the ray
+/// ```
+///
+/// `l` is the unit tangent at the hit towards the light (the light's copy in the same cell),
+/// `d_L` its distance, `r₀` a small radius that keeps the falloff finite. No shadows.
+/// A ray stops at the distance `λ ln 510`, where the fog leaves less than half a colour step
+/// (1/510 of full scale) of whatever lies beyond: the cut-off's error bound.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Shading {
+    pub ambient: f64,
+    pub fog_colour: DVec3,
+    /// Fog distance scale λ.
+    pub fog_distance: f64,
+    pub near_light: f64,
+}
+
+impl Shading {
+    /// The distance past which nothing changes the image by half a colour step or more.
+    #[must_use]
+    pub fn cutoff_distance(&self) -> f64 {
+        self.fog_distance * 510.0_f64.ln()
+    }
+
+    /// The colour of a surface point seen at distance `d`.
+    #[must_use]
+    pub fn shade(&self, geometry: Geometry, light: &Light, hit: &Hit, d: f64) -> DVec3 {
+        let mut lit = DVec3::splat(self.ambient);
+        let dl = geometry.distance(hit.point, light.position);
+        if dl > 0.0 {
+            let l = geometry.tangent_towards(hit.point, light.position);
+            let lambert = geometry.form(hit.normal, l).max(0.0);
+            let s = geometry.s(dl).abs().max(geometry.s(self.near_light));
+            lit += (1.0 - self.ambient) * light.colour * (light.power * lambert / (s * s));
+        }
+        let surface = (hit.colour * lit).min(DVec3::ONE);
+        let w = (-d / self.fog_distance).exp();
+        w * surface + (1.0 - w) * self.fog_colour
+    }
+}
+
+/// What the rays can see: objects in the cell, one light, the shading.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    pub objects: Vec<Object>,
+    pub light: Light,
+    pub shading: Shading,
+}
+
+/// Distinct colours for edge cycles (a golden-angle walk around the hue circle).
+#[must_use]
+pub fn palette(i: usize) -> DVec3 {
+    let h = (i as f64 * 0.618_033_988_75 + 0.08).fract() * 6.0;
+    let x = 1.0 - (h % 2.0 - 1.0).abs();
+    let (r, g, b) = match h as u32 {
+        0 => (1.0, x, 0.0),
+        1 => (x, 1.0, 0.0),
+        2 => (0.0, 1.0, x),
+        3 => (0.0, x, 1.0),
+        4 => (x, 0.0, 1.0),
+        _ => (1.0, 0.0, x),
+    };
+    DVec3::new(r, g, b) * 0.75 + DVec3::splat(0.2)
+}
+
+impl Scene {
+    /// The default scene of a space: the cell's edges as thin tubes coloured by edge cycle,
+    /// a small ball at each vertex, a ball at the centre and one light, with fog at `fog`.
+    #[must_use]
+    pub fn default_for(space: &Space, fog_distance: f64) -> Self {
+        let g = space.geometry;
+        let inradius = crate::space::invariants::inradius(space);
+        let tube = 0.05 * inradius;
+        let mut objects: Vec<Object> = space
+            .edges
+            .iter()
+            .map(|e| {
+                Object::Tube(Tube::new(
+                    g,
+                    space.vertex_point(e.vertices[0]),
+                    space.vertex_point(e.vertices[1]),
+                    tube,
+                    palette(e.cycle),
+                ))
+            })
+            .collect();
+        objects.extend((0..space.vertices.len()).map(|v| {
+            Object::Ball(Ball::new(
+                g,
+                space.vertex_point(v),
+                1.6 * tube,
+                DVec3::splat(0.9),
+            ))
+        }));
+        objects.push(Object::Ball(Ball::new(
+            g,
+            space.centre(),
+            0.25 * inradius,
+            DVec3::new(1.0, 0.78, 0.45),
+        )));
+        let light_at = g.translation(DVec3::new(0.45, 0.8, 0.4), 0.65 * inradius) * space.centre();
+        Scene {
+            objects,
+            light: Light {
+                position: light_at,
+                colour: DVec3::ONE,
+                power: g.s(0.7 * inradius).powi(2),
+            },
+            shading: Shading {
+                ambient: 0.3,
+                fog_colour: DVec3::new(0.04, 0.05, 0.08),
+                fog_distance,
+                near_light: 0.05 * inradius,
+            },
+        }
+    }
+}
