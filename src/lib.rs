@@ -8,6 +8,9 @@
 //! ([`space`]) and the f64 CPU reference ray tracer ([`trace`]). They use glam types only,
 //! so they work without a Bevy app.
 
+// `!(x < tol)` is how this crate rejects NaN along with large values: keep it.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 pub mod geometry;
 pub mod space;
 pub mod trace;

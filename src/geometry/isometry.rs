@@ -118,8 +118,8 @@ impl Geometry {
         let mut cols = [frame.x_axis, frame.y_axis, frame.z_axis];
         for i in 0..3 {
             let mut v = self.project_tangent(p, cols[i]);
-            for j in 0..i {
-                v -= self.form(v, cols[j]) * cols[j];
+            for done in &cols[..i] {
+                v -= self.form(v, *done) * *done;
             }
             cols[i] = v / self.form(v, v).sqrt();
         }

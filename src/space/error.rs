@@ -39,9 +39,13 @@ pub enum SpaceError {
     )]
     DegenerateFace { face: usize, vertices: usize },
     #[error(
-        "the faces do not bound a convex polyhedron (V − E + F = {euler}, expected 2): is a face missing?"
+        "the faces do not close the cell: it is unbounded in chart direction {direction:?}. Is a face missing?"
     )]
-    NotBounded { euler: i64 },
+    NotBounded { direction: [f64; 3] },
+    #[error(
+        "the faces do not form a convex polyhedron (V − E + F = {euler}, expected 2, or an edge with one face)"
+    )]
+    NotAPolyhedron { euler: i64 },
     #[error(
         "vertex at chart point {point:?} lies on or beyond the sphere at infinity: only compact hyperbolic cells are supported"
     )]

@@ -390,7 +390,7 @@ pub fn closed_geodesics(space: &Space, max_length: f64) -> Vec<GeodesicLength> {
 
 fn minimal_period(seq: &[usize]) -> usize {
     (1..=seq.len())
-        .find(|&p| seq.len() % p == 0 && (0..seq.len()).all(|i| seq[i] == seq[(i + p) % seq.len()]))
+        .find(|&p| seq.len().is_multiple_of(p) && (0..seq.len()).all(|i| seq[i] == seq[(i + p) % seq.len()]))
         .unwrap_or(seq.len())
 }
 

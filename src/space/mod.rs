@@ -1,7 +1,7 @@
 //! Spaces: a geometry, a convex fundamental polyhedron and one pairing per face, validated
 //! by Poincaré's polyhedron theorem when built (`DESIGN.md` §2).
 
-mod catalog;
+pub mod catalog;
 mod error;
 pub mod file;
 pub mod invariants;
@@ -202,6 +202,11 @@ impl Space {
             }
         }
 
+        if let Some(direction) = escape_direction(&faces) {
+            return Err(SpaceError::NotBounded {
+                direction: direction.to_array(),
+            });
+        }
         let vertices = find_vertices(&faces, tol);
         for v in &vertices {
             match geometry {
@@ -260,7 +265,7 @@ impl Space {
         }
         let euler = vertices.len() as i64 - edge_list.len() as i64 + faces.len() as i64;
         if euler != 2 || edge_faces.iter().any(|f| f[1] == usize::MAX) {
-            return Err(SpaceError::NotBounded { euler });
+            return Err(SpaceError::NotAPolyhedron { euler });
         }
 
         let points: Vec<DVec4> = vertices
@@ -479,6 +484,31 @@ pub fn dihedral_angle(geometry: Geometry, a: DVec4, b: DVec4) -> f64 {
     let form = |x: DVec4, y: DVec4| x.truncate().dot(y.truncate()) + k * x.w * y.w;
     let c = -form(a, b) / (form(a, a) * form(b, b)).sqrt();
     c.clamp(-1.0, 1.0).acos()
+}
+
+/// A chart direction in which the cell is unbounded, if any: one with `n_f · d ≤ 0` for
+/// every face. The cone of such directions, when not empty, has an extreme ray along
+/// `±(n_i × n_j)` for two faces, so checking those is exact.
+fn escape_direction(faces: &[Face]) -> Option<DVec3> {
+    let escapes = |d: DVec3| faces.iter().all(|f| f.normal.dot(d) <= 1e-12);
+    if faces.windows(2).all(|w| w[0].normal.cross(w[1].normal).length() < 1e-12) {
+        return Some(faces[0].normal.any_orthonormal_vector());
+    }
+    for (i, a) in faces.iter().enumerate() {
+        for b in &faces[i + 1..] {
+            let d = a.normal.cross(b.normal);
+            if d.length() < 1e-12 {
+                continue;
+            }
+            let d = d.normalize();
+            for d in [d, -d] {
+                if escapes(d) {
+                    return Some(d);
+                }
+            }
+        }
+    }
+    None
 }
 
 /// All points where three or more face planes meet inside every other half-space.
