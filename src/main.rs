@@ -125,7 +125,9 @@ struct RenderArgs {
 fn parse_vec3(s: &str) -> Result<DVec3, String> {
     let parts: Vec<&str> = s.split(',').map(str::trim).collect();
     if parts.len() != 3 {
-        return Err(format!("expected three comma-separated numbers like 1,0,0.5, got `{s}`"));
+        return Err(format!(
+            "expected three comma-separated numbers like 1,0,0.5, got `{s}`"
+        ));
     }
     let mut v = [0.0; 3];
     for (x, p) in v.iter_mut().zip(&parts) {
@@ -148,7 +150,9 @@ fn parse_positive(s: &str) -> Result<f64, String> {
 fn parse_fov(s: &str) -> Result<f64, String> {
     match s.parse::<f64>() {
         Ok(x) if x > 0.0 && x < 180.0 => Ok(x),
-        _ => Err(format!("expected an angle between 0 and 180 degrees, got `{s}`")),
+        _ => Err(format!(
+            "expected an angle between 0 and 180 degrees, got `{s}`"
+        )),
     }
 }
 
@@ -198,7 +202,10 @@ fn list() {
 fn info(space: &Space, as_json: bool) -> Result<(), String> {
     let inv = Invariants::compute(space);
     if as_json {
-        println!("{}", serde_json::to_string_pretty(&inv).map_err(|e| e.to_string())?);
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&inv).map_err(|e| e.to_string())?
+        );
         return Ok(());
     }
     let opt = |x: Option<f64>| x.map_or("–".to_string(), |x| format!("{x:.10}"));
@@ -215,7 +222,11 @@ fn info(space: &Space, as_json: bool) -> Result<(), String> {
         .iter()
         .map(|c| format!("{}×{:.1}°", c.edges, c.angle_sum.to_degrees()))
         .collect();
-    println!("  edge cycles         {} ({})", cycles.len(), cycles.join(", "));
+    println!(
+        "  edge cycles         {} ({})",
+        cycles.len(),
+        cycles.join(", ")
+    );
     println!("  vertex cycles       {}", inv.vertex_cycles);
     println!("  orientable          {}", inv.orientable);
     println!("  manifold            {}", inv.manifold);
@@ -299,9 +310,15 @@ fn trace(args: &TraceArgs) -> Result<(), String> {
                 "distance": result.distance,
             }
         });
-        println!("{}", serde_json::to_string_pretty(&out).map_err(|e| e.to_string())?);
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&out).map_err(|e| e.to_string())?
+        );
     } else {
-        println!("{:>5} {:>5} {:>20}  entry point (chart)", "#", "face", "distance");
+        println!(
+            "{:>5} {:>5} {:>20}  entry point (chart)",
+            "#", "face", "distance"
+        );
         for (i, c) in result.crossings.iter().enumerate() {
             let p = chart(c.ray.point);
             println!(
@@ -386,8 +403,8 @@ fn default_fog(space: &Space) -> f64 {
 }
 
 fn export(space: &Space, out: Option<&Path>) -> Result<(), String> {
-    let text = serde_json::to_string_pretty(&SpaceRecord::from_space(space))
-        .map_err(|e| e.to_string())?;
+    let text =
+        serde_json::to_string_pretty(&SpaceRecord::from_space(space)).map_err(|e| e.to_string())?;
     match out {
         Some(path) => {
             std::fs::write(path, text + "\n")

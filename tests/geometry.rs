@@ -128,7 +128,10 @@ fn distances_are_accurate_near_and_far() {
         let q = g.translation(DVec3::Y, t) * ORIGIN;
         let d = g.distance(ORIGIN, q);
         let bound = 4.0 * f64::EPSILON * f64::exp(t);
-        assert!((d - t).abs() <= bound, "H³ d = {d}, expected {t} ± {bound:e}");
+        assert!(
+            (d - t).abs() <= bound,
+            "H³ d = {d}, expected {t} ± {bound:e}"
+        );
     }
     // Antipodal points in S³ are π apart, not NaN.
     let s = Geometry::Spherical;
@@ -148,7 +151,11 @@ fn bad_chart_points_are_errors() {
 fn look_at_builds_a_right_handed_frame() {
     for g in Geometry::ALL {
         let f = g
-            .look_at(DVec3::new(0.1, 0.2, 0.3), DVec3::new(-0.2, 0.0, 0.1), DVec3::Y)
+            .look_at(
+                DVec3::new(0.1, 0.2, 0.3),
+                DVec3::new(-0.2, 0.0, 0.1),
+                DVec3::Y,
+            )
             .unwrap();
         assert!(g.frame_defect(f) < 1e-13);
         // Transported to the origin, right × up = back.

@@ -28,7 +28,11 @@ fn every_seed_space_is_valid_and_of_the_right_kind() {
         assert_eq!(s.orientable, !mirrored, "{}", seed.id);
         assert_eq!(s.has_mirrors(), mirrored, "{}", seed.id);
         for c in &s.edge_cycles {
-            assert!(close(c.angle_sum * c.order as f64, 2.0 * PI, 1e-12), "{}", seed.id);
+            assert!(
+                close(c.angle_sum * c.order as f64, 2.0 * PI, 1e-12),
+                "{}",
+                seed.id
+            );
         }
         // Euler characteristic of a closed 3-manifold is 0.
         if s.manifold {
@@ -95,12 +99,18 @@ fn volumes_match_exact_values_and_schlaefli() {
     }
     let sw = volume(&space("seifert-weber"));
     let sw_schlaefli = schlaefli_volume(Geometry::Hyperbolic, 2.0 * PI / 5.0);
-    assert!(close(sw, sw_schlaefli, 1e-9), "{sw} vs Schläfli {sw_schlaefli}");
+    assert!(
+        close(sw, sw_schlaefli, 1e-9),
+        "{sw} vs Schläfli {sw_schlaefli}"
+    );
     // Regina's test suite gives 11.1990647 (7 digits) for the Weber–Seifert space.
     assert!((sw - 11.1990647).abs() < 5e-8, "{sw}");
     let rd = volume(&space("mirrored-dodecahedron"));
     let rd_schlaefli = schlaefli_volume(Geometry::Hyperbolic, PI / 2.0);
-    assert!(close(rd, rd_schlaefli, 1e-9), "{rd} vs Schläfli {rd_schlaefli}");
+    assert!(
+        close(rd, rd_schlaefli, 1e-9),
+        "{rd} vs Schläfli {rd_schlaefli}"
+    );
     // Schläfli in S³ gives the Poincaré cell too.
     let p = schlaefli_volume(Geometry::Spherical, 2.0 * PI / 3.0);
     assert!(close(p, PI * PI / 60.0, 1e-9), "Schläfli Poincaré {p}");
@@ -121,7 +131,10 @@ fn dihedral_angles_and_cycles_match_the_construction() {
             assert!(close(e.dihedral.to_degrees(), degrees, 1e-12), "{id}");
         }
         assert_eq!(s.edge_cycles.len(), cycles, "{id}");
-        assert!(s.edge_cycles.iter().all(|c| c.edges.len() == per_cycle), "{id}");
+        assert!(
+            s.edge_cycles.iter().all(|c| c.edges.len() == per_cycle),
+            "{id}"
+        );
         assert_eq!(s.vertex_cycles.len(), vertex_cycles, "{id}");
     }
 }
@@ -143,7 +156,10 @@ fn radii_and_edge_lengths() {
     let p = space("poincare");
     let phi = (1.0 + 5.0_f64.sqrt()) / 2.0;
     let chord = 2.0 * (edge_length(&p).unwrap() / 2.0).sin();
-    assert!(close(chord, 1.0 / (phi * phi * 2.0_f64.sqrt()), 1e-14), "{chord}");
+    assert!(
+        close(chord, 1.0 / (phi * phi * 2.0_f64.sqrt()), 1e-14),
+        "{chord}"
+    );
     assert!(close(inradius(&p), PI / 10.0, 1e-14));
     // The edge length of the dodecahedra agrees with the independent vertex computation.
     for (id, g, beta) in [
@@ -176,7 +192,14 @@ fn groups_and_injectivity_radii() {
     let inj = injectivity_radius(&space("poincare")).unwrap();
     assert!(close(inj, PI / 10.0, 1e-9), "{inj}");
     // Flat: the shortest translations and screw motions have length 1.
-    for id in ["torus", "half-turn", "quarter-turn", "third-turn", "sixth-turn", "hantzsche-wendt"] {
+    for id in [
+        "torus",
+        "half-turn",
+        "quarter-turn",
+        "third-turn",
+        "sixth-turn",
+        "hantzsche-wendt",
+    ] {
         let r = injectivity_radius(&space(id)).unwrap();
         assert!(close(r, 0.5, 1e-12), "{id}: {r}");
     }
@@ -197,7 +220,11 @@ fn seifert_weber_closed_geodesics() {
     assert_eq!(entry.count, 6);
     // Sorted, within the range, and the systole is twice the injectivity radius.
     assert!(spectrum.windows(2).all(|w| w[0].length < w[1].length));
-    assert!(spectrum.iter().all(|g| g.length <= GEODESIC_SPECTRUM_LENGTH && g.count > 0));
+    assert!(
+        spectrum
+            .iter()
+            .all(|g| g.length <= GEODESIC_SPECTRUM_LENGTH && g.count > 0)
+    );
     let inj = injectivity_radius(&s).unwrap();
     assert!(close(spectrum[0].length, 2.0 * inj, 1e-9));
     // Brute force without the separation pruning: every element moving the centre by at
@@ -286,7 +313,14 @@ fn broken_spaces_are_rejected_with_the_right_error() {
 
     let e = Geometry::Euclidean;
     let cube = |f: &dyn Fn(usize, DVec3) -> Option<Pairing>| -> Vec<FaceSpec> {
-        let normals = [DVec3::X, DVec3::NEG_X, DVec3::Y, DVec3::NEG_Y, DVec3::Z, DVec3::NEG_Z];
+        let normals = [
+            DVec3::X,
+            DVec3::NEG_X,
+            DVec3::Y,
+            DVec3::NEG_Y,
+            DVec3::Z,
+            DVec3::NEG_Z,
+        ];
         normals
             .iter()
             .enumerate()
@@ -327,7 +361,11 @@ fn broken_spaces_are_rejected_with_the_right_error() {
     // Not an isometry.
     let scaled = cube(&|i, n| {
         translate(i, n).map(|p| Pairing {
-            matrix: if i == 0 { p.matrix * DMat4::from_scale(DVec3::splat(1.01)) } else { p.matrix },
+            matrix: if i == 0 {
+                p.matrix * DMat4::from_scale(DVec3::splat(1.01))
+            } else {
+                p.matrix
+            },
             ..p
         })
     });
@@ -355,10 +393,19 @@ fn broken_spaces_are_rejected_with_the_right_error() {
     });
     assert!(matches!(
         Space::new("t", "", e, &short_pair),
-        Err(SpaceError::FaceNotMapped { face: 0, partner: 1, .. })
+        Err(SpaceError::FaceNotMapped {
+            face: 0,
+            partner: 1,
+            ..
+        })
     ));
     // Partners that do not name each other.
-    let crossed = cube(&|i, n| translate(i, n).map(|p| Pairing { partner: if i == 0 { 2 } else { p.partner }, ..p }));
+    let crossed = cube(&|i, n| {
+        translate(i, n).map(|p| Pairing {
+            partner: if i == 0 { 2 } else { p.partner },
+            ..p
+        })
+    });
     assert!(matches!(
         Space::new("t", "", e, &crossed),
         Err(SpaceError::PartnerNotMutual { face: 0, .. })
@@ -366,20 +413,33 @@ fn broken_spaces_are_rejected_with_the_right_error() {
     // Pairings that are not inverse to each other: both z faces screw the same way.
     let screw = affine(DMat3::from_rotation_z(PI / 2.0), DVec3::Z);
     let same_way = cube(&|i, n| match i {
-        4 => Some(Pairing { partner: 5, matrix: affine(DMat3::from_rotation_z(PI / 2.0), -DVec3::Z) }),
-        5 => Some(Pairing { partner: 4, matrix: screw }),
+        4 => Some(Pairing {
+            partner: 5,
+            matrix: affine(DMat3::from_rotation_z(PI / 2.0), -DVec3::Z),
+        }),
+        5 => Some(Pairing {
+            partner: 4,
+            matrix: screw,
+        }),
         _ => translate(i, n),
     });
     assert!(matches!(
         Space::new("t", "", e, &same_way),
-        Err(SpaceError::NotInverse { face: 4, partner: 5, .. })
+        Err(SpaceError::NotInverse {
+            face: 4,
+            partner: 5,
+            ..
+        })
     ));
     // A face the pairing maps onto its partner but with the cell on the same side.
     let flip = cube(&|i, n| {
         if i < 2 {
             Some(Pairing {
                 partner: i ^ 1,
-                matrix: affine(DMat3::from_diagonal(DVec3::new(-1.0, 1.0, 1.0)), DVec3::ZERO),
+                matrix: affine(
+                    DMat3::from_diagonal(DVec3::new(-1.0, 1.0, 1.0)),
+                    DVec3::ZERO,
+                ),
             })
         } else {
             translate(i, n)
@@ -392,7 +452,10 @@ fn broken_spaces_are_rejected_with_the_right_error() {
     // The messages name what is wrong.
     let msg = Space::new("t", "", e, &missing).unwrap_err().to_string();
     assert!(msg.contains("face 3"), "{msg}");
-    assert!(matches!(seed_space("klein-bottle"), Err(SpaceError::UnknownSpace(_))));
+    assert!(matches!(
+        seed_space("klein-bottle"),
+        Err(SpaceError::UnknownSpace(_))
+    ));
 }
 
 #[test]
@@ -402,15 +465,25 @@ fn space_files_round_trip_and_reject_mistakes() {
     for id in ["seifert-weber", "mirrored-cube", "hantzsche-wendt"] {
         let s = space(id);
         let path = dir.join(format!("{id}.json"));
-        std::fs::write(&path, serde_json::to_string(&SpaceRecord::from_space(&s)).unwrap()).unwrap();
+        std::fs::write(
+            &path,
+            serde_json::to_string(&SpaceRecord::from_space(&s)).unwrap(),
+        )
+        .unwrap();
         let back = load_space_file(&path).unwrap();
         assert_eq!(back.edge_cycles.len(), s.edge_cycles.len());
         assert!(close(volume(&back), volume(&s), 1e-12));
     }
     let bad = [
         ("{", "not valid"),
-        (r#"{"name":"x","geometry":"elliptic","faces":[]}"#, "not valid"),
-        (r#"{"name":"x","geometry":"euclidean","faces":[]}"#, "at least 4 faces"),
+        (
+            r#"{"name":"x","geometry":"elliptic","faces":[]}"#,
+            "not valid",
+        ),
+        (
+            r#"{"name":"x","geometry":"euclidean","faces":[]}"#,
+            "at least 4 faces",
+        ),
         (
             r#"{"name":"x","geometry":"euclidean","faces":[{"normal":[1,0,0],"offset":0.5,"mirror":true,"partner":0}]}"#,
             "face 0",
@@ -422,7 +495,9 @@ fn space_files_round_trip_and_reject_mistakes() {
         let msg = load_space_file(&path).unwrap_err().to_string();
         assert!(msg.contains(expect) && msg.contains("bad"), "{msg}");
     }
-    let missing = load_space_file(&dir.join("nope.json")).unwrap_err().to_string();
+    let missing = load_space_file(&dir.join("nope.json"))
+        .unwrap_err()
+        .to_string();
     assert!(missing.contains("cannot read"), "{missing}");
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -54,7 +54,12 @@ impl Geometry {
     /// (for E³, where the form is degenerate, `m = (n, 0)`: the Euclidean reflection).
     #[must_use]
     pub fn reflection(self, covector: DVec4) -> DMat4 {
-        let m = DVec4::new(covector.x, covector.y, covector.z, self.kappa() * covector.w);
+        let m = DVec4::new(
+            covector.x,
+            covector.y,
+            covector.z,
+            self.kappa() * covector.w,
+        );
         let scale = 2.0 / covector.dot(m);
         DMat4::from_cols(
             DVec4::X - scale * covector.x * m,

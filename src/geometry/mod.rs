@@ -8,7 +8,6 @@
 mod isometry;
 mod real;
 
-
 pub use real::{Real, Vector4};
 
 use glam::{DVec3, DVec4};

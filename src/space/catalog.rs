@@ -182,9 +182,18 @@ fn turned_prism(name: &str, turns: u32) -> Result<Space, SpaceError> {
 fn hantzsche_wendt() -> Result<Space, SpaceError> {
     let e = Geometry::Euclidean;
     let generators = [
-        affine(DMat3::from_diagonal(DVec3::new(1.0, -1.0, -1.0)), DVec3::new(1.0, 1.0, 0.0)),
-        affine(DMat3::from_diagonal(DVec3::new(-1.0, 1.0, -1.0)), DVec3::new(0.0, 1.0, 1.0)),
-        affine(DMat3::from_diagonal(DVec3::new(-1.0, -1.0, 1.0)), DVec3::new(1.0, 0.0, 1.0)),
+        affine(
+            DMat3::from_diagonal(DVec3::new(1.0, -1.0, -1.0)),
+            DVec3::new(1.0, 1.0, 0.0),
+        ),
+        affine(
+            DMat3::from_diagonal(DVec3::new(-1.0, 1.0, -1.0)),
+            DVec3::new(0.0, 1.0, 1.0),
+        ),
+        affine(
+            DMat3::from_diagonal(DVec3::new(-1.0, -1.0, 1.0)),
+            DVec3::new(1.0, 0.0, 1.0),
+        ),
     ];
     let mut letters: Vec<DMat4> = generators.to_vec();
     letters.extend(generators.iter().map(|&g| e.inverse(g)));
@@ -245,9 +254,7 @@ fn mirror_faces(geometry: Geometry, normals: &[DVec3], offset: f64) -> Vec<FaceS
     normals
         .iter()
         .enumerate()
-        .map(|(i, &n)| {
-            FaceSpec::paired(n, offset, i, geometry.reflection(n.extend(-offset)))
-        })
+        .map(|(i, &n)| FaceSpec::paired(n, offset, i, geometry.reflection(n.extend(-offset))))
         .collect()
 }
 

@@ -18,7 +18,9 @@ pub enum SpaceError {
         "face {face}: the plane n·x = {offset} misses hyperbolic space (in the Klein model it needs offset < 1)"
     )]
     PlaneMissesSpace { face: usize, offset: f64 },
-    #[error("face {face} has no pairing: give it a partner face and an isometry, or make it a mirror")]
+    #[error(
+        "face {face} has no pairing: give it a partner face and an isometry, or make it a mirror"
+    )]
     MissingPairing { face: usize },
     #[error("face {face} is paired with face {partner}, but there are only {count} faces")]
     PartnerOutOfRange {
@@ -76,10 +78,7 @@ pub enum SpaceError {
     #[error(
         "edge cycle through edges {edges} has angle sum {angle_sum_deg:.6}°, which is not 360°/k for a whole k"
     )]
-    EdgeAngleSum {
-        edges: String,
-        angle_sum_deg: f64,
-    },
+    EdgeAngleSum { edges: String, angle_sum_deg: f64 },
     #[error(
         "edge cycle through edges {edges}: going once around it gives an isometry of order other than {order} (defect {defect:.3e}), so the cells do not close up around the edge"
     )]

@@ -113,9 +113,9 @@ impl SpaceRecord {
             let pairing = match (f.mirror, f.partner, f.pairing) {
                 (true, None, None) => Some(Pairing {
                     partner: i,
-                    matrix: self.geometry.reflection(
-                        (normal / normal.length()).extend(-f.offset / normal.length()),
-                    ),
+                    matrix: self
+                        .geometry
+                        .reflection((normal / normal.length()).extend(-f.offset / normal.length())),
                 }),
                 (true, _, _) => {
                     return Err(face_error(

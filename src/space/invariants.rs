@@ -118,7 +118,11 @@ pub fn holonomy_order(space: &Space) -> Option<usize> {
         return None;
     }
     let key = |m: &DMat3| m.to_cols_array().map(|x| (x * 1e6).round() as i64);
-    let generators: Vec<DMat3> = space.faces.iter().map(|f| DMat3::from_mat4(f.pairing)).collect();
+    let generators: Vec<DMat3> = space
+        .faces
+        .iter()
+        .map(|f| DMat3::from_mat4(f.pairing))
+        .collect();
     let mut seen: HashMap<[i64; 9], DMat3> = HashMap::new();
     let mut queue = VecDeque::from([DMat3::IDENTITY]);
     seen.insert(key(&DMat3::IDENTITY), DMat3::IDENTITY);
@@ -160,7 +164,9 @@ impl Separation {
         let k = space.geometry.kappa();
         Self {
             geometry: space.geometry,
-            vertices: (0..space.vertices.len()).map(|v| space.vertex_point(v)).collect(),
+            vertices: (0..space.vertices.len())
+                .map(|v| space.vertex_point(v))
+                .collect(),
             planes: space
                 .faces
                 .iter()
@@ -185,7 +191,11 @@ impl Separation {
             Geometry::Hyperbolic => gap.sinh(),
         };
         for m in [h, g.inverse(h)] {
-            let images: Vec<DVec4> = self.vertices.iter().map(|&x| g.project_point(m * x)).collect();
+            let images: Vec<DVec4> = self
+                .vertices
+                .iter()
+                .map(|&x| g.project_point(m * x))
+                .collect();
             for n in &self.planes {
                 if images.iter().all(|&x| n.dot(x) > threshold) {
                     return false;
@@ -309,7 +319,10 @@ fn attracting_point(h: DMat4) -> DVec3 {
     let mut m = h;
     for _ in 0..12 {
         m = m * m;
-        let scale = m.to_cols_array().iter().fold(0.0_f64, |a, x| a.max(x.abs()));
+        let scale = m
+            .to_cols_array()
+            .iter()
+            .fold(0.0_f64, |a, x| a.max(x.abs()));
         m *= 1.0 / scale;
     }
     let p = m * ORIGIN;
@@ -390,13 +403,22 @@ pub fn closed_geodesics(space: &Space, max_length: f64) -> Vec<GeodesicLength> {
 
 fn minimal_period(seq: &[usize]) -> usize {
     (1..=seq.len())
-        .find(|&p| seq.len().is_multiple_of(p) && (0..seq.len()).all(|i| seq[i] == seq[(i + p) % seq.len()]))
+        .find(|&p| {
+            seq.len().is_multiple_of(p)
+                && (0..seq.len()).all(|i| seq[i] == seq[(i + p) % seq.len()])
+        })
         .unwrap_or(seq.len())
 }
 
 fn canonical_rotation(seq: &[usize]) -> Vec<usize> {
     (0..seq.len())
-        .map(|r| seq[r..].iter().chain(&seq[..r]).copied().collect::<Vec<_>>())
+        .map(|r| {
+            seq[r..]
+                .iter()
+                .chain(&seq[..r])
+                .copied()
+                .collect::<Vec<_>>()
+        })
         .min()
         .unwrap_or_default()
 }

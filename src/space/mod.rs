@@ -301,11 +301,8 @@ impl Space {
         };
 
         // Edge cycles: walk (edge, face to cross) states until the first one comes back.
-        let edge_of = |a: usize, b: usize| {
-            edge_list
-                .iter()
-                .position(|&x| x == (a.min(b), a.max(b)))
-        };
+        let edge_of =
+            |a: usize, b: usize| edge_list.iter().position(|&x| x == (a.min(b), a.max(b)));
         let mut edge_cycles: Vec<EdgeCycle> = Vec::new();
         for start in 0..edges.len() {
             for side in 0..2 {
@@ -330,7 +327,9 @@ impl Space {
                         return Err(SpaceError::FaceNotMapped {
                             face: f,
                             partner,
-                            reason: format!("edge {a}–{b} does not map onto an edge of the partner face"),
+                            reason: format!(
+                                "edge {a}–{b} does not map onto an edge of the partner face"
+                            ),
                         });
                     };
                     e = next;
@@ -491,7 +490,10 @@ pub fn dihedral_angle(geometry: Geometry, a: DVec4, b: DVec4) -> f64 {
 /// `±(n_i × n_j)` for two faces, so checking those is exact.
 fn escape_direction(faces: &[Face]) -> Option<DVec3> {
     let escapes = |d: DVec3| faces.iter().all(|f| f.normal.dot(d) <= 1e-12);
-    if faces.windows(2).all(|w| w[0].normal.cross(w[1].normal).length() < 1e-12) {
+    if faces
+        .windows(2)
+        .all(|w| w[0].normal.cross(w[1].normal).length() < 1e-12)
+    {
         return Some(faces[0].normal.any_orthonormal_vector());
     }
     for (i, a) in faces.iter().enumerate() {
@@ -518,13 +520,12 @@ fn find_vertices(faces: &[Face], tol: f64) -> Vec<DVec3> {
     for i in 0..n {
         for j in i + 1..n {
             for k in j + 1..n {
-                let m = DMat3::from_cols(faces[i].normal, faces[j].normal, faces[k].normal)
-                    .transpose();
+                let m =
+                    DMat3::from_cols(faces[i].normal, faces[j].normal, faces[k].normal).transpose();
                 if m.determinant().abs() < 1e-9 {
                     continue;
                 }
-                let x = m.inverse()
-                    * DVec3::new(faces[i].offset, faces[j].offset, faces[k].offset);
+                let x = m.inverse() * DVec3::new(faces[i].offset, faces[j].offset, faces[k].offset);
                 if faces.iter().all(|f| f.normal.dot(x) <= f.offset + tol)
                     && !out.iter().any(|v| (*v - x).length() < 1e3 * tol)
                 {

@@ -84,7 +84,11 @@ impl<V: Vector4> CellWalker<V> {
     pub fn new(space: &Space) -> Self {
         Self {
             geometry: space.geometry,
-            covectors: space.faces.iter().map(|f| V::from_f64(f.covector)).collect(),
+            covectors: space
+                .faces
+                .iter()
+                .map(|f| V::from_f64(f.covector))
+                .collect(),
             pairings: space
                 .faces
                 .iter()

@@ -118,7 +118,12 @@ pub fn trace_pixel(
 /// Renders a picture (rows in parallel with rayon). Colours are written as they are
 /// computed (no gamma curve), so the fog cut-off bound holds in 8-bit steps.
 #[must_use]
-pub fn render(space: &Space, scene: &Scene, camera: &Camera, settings: &RenderSettings) -> RgbImage {
+pub fn render(
+    space: &Space,
+    scene: &Scene,
+    camera: &Camera,
+    settings: &RenderSettings,
+) -> RgbImage {
     let walker = CellWalker::<DVec4>::new(space);
     let (w, h) = (settings.width, settings.height);
     let rows: Vec<Vec<u8>> = (0..h)
@@ -128,7 +133,10 @@ pub fn render(space: &Space, scene: &Scene, camera: &Camera, settings: &RenderSe
             for i in 0..w {
                 let ray = camera.ray(space.geometry, i, j, w, h);
                 let (c, _) = trace_pixel(&walker, scene, ray, settings.max_crossings);
-                row.extend(c.to_array().map(|x| (x.clamp(0.0, 1.0) * 255.0).round() as u8));
+                row.extend(
+                    c.to_array()
+                        .map(|x| (x.clamp(0.0, 1.0) * 255.0).round() as u8),
+                );
             }
             row
         })

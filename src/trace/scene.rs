@@ -148,16 +148,23 @@ impl Object {
                     let d = p.truncate() - c.truncate();
                     let v3 = v.truncate();
                     let c0 = d.length_squared() - ball.radius * ball.radius;
-                    first_root(v3.length_squared(), 2.0 * d.dot(v3), c0, 0.0, s_max, |_| true)
+                    first_root(v3.length_squared(), 2.0 * d.dot(v3), c0, 0.0, s_max, |_| {
+                        true
+                    })
                 } else {
                     // (⟨p,c⟩ + s⟨v,c⟩)² = C(ρ)² (1 + κ s²), on the sheet where ⟨X,c⟩ has
                     // the sign of κ C(ρ) (not the antipodal ball of S³).
                     let (a, b) = (form(p, c), form(v, c));
                     let cr = ball.c_radius;
                     let sheet = k * cr;
-                    first_root(b * b - k * cr * cr, 2.0 * a * b, a * a - cr * cr, 0.0, s_max, |s| {
-                        (a + s * b) * sheet > 0.0
-                    })
+                    first_root(
+                        b * b - k * cr * cr,
+                        2.0 * a * b,
+                        a * a - cr * cr,
+                        0.0,
+                        s_max,
+                        |s| (a + s * b) * sheet > 0.0,
+                    )
                 }?;
                 (s, c, ball.colour)
             }
