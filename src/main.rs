@@ -77,11 +77,11 @@ struct TraceArgs {
     /// Chart start point (inside the cell).
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true, default_value = "0,0,0")]
     from: DVec3,
-    /// Stop after this many face crossings.
-    #[arg(long)]
+    /// Stop after this many face crossings (at most 10⁶).
+    #[arg(long, value_parser = parse_crossings)]
     crossings: Option<usize>,
-    /// Stop at this geodesic distance.
-    #[arg(long, value_parser = parse_positive)]
+    /// Stop at this geodesic distance (at most 10⁶).
+    #[arg(long, value_parser = parse_distance, allow_hyphen_values = true)]
     distance: Option<f64>,
     /// Arithmetic of the walk (f32 is what the GPU uses).
     #[arg(long, value_enum, default_value = "f64")]
@@ -106,10 +106,10 @@ struct RenderArgs {
     #[arg(long, default_value = "curved-spaces.png")]
     out: PathBuf,
     /// Fog distance scale λ (default: three times the inradius). Rays stop at λ·ln 510.
-    #[arg(long, value_parser = parse_positive)]
+    #[arg(long, value_parser = parse_positive, allow_hyphen_values = true)]
     fog: Option<f64>,
-    /// Crossing budget per ray.
-    #[arg(long, default_value_t = 64)]
+    /// Crossing budget per ray (at most 10⁶).
+    #[arg(long, default_value_t = 64, value_parser = parse_crossings)]
     crossings: usize,
     /// Vertical field of view in degrees.
     #[arg(long, default_value_t = 70.0, value_parser = parse_fov)]
@@ -144,6 +144,25 @@ fn parse_positive(s: &str) -> Result<f64, String> {
     match s.parse::<f64>() {
         Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
         _ => Err(format!("expected a positive number, got `{s}`")),
+    }
+}
+
+/// Longer walks than this take minutes and say nothing new.
+const MAX_WALK: usize = 1_000_000;
+
+fn parse_crossings(s: &str) -> Result<usize, String> {
+    match s.parse::<usize>() {
+        Ok(n) if n <= MAX_WALK => Ok(n),
+        _ => Err(format!(
+            "expected a whole number from 0 to {MAX_WALK}, got `{s}`"
+        )),
+    }
+}
+
+fn parse_distance(s: &str) -> Result<f64, String> {
+    match parse_positive(s)? {
+        d if d <= MAX_WALK as f64 => Ok(d),
+        _ => Err(format!("expected a distance up to {MAX_WALK}, got `{s}`")),
     }
 }
 

@@ -31,7 +31,7 @@ fn isometry() -> impl Strategy<Value = (Geometry, DMat4)> {
             let p = g.translation(u, t * 0.7) * ORIGIN;
             let mut m = g.translation(u, t) * g.rotation_about(p, axis, angle);
             if reflect {
-                m = m * g.reflection(n.extend(-r));
+                m *= g.reflection(n.extend(-r));
             }
             (g, m)
         })

@@ -6,8 +6,8 @@
 mod render;
 mod scene;
 
-pub use render::{Camera, RenderSettings, render, trace_pixel};
-pub use scene::{Ball, Light, Object, Scene, Shading, Tube};
+pub use render::{Camera, RayEnd, RenderSettings, SceneHit, first_hit, render, trace_pixel};
+pub use scene::{Ball, DEFAULT_CUTOFF_WEIGHT, Hit, Light, Object, Scene, Shading, Tube, palette};
 
 use crate::geometry::{Geometry, Real, Vector4};
 use crate::space::Space;

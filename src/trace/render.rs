@@ -2,7 +2,7 @@
 //! nearest object hit against exit face, crossing by pairings until the fog cut-off or the
 //! crossing budget.
 
-use super::{CellWalker, Ray, Scene};
+use super::{CellWalker, Ray, Scene, scene::Hit};
 use crate::geometry::{Geometry, GeometryError};
 use crate::space::Space;
 use glam::{DMat4, DVec3, DVec4};
@@ -70,17 +70,40 @@ pub struct RenderSettings {
     pub max_crossings: usize,
 }
 
-/// The colour seen along one camera ray, and how many crossings it took.
+/// What a camera ray meets first.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SceneHit {
+    /// Index into [`Scene::objects`].
+    pub object: usize,
+    pub hit: Hit,
+    /// Geodesic distance from the camera.
+    pub distance: f64,
+    /// Face crossings before the hit.
+    pub crossings: usize,
+}
+
+/// How a camera ray ended.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum RayEnd {
+    /// It hit an object before the cut-off.
+    Hit(SceneHit),
+    /// It reached the fog cut-off distance after this many crossings.
+    Fog(usize),
+    /// It used up the crossing budget.
+    Budget,
+}
+
+/// Walks a camera ray through the cell: nearest object hit against the exit face, crossing
+/// by pairings, until a hit, the fog cut-off or the crossing budget.
 #[must_use]
-pub fn trace_pixel(
+pub fn first_hit(
     walker: &CellWalker<DVec4>,
     scene: &Scene,
     start: Ray<DVec4>,
     max_crossings: usize,
-) -> (DVec3, usize) {
+) -> RayEnd {
     let g = walker.geometry;
-    let shading = &scene.shading;
-    let cutoff = shading.cutoff_distance();
+    let cutoff = scene.shading.cutoff_distance();
     let mut ray = start;
     let mut distance = 0.0;
     let mut skip = None;
@@ -92,27 +115,52 @@ pub fn trace_pixel(
         let nearest = scene
             .objects
             .iter()
-            .filter_map(|o| o.intersect(g, ray.point, ray.tangent, s_exit))
-            .min_by(|a, b| a.s.total_cmp(&b.s));
-        if let Some(hit) = nearest {
+            .enumerate()
+            .filter_map(|(i, o)| {
+                o.intersect(g, ray.point, ray.tangent, s_exit)
+                    .map(|h| (i, h))
+            })
+            .min_by(|a, b| a.1.s.total_cmp(&b.1.s));
+        if let Some((object, hit)) = nearest {
             let d = distance + g.distance_from_ratio(hit.s, 1.0);
             if d >= cutoff {
-                return (shading.fog_colour, crossings);
+                return RayEnd::Fog(crossings);
             }
-            return (shading.shade(g, &scene.light, &hit, d), crossings);
+            return RayEnd::Hit(SceneHit {
+                object,
+                hit,
+                distance: d,
+                crossings,
+            });
         }
         if crossings == max_crossings {
-            return (shading.fog_colour, crossings);
+            break;
         }
         let (next, length) = walker.cross(&ray, &exit);
         distance += length;
         if distance >= cutoff {
-            return (shading.fog_colour, crossings + 1);
+            return RayEnd::Fog(crossings + 1);
         }
         ray = next;
         skip = Some(walker.partners[exit.face]);
     }
-    (shading.fog_colour, max_crossings)
+    RayEnd::Budget
+}
+
+/// The colour seen along one camera ray (fog where it meets nothing).
+#[must_use]
+pub fn trace_pixel(
+    walker: &CellWalker<DVec4>,
+    scene: &Scene,
+    start: Ray<DVec4>,
+    max_crossings: usize,
+) -> DVec3 {
+    match first_hit(walker, scene, start, max_crossings) {
+        RayEnd::Hit(h) => scene
+            .shading
+            .shade(walker.geometry, &scene.light, &h.hit, h.distance),
+        RayEnd::Fog(_) | RayEnd::Budget => scene.shading.fog_colour,
+    }
 }
 
 /// Renders a picture (rows in parallel with rayon). Colours are written as they are
@@ -132,7 +180,7 @@ pub fn render(
             let mut row = Vec::with_capacity(3 * w as usize);
             for i in 0..w {
                 let ray = camera.ray(space.geometry, i, j, w, h);
-                let (c, _) = trace_pixel(&walker, scene, ray, settings.max_crossings);
+                let c = trace_pixel(&walker, scene, ray, settings.max_crossings);
                 row.extend(
                     c.to_array()
                         .map(|x| (x.clamp(0.0, 1.0) * 255.0).round() as u8),

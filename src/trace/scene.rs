@@ -208,6 +208,9 @@ impl Object {
     }
 }
 
+/// Half a colour step of an 8-bit image.
+pub const DEFAULT_CUTOFF_WEIGHT: f64 = 1.0 / 510.0;
+
 /// A point light.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Light {
@@ -227,8 +230,10 @@ pub struct Light {
 ///
 /// `l` is the unit tangent at the hit towards the light (the light's copy in the same cell),
 /// `d_L` its distance, `r₀` a small radius that keeps the falloff finite. No shadows.
-/// A ray stops at the distance `λ ln 510`, where the fog leaves less than half a colour step
-/// (1/510 of full scale) of whatever lies beyond: the cut-off's error bound.
+/// A ray stops at the distance `λ ln(1/w)` where the fog weight `e^(−d/λ)` falls to
+/// `w = cutoff_weight`. Surface and fog colours lie in [0, 1], so whatever lies beyond
+/// changes the pixel by at most `w` per channel: with the default `w = 1/510` that is half a
+/// colour step of an 8-bit image, the cut-off's error bound.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Shading {
     pub ambient: f64,
@@ -236,13 +241,15 @@ pub struct Shading {
     /// Fog distance scale λ.
     pub fog_distance: f64,
     pub near_light: f64,
+    /// Fog weight at which a ray stops (the cut-off's error bound per channel).
+    pub cutoff_weight: f64,
 }
 
 impl Shading {
     /// The distance past which nothing changes the image by half a colour step or more.
     #[must_use]
     pub fn cutoff_distance(&self) -> f64 {
-        self.fog_distance * 510.0_f64.ln()
+        self.fog_distance * (1.0 / self.cutoff_weight).ln()
     }
 
     /// The colour of a surface point seen at distance `d`.
@@ -334,6 +341,7 @@ impl Scene {
                 fog_colour: DVec3::new(0.04, 0.05, 0.08),
                 fog_distance,
                 near_light: 0.05 * inradius,
+                cutoff_weight: DEFAULT_CUTOFF_WEIGHT,
             },
         }
     }

@@ -1,0 +1,255 @@
+//! The `curved-spaces` command line: outputs a script can rely on, and clear errors.
+
+use serde_json::Value;
+use std::process::{Command, Output};
+
+fn run(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_curved-spaces"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+fn json(args: &[&str]) -> Value {
+    let out = run(args);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("valid JSON")
+}
+
+fn fails_with(args: &[&str], needle: &str) {
+    let out = run(args);
+    assert!(!out.status.success(), "{args:?} should fail");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains(needle), "{args:?}: `{err}` lacks `{needle}`");
+    assert!(!err.contains("panicked"), "{err}");
+}
+
+fn temp_dir(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("curved-spaces-cli-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+#[test]
+fn list_shows_every_space() {
+    let out = run(&["list"]);
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    for seed in bevy_curved_spaces::space::SEED_SPACES {
+        assert!(text.contains(seed.id), "{} missing", seed.id);
+    }
+    assert!(text.contains("11.1990647"));
+}
+
+#[test]
+fn info_json_has_the_documented_fields() {
+    let v = json(&["info", "seifert-weber", "--json"]);
+    assert_eq!(v["name"], "seifert-weber");
+    assert_eq!(v["geometry"], "hyperbolic");
+    assert_eq!(v["faces"].as_array().unwrap().len(), 12);
+    let f = &v["faces"][0];
+    let n: Vec<f64> = f["normal"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    assert!((n.iter().map(|x| x * x).sum::<f64>() - 1.0).abs() < 1e-15);
+    assert!(f["offset"].as_f64().unwrap() > 0.0);
+    assert!((v["volume"].as_f64().unwrap() - 11.1990647).abs() < 5e-8);
+    for key in [
+        "inradius",
+        "circumradius",
+        "edge_length",
+        "injectivity_radius",
+    ] {
+        assert!(v[key].as_f64().unwrap() > 0.0, "{key}");
+    }
+    assert_eq!(v["edge_cycles"].as_array().unwrap().len(), 6);
+    assert_eq!(v["edge_cycles"][0]["edges"], 5);
+    assert_eq!(v["vertex_cycles"], 1);
+    assert_eq!(v["orientable"], true);
+    assert_eq!(v["manifold"], true);
+    assert!(v["holonomy_order"].is_null() && v["group_order"].is_null());
+    assert!(!v["closed_geodesics"].as_array().unwrap().is_empty());
+    assert!(v["closed_geodesics"][0]["count"].as_u64().unwrap() > 0);
+
+    let p = json(&["info", "poincare", "--json"]);
+    assert_eq!(p["group_order"], 120);
+    assert_eq!(p["closed_geodesics"].as_array().unwrap().len(), 0);
+    let c = json(&["info", "mirrored-cube", "--json"]);
+    assert_eq!(c["holonomy_order"], 8);
+    assert!(c["injectivity_radius"].is_null());
+    assert_eq!(c["manifold"], false);
+    assert!(json(&["info", "third-turn", "--json"])["edge_length"].is_null());
+}
+
+#[test]
+fn trace_json_in_both_precisions() {
+    let v = json(&[
+        "trace",
+        "torus",
+        "--dir",
+        "1,0,0",
+        "--crossings",
+        "3",
+        "--json",
+    ]);
+    let crossings = v["crossings"].as_array().unwrap();
+    assert_eq!(crossings.len(), 3);
+    for (i, c) in crossings.iter().enumerate() {
+        assert_eq!(c["face_normal"], serde_json::json!([1.0, 0.0, 0.0]));
+        assert!((c["distance"].as_f64().unwrap() - (0.5 + i as f64)).abs() < 1e-15);
+        assert_eq!(c["point"][0], -0.5);
+    }
+    assert_eq!(v["end"]["direction"], serde_json::json!([1.0, 0.0, 0.0]));
+
+    let by_distance = json(&[
+        "trace",
+        "seifert-weber",
+        "--dir",
+        "0.2,-0.4,1",
+        "--from",
+        "0.1,0,-0.2",
+        "--distance",
+        "5",
+        "--json",
+    ]);
+    assert!((by_distance["end"]["distance"].as_f64().unwrap() - 5.0).abs() < 1e-12);
+    let single = json(&[
+        "trace",
+        "poincare",
+        "--dir",
+        "1,2,3",
+        "--crossings",
+        "10",
+        "--precision",
+        "f32",
+        "--json",
+    ]);
+    let double = json(&[
+        "trace",
+        "poincare",
+        "--dir",
+        "1,2,3",
+        "--crossings",
+        "10",
+        "--json",
+    ]);
+    let d = |v: &Value| v["end"]["distance"].as_f64().unwrap();
+    assert!((d(&single) - d(&double)).abs() < 1e-5);
+    assert_ne!(
+        d(&single),
+        d(&double),
+        "f32 should differ in the last digits"
+    );
+}
+
+#[test]
+fn render_writes_a_png_of_the_requested_size() {
+    let dir = temp_dir("render");
+    let out = dir.join("sub/torus.png");
+    let o = run(&[
+        "render",
+        "torus",
+        "--cpu",
+        "--size",
+        "48x27",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("torus.png"));
+    let image = image::open(&out).unwrap();
+    assert_eq!((image.width(), image.height()), (48, 27));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn export_then_use_a_space_file() {
+    let dir = temp_dir("export");
+    let file = dir.join("sw.json");
+    let o = run(&["export", "seifert-weber", "--out", file.to_str().unwrap()]);
+    assert!(o.status.success());
+    let v = json(&["info", file.to_str().unwrap(), "--json"]);
+    assert!((v["volume"].as_f64().unwrap() - 11.1990647).abs() < 5e-8);
+    // Break the twist of one pairing: the error names the problem and the file.
+    let mut record: Value = serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
+    record["faces"][0]["pairing"][0][0] = Value::from(0.5);
+    std::fs::write(&file, record.to_string()).unwrap();
+    fails_with(&["info", file.to_str().unwrap()], "not an isometry");
+    fails_with(&["info", file.to_str().unwrap()], "sw.json");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn bad_input_gets_a_clear_error() {
+    fails_with(&["info", "klein-bottle"], "unknown space `klein-bottle`");
+    fails_with(&["info", "missing.json"], "cannot read space file");
+    fails_with(
+        &["trace", "torus", "--dir", "1,0"],
+        "three comma-separated numbers",
+    );
+    fails_with(
+        &["trace", "torus", "--dir", "0,0,0", "--crossings", "2"],
+        "zero length",
+    );
+    fails_with(&["trace", "torus", "--dir", "1,0,0"], "--crossings");
+    fails_with(
+        &[
+            "trace",
+            "torus",
+            "--dir",
+            "1,0,0",
+            "--from",
+            "2,0,0",
+            "--crossings",
+            "1",
+        ],
+        "outside the cell",
+    );
+    fails_with(
+        &[
+            "trace",
+            "seifert-weber",
+            "--dir",
+            "1,0,0",
+            "--from",
+            "0.9,0.5,0",
+            "--crossings",
+            "1",
+        ],
+        "Klein model",
+    );
+    fails_with(
+        &["trace", "torus", "--dir", "1,0,0", "--distance", "-1"],
+        "positive number",
+    );
+    fails_with(
+        &["trace", "torus", "--dir", "1,0,0", "--distance", "1e300"],
+        "up to 1000000",
+    );
+    fails_with(
+        &[
+            "trace",
+            "torus",
+            "--dir",
+            "1,0,0",
+            "--crossings",
+            "99999999999",
+        ],
+        "from 0 to 1000000",
+    );
+    fails_with(&["render", "torus", "--size", "0x10"], "WIDTHxHEIGHT");
+    fails_with(&["render", "torus", "--size", "big"], "WIDTHxHEIGHT");
+    fails_with(&["render", "torus", "--fov", "200"], "between 0 and 180");
+    fails_with(
+        &["render", "torus", "--eye", "0,0,0", "--look-at", "0,0,0"],
+        "zero length",
+    );
+    fails_with(&["frobnicate"], "unrecognized subcommand");
+}
