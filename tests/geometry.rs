@@ -74,6 +74,17 @@ proptest! {
     }
 
     #[test]
+    fn translations_along_any_geodesic(g in geometry(), u in direction(), w in direction(), s in 0.0..1.0f64, t in -1.5..1.5f64) {
+        let p = point(g, u, s);
+        let v = g.unit_tangent(p, w.extend(0.0));
+        let m = g.translation_along(p, v, t);
+        prop_assert!(g.isometry_defect(m) < 1e-12);
+        let (q, dq) = g.geodesic(p, v, t);
+        prop_assert!(g.distance(m * p, q) < 1e-12);
+        prop_assert!((m * v - dq).length() < 1e-11);
+    }
+
+    #[test]
     fn reflections_are_involutions_fixing_their_plane(g in geometry(), n in direction(), r in 0.05..0.6f64, u in direction()) {
         let cov = n.extend(-r);
         let m = g.reflection(cov);

@@ -43,6 +43,35 @@ fn every_seed_space_is_valid_and_of_the_right_kind() {
     }
 }
 
+/// The laws every validated space obeys: pairings are isometries, partners' pairings are
+/// inverse, and each pairing carries its face's vertices onto the partner's.
+#[test]
+fn pairings_are_isometries_with_inverse_partners() {
+    for seed in SEED_SPACES {
+        let s = seed.build().unwrap();
+        let g = s.geometry;
+        for (i, f) in s.faces.iter().enumerate() {
+            assert!(g.isometry_defect(f.pairing) < 1e-12, "{} face {i}", seed.id);
+            let back = s.faces[f.partner].pairing * f.pairing;
+            assert!(
+                (back - DMat4::IDENTITY)
+                    .abs()
+                    .to_cols_array()
+                    .iter()
+                    .all(|x| *x < 1e-12)
+            );
+            for &v in &f.vertices {
+                let image = g.to_chart(f.pairing * s.vertex_point(v));
+                let on_partner = s.faces[f.partner]
+                    .vertices
+                    .iter()
+                    .any(|&w| (s.vertices[w] - image).length() < 1e-12);
+                assert!(on_partner, "{} face {i} vertex {v}", seed.id);
+            }
+        }
+    }
+}
+
 /// Regular dodecahedron of dihedral angle `beta`: its edge length, from the two vertices
 /// of the edge between faces 0 and 2 (faces 3 and 4 close its ends).
 fn dodecahedron_edge(g: Geometry, beta: f64) -> f64 {

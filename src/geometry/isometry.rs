@@ -20,6 +20,15 @@ impl Geometry {
         DMat4::from_cols(col(0), col(1), col(2), c * ORIGIN + s * u.extend(0.0))
     }
 
+    /// Translation by distance `t` along the geodesic through the point `p` with tangent `v`
+    /// (moves `p` to `γ(t)` and carries the geodesic into itself).
+    #[must_use]
+    pub fn translation_along(self, p: DVec4, v: DVec4, t: f64) -> DMat4 {
+        let a = self.translation_to(p);
+        let a_inv = self.inverse(a);
+        a * self.translation((a_inv * v).truncate(), t) * a_inv
+    }
+
     /// The translation along the geodesic from the origin to `p` that carries the origin
     /// to `p` (identity when `p` is the origin).
     #[must_use]
