@@ -16,6 +16,21 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
+/// Prints a line to standard output; a closed pipe (`curved-spaces list | head -3`) ends
+/// the program quietly instead of panicking.
+macro_rules! say {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        if let Err(e) = writeln!(std::io::stdout().lock(), $($arg)*) {
+            if e.kind() == std::io::ErrorKind::BrokenPipe {
+                std::process::exit(0);
+            }
+            eprintln!("error: cannot write to standard output: {e}");
+            std::process::exit(1);
+        }
+    }};
+}
+
 /// The space shown when none is named.
 const DEFAULT_SPACE: &str = "seifert-weber";
 
@@ -199,13 +214,16 @@ fn resolve_space(arg: &str) -> Result<Space, String> {
 }
 
 fn list() {
-    println!(
+    say!(
         "{:<22} {:<11} {:>5} {:>14}  description",
-        "id", "geometry", "faces", "volume"
+        "id",
+        "geometry",
+        "faces",
+        "volume"
     );
     for seed in SEED_SPACES {
         match seed.build() {
-            Ok(space) => println!(
+            Ok(space) => say!(
                 "{:<22} {:<11} {:>5} {:>14.10}  {}",
                 seed.id,
                 space.geometry.name(),
@@ -213,7 +231,7 @@ fn list() {
                 bevy_curved_spaces::space::invariants::volume(&space),
                 seed.summary
             ),
-            Err(e) => println!("{:<22} invalid: {e}", seed.id),
+            Err(e) => say!("{:<22} invalid: {e}", seed.id),
         }
     }
 }
@@ -221,7 +239,7 @@ fn list() {
 fn info(space: &Space, as_json: bool) -> Result<(), String> {
     let inv = Invariants::compute(space);
     if as_json {
-        println!(
+        say!(
             "{}",
             serde_json::to_string_pretty(&inv).map_err(|e| e.to_string())?
         );
@@ -229,33 +247,33 @@ fn info(space: &Space, as_json: bool) -> Result<(), String> {
     }
     let opt = |x: Option<f64>| x.map_or("–".to_string(), |x| format!("{x:.10}"));
     let opt_n = |x: Option<usize>| x.map_or("–".to_string(), |x| x.to_string());
-    println!("{} ({})", inv.name, inv.geometry.name());
-    println!("  {}", space.description);
-    println!("  faces               {}", inv.faces.len());
-    println!("  volume              {:.12}", inv.volume);
-    println!("  inradius            {:.10}", inv.inradius);
-    println!("  circumradius        {:.10}", inv.circumradius);
-    println!("  edge length         {}", opt(inv.edge_length));
+    say!("{} ({})", inv.name, inv.geometry.name());
+    say!("  {}", space.description);
+    say!("  faces               {}", inv.faces.len());
+    say!("  volume              {:.12}", inv.volume);
+    say!("  inradius            {:.10}", inv.inradius);
+    say!("  circumradius        {:.10}", inv.circumradius);
+    say!("  edge length         {}", opt(inv.edge_length));
     let cycles: Vec<String> = inv
         .edge_cycles
         .iter()
         .map(|c| format!("{}×{:.1}°", c.edges, c.angle_sum.to_degrees()))
         .collect();
-    println!(
+    say!(
         "  edge cycles         {} ({})",
         cycles.len(),
         cycles.join(", ")
     );
-    println!("  vertex cycles       {}", inv.vertex_cycles);
-    println!("  orientable          {}", inv.orientable);
-    println!("  manifold            {}", inv.manifold);
-    println!("  holonomy order      {}", opt_n(inv.holonomy_order));
-    println!("  group order         {}", opt_n(inv.group_order));
-    println!("  injectivity radius  {}", opt(inv.injectivity_radius));
+    say!("  vertex cycles       {}", inv.vertex_cycles);
+    say!("  orientable          {}", inv.orientable);
+    say!("  manifold            {}", inv.manifold);
+    say!("  holonomy order      {}", opt_n(inv.holonomy_order));
+    say!("  group order         {}", opt_n(inv.group_order));
+    say!("  injectivity radius  {}", opt(inv.injectivity_radius));
     if !inv.closed_geodesics.is_empty() {
-        println!("  closed geodesics    length × count");
+        say!("  closed geodesics    length × count");
         for g in &inv.closed_geodesics {
-            println!("                      {:.10} × {}", g.length, g.count);
+            say!("                      {:.10} × {}", g.length, g.count);
         }
     }
     Ok(())
@@ -329,18 +347,20 @@ fn trace(args: &TraceArgs) -> Result<(), String> {
                 "distance": result.distance,
             }
         });
-        println!(
+        say!(
             "{}",
             serde_json::to_string_pretty(&out).map_err(|e| e.to_string())?
         );
     } else {
-        println!(
+        say!(
             "{:>5} {:>5} {:>20}  entry point (chart)",
-            "#", "face", "distance"
+            "#",
+            "face",
+            "distance"
         );
         for (i, c) in result.crossings.iter().enumerate() {
             let p = chart(c.ray.point);
-            println!(
+            say!(
                 "{:>5} {:>5} {:>20.15}  ({:+.15}, {:+.15}, {:+.15})",
                 i + 1,
                 c.face,
@@ -351,9 +371,12 @@ fn trace(args: &TraceArgs) -> Result<(), String> {
             );
         }
         let p = chart(result.end.point);
-        println!(
+        say!(
             "end at distance {:.15}: ({:+.15}, {:+.15}, {:+.15})",
-            result.distance, p[0], p[1], p[2]
+            result.distance,
+            p[0],
+            p[1],
+            p[2]
         );
     }
     Ok(())
@@ -406,9 +429,10 @@ fn render_command(args: &RenderArgs) -> Result<(), String> {
     image
         .save(&args.out)
         .map_err(|e| format!("cannot write {}: {e}", args.out.display()))?;
-    println!(
+    let shown = std::fs::canonicalize(&args.out).unwrap_or_else(|_| args.out.clone());
+    say!(
         "wrote {} ({}×{}, {:.2} s)",
-        args.out.display(),
+        shown.display(),
         settings.width,
         settings.height,
         started.elapsed().as_secs_f64()
@@ -428,9 +452,9 @@ fn export(space: &Space, out: Option<&Path>) -> Result<(), String> {
         Some(path) => {
             std::fs::write(path, text + "\n")
                 .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-            println!("wrote {}", path.display());
+            say!("wrote {}", path.display());
         }
-        None => println!("{text}"),
+        None => say!("{text}"),
     }
     Ok(())
 }

@@ -187,6 +187,28 @@ fn export_then_use_a_space_file() {
 }
 
 #[test]
+fn a_closed_pipe_is_not_a_crash() {
+    use std::io::Read;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_curved-spaces"))
+        .args(["info", "seifert-weber"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let status = child.wait().unwrap();
+    let mut err = String::new();
+    child
+        .stderr
+        .take()
+        .unwrap()
+        .read_to_string(&mut err)
+        .unwrap();
+    assert!(status.success(), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+}
+
+#[test]
 fn bad_input_gets_a_clear_error() {
     fails_with(&["info", "klein-bottle"], "unknown space `klein-bottle`");
     fails_with(&["info", "missing.json"], "cannot read space file");
