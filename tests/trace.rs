@@ -240,7 +240,11 @@ fn rays_through_edges_and_vertices_stay_in_the_cell() {
                 // Through a vertex the ray hops around it at zero distance, but it gets past:
                 // no endless loop of zero-length crossings.
                 let r = bevy_curved_spaces::space::invariants::circumradius(&s);
-                assert!(trace.crossings[39].distance > r, "{}: stuck at a vertex", seed.id);
+                assert!(
+                    trace.crossings[39].distance > r,
+                    "{}: stuck at a vertex",
+                    seed.id
+                );
                 for c in &trace.crossings {
                     let p = c.ray.point;
                     assert!(p.is_finite() && c.distance.is_finite(), "{}: NaN", seed.id);

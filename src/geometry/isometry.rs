@@ -3,6 +3,12 @@
 use super::{Geometry, ORIGIN};
 use glam::{DMat3, DMat4, DVec3, DVec4};
 
+/// The largest absolute entry of a matrix (given as its array of entries).
+#[must_use]
+pub fn max_abs_entry(entries: &[f64]) -> f64 {
+    entries.iter().fold(0.0_f64, |acc, x| acc.max(x.abs()))
+}
+
 impl Geometry {
     /// Translation by distance `t` along the geodesic through the origin with unit chart
     /// direction `u`: `M = I + (C−1)(o oᵀ + u uᵀ) + S(u oᵀ − κ o uᵀ)`, so that
@@ -100,25 +106,17 @@ impl Geometry {
     /// (S³, H³), or of `AᵀA − I` and the last row's deviation from `(0,0,0,1)` (E³).
     #[must_use]
     pub fn isometry_defect(self, g: DMat4) -> f64 {
-        let max_abs = |m: DMat4| {
-            m.to_cols_array()
-                .iter()
-                .fold(0.0_f64, |acc, x| acc.max(x.abs()))
-        };
         match self {
             Self::Euclidean => {
                 let a = DMat3::from_mat4(g);
                 let ortho = a.transpose() * a - DMat3::IDENTITY;
-                let ortho = ortho
-                    .to_cols_array()
-                    .iter()
-                    .fold(0.0_f64, |acc, x| acc.max(x.abs()));
+                let ortho = max_abs_entry(&ortho.to_cols_array());
                 let row = g.row(3) - DVec4::W;
                 ortho.max(row.abs().max_element())
             }
             _ => {
                 let gm = DMat4::from_diagonal(DVec4::new(1.0, 1.0, 1.0, self.kappa()));
-                max_abs(g.transpose() * gm * g - gm)
+                max_abs_entry(&(g.transpose() * gm * g - gm).to_cols_array())
             }
         }
     }

@@ -8,6 +8,8 @@
 mod isometry;
 mod real;
 
+pub use isometry::max_abs_entry;
+
 pub use real::{Real, Vector4};
 
 use glam::{DVec3, DVec4};

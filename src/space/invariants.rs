@@ -2,7 +2,7 @@
 //! groups, closed geodesics, injectivity radius.
 
 use super::Space;
-use crate::geometry::{Geometry, ORIGIN};
+use crate::geometry::{Geometry, ORIGIN, max_abs_entry};
 use crate::trace::{CellWalker, Limit, Ray};
 use glam::{DMat3, DMat4, DVec3, DVec4};
 use std::collections::{BTreeMap, HashMap, VecDeque};
@@ -319,10 +319,7 @@ fn attracting_point(h: DMat4) -> DVec3 {
     let mut m = h;
     for _ in 0..12 {
         m = m * m;
-        let scale = m
-            .to_cols_array()
-            .iter()
-            .fold(0.0_f64, |a, x| a.max(x.abs()));
+        let scale = max_abs_entry(&m.to_cols_array());
         m *= 1.0 / scale;
     }
     let p = m * ORIGIN;

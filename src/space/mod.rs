@@ -9,7 +9,7 @@ pub mod invariants;
 pub use catalog::{SEED_SPACES, SeedSpace, seed_space};
 pub use error::SpaceError;
 
-use crate::geometry::{Geometry, ORIGIN};
+use crate::geometry::{Geometry, ORIGIN, max_abs_entry};
 use glam::{DMat3, DMat4, DVec3, DVec4};
 use std::f64::consts::TAU;
 
@@ -113,20 +113,6 @@ pub struct Space {
     pub manifold: bool,
 }
 
-fn edges_label(space_edges: &[(usize, usize)], cycle: &[usize]) -> String {
-    cycle
-        .iter()
-        .map(|&e| format!("{}–{}", space_edges[e].0, space_edges[e].1))
-        .collect::<Vec<_>>()
-        .join(", ")
-}
-
-fn max_abs(m: DMat4) -> f64 {
-    m.to_cols_array()
-        .iter()
-        .fold(0.0_f64, |acc, x| acc.max(x.abs()))
-}
-
 fn union_find_root(parent: &mut [usize], mut i: usize) -> usize {
     while parent[i] != i {
         parent[i] = parent[parent[i]];
@@ -150,262 +136,23 @@ impl Space {
         geometry: Geometry,
         specs: &[FaceSpec],
     ) -> Result<Self, SpaceError> {
-        let tol = VALIDATION_TOLERANCE;
-        if specs.len() < 4 {
-            return Err(SpaceError::TooFewFaces { count: specs.len() });
-        }
-        let mut faces = Vec::with_capacity(specs.len());
-        for (i, spec) in specs.iter().enumerate() {
-            let len = spec.normal.length();
-            if !(len.is_finite() && len > 0.0) {
-                return Err(SpaceError::BadNormal {
-                    face: i,
-                    normal: spec.normal.to_array(),
-                });
-            }
-            let offset = spec.offset / len;
-            if !(offset.is_finite() && offset > 0.0) {
-                return Err(SpaceError::OriginNotInside {
-                    face: i,
-                    offset: spec.offset,
-                });
-            }
-            if geometry == Geometry::Hyperbolic && offset >= 1.0 {
-                return Err(SpaceError::PlaneMissesSpace { face: i, offset });
-            }
-            let pairing = spec.pairing.ok_or(SpaceError::MissingPairing { face: i })?;
-            if pairing.partner >= specs.len() {
-                return Err(SpaceError::PartnerOutOfRange {
-                    face: i,
-                    partner: pairing.partner,
-                    count: specs.len(),
-                });
-            }
-            let normal = spec.normal / len;
-            faces.push(Face {
-                normal,
-                offset,
-                covector: normal.extend(-offset),
-                partner: pairing.partner,
-                pairing: pairing.matrix,
-                vertices: Vec::new(),
-            });
-        }
-        for i in 0..faces.len() {
-            let back = faces[faces[i].partner].partner;
-            if back != i {
-                return Err(SpaceError::PartnerNotMutual {
-                    face: i,
-                    partner: faces[i].partner,
-                    back,
-                });
-            }
-        }
-
+        let mut faces = checked_faces(geometry, specs)?;
         if let Some(direction) = escape_direction(&faces) {
             return Err(SpaceError::NotBounded {
                 direction: direction.to_array(),
             });
         }
-        let vertices = find_vertices(&faces, tol);
-        for v in &vertices {
-            match geometry {
-                Geometry::Hyperbolic if v.length_squared() >= 1.0 - tol => {
-                    return Err(SpaceError::IdealVertex {
-                        point: v.to_array(),
-                    });
-                }
-                _ if !v.is_finite() => {
-                    return Err(SpaceError::VertexOutsideChart {
-                        point: v.to_array(),
-                    });
-                }
-                _ => {}
-            }
-        }
-        // Incidence and the cyclic order of each face's vertices.
-        for (i, face) in faces.iter_mut().enumerate() {
-            let on: Vec<usize> = (0..vertices.len())
-                .filter(|&v| (face.normal.dot(vertices[v]) - face.offset).abs() <= tol * 10.0)
-                .collect();
-            if on.len() < 3 {
-                return Err(SpaceError::DegenerateFace {
-                    face: i,
-                    vertices: on.len(),
-                });
-            }
-            let centre = on.iter().map(|&v| vertices[v]).sum::<DVec3>() / on.len() as f64;
-            let e1 = (vertices[on[0]] - centre).normalize();
-            let e2 = face.normal.cross(e1);
-            let mut sorted = on;
-            sorted.sort_by(|&a, &b| {
-                let angle = |v: usize| {
-                    let d = vertices[v] - centre;
-                    d.dot(e2).atan2(d.dot(e1))
-                };
-                angle(a).total_cmp(&angle(b))
-            });
-            face.vertices = sorted;
-        }
-        // Edges: consecutive vertices of a face, shared by exactly one other face.
-        let mut edge_list: Vec<(usize, usize)> = Vec::new();
-        let mut edge_faces: Vec<[usize; 2]> = Vec::new();
-        for (i, face) in faces.iter().enumerate() {
-            let n = face.vertices.len();
-            for k in 0..n {
-                let (a, b) = (face.vertices[k], face.vertices[(k + 1) % n]);
-                let key = (a.min(b), a.max(b));
-                if let Some(e) = edge_list.iter().position(|&x| x == key) {
-                    edge_faces[e][1] = i;
-                } else {
-                    edge_list.push(key);
-                    edge_faces.push([i, usize::MAX]);
-                }
-            }
-        }
-        let euler = vertices.len() as i64 - edge_list.len() as i64 + faces.len() as i64;
-        if euler != 2 || edge_faces.iter().any(|f| f[1] == usize::MAX) {
-            return Err(SpaceError::NotAPolyhedron { euler });
-        }
-
+        let vertices = find_vertices(&faces, VALIDATION_TOLERANCE);
+        check_vertices(geometry, &vertices)?;
+        order_face_vertices(&mut faces, &vertices)?;
         let points: Vec<DVec4> = vertices
             .iter()
             .map(|&v| geometry.project_point(v.extend(1.0)))
             .collect();
-        let mut edges: Vec<Edge> = edge_list
-            .iter()
-            .zip(&edge_faces)
-            .map(|(&(a, b), &f)| Edge {
-                vertices: [a, b],
-                faces: f,
-                dihedral: dihedral_angle(geometry, faces[f[0]].covector, faces[f[1]].covector),
-                length: geometry.distance(points[a], points[b]),
-                cycle: usize::MAX,
-            })
-            .collect();
-
-        validate_pairings(geometry, &faces, &vertices, tol)?;
-        let vertex_image = |face: usize, v: usize| -> usize {
-            let image = geometry.to_chart(faces[face].pairing * points[v]);
-            let partner = &faces[faces[face].partner];
-            partner
-                .vertices
-                .iter()
-                .copied()
-                .min_by(|&a, &b| {
-                    (vertices[a] - image)
-                        .length()
-                        .total_cmp(&(vertices[b] - image).length())
-                })
-                .unwrap_or(v)
-        };
-
-        // Edge cycles: walk (edge, face to cross) states until the first one comes back.
-        let edge_of =
-            |a: usize, b: usize| edge_list.iter().position(|&x| x == (a.min(b), a.max(b)));
-        let mut edge_cycles: Vec<EdgeCycle> = Vec::new();
-        for start in 0..edges.len() {
-            for side in 0..2 {
-                if edges[start].cycle != usize::MAX {
-                    continue;
-                }
-                let (mut e, mut f) = (start, edges[start].faces[side]);
-                let mut visited = Vec::new();
-                let mut angle_sum = 0.0;
-                let mut holonomy = DMat4::IDENTITY;
-                let mut closed = false;
-                for _ in 0..=2 * edges.len() {
-                    if !visited.contains(&e) {
-                        visited.push(e);
-                    }
-                    angle_sum += edges[e].dihedral;
-                    holonomy = faces[f].pairing * holonomy;
-                    let [a, b] = edges[e].vertices;
-                    let next = edge_of(vertex_image(f, a), vertex_image(f, b));
-                    let partner = faces[f].partner;
-                    let Some(next) = next.filter(|&n| edges[n].faces.contains(&partner)) else {
-                        return Err(SpaceError::FaceNotMapped {
-                            face: f,
-                            partner,
-                            reason: format!(
-                                "edge {a}–{b} does not map onto an edge of the partner face"
-                            ),
-                        });
-                    };
-                    e = next;
-                    f = if edges[e].faces[0] == partner {
-                        edges[e].faces[1]
-                    } else {
-                        edges[e].faces[0]
-                    };
-                    if e == start && f == edges[start].faces[side] {
-                        closed = true;
-                        break;
-                    }
-                }
-                let label = edges_label(&edge_list, &visited);
-                if !closed {
-                    return Err(SpaceError::EdgeHolonomy {
-                        edges: label,
-                        order: 1,
-                        defect: f64::INFINITY,
-                    });
-                }
-                let k = (TAU / angle_sum).round();
-                if !(k >= 1.0 && (angle_sum * k - TAU).abs() < 1e-7) {
-                    return Err(SpaceError::EdgeAngleSum {
-                        edges: label,
-                        angle_sum_deg: angle_sum.to_degrees(),
-                    });
-                }
-                let order = k as u32;
-                let power = (0..order).fold(DMat4::IDENTITY, |m, _| m * holonomy);
-                let defect = max_abs(power - DMat4::IDENTITY);
-                // Going round once must also fix the edge itself (be a rotation about it).
-                let [a, b] = edges[start].vertices;
-                let moved = geometry
-                    .distance(holonomy * points[a], points[a])
-                    .max(geometry.distance(holonomy * points[b], points[b]));
-                if defect > 1e-7 || moved > 1e-7 {
-                    return Err(SpaceError::EdgeHolonomy {
-                        edges: label,
-                        order,
-                        defect: defect.max(moved),
-                    });
-                }
-                let index = edge_cycles.len();
-                for &v in &visited {
-                    edges[v].cycle = index;
-                }
-                edge_cycles.push(EdgeCycle {
-                    edges: visited,
-                    angle_sum,
-                    order,
-                });
-            }
-        }
-
-        // Vertex cycles: union of each vertex with its images under the pairings.
-        let mut parent: Vec<usize> = (0..vertices.len()).collect();
-        for (i, face) in faces.iter().enumerate() {
-            for &v in &face.vertices {
-                let (a, b) = (
-                    union_find_root(&mut parent, v),
-                    union_find_root(&mut parent, vertex_image(i, v)),
-                );
-                parent[a.max(b)] = a.min(b);
-            }
-        }
-        let mut vertex_cycles: Vec<Vec<usize>> = Vec::new();
-        let mut class_of = vec![usize::MAX; vertices.len()];
-        for v in 0..vertices.len() {
-            let root = union_find_root(&mut parent, v);
-            if class_of[root] == usize::MAX {
-                class_of[root] = vertex_cycles.len();
-                vertex_cycles.push(Vec::new());
-            }
-            vertex_cycles[class_of[root]].push(v);
-        }
+        let mut edges = find_edges(geometry, &faces, &vertices, &points)?;
+        let images = validate_pairings(geometry, &faces, &vertices, &points)?;
+        let edge_cycles = find_edge_cycles(geometry, &faces, &mut edges, &points, &images)?;
+        let vertex_cycles = find_vertex_cycles(&faces, vertices.len(), &images);
 
         let has_mirror = faces.iter().enumerate().any(|(i, f)| f.is_mirror(i));
         let orientable = faces.iter().all(|f| f.pairing.determinant() > 0.0);
@@ -444,13 +191,6 @@ impl Space {
         self.geometry.project_point(self.vertices[v].extend(1.0))
     }
 
-    /// Whether a model point lies in the cell, up to `slack` in `N·X` (for unit `X.w`).
-    #[must_use]
-    pub fn contains(&self, p: DVec4, slack: f64) -> bool {
-        let p = p / p.w;
-        self.faces.iter().all(|f| f.covector.dot(p) <= slack)
-    }
-
     /// The largest `N·X / X.w` over the faces: how far a point is outside the cell
     /// (negative inside).
     #[must_use]
@@ -473,6 +213,274 @@ impl Space {
     pub fn centre(&self) -> DVec4 {
         ORIGIN
     }
+}
+
+/// Faces with unit normals, checked one by one: finite normal, origin inside, a plane of the
+/// geometry, a pairing with a partner in range that names this face back.
+fn checked_faces(geometry: Geometry, specs: &[FaceSpec]) -> Result<Vec<Face>, SpaceError> {
+    if specs.len() < 4 {
+        return Err(SpaceError::TooFewFaces { count: specs.len() });
+    }
+    let mut faces = Vec::with_capacity(specs.len());
+    for (i, spec) in specs.iter().enumerate() {
+        let len = spec.normal.length();
+        if !(len.is_finite() && len > 0.0) {
+            return Err(SpaceError::BadNormal {
+                face: i,
+                normal: spec.normal.to_array(),
+            });
+        }
+        let offset = spec.offset / len;
+        if !(offset.is_finite() && offset > 0.0) {
+            return Err(SpaceError::OriginNotInside {
+                face: i,
+                offset: spec.offset,
+            });
+        }
+        if geometry == Geometry::Hyperbolic && offset >= 1.0 {
+            return Err(SpaceError::PlaneMissesSpace { face: i, offset });
+        }
+        let pairing = spec.pairing.ok_or(SpaceError::MissingPairing { face: i })?;
+        if pairing.partner >= specs.len() {
+            return Err(SpaceError::PartnerOutOfRange {
+                face: i,
+                partner: pairing.partner,
+                count: specs.len(),
+            });
+        }
+        let normal = spec.normal / len;
+        faces.push(Face {
+            normal,
+            offset,
+            covector: normal.extend(-offset),
+            partner: pairing.partner,
+            pairing: pairing.matrix,
+            vertices: Vec::new(),
+        });
+    }
+    for (i, face) in faces.iter().enumerate() {
+        let back = faces[face.partner].partner;
+        if back != i {
+            return Err(SpaceError::PartnerNotMutual {
+                face: i,
+                partner: face.partner,
+                back,
+            });
+        }
+    }
+    Ok(faces)
+}
+
+/// Vertices must be proper points of the geometry's chart.
+fn check_vertices(geometry: Geometry, vertices: &[DVec3]) -> Result<(), SpaceError> {
+    for v in vertices {
+        if !v.is_finite() {
+            return Err(SpaceError::VertexOutsideChart {
+                point: v.to_array(),
+            });
+        }
+        if geometry == Geometry::Hyperbolic && v.length_squared() >= 1.0 - VALIDATION_TOLERANCE {
+            return Err(SpaceError::IdealVertex {
+                point: v.to_array(),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Finds each face's vertices and orders them counter-clockwise seen from outside.
+fn order_face_vertices(faces: &mut [Face], vertices: &[DVec3]) -> Result<(), SpaceError> {
+    for (i, face) in faces.iter_mut().enumerate() {
+        let on: Vec<usize> = (0..vertices.len())
+            .filter(|&v| {
+                (face.normal.dot(vertices[v]) - face.offset).abs() <= 10.0 * VALIDATION_TOLERANCE
+            })
+            .collect();
+        if on.len() < 3 {
+            return Err(SpaceError::DegenerateFace {
+                face: i,
+                vertices: on.len(),
+            });
+        }
+        let centre = on.iter().map(|&v| vertices[v]).sum::<DVec3>() / on.len() as f64;
+        let e1 = (vertices[on[0]] - centre).normalize();
+        let e2 = face.normal.cross(e1);
+        let angle = |v: usize| {
+            let d = vertices[v] - centre;
+            d.dot(e2).atan2(d.dot(e1))
+        };
+        let mut sorted = on;
+        sorted.sort_by(|&a, &b| angle(a).total_cmp(&angle(b)));
+        face.vertices = sorted;
+    }
+    Ok(())
+}
+
+/// Edges: consecutive vertices of a face, each shared by exactly two faces, with the
+/// polyhedron's Euler characteristic 2.
+fn find_edges(
+    geometry: Geometry,
+    faces: &[Face],
+    vertices: &[DVec3],
+    points: &[DVec4],
+) -> Result<Vec<Edge>, SpaceError> {
+    let mut ends: Vec<[usize; 2]> = Vec::new();
+    let mut sides: Vec<[usize; 2]> = Vec::new();
+    for (i, face) in faces.iter().enumerate() {
+        let n = face.vertices.len();
+        for k in 0..n {
+            let (a, b) = (face.vertices[k], face.vertices[(k + 1) % n]);
+            let key = [a.min(b), a.max(b)];
+            match ends.iter().position(|&x| x == key) {
+                Some(e) => sides[e][1] = i,
+                None => {
+                    ends.push(key);
+                    sides.push([i, usize::MAX]);
+                }
+            }
+        }
+    }
+    let euler = vertices.len() as i64 - ends.len() as i64 + faces.len() as i64;
+    if euler != 2 || sides.iter().any(|f| f[1] == usize::MAX) {
+        return Err(SpaceError::NotAPolyhedron { euler });
+    }
+    Ok(ends
+        .iter()
+        .zip(&sides)
+        .map(|(&[a, b], &f)| Edge {
+            vertices: [a, b],
+            faces: f,
+            dihedral: dihedral_angle(geometry, faces[f[0]].covector, faces[f[1]].covector),
+            length: geometry.distance(points[a], points[b]),
+            cycle: usize::MAX,
+        })
+        .collect())
+}
+
+/// Where each face's pairing sends that face's vertices: `images[f][v]` (only meaningful for
+/// the vertices `v` of face `f`).
+type VertexImages = Vec<Vec<usize>>;
+
+/// Edge cycles: walk the states (edge, face to cross) — crossing face `f` carries edge `e`
+/// to an edge `e'` of the partner face, and the walk goes on through the other face at
+/// `e'` — until the first state comes back. The dihedral angles met add up to `2π/k`, and
+/// the composed pairings are a rotation about the edge of order `k`.
+fn find_edge_cycles(
+    geometry: Geometry,
+    faces: &[Face],
+    edges: &mut [Edge],
+    points: &[DVec4],
+    images: &VertexImages,
+) -> Result<Vec<EdgeCycle>, SpaceError> {
+    let edge_of = |a: usize, b: usize| {
+        edges
+            .iter()
+            .position(|e| e.vertices == [a.min(b), a.max(b)])
+    };
+    let label = |cycle: &[usize]| {
+        cycle
+            .iter()
+            .map(|&e| format!("{}–{}", edges[e].vertices[0], edges[e].vertices[1]))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let mut cycles: Vec<EdgeCycle> = Vec::new();
+    let mut cycle_of = vec![usize::MAX; edges.len()];
+    for start in 0..edges.len() {
+        if cycle_of[start] != usize::MAX {
+            continue;
+        }
+        let (mut e, mut f) = (start, edges[start].faces[0]);
+        let mut visited = Vec::new();
+        let mut angle_sum = 0.0;
+        let mut holonomy = DMat4::IDENTITY;
+        // Each state is visited once, so 2E steps always close the cycle.
+        for _ in 0..2 * edges.len() {
+            if !visited.contains(&e) {
+                visited.push(e);
+            }
+            angle_sum += edges[e].dihedral;
+            holonomy = faces[f].pairing * holonomy;
+            let [a, b] = edges[e].vertices;
+            let partner = faces[f].partner;
+            let Some(next) =
+                edge_of(images[f][a], images[f][b]).filter(|&n| edges[n].faces.contains(&partner))
+            else {
+                return Err(SpaceError::FaceNotMapped {
+                    face: f,
+                    partner,
+                    reason: format!("edge {a}–{b} does not map onto an edge of the partner face"),
+                });
+            };
+            e = next;
+            f = if edges[e].faces[0] == partner {
+                edges[e].faces[1]
+            } else {
+                edges[e].faces[0]
+            };
+            if e == start && f == edges[start].faces[0] {
+                break;
+            }
+        }
+        let k = (TAU / angle_sum).round();
+        if !(k >= 1.0 && (angle_sum * k - TAU).abs() < 1e-7) {
+            return Err(SpaceError::EdgeAngleSum {
+                edges: label(&visited),
+                angle_sum_deg: angle_sum.to_degrees(),
+            });
+        }
+        let order = k as u32;
+        let power = (0..order).fold(DMat4::IDENTITY, |m, _| m * holonomy);
+        // Going round once must also fix the edge itself (be a rotation about it).
+        let [a, b] = edges[start].vertices;
+        let defect = max_abs_entry(&(power - DMat4::IDENTITY).to_cols_array())
+            .max(geometry.distance(holonomy * points[a], points[a]))
+            .max(geometry.distance(holonomy * points[b], points[b]));
+        if !(defect <= 1e-7) {
+            return Err(SpaceError::EdgeHolonomy {
+                edges: label(&visited),
+                order,
+                defect,
+            });
+        }
+        for &v in &visited {
+            cycle_of[v] = cycles.len();
+        }
+        cycles.push(EdgeCycle {
+            edges: visited,
+            angle_sum,
+            order,
+        });
+    }
+    for (edge, cycle) in edges.iter_mut().zip(cycle_of) {
+        edge.cycle = cycle;
+    }
+    Ok(cycles)
+}
+
+/// Vertex cycles: the classes of vertices glued together by the pairings (union–find).
+fn find_vertex_cycles(faces: &[Face], count: usize, images: &VertexImages) -> Vec<Vec<usize>> {
+    let mut parent: Vec<usize> = (0..count).collect();
+    for (i, face) in faces.iter().enumerate() {
+        for &v in &face.vertices {
+            let (a, b) = (
+                union_find_root(&mut parent, v),
+                union_find_root(&mut parent, images[i][v]),
+            );
+            parent[a.max(b)] = a.min(b);
+        }
+    }
+    let mut cycles: Vec<Vec<usize>> = Vec::new();
+    let mut class_of = vec![usize::MAX; count];
+    for v in 0..count {
+        let root = union_find_root(&mut parent, v);
+        if class_of[root] == usize::MAX {
+            class_of[root] = cycles.len();
+            cycles.push(Vec::new());
+        }
+        cycles[class_of[root]].push(v);
+    }
+    cycles
 }
 
 /// Interior dihedral angle between two face planes: `cos α = −B(N, M)/√(B(N,N) B(M,M))`
@@ -541,8 +549,10 @@ fn validate_pairings(
     geometry: Geometry,
     faces: &[Face],
     vertices: &[DVec3],
-    tol: f64,
-) -> Result<(), SpaceError> {
+    points: &[DVec4],
+) -> Result<VertexImages, SpaceError> {
+    let tol = VALIDATION_TOLERANCE;
+    let mut images = vec![vec![usize::MAX; vertices.len()]; faces.len()];
     for (i, face) in faces.iter().enumerate() {
         let g = face.pairing;
         let defect = geometry.isometry_defect(g);
@@ -550,7 +560,7 @@ fn validate_pairings(
             return Err(SpaceError::NotAnIsometry { face: i, defect });
         }
         let partner = &faces[face.partner];
-        let defect = max_abs(partner.pairing * g - DMat4::IDENTITY);
+        let defect = max_abs_entry(&(partner.pairing * g - DMat4::IDENTITY).to_cols_array());
         if !(defect < tol) {
             return Err(SpaceError::NotInverse {
                 face: i,
@@ -576,12 +586,13 @@ fn validate_pairings(
             });
         }
         for &v in &face.vertices {
-            let image = geometry.to_chart(g * geometry.project_point(vertices[v].extend(1.0)));
+            let image = geometry.to_chart(g * points[v]);
             let hit = partner
                 .vertices
                 .iter()
-                .any(|&w| (vertices[w] - image).length() < 1e3 * tol);
-            if !hit {
+                .copied()
+                .find(|&w| (vertices[w] - image).length() < 1e3 * tol);
+            let Some(w) = hit else {
                 return Err(SpaceError::FaceNotMapped {
                     face: i,
                     partner: face.partner,
@@ -591,8 +602,9 @@ fn validate_pairings(
                         image.to_array()
                     ),
                 });
-            }
+            };
+            images[i][v] = w;
         }
     }
-    Ok(())
+    Ok(images)
 }
