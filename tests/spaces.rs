@@ -3,7 +3,7 @@
 
 use bevy_curved_spaces::geometry::{Geometry, ORIGIN};
 use bevy_curved_spaces::space::catalog::{
-    affine, dodecahedron_normals, dodecahedron_offset, twisted_dodecahedron,
+    CUBE_NORMALS, affine, dodecahedron_normals, dodecahedron_offset, twisted_dodecahedron,
 };
 use bevy_curved_spaces::space::file::{SpaceRecord, load_space_file};
 use bevy_curved_spaces::space::invariants::*;
@@ -342,15 +342,7 @@ fn broken_spaces_are_rejected_with_the_right_error() {
 
     let e = Geometry::Euclidean;
     let cube = |f: &dyn Fn(usize, DVec3) -> Option<Pairing>| -> Vec<FaceSpec> {
-        let normals = [
-            DVec3::X,
-            DVec3::NEG_X,
-            DVec3::Y,
-            DVec3::NEG_Y,
-            DVec3::Z,
-            DVec3::NEG_Z,
-        ];
-        normals
+        CUBE_NORMALS
             .iter()
             .enumerate()
             .map(|(i, &n)| FaceSpec {

@@ -112,7 +112,8 @@ fn translated_faces(normals: &[DVec3]) -> Vec<FaceSpec> {
         .collect()
 }
 
-const CUBE_NORMALS: [DVec3; 6] = [
+/// Outward normals of the cube's faces, in the order +x, −x, +y, −y, +z, −z.
+pub const CUBE_NORMALS: [DVec3; 6] = [
     DVec3::X,
     DVec3::NEG_X,
     DVec3::Y,
