@@ -270,11 +270,15 @@ fn info(space: &Space, as_json: bool) -> Result<(), String> {
     say!("  holonomy order      {}", opt_n(inv.holonomy_order));
     say!("  group order         {}", opt_n(inv.group_order));
     say!("  injectivity radius  {}", opt(inv.injectivity_radius));
-    if !inv.closed_geodesics.is_empty() {
-        say!("  closed geodesics    length × count");
-        for g in &inv.closed_geodesics {
-            say!("                      {:.10} × {}", g.length, g.count);
+    match &inv.closed_geodesics {
+        None => say!("  closed geodesics    too many group elements to enumerate"),
+        Some(list) if !list.is_empty() => {
+            say!("  closed geodesics    length × count");
+            for g in list {
+                say!("                      {:.10} × {}", g.length, g.count);
+            }
         }
+        Some(_) => {}
     }
     Ok(())
 }

@@ -238,7 +238,7 @@ fn groups_and_injectivity_radii() {
 #[test]
 fn seifert_weber_closed_geodesics() {
     let s = space("seifert-weber");
-    let spectrum = closed_geodesics(&s, GEODESIC_SPECTRUM_LENGTH);
+    let spectrum = closed_geodesics(&s, GEODESIC_SPECTRUM_LENGTH).expect("enumerated");
     assert!(!spectrum.is_empty());
     // The six geodesics through opposite face centres have length 2·inradius.
     let through_faces = 2.0 * inradius(&s);
@@ -521,4 +521,70 @@ fn space_files_round_trip_and_reject_mistakes() {
         .to_string();
     assert!(missing.contains("cannot read"), "{missing}");
     std::fs::remove_dir_all(&dir).ok();
+}
+
+mod hostile_files {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn records() -> Vec<SpaceRecord> {
+        [
+            "torus",
+            "hantzsche-wendt",
+            "seifert-weber",
+            "poincare",
+            "mirrored-cube",
+        ]
+        .iter()
+        .map(|id| SpaceRecord::from_space(&space(id)))
+        .collect()
+    }
+
+    fn hostile() -> impl Strategy<Value = f64> {
+        prop_oneof![
+            Just(f64::NAN),
+            Just(f64::INFINITY),
+            Just(-f64::INFINITY),
+            Just(0.0),
+            Just(1e300),
+            Just(-1.0),
+            -2.0..2.0f64,
+        ]
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+
+        /// Any number of a space file replaced by garbage gives a space or an error, never a
+        /// panic; the seed spaces' exact numbers are the only ones that pass validation
+        /// unchanged in kind.
+        #[test]
+        fn corrupted_space_files_never_panic(which in 0usize..5, face in 0usize..12, slot in 0usize..20, value in hostile()) {
+            let mut record = records().swap_remove(which);
+            let face = face % record.faces.len();
+            let f = &mut record.faces[face];
+            match slot {
+                0..=2 => f.normal[slot] = value,
+                3 => f.offset = value,
+                _ => match f.pairing.as_mut() {
+                    Some(m) => m[(slot - 4) / 4][(slot - 4) % 4] = value,
+                    None => f.offset = value,
+                },
+            }
+            let _ = record.build("fuzz");
+        }
+
+        /// Dropping or swapping faces is an error or a valid space, never a panic.
+        #[test]
+        fn reshuffled_faces_never_panic(which in 0usize..5, drop in 0usize..12, partner in 0usize..14) {
+            let mut record = records().swap_remove(which);
+            let n = record.faces.len();
+            if let Some(p) = record.faces[drop % n].partner.as_mut() {
+                *p = partner;
+            }
+            let _ = record.build("fuzz");
+            record.faces.remove(drop % n);
+            prop_assert!(record.build("fuzz").is_err());
+        }
+    }
 }

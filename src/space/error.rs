@@ -8,6 +8,8 @@ use thiserror::Error;
 pub enum SpaceError {
     #[error("a cell needs at least 4 faces to be bounded, this one has {count}")]
     TooFewFaces { count: usize },
+    #[error("a cell may have at most {max} faces, this one has {count}")]
+    TooManyFaces { count: usize, max: usize },
     #[error("face {face}: normal {normal:?} has zero length or is not finite")]
     BadNormal { face: usize, normal: [f64; 3] },
     #[error(

@@ -282,7 +282,11 @@ pub fn displacement(geometry: Geometry, h: DMat4) -> f64 {
     }
 }
 
-/// Injectivity radius of a manifold: half its shortest closed geodesic (`None` for orbifolds).
+/// The most group elements the invariants enumerate before giving up on a quantity.
+pub const MAX_ENUMERATED: usize = 500_000;
+
+/// Injectivity radius of a manifold: half its shortest closed geodesic (`None` for orbifolds,
+/// or when more than [`MAX_ENUMERATED`] elements would be needed).
 #[must_use]
 pub fn injectivity_radius(space: &Space) -> Option<f64> {
     if !space.manifold {
@@ -296,7 +300,7 @@ pub fn injectivity_radius(space: &Space) -> Option<f64> {
         .iter()
         .map(|f| g.distance(ORIGIN, f.pairing * ORIGIN))
         .fold(f64::INFINITY, f64::min);
-    let elements = elements_near(space, bound + 1e-9, 200_000)?;
+    let elements = elements_near(space, bound + 1e-9, MAX_ENUMERATED)?;
     elements
         .iter()
         .skip(1)
@@ -332,15 +336,17 @@ fn attracting_point(h: DMat4) -> DVec3 {
 /// elements near the cell finds them all. Each is traced through the cell by the reference
 /// tracer: its cyclic sequence of exit faces (up to orientation) tells distinct geodesics
 /// apart, and a periodic sequence marks a power of a shorter one.
+///
+/// Empty for spaces other than hyperbolic manifolds; `None` when more than
+/// [`MAX_ENUMERATED`] elements would have to be enumerated (a cell with very short closed
+/// geodesics).
 #[must_use]
-pub fn closed_geodesics(space: &Space, max_length: f64) -> Vec<GeodesicLength> {
+pub fn closed_geodesics(space: &Space, max_length: f64) -> Option<Vec<GeodesicLength>> {
     if space.geometry != Geometry::Hyperbolic || !space.manifold {
-        return Vec::new();
+        return Some(Vec::new());
     }
     let g = space.geometry;
-    let Some(elements) = elements_near(space, max_length + 1e-9, 2_000_000) else {
-        return Vec::new();
-    };
+    let elements = elements_near(space, max_length + 1e-9, MAX_ENUMERATED)?;
     let walker = CellWalker::<DVec4>::new(space);
     let partners: Vec<usize> = space.faces.iter().map(|f| f.partner).collect();
     let mut found: BTreeMap<Vec<usize>, f64> = BTreeMap::new();
@@ -385,8 +391,13 @@ pub fn closed_geodesics(space: &Space, max_length: f64) -> Vec<GeodesicLength> {
     }
     let mut lengths: Vec<f64> = found.into_values().collect();
     lengths.sort_by(f64::total_cmp);
+    Some(group_lengths(&lengths))
+}
+
+/// Sorted lengths grouped into (length, count) to 1e-6.
+fn group_lengths(lengths: &[f64]) -> Vec<GeodesicLength> {
     let mut out: Vec<GeodesicLength> = Vec::new();
-    for l in lengths {
+    for &l in lengths {
         match out.last_mut() {
             Some(last) if (l - last.length).abs() < 1e-6 => last.count += 1,
             _ => out.push(GeodesicLength {
@@ -455,7 +466,8 @@ pub struct Invariants {
     pub manifold: bool,
     pub holonomy_order: Option<usize>,
     pub group_order: Option<usize>,
-    pub closed_geodesics: Vec<GeodesicLength>,
+    /// `null` when the enumeration would be too large.
+    pub closed_geodesics: Option<Vec<GeodesicLength>>,
     pub injectivity_radius: Option<f64>,
 }
 

@@ -13,6 +13,9 @@ use crate::geometry::{Geometry, ORIGIN, max_abs_entry};
 use glam::{DMat3, DMat4, DVec3, DVec4};
 use std::f64::consts::TAU;
 
+/// The most faces a cell may have (vertex search is cubic in the face count).
+pub const MAX_FACES: usize = 128;
+
 /// Relative tolerance for the combinatorial and validation checks.
 pub const VALIDATION_TOLERANCE: f64 = 1e-9;
 
@@ -220,6 +223,12 @@ impl Space {
 fn checked_faces(geometry: Geometry, specs: &[FaceSpec]) -> Result<Vec<Face>, SpaceError> {
     if specs.len() < 4 {
         return Err(SpaceError::TooFewFaces { count: specs.len() });
+    }
+    if specs.len() > MAX_FACES {
+        return Err(SpaceError::TooManyFaces {
+            count: specs.len(),
+            max: MAX_FACES,
+        });
     }
     let mut faces = Vec::with_capacity(specs.len());
     for (i, spec) in specs.iter().enumerate() {
