@@ -7,11 +7,12 @@ use bevy_curved_spaces::space::file::{SpaceRecord, load_space_file};
 use bevy_curved_spaces::space::invariants::{Invariants, inradius};
 use bevy_curved_spaces::space::{SEED_SPACES, Space, SpaceError, seed_space};
 use bevy_curved_spaces::trace::{
-    Camera, CellWalker, Limit, RenderSettings, Scene, Trace, chart_ray, render,
+    Camera, CellWalker, Limit, RenderSettings, Scene, Trace, chart_ray, render_with_progress,
 };
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use glam::{DVec3, DVec4, Vec4};
 use serde_json::json;
+use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
@@ -425,7 +426,16 @@ fn render_command(args: &RenderArgs) -> Result<(), String> {
         eprintln!("note: the GPU renderer comes with the Bevy plugin; using the CPU reference");
     }
     let started = Instant::now();
-    let image = render(&space, &scene, &camera, &settings);
+    // A percentage on a terminal, updated every 5 %; nothing in logs.
+    let tty = std::io::stderr().is_terminal();
+    let image = render_with_progress(&space, &scene, &camera, &settings, |done, rows| {
+        if tty && (done * 20 / rows != (done - 1) * 20 / rows || done == rows) {
+            eprint!("\r{:>3} %", done * 100 / rows);
+            if done == rows {
+                eprintln!();
+            }
+        }
+    });
     if let Some(dir) = args.out.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir)
             .map_err(|e| format!("cannot create folder {}: {e}", dir.display()))?;

@@ -6,7 +6,9 @@
 mod render;
 mod scene;
 
-pub use render::{Camera, RayEnd, RenderSettings, SceneHit, first_hit, render, trace_pixel};
+pub use render::{
+    Camera, RayEnd, RenderSettings, SceneHit, first_hit, render, render_with_progress, trace_pixel,
+};
 pub use scene::{Ball, DEFAULT_CUTOFF_WEIGHT, Hit, Light, Object, Scene, Shading, Tube, palette};
 
 use crate::geometry::{Geometry, Real, Vector4};

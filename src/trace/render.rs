@@ -8,6 +8,7 @@ use crate::space::Space;
 use glam::{DMat4, DVec3, DVec4};
 use image::RgbImage;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicU32, Ordering};
 
 /// A pinhole camera: a frame (columns right, up, back, position) and a vertical field of view.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -172,8 +173,21 @@ pub fn render(
     camera: &Camera,
     settings: &RenderSettings,
 ) -> RgbImage {
+    render_with_progress(space, scene, camera, settings, |_, _| {})
+}
+
+/// [`render`], calling `progress(rows_done, rows)` as rows complete (from worker threads).
+#[must_use]
+pub fn render_with_progress(
+    space: &Space,
+    scene: &Scene,
+    camera: &Camera,
+    settings: &RenderSettings,
+    progress: impl Fn(u32, u32) + Sync,
+) -> RgbImage {
     let walker = CellWalker::<DVec4>::new(space);
     let (w, h) = (settings.width, settings.height);
+    let done = AtomicU32::new(0);
     let rows: Vec<Vec<u8>> = (0..h)
         .into_par_iter()
         .map(|j| {
@@ -186,6 +200,7 @@ pub fn render(
                         .map(|x| (x.clamp(0.0, 1.0) * 255.0).round() as u8),
                 );
             }
+            progress(done.fetch_add(1, Ordering::Relaxed) + 1, h);
             row
         })
         .collect();
