@@ -157,9 +157,11 @@ impl Geometry {
     /// Point and tangent at distance `t` along the geodesic from `p` with unit tangent `v`:
     /// `γ(t) = C p + S v`, `γ'(t) = −κ S p + C v`.
     #[must_use]
-    pub fn geodesic(self, p: DVec4, v: DVec4, t: f64) -> (DVec4, DVec4) {
+    pub fn geodesic<V: Vector4>(self, p: V, v: V, t: f64) -> (V, V) {
         let (c, s) = self.cs(t);
-        (c * p + s * v, -self.kappa() * s * p + c * v)
+        let (c, s) = (V::Real::from_f64(c), V::Real::from_f64(s));
+        let k = V::Real::from_f64(self.kappa());
+        (p.scale(c) + v.scale(s), p.scale(-k * s) + v.scale(c))
     }
 
     /// Geodesic length of the segment from `p` to `λ(p + T v)`, `T = S/C` the chart ratio:

@@ -149,11 +149,9 @@ impl<V: Vector4> CellWalker<V> {
     #[must_use]
     pub fn advance(&self, ray: &Ray<V>, t: f64) -> Ray<V> {
         let g = self.geometry;
-        let (c, s) = g.cs(t);
-        let (c, s) = (V::Real::from_f64(c), V::Real::from_f64(s));
-        let k = V::Real::from_f64(g.kappa());
-        let point = g.project_point(ray.point.scale(c) + ray.tangent.scale(s));
-        let tangent = g.unit_tangent(point, ray.point.scale(-k * s) + ray.tangent.scale(c));
+        let (point, tangent) = g.geodesic(ray.point, ray.tangent, t);
+        let point = g.project_point(point);
+        let tangent = g.unit_tangent(point, tangent);
         Ray { point, tangent }
     }
 

@@ -141,7 +141,7 @@ impl Object {
     pub fn intersect(&self, geometry: Geometry, p: DVec4, v: DVec4, s_max: f64) -> Option<Hit> {
         let k = geometry.kappa();
         let form = |a: DVec4, b: DVec4| geometry.form(a, b);
-        let (s, foot, colour) = match self {
+        let (s, colour) = match self {
             Object::Ball(ball) => {
                 let c = ball.centre;
                 let s = if geometry == Geometry::Euclidean {
@@ -166,7 +166,7 @@ impl Object {
                         |s| (a + s * b) * sheet > 0.0,
                     )
                 }?;
-                (s, c, ball.colour)
+                (s, ball.colour)
             }
             Object::Tube(tube) => {
                 let (a2, b1, c0) = if geometry == Geometry::Euclidean {
@@ -191,11 +191,14 @@ impl Object {
                 let s = first_root(a2, b1, c0, 0.0, s_max, |s| {
                     tube.over_segment(geometry, p + s * v)
                 })?;
-                let point = geometry.project_point(p + s * v);
-                (s, tube.foot(geometry, point), tube.colour)
+                (s, tube.colour)
             }
         };
         let point = geometry.project_point(p + s * v);
+        let foot = match self {
+            Object::Ball(ball) => ball.centre,
+            Object::Tube(tube) => tube.foot(geometry, point),
+        };
         // Outward normal: the tangent at the hit pointing away from the nearest point of
         // the ball's centre or the tube's axis.
         let normal = geometry.unit_tangent(point, point - foot);
