@@ -4,10 +4,11 @@
 
 use bevy_curved_spaces::geometry::Vector4;
 use bevy_curved_spaces::space::file::{SpaceRecord, load_space_file};
-use bevy_curved_spaces::space::invariants::{Invariants, inradius};
+use bevy_curved_spaces::space::invariants::Invariants;
 use bevy_curved_spaces::space::{SEED_SPACES, Space, SpaceError, seed_space};
 use bevy_curved_spaces::trace::{
-    Camera, CellWalker, Limit, RenderSettings, Scene, Trace, chart_ray, render_with_progress,
+    Camera, CellWalker, Limit, RenderSettings, Scene, Shading, Trace, chart_ray,
+    render_with_progress,
 };
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use glam::{DVec3, DVec4, Vec4};
@@ -389,7 +390,9 @@ fn trace(args: &TraceArgs) -> Result<(), String> {
 
 fn render_command(args: &RenderArgs) -> Result<(), String> {
     let space = resolve_space(&args.space)?;
-    let fog = args.fog.unwrap_or_else(|| default_fog(&space));
+    let fog = args
+        .fog
+        .unwrap_or_else(|| Shading::default_fog_distance(&space));
     let scene = Scene::default_for(&space, fog);
     let camera = match (args.eye, args.look_at) {
         (Some(eye), Some(target)) => {
@@ -454,11 +457,6 @@ fn render_command(args: &RenderArgs) -> Result<(), String> {
     Ok(())
 }
 
-/// Three times the inradius: several cells deep in every space.
-fn default_fog(space: &Space) -> f64 {
-    3.0 * inradius(space)
-}
-
 fn export(space: &Space, out: Option<&Path>) -> Result<(), String> {
     let text =
         serde_json::to_string_pretty(&SpaceRecord::from_space(space)).map_err(|e| e.to_string())?;
@@ -480,17 +478,11 @@ fn run(cli: Cli) -> Result<(), String> {
                 "no command given: rendering the default space to curved-spaces.png \
                  (see `curved-spaces --help` for more)"
             );
-            render_command(&RenderArgs {
-                space: DEFAULT_SPACE.into(),
-                cpu: true,
-                size: (640, 360),
-                out: "curved-spaces.png".into(),
-                fog: None,
-                crossings: 64,
-                fov: 70.0,
-                eye: None,
-                look_at: None,
-            })
+            // The `render` subcommand with its own defaults.
+            match Cli::parse_from(["curved-spaces", "render", "--cpu"]).command {
+                Some(Command::Render(args)) => render_command(&args),
+                _ => unreachable!("`render --cpu` parses as the render command"),
+            }
         }
         Some(Command::List) => {
             list();

@@ -5,7 +5,8 @@ use bevy_curved_spaces::geometry::ORIGIN;
 use bevy_curved_spaces::space::invariants::{elements_near, inradius};
 use bevy_curved_spaces::space::{SEED_SPACES, Space, seed_space};
 use bevy_curved_spaces::trace::{
-    Ball, Camera, CellWalker, Object, RayEnd, RenderSettings, Scene, first_hit, render, trace_pixel,
+    Ball, Camera, CellWalker, Object, RayEnd, RenderSettings, Scene, Shading, first_hit, render,
+    trace_pixel,
 };
 use glam::{DVec3, DVec4};
 
@@ -154,7 +155,7 @@ fn fog_cutoff_respects_its_bound() {
 fn every_seed_space_renders() {
     for seed in SEED_SPACES {
         let s = seed.build().unwrap();
-        let scene = Scene::default_for(&s, 3.0 * inradius(&s));
+        let scene = Scene::default_for(&s, Shading::default_fog_distance(&s));
         let camera = Camera::default_for(&s);
         let settings = RenderSettings {
             width: 96,

@@ -249,6 +249,13 @@ pub struct Shading {
 }
 
 impl Shading {
+    /// The default fog distance scale λ: three times the inradius, several cells deep in
+    /// every space.
+    #[must_use]
+    pub fn default_fog_distance(space: &Space) -> f64 {
+        3.0 * crate::space::invariants::inradius(space)
+    }
+
     /// The distance past which nothing changes the image by half a colour step or more.
     #[must_use]
     pub fn cutoff_distance(&self) -> f64 {
