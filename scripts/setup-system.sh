@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Installs the Debian packages the project needs, if any are missing.
-# - mesa-vulkan-drivers, libvulkan1: Vulkan on the CPU (lavapipe) for headless GPU renders.
+# - mesa-vulkan-drivers, libvulkan1: Vulkan on the CPU (lavapipe) where there is no GPU.
+# - libx11-6, libxcursor1, libxrandr2, libxi6, libxkbcommon-x11-0: the window (X11), loaded
+#   at run time.
 # Runs apt-get as root, or through sudo; says what to do when it can do neither.
 set -euo pipefail
-packages=(mesa-vulkan-drivers libvulkan1)
+packages=(mesa-vulkan-drivers libvulkan1 libx11-6 libxcursor1 libxrandr2 libxi6 libxkbcommon-x11-0)
 missing=()
 for p in "${packages[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

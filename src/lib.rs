@@ -28,11 +28,25 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod geometry;
+pub mod player;
+pub mod plugin;
+pub mod render;
 pub mod space;
 pub mod trace;
+pub mod ui;
+
+pub use plugin::{
+    ActiveSpace, CurvedSpaceCamera, CurvedSpacesPlugin, CurvedSpacesSystems, Quality,
+    TracerSettings,
+};
 
 /// The types most programs need.
 pub mod prelude {
     pub use crate::geometry::{Geometry, GeometryError, ORIGIN};
+    pub use crate::player::{Holonomy, KeyBindings, PlayerFrame, PlayerSettings};
+    pub use crate::plugin::{
+        ActiveSpace, CurvedSpaceCamera, CurvedSpacesPlugin, CurvedSpacesSystems, Quality,
+        TracerSettings,
+    };
     pub use crate::space::{SEED_SPACES, Space, SpaceError, seed_space};
 }

@@ -1,6 +1,7 @@
-//! `curved-spaces`: list, inspect, trace and render closed 3-manifolds and orbifolds.
+//! `curved-spaces`: walk, list, inspect, trace and render closed 3-manifolds and orbifolds.
 //!
-//! Run with no command to render the default space to `curved-spaces.png`.
+//! Run with no command to walk the default space in a window (or, with no display, to render
+//! it to `curved-spaces.png`).
 
 use bevy_curved_spaces::geometry::Vector4;
 use bevy_curved_spaces::space::file::{SpaceRecord, load_space_file};
@@ -10,6 +11,10 @@ use bevy_curved_spaces::trace::{
     Camera, CellWalker, Limit, RenderSettings, Scene, Shading, Trace, chart_ray,
     render_with_progress,
 };
+use bevy::prelude::*;
+use bevy_curved_spaces::render::offscreen::{OffscreenRender, gpu_available, render_offscreen};
+use bevy_curved_spaces::trace::SceneParts;
+use bevy_curved_spaces::{ActiveSpace, CurvedSpaceCamera, CurvedSpacesPlugin, Quality};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use glam::{DVec3, DVec4, Vec4};
 use serde_json::json;
@@ -42,7 +47,8 @@ const DEFAULT_SPACE: &str = "seifert-weber";
     version,
     about = "Ray tracing inside closed 3-manifolds and orbifolds of constant curvature",
     long_about = "Ray tracing inside closed 3-manifolds and orbifolds of constant curvature.\n\n\
-                  With no command, renders the default space (seifert-weber) to curved-spaces.png.\n\
+                  With no command, walks the default space (seifert-weber) in a window; with no \
+                  display, renders it to curved-spaces.png instead.\n\
                   SPACE is a seed space id (see `curved-spaces list`) or a path to a space file \
                   (JSON; `curved-spaces export` writes examples)."
 )]
@@ -53,6 +59,8 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    /// Walk inside a space in a window (first-person controls, F1 panel).
+    Walk(WalkArgs),
     /// List the seed spaces.
     List,
     /// Show a space's invariants.
@@ -113,7 +121,7 @@ struct RenderArgs {
     /// Seed space id or space file.
     #[arg(default_value = DEFAULT_SPACE)]
     space: String,
-    /// Use the f64 CPU reference renderer (the only renderer until the GPU plugin lands).
+    /// Use the f64 CPU reference renderer instead of the GPU tracer.
     #[arg(long)]
     cpu: bool,
     /// Image size, WIDTHxHEIGHT.
@@ -137,6 +145,42 @@ struct RenderArgs {
     /// Chart point the camera looks at.
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true, requires = "eye")]
     look_at: Option<DVec3>,
+}
+
+#[derive(Args)]
+struct WalkArgs {
+    /// Seed space id or space file.
+    #[arg(default_value = DEFAULT_SPACE)]
+    space: String,
+    /// Speed against accuracy: crossing budget and traced resolution.
+    #[arg(long, value_enum, default_value = "medium")]
+    quality: QualityArg,
+    /// Fog distance scale λ (default: three times the inradius).
+    #[arg(long, value_parser = parse_positive, allow_hyphen_values = true)]
+    fog: Option<f64>,
+    /// Crossing budget per ray (default: the quality's), 1 to 1024.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    crossings: Option<u32>,
+    /// Start without the panel (F1 shows it).
+    #[arg(long)]
+    no_ui: bool,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum QualityArg {
+    Low,
+    Medium,
+    High,
+}
+
+impl From<QualityArg> for Quality {
+    fn from(q: QualityArg) -> Self {
+        match q {
+            QualityArg::Low => Quality::Low,
+            QualityArg::Medium => Quality::Medium,
+            QualityArg::High => Quality::High,
+        }
+    }
 }
 
 fn parse_vec3(s: &str) -> Result<DVec3, String> {
@@ -416,29 +460,57 @@ fn render_command(args: &RenderArgs) -> Result<(), String> {
         height: args.size.1,
         max_crossings: args.crossings,
     };
-    eprintln!(
-        "rendering {} ({}) at {}×{} with the f64 CPU reference on {} threads (fog λ = {fog:.3}, ≤ {} crossings)…",
-        space.name,
-        space.geometry.name(),
-        settings.width,
-        settings.height,
-        rayon::current_num_threads(),
-        settings.max_crossings
-    );
-    if !args.cpu {
-        eprintln!("note: the GPU renderer comes with the Bevy plugin; using the CPU reference");
-    }
     let started = Instant::now();
-    // A percentage on a terminal, updated every 5 %; nothing in logs.
-    let tty = std::io::stderr().is_terminal();
-    let image = render_with_progress(&space, &scene, &camera, &settings, |done, rows| {
-        if tty && (done * 20 / rows != (done - 1) * 20 / rows || done == rows) {
-            eprint!("\r{:>3} %", done * 100 / rows);
-            if done == rows {
-                eprintln!();
+    let image = if args.cpu {
+        eprintln!(
+            "rendering {} ({}) at {}×{} with the f64 CPU reference on {} threads (fog λ = {fog:.3}, ≤ {} crossings)…",
+            space.name,
+            space.geometry.name(),
+            settings.width,
+            settings.height,
+            rayon::current_num_threads(),
+            settings.max_crossings
+        );
+        // A percentage on a terminal, updated every 5 %; nothing in logs.
+        let tty = std::io::stderr().is_terminal();
+        render_with_progress(&space, &scene, &camera, &settings, |done, rows| {
+            if tty && (done * 20 / rows != (done - 1) * 20 / rows || done == rows) {
+                eprint!("\r{:>3} %", done * 100 / rows);
+                if done == rows {
+                    eprintln!();
+                }
             }
-        }
-    });
+        })
+    } else {
+        eprintln!(
+            "rendering {} ({}) at {}×{} with the GPU tracer (fog λ = {fog:.3}, ≤ {} crossings)…",
+            space.name,
+            space.geometry.name(),
+            settings.width,
+            settings.height,
+            settings.max_crossings
+        );
+        let max_crossings = u32::try_from(args.crossings)
+            .ok()
+            .filter(|&n| (1..=4096).contains(&n))
+            .ok_or_else(|| {
+                format!(
+                    "the GPU tracer takes a crossing budget from 1 to 4096, got {} (use --cpu for more)",
+                    args.crossings
+                )
+            })?;
+        render_offscreen(&OffscreenRender {
+            space: ActiveSpace::new(&args.space, space.clone()),
+            width: settings.width,
+            height: settings.height,
+            frame: camera.frame,
+            fov_y_degrees: camera.fov_y_degrees,
+            fog_distance: Some(fog),
+            max_crossings,
+            parts: SceneParts::default(),
+        })
+        .map_err(|e| e.to_string())?
+    };
     if let Some(dir) = args.out.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir)
             .map_err(|e| format!("cannot create folder {}: {e}", dir.display()))?;
@@ -454,6 +526,60 @@ fn render_command(args: &RenderArgs) -> Result<(), String> {
         settings.height,
         started.elapsed().as_secs_f64()
     );
+    Ok(())
+}
+
+/// Whether a window can be opened (an X11 or Wayland display is named).
+fn display_available() -> bool {
+    ["DISPLAY", "WAYLAND_DISPLAY"]
+        .iter()
+        .any(|v| std::env::var_os(v).is_some_and(|x| !x.is_empty()))
+}
+
+fn walk(args: &WalkArgs) -> Result<(), String> {
+    let space = resolve_space(&args.space)?;
+    if !display_available() {
+        eprintln!(
+            "no display found (DISPLAY and WAYLAND_DISPLAY are unset): rendering {} offscreen to curved-spaces.png instead",
+            args.space
+        );
+        let render = Cli::parse_from(["curved-spaces", "render", args.space.as_str()]);
+        let Some(Command::Render(mut render)) = render.command else {
+            unreachable!("`render SPACE` parses as the render command")
+        };
+        render.fog = args.fog;
+        if !gpu_available() {
+            eprintln!("no GPU adapter found: using the CPU reference renderer");
+            render.cpu = true;
+        }
+        return render_command(&render);
+    }
+    let active = ActiveSpace::new(&args.space, space);
+    eprintln!(
+        "walking in {}: click to look around, WASD to move, Esc releases the mouse, F1 the panel",
+        active.space.name
+    );
+    App::new()
+        .add_plugins(DefaultPlugins.set(WindowPlugin {
+            primary_window: Some(Window {
+                title: format!("curved spaces: {}", active.space.name),
+                ..default()
+            }),
+            ..default()
+        }))
+        .insert_resource(active)
+        .add_plugins(CurvedSpacesPlugin {
+            fog_distance: args.fog,
+            max_crossings: args.crossings,
+            quality: args.quality.into(),
+            ui: true,
+            ..default()
+        })
+        .insert_resource(bevy_curved_spaces::ui::PanelVisible(!args.no_ui))
+        .add_systems(Startup, |mut commands: Commands| {
+            commands.spawn((Camera3d::default(), CurvedSpaceCamera::default()));
+        })
+        .run();
     Ok(())
 }
 
@@ -473,17 +599,12 @@ fn export(space: &Space, out: Option<&Path>) -> Result<(), String> {
 
 fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
-        None => {
-            eprintln!(
-                "no command given: rendering the default space to curved-spaces.png \
-                 (see `curved-spaces --help` for more)"
-            );
-            // The `render` subcommand with its own defaults.
-            match Cli::parse_from(["curved-spaces", "render", "--cpu"]).command {
-                Some(Command::Render(args)) => render_command(&args),
-                _ => unreachable!("`render --cpu` parses as the render command"),
-            }
-        }
+        None => match Cli::parse_from(["curved-spaces", "walk"]).command {
+            // The `walk` subcommand with its own defaults.
+            Some(Command::Walk(args)) => walk(&args),
+            _ => unreachable!("`walk` parses as the walk command"),
+        },
+        Some(Command::Walk(args)) => walk(&args),
         Some(Command::List) => {
             list();
             Ok(())

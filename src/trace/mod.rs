@@ -9,7 +9,9 @@ mod scene;
 pub use render::{
     Camera, RayEnd, RenderSettings, SceneHit, first_hit, render, render_with_progress, trace_pixel,
 };
-pub use scene::{Ball, DEFAULT_CUTOFF_WEIGHT, Hit, Light, Object, Scene, Shading, Tube, palette};
+pub use scene::{
+    Ball, DEFAULT_CUTOFF_WEIGHT, Hit, Light, Object, Scene, SceneParts, Shading, Tube, palette,
+};
 
 use crate::geometry::{Geometry, Real, Vector4};
 use crate::space::Space;

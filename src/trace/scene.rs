@@ -303,16 +303,41 @@ pub fn palette(i: usize) -> DVec3 {
     DVec3::new(r, g, b) * 0.75 + DVec3::splat(0.2)
 }
 
+/// Which parts of the default scene to show.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct SceneParts {
+    /// The cell's edges (tubes coloured by edge cycle) and a small ball at each vertex.
+    pub edges: bool,
+    /// A ball at the cell's centre.
+    pub centre_ball: bool,
+}
+
+impl Default for SceneParts {
+    fn default() -> Self {
+        Self {
+            edges: true,
+            centre_ball: true,
+        }
+    }
+}
+
 impl Scene {
     /// The default scene of a space: the cell's edges as thin tubes coloured by edge cycle,
     /// a small ball at each vertex, a ball at the centre and one light, with fog at `fog`.
     #[must_use]
     pub fn default_for(space: &Space, fog_distance: f64) -> Self {
+        Self::with_parts(space, fog_distance, SceneParts::default())
+    }
+
+    /// The default scene with only the chosen parts (the light and shading are the same).
+    #[must_use]
+    pub fn with_parts(space: &Space, fog_distance: f64, parts: SceneParts) -> Self {
         let g = space.geometry;
         let inradius = crate::space::invariants::inradius(space);
         let tube = 0.05 * inradius;
-        let mut objects: Vec<Object> = space
-            .edges
+        let edges = if parts.edges { space.edges.as_slice() } else { &[] };
+        let vertices = if parts.edges { space.vertices.len() } else { 0 };
+        let mut objects: Vec<Object> = edges
             .iter()
             .map(|e| {
                 Object::Tube(Tube::new(
@@ -324,7 +349,7 @@ impl Scene {
                 ))
             })
             .collect();
-        objects.extend((0..space.vertices.len()).map(|v| {
+        objects.extend((0..vertices).map(|v| {
             Object::Ball(Ball::new(
                 g,
                 space.vertex_point(v),
@@ -332,12 +357,14 @@ impl Scene {
                 DVec3::splat(0.9),
             ))
         }));
-        objects.push(Object::Ball(Ball::new(
-            g,
-            space.centre(),
-            0.25 * inradius,
-            DVec3::new(1.0, 0.78, 0.45),
-        )));
+        if parts.centre_ball {
+            objects.push(Object::Ball(Ball::new(
+                g,
+                space.centre(),
+                0.25 * inradius,
+                DVec3::new(1.0, 0.78, 0.45),
+            )));
+        }
         let light_at = g.translation(DVec3::new(0.45, 0.8, 0.4), 0.65 * inradius) * space.centre();
         Scene {
             objects,

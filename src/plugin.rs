@@ -1,0 +1,286 @@
+//! [`CurvedSpacesPlugin`]: one line to add curved spaces to a Bevy app.
+//!
+//! ```no_run
+//! use bevy::prelude::*;
+//! use bevy_curved_spaces::prelude::*;
+//!
+//! App::new()
+//!     .add_plugins((DefaultPlugins, CurvedSpacesPlugin::default()))
+//!     .add_systems(Startup, |mut commands: Commands| {
+//!         // An ordinary 3D camera that shows the curved space.
+//!         commands.spawn((Camera3d::default(), CurvedSpaceCamera::default()));
+//!     })
+//!     .run();
+//! ```
+
+use crate::player::{
+    self, Holonomy, KeyBindings, MouseLook, PlayerFrame, PlayerMotion, PlayerSettings,
+};
+use crate::render::{PreparedScene, TracerRenderPlugin, gpu::GpuScene};
+use crate::space::{Space, SpaceError, invariants, seed_space};
+use crate::trace::{Camera as TraceCamera, Scene, SceneParts, Shading};
+use bevy::core_pipeline::tonemapping::{DebandDither, Tonemapping};
+use bevy::prelude::*;
+use std::sync::Arc;
+
+/// The seed space shown when nothing else is chosen.
+pub const DEFAULT_SPACE: &str = "seifert-weber";
+
+/// Speed against accuracy presets: the crossing budget per ray and the fraction of the
+/// window's resolution that is traced.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Quality {
+    /// 12 crossings, half resolution.
+    Low,
+    /// 24 crossings, three quarters of the resolution.
+    #[default]
+    Medium,
+    /// 48 crossings, full resolution.
+    High,
+}
+
+impl Quality {
+    /// `(crossing budget, resolution scale)`.
+    #[must_use]
+    pub fn knobs(self) -> (u32, f32) {
+        match self {
+            Quality::Low => (12, 0.5),
+            Quality::Medium => (24, 0.75),
+            Quality::High => (48, 1.0),
+        }
+    }
+}
+
+/// Adds curved spaces to an app: the GPU tracer behind every [`CurvedSpaceCamera`], the
+/// first-person controls and (optionally) the egui panel.
+#[derive(Clone, Debug)]
+pub struct CurvedSpacesPlugin {
+    /// The seed space to start in (see [`crate::space::SEED_SPACES`]).
+    pub space: String,
+    /// Fog distance scale λ; `None` for the space's default (three inradii).
+    pub fog_distance: Option<f64>,
+    /// Crossing budget per ray; `None` for the quality preset's.
+    pub max_crossings: Option<u32>,
+    pub quality: Quality,
+    /// Built-in first-person controls (WASD, mouse look, Q/E roll, Space/Shift, scroll).
+    pub controls: bool,
+    /// The egui panel (toggled with F1; needs a window).
+    pub ui: bool,
+}
+
+impl Default for CurvedSpacesPlugin {
+    fn default() -> Self {
+        Self {
+            space: DEFAULT_SPACE.into(),
+            fog_distance: None,
+            max_crossings: None,
+            quality: Quality::default(),
+            controls: true,
+            ui: false,
+        }
+    }
+}
+
+/// Our systems, in the order they run in `Update`; order your own around them.
+#[derive(SystemSet, Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum CurvedSpacesSystems {
+    /// Keys, mouse and scroll become each player's [`PlayerMotion`].
+    Input,
+    /// Motions are applied to the frames (and a space switch resets them).
+    Move,
+    /// Frames that left the cell are wrapped through faces ([`Holonomy`]).
+    Wrap,
+    /// The space and scene are packed for the GPU when they changed.
+    Upload,
+}
+
+/// A camera that shows the curved space: add it to an ordinary `Camera3d`.
+///
+/// Its position and orientation in the space are its [`PlayerFrame`]; the camera's
+/// `Transform` is not used.
+#[derive(Component, Clone, Copy, Debug, PartialEq)]
+#[require(PlayerFrame, Holonomy, PlayerMotion)]
+pub struct CurvedSpaceCamera {
+    /// Vertical field of view in degrees.
+    pub fov_y_degrees: f64,
+}
+
+impl Default for CurvedSpaceCamera {
+    fn default() -> Self {
+        Self {
+            fov_y_degrees: 70.0,
+        }
+    }
+}
+
+/// The space every curved-space camera shows. Replace it (or use [`ActiveSpace::seed`]) to
+/// switch spaces at run time: the players are put back at the space's start view.
+#[derive(Resource, Clone, Debug)]
+pub struct ActiveSpace {
+    /// The seed id or the file the space came from.
+    pub id: String,
+    pub space: Arc<Space>,
+    pub volume: f64,
+    pub inradius: f64,
+    /// `None` where the group was too large to enumerate.
+    pub injectivity_radius: Option<f64>,
+}
+
+impl ActiveSpace {
+    /// A space with its read-outs computed.
+    #[must_use]
+    pub fn new(id: impl Into<String>, space: Space) -> Self {
+        Self {
+            id: id.into(),
+            volume: invariants::volume(&space),
+            inradius: invariants::inradius(&space),
+            injectivity_radius: invariants::injectivity_radius(&space),
+            space: Arc::new(space),
+        }
+    }
+
+    /// One of the seed spaces by id.
+    pub fn seed(id: &str) -> Result<Self, SpaceError> {
+        Ok(Self::new(id, seed_space(id)?))
+    }
+}
+
+/// The tracer's knobs, changeable at run time.
+#[derive(Resource, Clone, Copy, Debug, PartialEq)]
+pub struct TracerSettings {
+    /// Fog distance scale λ; `None` for the space's default.
+    pub fog_distance: Option<f64>,
+    /// Crossing budget per ray.
+    pub max_crossings: u32,
+    /// Fraction of the view's resolution that is traced (then scaled up), in (0, 1].
+    pub resolution_scale: f32,
+    pub parts: SceneParts,
+}
+
+impl TracerSettings {
+    /// The fog distance in use for a space.
+    #[must_use]
+    pub fn fog_for(&self, space: &Space) -> f64 {
+        self.fog_distance
+            .unwrap_or_else(|| Shading::default_fog_distance(space))
+    }
+}
+
+/// The last problem the tracer had with the scene (shown in the UI), if any.
+#[derive(Resource, Clone, Debug, Default, PartialEq)]
+pub struct TracerStatus {
+    pub error: Option<String>,
+}
+
+impl Plugin for CurvedSpacesPlugin {
+    fn build(&self, app: &mut App) {
+        // A space inserted before the plugin (e.g. from a file) wins over `self.space`.
+        if !app.world().contains_resource::<ActiveSpace>() {
+            let active = ActiveSpace::seed(&self.space).unwrap_or_else(|e| {
+                error!("{e}; starting in {DEFAULT_SPACE} instead");
+                ActiveSpace::seed(DEFAULT_SPACE).expect("the default seed space is valid")
+            });
+            app.insert_resource(active);
+        }
+        let (budget, scale) = self.quality.knobs();
+        app.insert_resource(TracerSettings {
+                fog_distance: self.fog_distance,
+                max_crossings: self.max_crossings.unwrap_or(budget).max(1),
+                resolution_scale: scale,
+                parts: SceneParts::default(),
+            })
+            .init_resource::<TracerStatus>()
+            .init_resource::<PlayerSettings>()
+            .init_resource::<KeyBindings>()
+            .init_resource::<MouseLook>()
+            .configure_sets(
+                Update,
+                (
+                    CurvedSpacesSystems::Input,
+                    CurvedSpacesSystems::Move,
+                    CurvedSpacesSystems::Wrap,
+                    CurvedSpacesSystems::Upload,
+                )
+                    .chain(),
+            )
+            .add_systems(
+                Update,
+                (
+                    (reset_players_on_switch, player::move_players)
+                        .chain()
+                        .in_set(CurvedSpacesSystems::Move),
+                    player::wrap_players.in_set(CurvedSpacesSystems::Wrap),
+                    upload_scene.in_set(CurvedSpacesSystems::Upload),
+                ),
+            )
+            .add_observer(start_camera);
+        if self.controls {
+            app.add_systems(
+                Update,
+                (player::grab_cursor, player::read_input)
+                    .chain()
+                    .in_set(CurvedSpacesSystems::Input),
+            );
+        }
+        if self.ui {
+            app.add_plugins(crate::ui::CurvedSpacesUiPlugin);
+        }
+        if app.is_plugin_added::<bevy::render::RenderPlugin>() {
+            app.add_plugins(TracerRenderPlugin);
+        }
+    }
+}
+
+/// A new curved-space camera starts at the space's default view and draws only the tracer.
+fn start_camera(
+    add: On<Add, CurvedSpaceCamera>,
+    active: Res<ActiveSpace>,
+    mut commands: Commands,
+    frames: Query<&PlayerFrame>,
+) {
+    let mut entity = commands.entity(add.entity);
+    if frames.get(add.entity).is_ok_and(|f| *f == PlayerFrame::default()) {
+        entity.insert(PlayerFrame(TraceCamera::default_for(&active.space).frame));
+    }
+    // The tracer writes final colours: no anti-aliasing, tonemapping or dithering on top.
+    entity.insert((Msaa::Off, Tonemapping::None, DebandDither::Disabled));
+}
+
+fn reset_players_on_switch(
+    active: Res<ActiveSpace>,
+    mut players: Query<(&mut PlayerFrame, &mut Holonomy)>,
+) {
+    if !active.is_changed() || active.is_added() {
+        return;
+    }
+    let start = TraceCamera::default_for(&active.space).frame;
+    for (mut frame, mut holonomy) in &mut players {
+        frame.0 = start;
+        *holonomy = Holonomy::default();
+    }
+}
+
+/// Packs the scene for the GPU when the space or the settings changed.
+fn upload_scene(
+    active: Res<ActiveSpace>,
+    settings: Res<TracerSettings>,
+    mut status: ResMut<TracerStatus>,
+    prepared: Option<Res<PreparedScene>>,
+    mut commands: Commands,
+) {
+    if prepared.is_some() && !active.is_changed() && !settings.is_changed() {
+        return;
+    }
+    let space = &active.space;
+    let scene = Scene::with_parts(space, settings.fog_for(space), settings.parts);
+    match GpuScene::new(space, &scene, settings.max_crossings) {
+        Ok(gpu) => {
+            commands.insert_resource(PreparedScene(Arc::new(gpu)));
+            status.error = None;
+        }
+        Err(e) => {
+            error!("{e}");
+            status.error = Some(e.to_string());
+        }
+    }
+}

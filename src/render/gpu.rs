@@ -1,0 +1,214 @@
+//! What the WGSL tracer needs, packed for its uniform: the shader key (geometry, face count,
+//! object kinds and counts → shader defs) and the words of `SpaceUniform` in
+//! `shaders/curved_space.wgsl`, in the same order and layout.
+//!
+//! Every member of the WGSL struct is a `vec4` or a `mat4x4` (or an array of them), so the
+//! layout has no padding: the buffer is the members' components one after another.
+
+use crate::geometry::Geometry;
+use crate::space::Space;
+use crate::trace::{Object, Scene};
+use bevy::shader::ShaderDefVal;
+use glam::{DMat4, DVec4};
+
+/// The WGSL source of the tracer.
+pub const TRACER_WGSL: &str = include_str!("../../shaders/curved_space.wgsl");
+
+/// wgpu's default `max_uniform_buffer_binding_size`: the tracer's data must fit in it.
+pub const MAX_UNIFORM_BYTES: usize = 64 << 10;
+
+/// Words of the per-view part at the start of the uniform (`View`: a mat4 and two vec4).
+pub const VIEW_WORDS: usize = 24;
+
+/// What the shader is specialised on: one compiled pipeline per key.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct ShaderKey {
+    pub geometry: Geometry,
+    pub faces: u32,
+    pub balls: u32,
+    pub tubes: u32,
+}
+
+impl ShaderKey {
+    /// The shader defs of this key (see the header of `shaders/curved_space.wgsl`).
+    #[must_use]
+    pub fn shader_defs(&self) -> Vec<ShaderDefVal> {
+        let geometry = match self.geometry {
+            Geometry::Spherical => "SPHERICAL",
+            Geometry::Euclidean => "EUCLIDEAN",
+            Geometry::Hyperbolic => "HYPERBOLIC",
+        };
+        let mut defs = vec![
+            ShaderDefVal::from(geometry),
+            ShaderDefVal::UInt("FACE_COUNT".into(), self.faces),
+            ShaderDefVal::UInt("PARTNER_VECS".into(), self.faces.div_ceil(4)),
+        ];
+        if self.balls > 0 {
+            defs.push("BALLS".into());
+            defs.push(ShaderDefVal::UInt("BALL_COUNT".into(), self.balls));
+        }
+        if self.tubes > 0 {
+            defs.push("TUBES".into());
+            defs.push(ShaderDefVal::UInt("TUBE_COUNT".into(), self.tubes));
+        }
+        defs
+    }
+
+    /// Size in bytes of `SpaceUniform` for this key.
+    #[must_use]
+    pub fn uniform_bytes(&self) -> usize {
+        let vec4 = 16;
+        let view = VIEW_WORDS * 4;
+        let shading_and_light = 4 * vec4;
+        let faces = self.faces as usize * (vec4 + 4 * vec4);
+        let partners = self.faces.div_ceil(4) as usize * vec4;
+        let balls = self.balls as usize * 2 * vec4;
+        let tubes = self.tubes as usize * 4 * vec4;
+        view + shading_and_light + faces + partners + balls + tubes
+    }
+}
+
+/// The scene cannot be given to the GPU tracer.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum GpuSceneError {
+    #[error(
+        "the scene needs {bytes} bytes of uniform data ({faces} faces, {balls} balls, {tubes} tubes), more than the {limit} bytes a GPU is guaranteed to bind; show fewer objects"
+    )]
+    TooLarge {
+        bytes: usize,
+        limit: usize,
+        faces: u32,
+        balls: u32,
+        tubes: u32,
+    },
+    #[error("the crossing budget must be at least 1, got {0}")]
+    NoCrossings(u32),
+}
+
+/// A space and its scene, packed for the GPU (everything but the per-view camera part).
+#[derive(Clone, Debug, PartialEq)]
+pub struct GpuScene {
+    pub key: ShaderKey,
+    /// The words of `SpaceUniform` after `view`.
+    pub words: Vec<u32>,
+}
+
+fn push_vec4(words: &mut Vec<u32>, v: DVec4) {
+    words.extend(v.to_array().map(|x| (x as f32).to_bits()));
+}
+
+fn push_mat4(words: &mut Vec<u32>, m: DMat4) {
+    for column in [m.x_axis, m.y_axis, m.z_axis, m.w_axis] {
+        push_vec4(words, column);
+    }
+}
+
+impl GpuScene {
+    /// Packs a space and a scene with a crossing budget per ray.
+    pub fn new(space: &Space, scene: &Scene, max_crossings: u32) -> Result<Self, GpuSceneError> {
+        if max_crossings == 0 {
+            return Err(GpuSceneError::NoCrossings(max_crossings));
+        }
+        let g = space.geometry;
+        let balls: Vec<_> = scene
+            .objects
+            .iter()
+            .filter_map(|o| match o {
+                Object::Ball(b) => Some(b),
+                Object::Tube(_) => None,
+            })
+            .collect();
+        let tubes: Vec<_> = scene
+            .objects
+            .iter()
+            .filter_map(|o| match o {
+                Object::Tube(t) => Some(t),
+                Object::Ball(_) => None,
+            })
+            .collect();
+        let key = ShaderKey {
+            geometry: g,
+            faces: space.faces.len() as u32,
+            balls: balls.len() as u32,
+            tubes: tubes.len() as u32,
+        };
+        let bytes = key.uniform_bytes();
+        if bytes > MAX_UNIFORM_BYTES {
+            return Err(GpuSceneError::TooLarge {
+                bytes,
+                limit: MAX_UNIFORM_BYTES,
+                faces: key.faces,
+                balls: key.balls,
+                tubes: key.tubes,
+            });
+        }
+        let shading = &scene.shading;
+        let light = &scene.light;
+        let mut words = Vec::with_capacity(bytes / 4);
+        push_vec4(&mut words, shading.fog_colour.extend(shading.ambient));
+        push_vec4(
+            &mut words,
+            DVec4::new(
+                shading.fog_distance,
+                shading.cutoff_distance(),
+                g.s(shading.near_light),
+                f64::from(max_crossings),
+            ),
+        );
+        push_vec4(&mut words, light.position);
+        push_vec4(&mut words, (light.colour * light.power).extend(0.0));
+        for face in &space.faces {
+            push_vec4(&mut words, face.covector);
+        }
+        for face in &space.faces {
+            push_mat4(&mut words, face.pairing);
+        }
+        let mut partners: Vec<u32> = space.faces.iter().map(|f| f.partner as u32).collect();
+        partners.resize(4 * space.faces.len().div_ceil(4), 0);
+        words.extend(partners);
+        for ball in &balls {
+            push_vec4(&mut words, ball.centre);
+            let size = match g {
+                Geometry::Euclidean => ball.radius,
+                _ => g.cs(ball.radius).0,
+            };
+            push_vec4(&mut words, ball.colour.extend(size));
+        }
+        for tube in &tubes {
+            push_vec4(&mut words, tube.a);
+            push_vec4(&mut words, g.tangent_towards(tube.a, tube.b));
+            let size = match g {
+                Geometry::Euclidean => tube.radius * tube.radius,
+                _ => g.cs(tube.radius).0.powi(2),
+            };
+            push_vec4(&mut words, tube.colour.extend(size));
+            let (c, s) = g.cs(g.distance(tube.a, tube.b));
+            push_vec4(&mut words, DVec4::new(c, s, 0.0, 0.0));
+        }
+        debug_assert_eq!(words.len() * 4 + VIEW_WORDS * 4, bytes);
+        Ok(Self { key, words })
+    }
+}
+
+/// The per-view part of the uniform: the camera frame (columns right, up, back, position),
+/// `tan(fov_y/2)`, the aspect ratio and the viewport (origin and size in pixels).
+#[must_use]
+pub fn view_words(
+    frame: DMat4,
+    fov_y_degrees: f64,
+    origin: [u32; 2],
+    size: [u32; 2],
+) -> [u32; VIEW_WORDS] {
+    let mut words = Vec::with_capacity(VIEW_WORDS);
+    push_mat4(&mut words, frame);
+    let (w, h) = (f64::from(size[0].max(1)), f64::from(size[1].max(1)));
+    push_vec4(
+        &mut words,
+        DVec4::new((fov_y_degrees.to_radians() / 2.0).tan(), w / h, w, h),
+    );
+    push_vec4(
+        &mut words,
+        DVec4::new(f64::from(origin[0]), f64::from(origin[1]), 0.0, 0.0),
+    );
+    words.try_into().expect("a mat4 and two vec4 are 24 words")
+}

@@ -1,0 +1,181 @@
+//! Rendering one picture through the real plugin without a window: a Bevy app whose
+//! curved-space camera draws into an image, captured once the tracer has drawn it.
+//! Used by the CLI's GPU `render`, the headless example and the GPU-vs-CPU tests.
+
+use crate::player::PlayerFrame;
+use crate::plugin::{ActiveSpace, CurvedSpaceCamera, CurvedSpacesPlugin, TracerSettings};
+use crate::render::FramesTraced;
+use crate::trace::SceneParts;
+use bevy::app::{PluginsState, ScheduleRunnerPlugin};
+use bevy::camera::{ImageRenderTarget, RenderTarget};
+use bevy::prelude::*;
+use bevy::render::render_resource::{TextureFormat, TextureUsages};
+use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
+use bevy::window::ExitCondition;
+use bevy::winit::WinitPlugin;
+use glam::DMat4;
+use image::RgbImage;
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+/// What to render.
+#[derive(Clone, Debug)]
+pub struct OffscreenRender {
+    pub space: ActiveSpace,
+    pub width: u32,
+    pub height: u32,
+    /// The camera frame (columns right, up, back, position).
+    pub frame: DMat4,
+    pub fov_y_degrees: f64,
+    /// Fog distance scale λ; `None` for the space's default.
+    pub fog_distance: Option<f64>,
+    pub max_crossings: u32,
+    pub parts: SceneParts,
+}
+
+/// Why no picture came back.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum OffscreenError {
+    #[error(
+        "no GPU adapter was found (no GPU and no software Vulkan driver): on Debian install one with `apt-get install mesa-vulkan-drivers libvulkan1`, or use --cpu"
+    )]
+    NoAdapter,
+    #[error("image size {0}×{1} is not supported: width and height must be 1 to 8192")]
+    BadSize(u32, u32),
+    #[error("the GPU tracer did not produce a picture within {0:?} (is the GPU busy or the scene too heavy?)")]
+    Timeout(Duration),
+    #[error("the captured picture has an unexpected format: {0}")]
+    Format(String),
+}
+
+/// Whether wgpu finds any adapter (a GPU or a software driver such as lavapipe).
+#[must_use]
+pub fn gpu_available() -> bool {
+    use wgpu::{Instance, InstanceDescriptor, RequestAdapterOptions};
+    let instance = Instance::new(InstanceDescriptor::new_without_display_handle());
+    bevy::tasks::block_on(instance.request_adapter(&RequestAdapterOptions::default())).is_ok()
+}
+
+/// How long a picture may take before [`render_offscreen`] gives up.
+pub const OFFSCREEN_TIMEOUT: Duration = Duration::from_secs(120);
+
+/// Renders one picture with the GPU tracer and returns it (8-bit RGB, the same encoding as
+/// the CPU reference's PNGs). To render several, keep an [`OffscreenRenderer`].
+pub fn render_offscreen(request: &OffscreenRender) -> Result<RgbImage, OffscreenError> {
+    OffscreenRenderer::new()?.render(request)
+}
+
+/// A windowless Bevy app with the plugin, reused for any number of pictures.
+pub struct OffscreenRenderer {
+    app: App,
+    frames: FramesTraced,
+}
+
+impl OffscreenRenderer {
+    /// Starts the app (and the GPU device).
+    pub fn new() -> Result<Self, OffscreenError> {
+        if !gpu_available() {
+            return Err(OffscreenError::NoAdapter);
+        }
+        let mut app = App::new();
+        app.add_plugins(
+            DefaultPlugins
+                .set(WindowPlugin {
+                    primary_window: None,
+                    exit_condition: ExitCondition::DontExit,
+                    ..default()
+                })
+                .disable::<WinitPlugin>()
+                .set(bevy::log::LogPlugin {
+                    level: bevy::log::Level::WARN,
+                    ..default()
+                }),
+        )
+        .add_plugins(ScheduleRunnerPlugin::run_loop(Duration::ZERO))
+        .add_plugins(CurvedSpacesPlugin {
+            controls: false,
+            ..default()
+        });
+        // Wait for the renderer to initialise (it may do so asynchronously).
+        while app.plugins_state() == PluginsState::Adding {
+            bevy::tasks::tick_global_task_pools_on_main_thread();
+        }
+        app.finish();
+        app.cleanup();
+        let frames = app.world().resource::<FramesTraced>().clone();
+        Ok(Self { app, frames })
+    }
+
+    /// Renders one picture.
+    pub fn render(&mut self, request: &OffscreenRender) -> Result<RgbImage, OffscreenError> {
+        let (w, h) = (request.width, request.height);
+        if !(1..=8192).contains(&w) || !(1..=8192).contains(&h) {
+            return Err(OffscreenError::BadSize(w, h));
+        }
+        let world = self.app.world_mut();
+        world.insert_resource(request.space.clone());
+        world.insert_resource(TracerSettings {
+            fog_distance: request.fog_distance,
+            max_crossings: request.max_crossings.max(1),
+            resolution_scale: 1.0,
+            parts: request.parts,
+        });
+        let mut target = Image::new_target_texture(w, h, TextureFormat::Rgba8UnormSrgb, None);
+        target.texture_descriptor.usage |= TextureUsages::COPY_SRC;
+        let handle = world.resource_mut::<Assets<Image>>().add(target);
+        let camera = world
+            .spawn((
+                Camera3d::default(),
+                RenderTarget::Image(ImageRenderTarget {
+                    handle: handle.clone(),
+                    scale_factor: 1.0,
+                }),
+                CurvedSpaceCamera {
+                    fov_y_degrees: request.fov_y_degrees,
+                },
+                PlayerFrame(request.frame),
+            ))
+            .id();
+        let result = self.capture(&handle);
+        self.app.world_mut().despawn(camera);
+        self.app.world_mut().resource_mut::<Assets<Image>>().remove(&handle);
+        result
+    }
+
+    fn capture(&mut self, handle: &Handle<Image>) -> Result<RgbImage, OffscreenError> {
+        let drawn_before = self.frames.get();
+        let captured: Arc<Mutex<Option<Image>>> = Arc::default();
+        let start = Instant::now();
+        let mut requested = false;
+        loop {
+            self.app.update();
+            if let Some(image) = captured.lock().expect("capture lock").take() {
+                return to_rgb(&image);
+            }
+            if start.elapsed() > OFFSCREEN_TIMEOUT {
+                return Err(OffscreenError::Timeout(OFFSCREEN_TIMEOUT));
+            }
+            // The pipeline compiles asynchronously: capture once the tracer has drawn
+            // this camera (two frames, as the previous camera's last frame may still have
+            // been in flight in the pipelined renderer).
+            if !requested && self.frames.get() >= drawn_before + 2 {
+                requested = true;
+                let sink = captured.clone();
+                self.app
+                    .world_mut()
+                    .spawn(Screenshot::image(handle.clone()))
+                    .observe(move |shot: On<ScreenshotCaptured>| {
+                        *sink.lock().expect("capture lock") = Some(shot.image.clone());
+                    });
+            }
+        }
+    }
+}
+
+fn to_rgb(image: &Image) -> Result<RgbImage, OffscreenError> {
+    let dynamic = image
+        .clone()
+        .try_into_dynamic()
+        .map_err(|e| OffscreenError::Format(e.to_string()))?;
+    Ok(dynamic.to_rgb8())
+}

@@ -1,0 +1,213 @@
+//! The egui panel: space picker, tracer knobs and read-outs. F1 shows or hides it, F12 saves
+//! a screenshot (without the panel) to the working directory.
+
+use crate::player::{Holonomy, PlayerFrame, PlayerSettings};
+use crate::plugin::{ActiveSpace, CurvedSpaceCamera, TracerSettings, TracerStatus};
+use crate::space::SEED_SPACES;
+use bevy::diagnostic::{DiagnosticsStore, FrameTimeDiagnosticsPlugin};
+use bevy::prelude::*;
+use bevy::render::view::screenshot::{Screenshot, save_to_disk};
+use bevy_egui::{EguiContexts, EguiPlugin, EguiPrimaryContextPass, egui};
+
+/// Whether the pointer is over the panel (then a click does not grab the cursor).
+#[derive(Resource, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PointerOverUi(pub bool);
+
+/// Whether the panel is shown.
+#[derive(Resource, Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PanelVisible(pub bool);
+
+/// Keys of the panel.
+#[derive(Resource, Clone, Copy, Debug, PartialEq, Eq)]
+pub struct UiKeys {
+    pub toggle_panel: KeyCode,
+    pub screenshot: KeyCode,
+}
+
+impl Default for UiKeys {
+    fn default() -> Self {
+        Self {
+            toggle_panel: KeyCode::F1,
+            screenshot: KeyCode::F12,
+        }
+    }
+}
+
+/// The panel and its keys.
+pub struct CurvedSpacesUiPlugin;
+
+impl Plugin for CurvedSpacesUiPlugin {
+    fn build(&self, app: &mut App) {
+        if !app.is_plugin_added::<EguiPlugin>() {
+            app.add_plugins(EguiPlugin::default());
+        }
+        if !app.is_plugin_added::<FrameTimeDiagnosticsPlugin>() {
+            app.add_plugins(FrameTimeDiagnosticsPlugin::default());
+        }
+        app.init_resource::<PointerOverUi>()
+            .init_resource::<UiKeys>()
+            .insert_resource(PanelVisible(true))
+            .add_systems(Update, (toggle_panel, take_screenshot))
+            .add_systems(EguiPrimaryContextPass, panel);
+    }
+}
+
+fn toggle_panel(keys: Res<ButtonInput<KeyCode>>, ui: Res<UiKeys>, mut shown: ResMut<PanelVisible>) {
+    if keys.just_pressed(ui.toggle_panel) {
+        shown.0 = !shown.0;
+    }
+}
+
+fn take_screenshot(
+    keys: Res<ButtonInput<KeyCode>>,
+    ui: Res<UiKeys>,
+    active: Res<ActiveSpace>,
+    mut shown: ResMut<PanelVisible>,
+    mut commands: Commands,
+) {
+    if !keys.just_pressed(ui.screenshot) {
+        return;
+    }
+    // The panel is hidden for the capture and stays hidden (F1 brings it back).
+    shown.0 = false;
+    let stamp = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs());
+    let path = format!("curved-spaces-{}-{stamp}.png", active.id);
+    info!("saving a screenshot to {path}");
+    commands
+        .spawn(Screenshot::primary_window())
+        .observe(save_to_disk(path));
+}
+
+#[allow(clippy::too_many_arguments)]
+fn panel(
+    mut contexts: EguiContexts,
+    shown: Res<PanelVisible>,
+    mut over_ui: ResMut<PointerOverUi>,
+    mut active: ResMut<ActiveSpace>,
+    mut settings: ResMut<TracerSettings>,
+    mut player: ResMut<PlayerSettings>,
+    status: Res<TracerStatus>,
+    diagnostics: Res<DiagnosticsStore>,
+    mut cameras: Query<(&mut CurvedSpaceCamera, &PlayerFrame, &Holonomy)>,
+) -> Result {
+    let ctx = contexts.ctx_mut()?;
+    if !shown.0 {
+        over_ui.0 = false;
+        return Ok(());
+    }
+    egui::Window::new("Curved spaces")
+        .default_pos((12.0, 12.0))
+        .default_width(300.0)
+        .show(ctx, |ui| {
+            let mut chosen = None;
+            egui::ComboBox::from_label("space")
+                .selected_text(active.id.as_str())
+                .show_ui(ui, |ui| {
+                    for seed in SEED_SPACES {
+                        let r = ui
+                            .selectable_label(active.id == seed.id, seed.id)
+                            .on_hover_text(seed.summary);
+                        if r.clicked() {
+                            chosen = Some(seed.id);
+                        }
+                    }
+                });
+            if let Some(summary) = SEED_SPACES.iter().find(|s| s.id == active.id) {
+                ui.label(egui::RichText::new(summary.summary).small());
+            }
+            if let Some(id) = chosen.filter(|id| *id != active.id) {
+                match ActiveSpace::seed(id) {
+                    Ok(space) => *active = space,
+                    Err(e) => error!("{e}"),
+                }
+            }
+            ui.separator();
+            let default_fog = crate::trace::Shading::default_fog_distance(&active.space);
+            let mut fog = settings.fog_distance.unwrap_or(default_fog);
+            if ui
+                .add(
+                    egui::Slider::new(&mut fog, 0.05 * default_fog..=4.0 * default_fog)
+                        .text("fog distance"),
+                )
+                .changed()
+            {
+                settings.fog_distance = Some(fog);
+            }
+            let mut budget = settings.max_crossings;
+            if ui
+                .add(egui::Slider::new(&mut budget, 1..=128).text("crossing budget"))
+                .changed()
+            {
+                settings.max_crossings = budget;
+            }
+            let mut scale = settings.resolution_scale;
+            if ui
+                .add(egui::Slider::new(&mut scale, 0.25..=1.0).text("resolution scale"))
+                .changed()
+            {
+                settings.resolution_scale = scale;
+            }
+            ui.add(egui::Slider::new(&mut player.speed, 0.01..=20.0).logarithmic(true).text("speed (inradii/s)"));
+            for (mut camera, _, _) in &mut cameras {
+                let mut fov = camera.fov_y_degrees;
+                if ui
+                    .add(egui::Slider::new(&mut fov, 20.0..=120.0).text("field of view (°)"))
+                    .changed()
+                {
+                    camera.fov_y_degrees = fov;
+                }
+            }
+            let mut parts = settings.parts;
+            ui.checkbox(&mut parts.edges, "cell edges");
+            ui.checkbox(&mut parts.centre_ball, "centre ball");
+            if parts != settings.parts {
+                settings.parts = parts;
+            }
+            ui.separator();
+            let fps = diagnostics
+                .get(&FrameTimeDiagnosticsPlugin::FPS)
+                .and_then(|d| d.smoothed());
+            let ms = diagnostics
+                .get(&FrameTimeDiagnosticsPlugin::FRAME_TIME)
+                .and_then(|d| d.smoothed());
+            if let (Some(fps), Some(ms)) = (fps, ms) {
+                ui.label(format!("{fps:.0} fps, {ms:.1} ms per frame"));
+            }
+            for (_, frame, holonomy) in &cameras {
+                let chart = active.space.geometry.to_chart(frame.0.w_axis);
+                ui.label(format!(
+                    "position in the cell: ({:+.3}, {:+.3}, {:+.3})",
+                    chart.x, chart.y, chart.z
+                ));
+                let last = holonomy
+                    .last_face
+                    .map_or_else(|| "none".to_string(), |f| f.to_string());
+                ui.label(format!(
+                    "crossings: {} (last face {last})",
+                    holonomy.crossings
+                ));
+            }
+            ui.label(format!(
+                "{} geometry, volume {:.6}",
+                active.space.geometry.name(),
+                active.volume
+            ));
+            match active.injectivity_radius {
+                Some(r) => ui.label(format!("injectivity radius {r:.6}")),
+                None => ui.label("injectivity radius: not enumerated"),
+            };
+            if let Some(e) = &status.error {
+                ui.colored_label(egui::Color32::LIGHT_RED, e);
+            }
+            ui.label(
+                egui::RichText::new(
+                    "click: mouse look · Esc: release · WASD, Space/Shift, Q/E · scroll: speed · F1: panel · F12: screenshot",
+                )
+                .small(),
+            );
+        });
+    over_ui.0 = ctx.is_pointer_over_egui();
+    Ok(())
+}

@@ -1,0 +1,127 @@
+//! The GPU tracer against the f64 CPU reference, through the real plugin rendering offscreen
+//! (on lavapipe where there is no GPU: `scripts/setup-system.sh` installs it).
+//!
+//! Both images use the same camera, scene, fog and crossing budget. f32 and f64 differ where
+//! a ray grazes an object's silhouette or, in H³, after many crossings (DESIGN.md §3), so the
+//! assertion is on the fraction of pixels that differ visibly. On failure the GPU, CPU and
+//! difference images are written to `target/gpu-vs-cpu/`.
+
+use bevy_curved_spaces::ActiveSpace;
+use bevy_curved_spaces::render::offscreen::{OffscreenRender, OffscreenRenderer};
+use bevy_curved_spaces::space::SEED_SPACES;
+use bevy_curved_spaces::trace::{Camera, RenderSettings, Scene, SceneParts, Shading, render};
+use image::RgbImage;
+use std::path::PathBuf;
+
+const WIDTH: u32 = 160;
+const HEIGHT: u32 = 90;
+/// A pixel "differs" when a channel is off by more than this (of 255).
+const TOLERANCE: u8 = 10;
+/// At most this fraction of the pixels may differ.
+const MAX_DIFFERING: f64 = 0.01;
+
+struct Comparison {
+    differing: f64,
+    mean_error: f64,
+    max_error: u8,
+}
+
+fn compare(gpu: &RgbImage, cpu: &RgbImage) -> (Comparison, RgbImage) {
+    let mut diff = RgbImage::new(gpu.width(), gpu.height());
+    let (mut differing, mut sum, mut max) = (0usize, 0u64, 0u8);
+    for ((g, c), d) in gpu.pixels().zip(cpu.pixels()).zip(diff.pixels_mut()) {
+        let e: [u8; 3] = std::array::from_fn(|k| g.0[k].abs_diff(c.0[k]));
+        let worst = *e.iter().max().expect("three channels");
+        sum += e.iter().map(|&x| u64::from(x)).sum::<u64>();
+        max = max.max(worst);
+        if worst > TOLERANCE {
+            differing += 1;
+            *d = image::Rgb([255, 0, 255]);
+        } else {
+            *d = image::Rgb(e.map(|x| x.saturating_mul(16)));
+        }
+    }
+    let n = (gpu.width() * gpu.height()) as f64;
+    (
+        Comparison {
+            differing: differing as f64 / n,
+            mean_error: sum as f64 / (3.0 * n),
+            max_error: max,
+        },
+        diff,
+    )
+}
+
+#[test]
+fn every_seed_space_renders_on_the_gpu_like_the_cpu_reference() {
+    let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| {
+        panic!("{e}\n(the GPU tests need a Vulkan driver: run scripts/setup-system.sh)")
+    });
+    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("gpu-vs-cpu");
+    let mut failures = Vec::new();
+    let crossings = 24;
+    for seed in SEED_SPACES {
+        let space = seed.build().expect("seed space builds");
+        let fog = Shading::default_fog_distance(&space);
+        let camera = Camera::default_for(&space);
+        let scene = Scene::with_parts(&space, fog, SceneParts::default());
+        let cpu = render(
+            &space,
+            &scene,
+            &camera,
+            &RenderSettings {
+                width: WIDTH,
+                height: HEIGHT,
+                max_crossings: crossings,
+            },
+        );
+        let gpu = renderer
+            .render(&OffscreenRender {
+                space: ActiveSpace::new(seed.id, space.clone()),
+                width: WIDTH,
+                height: HEIGHT,
+                frame: camera.frame,
+                fov_y_degrees: camera.fov_y_degrees,
+                fog_distance: Some(fog),
+                max_crossings: crossings as u32,
+                parts: SceneParts::default(),
+            })
+            .unwrap_or_else(|e| panic!("{}: {e}", seed.id));
+        let (c, diff) = compare(&gpu, &cpu);
+        println!(
+            "{:<22} differing {:.3} %, mean error {:.3}/255, max {}",
+            seed.id,
+            100.0 * c.differing,
+            c.mean_error,
+            c.max_error
+        );
+        // A blank or constant picture would also "agree" with a blank reference: the
+        // reference must show structure, and so must the GPU image.
+        let distinct = |img: &RgbImage| {
+            let mut v: Vec<[u8; 3]> = img.pixels().map(|p| p.0).collect();
+            v.sort_unstable();
+            v.dedup();
+            v.len()
+        };
+        assert!(distinct(&cpu) > 50, "{}: the reference image is nearly flat", seed.id);
+        if c.differing > MAX_DIFFERING || distinct(&gpu) < 50 {
+            std::fs::create_dir_all(&out).expect("create output folder");
+            for (name, img) in [("gpu", &gpu), ("cpu", &cpu), ("diff", &diff)] {
+                img.save(out.join(format!("{}-{name}.png", seed.id)))
+                    .expect("write image");
+            }
+            failures.push(format!(
+                "{}: {:.2} % of pixels differ by more than {TOLERANCE}/255 (bound {:.0} %)",
+                seed.id,
+                100.0 * c.differing,
+                100.0 * MAX_DIFFERING
+            ));
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "GPU and CPU disagree (images in {}):\n{}",
+        out.display(),
+        failures.join("\n")
+    );
+}

@@ -1,0 +1,172 @@
+//! The WGSL tracer is composed with naga_oil (as Bevy does) and validated with naga for every
+//! shader-def combination, without a GPU; the uniform layout naga computes must equal what
+//! the Rust packer writes.
+
+use bevy::shader::ShaderDefVal;
+use bevy_curved_spaces::geometry::Geometry;
+use bevy_curved_spaces::render::gpu::{GpuScene, ShaderKey, TRACER_WGSL, VIEW_WORDS};
+use bevy_curved_spaces::space::SEED_SPACES;
+use bevy_curved_spaces::trace::{Scene, SceneParts, Shading};
+use naga_oil::compose::{Composer, NagaModuleDescriptor, ShaderDefValue, ShaderType};
+use std::collections::HashMap;
+
+fn compose(key: &ShaderKey) -> Result<naga::Module, String> {
+    let defs: HashMap<String, ShaderDefValue> = key
+        .shader_defs()
+        .into_iter()
+        .map(|d| match d {
+            ShaderDefVal::Bool(k, v) => (k, ShaderDefValue::Bool(v)),
+            ShaderDefVal::Int(k, v) => (k, ShaderDefValue::Int(v)),
+            ShaderDefVal::UInt(k, v) => (k, ShaderDefValue::UInt(v)),
+        })
+        .collect();
+    Composer::default()
+        .make_naga_module(NagaModuleDescriptor {
+            source: TRACER_WGSL,
+            file_path: "shaders/curved_space.wgsl",
+            shader_type: ShaderType::Wgsl,
+            shader_defs: defs,
+            additional_imports: &[],
+        })
+        .map_err(|e| format!("{key:?}: {e:?}"))
+}
+
+/// Validates a composed module and returns the size naga lays `SpaceUniform` out with.
+fn validate(key: &ShaderKey) -> usize {
+    let module = compose(key).unwrap_or_else(|e| panic!("composing failed: {e}"));
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::default(),
+    )
+    .validate(&module)
+    .unwrap_or_else(|e| panic!("{key:?} does not validate: {e:?}"));
+    let mut layouter = naga::proc::Layouter::default();
+    layouter
+        .update(module.to_ctx())
+        .expect("layout of a validated module");
+    let (handle, _) = module
+        .types
+        .iter()
+        .find(|(_, t)| t.name.as_deref() == Some("SpaceUniform"))
+        .expect("the shader declares SpaceUniform");
+    layouter[handle].size as usize
+}
+
+#[test]
+fn every_shader_def_combination_validates_and_matches_the_packed_layout() {
+    let mut checked = 0;
+    for geometry in Geometry::ALL {
+        for faces in [1, 6, 8, 12, 128] {
+            for balls in [0, 1, 21] {
+                for tubes in [0, 1, 30] {
+                    let key = ShaderKey {
+                        geometry,
+                        faces,
+                        balls,
+                        tubes,
+                    };
+                    assert_eq!(
+                        validate(&key),
+                        key.uniform_bytes(),
+                        "{key:?}: naga's layout differs from the packer's size"
+                    );
+                    checked += 1;
+                }
+            }
+        }
+    }
+    assert_eq!(checked, 3 * 5 * 3 * 3);
+}
+
+#[test]
+fn each_geometry_compiles_only_its_own_formulas() {
+    // The hyperbolic shader has no sin/atan2, the spherical none of sinh/asinh/log, and the
+    // flat one neither: the defs select the formulas at compile time, not at run time.
+    for (geometry, absent) in [
+        (Geometry::Spherical, &["Sinh", "Asinh", "Log"][..]),
+        (Geometry::Euclidean, &["Sin", "Sinh", "Atan2", "Asinh", "Log"][..]),
+        (Geometry::Hyperbolic, &["Sin", "Atan2"][..]),
+    ] {
+        let key = ShaderKey {
+            geometry,
+            faces: 6,
+            balls: 1,
+            tubes: 1,
+        };
+        let module = compose(&key).expect("composes");
+        let text = format!("{:?}", module.functions);
+        for f in absent {
+            let pattern = format!("fun: {f},");
+            assert!(
+                !text.contains(&pattern),
+                "{geometry:?} shader uses {f} of another geometry"
+            );
+        }
+    }
+    // A scene without tubes compiles no tube code.
+    let key = ShaderKey {
+        geometry: Geometry::Hyperbolic,
+        faces: 12,
+        balls: 3,
+        tubes: 0,
+    };
+    let module = compose(&key).expect("composes");
+    assert!(
+        module
+            .functions
+            .iter()
+            .all(|(_, f)| !f.name.as_deref().unwrap_or("").contains("tube"))
+    );
+}
+
+#[test]
+fn every_seed_scene_packs_to_the_shader_layout() {
+    for seed in SEED_SPACES {
+        let space = seed.build().expect("seed space builds");
+        for parts in [
+            SceneParts::default(),
+            SceneParts {
+                edges: false,
+                centre_ball: true,
+            },
+            SceneParts {
+                edges: true,
+                centre_ball: false,
+            },
+        ] {
+            let scene = Scene::with_parts(&space, Shading::default_fog_distance(&space), parts);
+            let gpu = GpuScene::new(&space, &scene, 24).expect("packs");
+            assert_eq!(gpu.key.geometry, space.geometry);
+            assert_eq!(gpu.key.faces as usize, space.faces.len());
+            assert_eq!(
+                (gpu.key.balls + gpu.key.tubes) as usize,
+                scene.objects.len(),
+                "{}: every object is packed once",
+                seed.id
+            );
+            assert_eq!(
+                (gpu.words.len() + VIEW_WORDS) * 4,
+                validate(&gpu.key),
+                "{}: packed words differ from the shader's uniform size",
+                seed.id
+            );
+        }
+    }
+}
+
+#[test]
+fn a_scene_without_objects_and_a_zero_budget_are_refused_or_handled() {
+    let space = SEED_SPACES[0].build().expect("seed space builds");
+    let scene = Scene::with_parts(
+        &space,
+        1.0,
+        SceneParts {
+            edges: false,
+            centre_ball: false,
+        },
+    );
+    let gpu = GpuScene::new(&space, &scene, 8).expect("an empty scene shows fog");
+    assert_eq!((gpu.key.balls, gpu.key.tubes), (0, 0));
+    validate(&gpu.key);
+    assert!(GpuScene::new(&space, &scene, 0).is_err());
+}
