@@ -4,7 +4,7 @@
 
 use bevy::shader::ShaderDefVal;
 use bevy_curved_spaces::geometry::Geometry;
-use bevy_curved_spaces::render::gpu::{GpuScene, ShaderKey, TRACER_WGSL, VIEW_WORDS};
+use bevy_curved_spaces::render::gpu::{GpuScene, ShaderKey, TRACER_WGSL, UPSCALE_WGSL, VIEW_WORDS};
 use bevy_curved_spaces::space::SEED_SPACES;
 use bevy_curved_spaces::trace::{Scene, SceneParts, Shading};
 use naga_oil::compose::{Composer, NagaModuleDescriptor, ShaderDefValue, ShaderType};
@@ -175,4 +175,16 @@ fn a_scene_without_objects_and_a_zero_budget_are_refused_or_handled() {
     assert_eq!((gpu.key.balls, gpu.key.tubes), (0, 0));
     validate(&gpu.key);
     assert!(GpuScene::new(&space, &scene, 0).is_err());
+}
+
+#[test]
+fn the_upscaling_shader_validates() {
+    let module = naga::front::wgsl::parse_str(UPSCALE_WGSL).expect("parses");
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::default(),
+    )
+    .validate(&module)
+    .expect("validates");
+    assert_eq!(module.entry_points.len(), 2);
 }

@@ -14,6 +14,9 @@ use glam::{DMat4, DVec4};
 /// The WGSL source of the tracer.
 pub const TRACER_WGSL: &str = include_str!("../../shaders/curved_space.wgsl");
 
+/// The WGSL source of the upscaling pass (the resolution scale).
+pub const UPSCALE_WGSL: &str = include_str!("../../shaders/upscale.wgsl");
+
 /// wgpu's default `max_uniform_buffer_binding_size`: the tracer's data must fit in it.
 pub const MAX_UNIFORM_BYTES: usize = 64 << 10;
 

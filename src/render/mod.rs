@@ -20,8 +20,12 @@ use bevy::render::{
         BufferInitDescriptor, BufferUsages, CachedRenderPipelineId, ColorTargetState,
         ColorWrites, FragmentState, Operations, PipelineCache, RenderPassColorAttachment,
         RenderPassDescriptor, RenderPipelineDescriptor, ShaderStages, SpecializedRenderPipeline,
-        SpecializedRenderPipelines, TextureFormat, VertexState, binding_types::uniform_buffer_sized,
+        SpecializedRenderPipelines, TextureFormat, VertexState,
+        binding_types::{sampler, texture_2d, uniform_buffer_sized},
+        Extent3d, FilterMode, Sampler, SamplerBindingType, SamplerDescriptor, TextureDescriptor,
+        TextureDimension, TextureSampleType, TextureUsages, TextureView, CommandEncoder, RenderPipeline,
     },
+    texture::{CachedTexture, TextureCache},
     renderer::{RenderContext, RenderDevice, RenderQueue, ViewQuery},
     sync_component::{SyncComponent, SyncComponentPlugin},
     sync_world::RenderEntity,
@@ -34,6 +38,9 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 /// The tracer's shader, loaded once as an internal asset.
 pub const TRACER_SHADER: Handle<Shader> = uuid_handle!("4c2f8a7e-1d53-4b0e-9e61-2a7c3f9d8b15");
+
+/// The shader that scales a reduced-resolution trace up to the view.
+pub const UPSCALE_SHADER: Handle<Shader> = uuid_handle!("9a1e3b52-7c0d-4f86-b2a4-5d3e6f708192");
 
 /// The scene the GPU draws, shared by all curved-space cameras (rebuilt when the space or
 /// the tracer settings change).
@@ -58,6 +65,8 @@ impl FramesTraced {
 pub struct ExtractedCurvedView {
     pub frame: glam::DMat4,
     pub fov_y_degrees: f64,
+    /// Fraction of the view's resolution that is traced, in (0, 1].
+    pub resolution_scale: f32,
     pub scene: Arc<GpuScene>,
 }
 
@@ -74,6 +83,12 @@ impl Plugin for TracerRenderPlugin {
             app,
             TRACER_SHADER,
             "../../shaders/curved_space.wgsl",
+            Shader::from_wgsl
+        );
+        load_internal_asset!(
+            app,
+            UPSCALE_SHADER,
+            "../../shaders/upscale.wgsl",
             Shader::from_wgsl
         );
         let frames = FramesTraced::default();
@@ -103,8 +118,13 @@ impl Plugin for TracerRenderPlugin {
 fn extract_curved_views(
     mut commands: Commands,
     scene: Extract<Option<Res<PreparedScene>>>,
+    settings: Extract<Option<Res<crate::plugin::TracerSettings>>>,
     views: Extract<Query<(RenderEntity, &CurvedSpaceCamera, &PlayerFrame)>>,
 ) {
+    let resolution_scale = settings
+        .as_ref()
+        .map_or(1.0, |s| s.resolution_scale)
+        .clamp(0.05, 1.0);
     let Some(scene) = scene.as_ref() else {
         return;
     };
@@ -112,6 +132,7 @@ fn extract_curved_views(
         commands.entity(entity).insert(ExtractedCurvedView {
             frame: frame.0,
             fov_y_degrees: camera.fov_y_degrees,
+            resolution_scale,
             scene: scene.0.clone(),
         });
     }
@@ -121,12 +142,15 @@ fn extract_curved_views(
 #[derive(Resource)]
 pub struct TracerPipeline {
     layout: BindGroupLayoutDescriptor,
+    upscale_layout: BindGroupLayoutDescriptor,
+    sampler: Sampler,
 }
 
 /// One pipeline per shader key and target format.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct TracerPipelineKey {
-    pub shader: ShaderKey,
+    /// `None` for the upscaling pass.
+    pub shader: Option<ShaderKey>,
     pub format: TextureFormat,
 }
 
@@ -134,18 +158,26 @@ impl SpecializedRenderPipeline for TracerPipeline {
     type Key = TracerPipelineKey;
 
     fn specialize(&self, key: Self::Key) -> RenderPipelineDescriptor {
-        let defs = key.shader.shader_defs();
+        let (label, shader, layout, defs) = match key.shader {
+            Some(k) => (
+                "curved_space_tracer",
+                TRACER_SHADER,
+                &self.layout,
+                k.shader_defs(),
+            ),
+            None => ("curved_space_upscale", UPSCALE_SHADER, &self.upscale_layout, vec![]),
+        };
         RenderPipelineDescriptor {
-            label: Some("curved_space_tracer".into()),
-            layout: vec![self.layout.clone()],
+            label: Some(label.into()),
+            layout: vec![layout.clone()],
             vertex: VertexState {
-                shader: TRACER_SHADER,
+                shader: shader.clone(),
                 shader_defs: defs.clone(),
                 entry_point: Some("vertex".into()),
                 buffers: vec![],
             },
             fragment: Some(FragmentState {
-                shader: TRACER_SHADER,
+                shader,
                 shader_defs: defs,
                 entry_point: Some("fragment".into()),
                 targets: vec![Some(ColorTargetState {
@@ -159,7 +191,7 @@ impl SpecializedRenderPipeline for TracerPipeline {
     }
 }
 
-fn init_tracer_pipeline(mut commands: Commands) {
+fn init_tracer_pipeline(mut commands: Commands, device: Res<RenderDevice>) {
     let layout = BindGroupLayoutDescriptor::new(
         "curved_space_tracer_layout",
         &BindGroupLayoutEntries::single(
@@ -167,7 +199,26 @@ fn init_tracer_pipeline(mut commands: Commands) {
             uniform_buffer_sized(false, None),
         ),
     );
-    commands.insert_resource(TracerPipeline { layout });
+    let upscale_layout = BindGroupLayoutDescriptor::new(
+        "curved_space_upscale_layout",
+        &BindGroupLayoutEntries::sequential(
+            ShaderStages::FRAGMENT,
+            (
+                texture_2d(TextureSampleType::Float { filterable: true }),
+                sampler(SamplerBindingType::Filtering),
+            ),
+        ),
+    );
+    let sampler = device.create_sampler(&SamplerDescriptor {
+        mag_filter: FilterMode::Linear,
+        min_filter: FilterMode::Linear,
+        ..default()
+    });
+    commands.insert_resource(TracerPipeline {
+        layout,
+        upscale_layout,
+        sampler,
+    });
 }
 
 /// The uniform buffer, its bind group and the pipeline of one view.
@@ -177,6 +228,8 @@ pub struct TracerBindings {
     bytes: usize,
     bind_group: BindGroup,
     pipeline: CachedRenderPipelineId,
+    /// The reduced-resolution target, its upscaling bind group and pipeline.
+    reduced: Option<(CachedTexture, BindGroup, CachedRenderPipelineId)>,
 }
 
 fn prepare_tracer_views(
@@ -193,6 +246,7 @@ fn prepare_tracer_views(
     cache: Res<PipelineCache>,
     device: Res<RenderDevice>,
     queue: Res<RenderQueue>,
+    mut textures: ResMut<TextureCache>,
 ) {
     for (entity, view, target, curved, bindings) in views {
         let Some(curved) = curved else {
@@ -201,27 +255,64 @@ fn prepare_tracer_views(
             }
             continue;
         };
+        let format = target.main_texture_format();
         let pipeline = pipelines.specialize(
             &cache,
             &tracer,
             TracerPipelineKey {
-                shader: curved.scene.key,
-                format: target.main_texture_format(),
+                shader: Some(curved.scene.key),
+                format,
             },
         );
         let viewport = view.viewport;
-        let head = view_words(
-            curved.frame,
-            curved.fov_y_degrees,
-            [viewport.x, viewport.y],
-            [viewport.z, viewport.w],
-        );
+        let full = [viewport.z.max(1), viewport.w.max(1)];
+        let scaled = full.map(|n| ((n as f32 * curved.resolution_scale).ceil() as u32).clamp(1, n));
+        let reduced = (scaled != full).then(|| {
+            let texture = textures.get(
+                &device,
+                TextureDescriptor {
+                    label: Some("curved_space_reduced"),
+                    size: Extent3d {
+                        width: scaled[0],
+                        height: scaled[1],
+                        depth_or_array_layers: 1,
+                    },
+                    mip_level_count: 1,
+                    sample_count: 1,
+                    dimension: TextureDimension::D2,
+                    format,
+                    usage: TextureUsages::RENDER_ATTACHMENT | TextureUsages::TEXTURE_BINDING,
+                    view_formats: &[],
+                },
+            );
+            let bind_group = device.create_bind_group(
+                "curved_space_upscale_bind_group",
+                &cache.get_bind_group_layout(&tracer.upscale_layout),
+                &BindGroupEntries::sequential((&texture.default_view, &tracer.sampler)),
+            );
+            let upscale = pipelines.specialize(
+                &cache,
+                &tracer,
+                TracerPipelineKey {
+                    shader: None,
+                    format,
+                },
+            );
+            (texture, bind_group, upscale)
+        });
+        // The reduced target is drawn whole, from its own origin.
+        let (origin, size) = match reduced {
+            Some(_) => ([0, 0], scaled),
+            None => ([viewport.x, viewport.y], full),
+        };
+        let head = view_words(curved.frame, curved.fov_y_degrees, origin, size);
         let words: Vec<u32> = head.iter().chain(&curved.scene.words).copied().collect();
         let data: &[u8] = bytemuck::cast_slice(&words);
         match bindings {
             Some(mut b) if b.bytes == data.len() => {
                 queue.write_buffer(&b.buffer, 0, data);
                 b.pipeline = pipeline;
+                b.reduced = reduced;
             }
             _ => {
                 let buffer = device.create_buffer_with_data(&BufferInitDescriptor {
@@ -239,6 +330,7 @@ fn prepare_tracer_views(
                     bytes: data.len(),
                     bind_group,
                     pipeline,
+                    reduced,
                 });
             }
         }
@@ -255,10 +347,47 @@ fn trace_views(
     let Some(pipeline) = cache.get_render_pipeline(bindings.pipeline) else {
         return;
     };
-    let pass = RenderPassDescriptor {
-        label: Some("curved_space_tracer_pass"),
+    let upscale = match &bindings.reduced {
+        Some((texture, bind_group, id)) => match cache.get_render_pipeline(*id) {
+            Some(p) => Some((texture, bind_group, p)),
+            None => return,
+        },
+        None => None,
+    };
+    let traced_into = upscale.map_or(target.main_texture_view(), |(t, _, _)| &t.default_view);
+    let encoder = ctx.command_encoder();
+    draw_fullscreen(
+        encoder,
+        traced_into,
+        "curved_space_tracer_pass",
+        pipeline,
+        &bindings.bind_group,
+    );
+    if let Some((_, bind_group, upscale)) = upscale {
+        draw_fullscreen(
+            encoder,
+            target.main_texture_view(),
+            "curved_space_upscale_pass",
+            upscale,
+            bind_group,
+        );
+    }
+    frames.0.fetch_add(1, Ordering::AcqRel);
+}
+
+
+/// One triangle over the whole of `view` (every pixel is written: nothing to load).
+fn draw_fullscreen(
+    encoder: &mut CommandEncoder,
+    view: &TextureView,
+    label: &'static str,
+    pipeline: &RenderPipeline,
+    bind_group: &BindGroup,
+) {
+    let mut pass = encoder.begin_render_pass(&RenderPassDescriptor {
+        label: Some(label),
         color_attachments: &[Some(RenderPassColorAttachment {
-            view: target.main_texture_view(),
+            view,
             depth_slice: None,
             resolve_target: None,
             ops: Operations::default(),
@@ -267,13 +396,8 @@ fn trace_views(
         timestamp_writes: None,
         occlusion_query_set: None,
         multiview_mask: None,
-    };
-    {
-        let mut render_pass = ctx.command_encoder().begin_render_pass(&pass);
-        render_pass.set_pipeline(pipeline);
-        render_pass.set_bind_group(0, &bindings.bind_group, &[]);
-        render_pass.draw(0..3, 0..1);
-    }
-    frames.0.fetch_add(1, Ordering::AcqRel);
+    });
+    pass.set_pipeline(pipeline);
+    pass.set_bind_group(0, bind_group, &[]);
+    pass.draw(0..3, 0..1);
 }
-

@@ -31,6 +31,8 @@ pub struct OffscreenRender {
     pub fog_distance: Option<f64>,
     pub max_crossings: u32,
     pub parts: SceneParts,
+    /// Fraction of the resolution that is traced (then scaled up), in (0, 1].
+    pub resolution_scale: f32,
 }
 
 /// Why no picture came back.
@@ -117,7 +119,7 @@ impl OffscreenRenderer {
         world.insert_resource(TracerSettings {
             fog_distance: request.fog_distance,
             max_crossings: request.max_crossings.max(1),
-            resolution_scale: 1.0,
+            resolution_scale: request.resolution_scale,
             parts: request.parts,
         });
         let mut target = Image::new_target_texture(w, h, TextureFormat::Rgba8UnormSrgb, None);
