@@ -12,6 +12,8 @@ use bevy_curved_spaces::trace::{
     render_with_progress,
 };
 use bevy::prelude::*;
+use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
+use bevy_curved_spaces::render::FramesTraced;
 use bevy_curved_spaces::render::offscreen::{OffscreenRender, gpu_available, render_offscreen};
 use bevy_curved_spaces::trace::SceneParts;
 use bevy_curved_spaces::{ActiveSpace, CurvedSpaceCamera, CurvedSpacesPlugin, Quality};
@@ -164,6 +166,52 @@ struct WalkArgs {
     /// Start without the panel (F1 shows it).
     #[arg(long)]
     no_ui: bool,
+    /// Save a screenshot of the window to this PNG once the view has settled, then quit.
+    #[arg(long)]
+    screenshot: Option<PathBuf>,
+}
+
+/// `walk --screenshot`: where to save, and whether it was requested.
+#[derive(Resource)]
+struct ScreenshotThenExit {
+    path: PathBuf,
+    requested: bool,
+}
+
+/// Frames the tracer draws before `--screenshot` captures (the window has settled).
+const SCREENSHOT_AFTER_FRAMES: u64 = 10;
+
+fn screenshot_then_exit(
+    frames: Res<FramesTraced>,
+    mut shot: ResMut<ScreenshotThenExit>,
+    mut commands: Commands,
+) {
+    if shot.requested || frames.get() < SCREENSHOT_AFTER_FRAMES {
+        return;
+    }
+    shot.requested = true;
+    let path = shot.path.clone();
+    commands.spawn(Screenshot::primary_window()).observe(
+        move |captured: On<ScreenshotCaptured>, mut exit: MessageWriter<AppExit>| {
+            let saved = captured
+                .image
+                .clone()
+                .try_into_dynamic()
+                .map_err(|e| e.to_string())
+                .and_then(|img| img.to_rgb8().save(&path).map_err(|e| e.to_string()));
+            match saved {
+                Ok(()) => {
+                    let shown = std::fs::canonicalize(&path).unwrap_or_else(|_| path.clone());
+                    say!("wrote {}", shown.display());
+                    exit.write(AppExit::Success);
+                }
+                Err(e) => {
+                    eprintln!("error: cannot write {}: {e}", path.display());
+                    exit.write(AppExit::error());
+                }
+            }
+        },
+    );
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -560,8 +608,8 @@ fn walk(args: &WalkArgs) -> Result<(), String> {
         "walking in {}: click to look around, WASD to move, Esc releases the mouse, F1 the panel",
         active.space.name
     );
-    App::new()
-        .add_plugins(DefaultPlugins.set(WindowPlugin {
+    let mut app = App::new();
+    app.add_plugins(DefaultPlugins.set(WindowPlugin {
             primary_window: Some(Window {
                 title: format!("curved spaces: {}", active.space.name),
                 ..default()
@@ -579,9 +627,18 @@ fn walk(args: &WalkArgs) -> Result<(), String> {
         .insert_resource(bevy_curved_spaces::ui::PanelVisible(!args.no_ui))
         .add_systems(Startup, |mut commands: Commands| {
             commands.spawn((Camera3d::default(), CurvedSpaceCamera::default()));
+        });
+    if let Some(path) = &args.screenshot {
+        app.insert_resource(ScreenshotThenExit {
+            path: path.clone(),
+            requested: false,
         })
-        .run();
-    Ok(())
+        .add_systems(Update, screenshot_then_exit);
+    }
+    match app.run() {
+        AppExit::Success => Ok(()),
+        AppExit::Error(code) => Err(format!("the app stopped with error code {code}")),
+    }
 }
 
 fn export(space: &Space, out: Option<&Path>) -> Result<(), String> {
