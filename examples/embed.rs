@@ -26,7 +26,12 @@ fn main() {
 }
 
 fn spawn_camera(mut commands: Commands) {
-    commands.spawn((Camera3d::default(), CurvedSpaceCamera { fov_y_degrees: 75.0 }));
+    commands.spawn((
+        Camera3d::default(),
+        CurvedSpaceCamera {
+            fov_y_degrees: 75.0,
+        },
+    ));
 }
 
 fn switch_space(keys: Res<ButtonInput<KeyCode>>, mut active: ResMut<ActiveSpace>) {

@@ -3,19 +3,19 @@
 //! Run with no command to walk the default space in a window (or, with no display, to render
 //! it to `curved-spaces.png`).
 
+use bevy::prelude::*;
+use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
 use bevy_curved_spaces::geometry::Vector4;
+use bevy_curved_spaces::render::FramesTraced;
+use bevy_curved_spaces::render::offscreen::{OffscreenRender, gpu_available, render_offscreen};
 use bevy_curved_spaces::space::file::{SpaceRecord, load_space_file};
 use bevy_curved_spaces::space::invariants::Invariants;
 use bevy_curved_spaces::space::{SEED_SPACES, Space, SpaceError, seed_space};
+use bevy_curved_spaces::trace::SceneParts;
 use bevy_curved_spaces::trace::{
     Camera, CellWalker, Limit, RenderSettings, Scene, Shading, Trace, chart_ray,
     render_with_progress,
 };
-use bevy::prelude::*;
-use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
-use bevy_curved_spaces::render::FramesTraced;
-use bevy_curved_spaces::render::offscreen::{OffscreenRender, gpu_available, render_offscreen};
-use bevy_curved_spaces::trace::SceneParts;
 use bevy_curved_spaces::{ActiveSpace, CurvedSpaceCamera, CurvedSpacesPlugin, Quality};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use glam::{DVec3, DVec4, Vec4};
@@ -610,24 +610,24 @@ fn walk(args: &WalkArgs) -> Result<(), String> {
     );
     let mut app = App::new();
     app.add_plugins(DefaultPlugins.set(WindowPlugin {
-            primary_window: Some(Window {
-                title: format!("curved spaces: {}", active.space.name),
-                ..default()
-            }),
+        primary_window: Some(Window {
+            title: format!("curved spaces: {}", active.space.name),
             ..default()
-        }))
-        .insert_resource(active)
-        .add_plugins(CurvedSpacesPlugin {
-            fog_distance: args.fog,
-            max_crossings: args.crossings,
-            quality: args.quality.into(),
-            ui: true,
-            ..default()
-        })
-        .insert_resource(bevy_curved_spaces::ui::PanelVisible(!args.no_ui))
-        .add_systems(Startup, |mut commands: Commands| {
-            commands.spawn((Camera3d::default(), CurvedSpaceCamera::default()));
-        });
+        }),
+        ..default()
+    }))
+    .insert_resource(active)
+    .add_plugins(CurvedSpacesPlugin {
+        fog_distance: args.fog,
+        max_crossings: args.crossings,
+        quality: args.quality.into(),
+        ui: true,
+        ..default()
+    })
+    .insert_resource(bevy_curved_spaces::ui::PanelVisible(!args.no_ui))
+    .add_systems(Startup, |mut commands: Commands| {
+        commands.spawn((Camera3d::default(), CurvedSpaceCamera::default()));
+    });
     if let Some(path) = &args.screenshot {
         app.insert_resource(ScreenshotThenExit {
             path: path.clone(),

@@ -184,36 +184,36 @@ impl Plugin for CurvedSpacesPlugin {
         }
         let (budget, scale) = self.quality.knobs();
         app.insert_resource(TracerSettings {
-                fog_distance: self.fog_distance,
-                max_crossings: self.max_crossings.unwrap_or(budget).max(1),
-                resolution_scale: scale,
-                parts: SceneParts::default(),
-            })
-            .init_resource::<TracerStatus>()
-            .init_resource::<PlayerSettings>()
-            .init_resource::<KeyBindings>()
-            .init_resource::<MouseLook>()
-            .configure_sets(
-                Update,
-                (
-                    CurvedSpacesSystems::Input,
-                    CurvedSpacesSystems::Move,
-                    CurvedSpacesSystems::Wrap,
-                    CurvedSpacesSystems::Upload,
-                )
-                    .chain(),
+            fog_distance: self.fog_distance,
+            max_crossings: self.max_crossings.unwrap_or(budget).max(1),
+            resolution_scale: scale,
+            parts: SceneParts::default(),
+        })
+        .init_resource::<TracerStatus>()
+        .init_resource::<PlayerSettings>()
+        .init_resource::<KeyBindings>()
+        .init_resource::<MouseLook>()
+        .configure_sets(
+            Update,
+            (
+                CurvedSpacesSystems::Input,
+                CurvedSpacesSystems::Move,
+                CurvedSpacesSystems::Wrap,
+                CurvedSpacesSystems::Upload,
             )
-            .add_systems(
-                Update,
-                (
-                    (reset_players_on_switch, player::move_players)
-                        .chain()
-                        .in_set(CurvedSpacesSystems::Move),
-                    player::wrap_players.in_set(CurvedSpacesSystems::Wrap),
-                    upload_scene.in_set(CurvedSpacesSystems::Upload),
-                ),
-            )
-            .add_observer(start_camera);
+                .chain(),
+        )
+        .add_systems(
+            Update,
+            (
+                (reset_players_on_switch, player::move_players)
+                    .chain()
+                    .in_set(CurvedSpacesSystems::Move),
+                player::wrap_players.in_set(CurvedSpacesSystems::Wrap),
+                upload_scene.in_set(CurvedSpacesSystems::Upload),
+            ),
+        )
+        .add_observer(start_camera);
         if self.controls {
             app.add_systems(
                 Update,
@@ -239,7 +239,10 @@ fn start_camera(
     frames: Query<&PlayerFrame>,
 ) {
     let mut entity = commands.entity(add.entity);
-    if frames.get(add.entity).is_ok_and(|f| *f == PlayerFrame::default()) {
+    if frames
+        .get(add.entity)
+        .is_ok_and(|f| *f == PlayerFrame::default())
+    {
         entity.insert(PlayerFrame(TraceCamera::default_for(&active.space).frame));
     }
     // The tracer writes final colours: no anti-aliasing, tonemapping or dithering on top.

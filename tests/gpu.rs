@@ -104,7 +104,11 @@ fn every_seed_space_renders_on_the_gpu_like_the_cpu_reference() {
             v.dedup();
             v.len()
         };
-        assert!(distinct(&cpu) > 50, "{}: the reference image is nearly flat", seed.id);
+        assert!(
+            distinct(&cpu) > 50,
+            "{}: the reference image is nearly flat",
+            seed.id
+        );
         if c.differing > MAX_DIFFERING || distinct(&gpu) < 50 {
             std::fs::create_dir_all(&out).expect("create output folder");
             for (name, img) in [("gpu", &gpu), ("cpu", &cpu), ("diff", &diff)] {
@@ -155,6 +159,9 @@ fn a_reduced_resolution_is_traced_and_scaled_up() {
     // Scaled up from 40×23, the picture is the same scene (a small mean error; another view
     // of the scene errs by tens of levels) but blurred at every edge: visibly not the
     // full-resolution trace.
-    assert!(c.mean_error < 15.0, "the reduced picture shows another scene");
+    assert!(
+        c.mean_error < 15.0,
+        "the reduced picture shows another scene"
+    );
     assert!(c.differing > 0.02, "the resolution scale had no effect");
 }

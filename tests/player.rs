@@ -31,15 +31,23 @@ fn test_app(space: &str) -> (App, Entity) {
 }
 
 fn frame(app: &App, camera: Entity) -> DMat4 {
-    app.world().get::<PlayerFrame>(camera).expect("camera has a frame").0
+    app.world()
+        .get::<PlayerFrame>(camera)
+        .expect("camera has a frame")
+        .0
 }
 
 fn holonomy(app: &App, camera: Entity) -> Holonomy {
-    *app.world().get::<Holonomy>(camera).expect("camera has holonomy")
+    *app.world()
+        .get::<Holonomy>(camera)
+        .expect("camera has holonomy")
 }
 
 fn set_frame(app: &mut App, camera: Entity, f: DMat4) {
-    app.world_mut().get_mut::<PlayerFrame>(camera).expect("frame").0 = f;
+    app.world_mut()
+        .get_mut::<PlayerFrame>(camera)
+        .expect("frame")
+        .0 = f;
 }
 
 /// Speed such that one update moves exactly `step` (geodesic units).
@@ -84,7 +92,10 @@ fn walking_one_unit_in_the_torus_returns_to_the_start() {
     );
     assert_eq!(h.crossings, 1);
     let face = h.last_face.expect("a face was crossed");
-    assert!(space.faces[face].normal.dot(DVec3::NEG_Z) > 0.99, "left through the −z face");
+    assert!(
+        space.faces[face].normal.dot(DVec3::NEG_Z) > 0.99,
+        "left through the −z face"
+    );
     assert_eq!(h.matrix, space.faces[face].pairing);
     // Holonomy · unwrapped frame = frame: the unwrapped walk went one unit along −z.
     let unwrapped = Geometry::Euclidean.translation(DVec3::NEG_Z, 1.0);
@@ -128,14 +139,20 @@ fn crossing_a_seifert_weber_face_applies_exactly_its_pairing() {
 
 #[test]
 fn walking_through_edges_and_vertices_lands_inside_the_cell() {
-    for id in ["torus", "seifert-weber", "poincare", "mirrored-cube", "hantzsche-wendt"] {
+    for id in [
+        "torus",
+        "seifert-weber",
+        "poincare",
+        "mirrored-cube",
+        "hantzsche-wendt",
+    ] {
         let (mut app, camera) = test_app(id);
         let space = app.world().resource::<ActiveSpace>().space.clone();
         let g = space.geometry;
         let margin = app.world().resource::<PlayerSettings>().wrap_margin;
         let edge = &space.edges[0];
-        let midpoint = (space.vertex_point(edge.vertices[0]) + space.vertex_point(edge.vertices[1]))
-            / 2.0;
+        let midpoint =
+            (space.vertex_point(edge.vertices[0]) + space.vertex_point(edge.vertices[1])) / 2.0;
         for target in [
             g.to_chart(space.vertex_point(0)),
             g.to_chart(g.project_point(midpoint)),
@@ -157,8 +174,15 @@ fn walking_through_edges_and_vertices_lands_inside_the_cell() {
                 "{id}: ended outside the cell by {}",
                 space.outside_by(f.w_axis)
             );
-            assert!(g.frame_defect(f) < 1e-9, "{id}: frame defect {}", g.frame_defect(f));
-            assert!(holonomy(&app, camera).crossings >= 1, "{id}: crossed nothing");
+            assert!(
+                g.frame_defect(f) < 1e-9,
+                "{id}: frame defect {}",
+                g.frame_defect(f)
+            );
+            assert!(
+                holonomy(&app, camera).crossings >= 1,
+                "{id}: crossed nothing"
+            );
         }
     }
 }
@@ -284,12 +308,20 @@ fn a_hundred_thousand_random_steps_keep_the_frame_orthonormal_and_inside() {
             worst_defect = worst_defect.max(g.frame_defect(f));
             worst_outside = worst_outside.max(space.outside_by(f.w_axis));
         }
-        assert!(worst_defect < 1e-6, "{}: frame defect {worst_defect}", seed.id);
+        assert!(
+            worst_defect < 1e-6,
+            "{}: frame defect {worst_defect}",
+            seed.id
+        );
         assert!(
             worst_outside <= margin,
             "{}: outside the cell by {worst_outside}",
             seed.id
         );
-        assert!(crossings > 100, "{}: the walk crossed only {crossings} faces", seed.id);
+        assert!(
+            crossings > 100,
+            "{}: the walk crossed only {crossings} faces",
+            seed.id
+        );
     }
 }

@@ -83,9 +83,21 @@ fn each_geometry_compiles_only_its_own_formulas() {
     // The hyperbolic shader has no sin/atan2, the spherical none of sinh/asinh/log, and the
     // flat one neither: the defs select the formulas at compile time, not at run time.
     for (geometry, present, absent) in [
-        (Geometry::Spherical, &["Sin", "Atan2"][..], &["Sinh", "Asinh", "Log"][..]),
-        (Geometry::Euclidean, &[][..], &["Sin", "Sinh", "Atan2", "Asinh", "Log"][..]),
-        (Geometry::Hyperbolic, &["Sinh", "Asinh", "Log"][..], &["Sin", "Atan2"][..]),
+        (
+            Geometry::Spherical,
+            &["Sin", "Atan2"][..],
+            &["Sinh", "Asinh", "Log"][..],
+        ),
+        (
+            Geometry::Euclidean,
+            &[][..],
+            &["Sin", "Sinh", "Atan2", "Asinh", "Log"][..],
+        ),
+        (
+            Geometry::Hyperbolic,
+            &["Sinh", "Asinh", "Log"][..],
+            &["Sin", "Atan2"][..],
+        ),
     ] {
         let key = ShaderKey {
             geometry,

@@ -17,18 +17,18 @@ use bevy::render::{
     Extract, ExtractSchedule, Render, RenderApp, RenderStartup, RenderSystems,
     render_resource::{
         BindGroup, BindGroupEntries, BindGroupLayoutDescriptor, BindGroupLayoutEntries, Buffer,
-        BufferInitDescriptor, BufferUsages, CachedRenderPipelineId, ColorTargetState,
-        ColorWrites, FragmentState, Operations, PipelineCache, RenderPassColorAttachment,
-        RenderPassDescriptor, RenderPipelineDescriptor, ShaderStages, SpecializedRenderPipeline,
-        SpecializedRenderPipelines, TextureFormat, VertexState,
+        BufferInitDescriptor, BufferUsages, CachedRenderPipelineId, ColorTargetState, ColorWrites,
+        CommandEncoder, Extent3d, FilterMode, FragmentState, Operations, PipelineCache,
+        RenderPassColorAttachment, RenderPassDescriptor, RenderPipeline, RenderPipelineDescriptor,
+        Sampler, SamplerBindingType, SamplerDescriptor, ShaderStages, SpecializedRenderPipeline,
+        SpecializedRenderPipelines, TextureDescriptor, TextureDimension, TextureFormat,
+        TextureSampleType, TextureUsages, TextureView, VertexState,
         binding_types::{sampler, texture_2d, uniform_buffer_sized},
-        Extent3d, FilterMode, Sampler, SamplerBindingType, SamplerDescriptor, TextureDescriptor,
-        TextureDimension, TextureSampleType, TextureUsages, TextureView, CommandEncoder, RenderPipeline,
     },
-    texture::{CachedTexture, TextureCache},
     renderer::{RenderContext, RenderDevice, RenderQueue, ViewQuery},
     sync_component::{SyncComponent, SyncComponentPlugin},
     sync_world::RenderEntity,
+    texture::{CachedTexture, TextureCache},
     view::{ExtractedView, ViewTarget},
 };
 use bevy::shader::Shader;
@@ -165,7 +165,12 @@ impl SpecializedRenderPipeline for TracerPipeline {
                 &self.layout,
                 k.shader_defs(),
             ),
-            None => ("curved_space_upscale", UPSCALE_SHADER, &self.upscale_layout, vec![]),
+            None => (
+                "curved_space_upscale",
+                UPSCALE_SHADER,
+                &self.upscale_layout,
+                vec![],
+            ),
         };
         RenderPipelineDescriptor {
             label: Some(label.into()),
@@ -374,7 +379,6 @@ fn trace_views(
     }
     frames.0.fetch_add(1, Ordering::AcqRel);
 }
-
 
 /// One triangle over the whole of `view` (every pixel is written: nothing to load).
 fn draw_fullscreen(

@@ -44,7 +44,9 @@ pub enum OffscreenError {
     NoAdapter,
     #[error("image size {0}×{1} is not supported: width and height must be 1 to 8192")]
     BadSize(u32, u32),
-    #[error("the GPU tracer did not produce a picture within {0:?} (is the GPU busy or the scene too heavy?)")]
+    #[error(
+        "the GPU tracer did not produce a picture within {0:?} (is the GPU busy or the scene too heavy?)"
+    )]
     Timeout(Duration),
     #[error("the captured picture has an unexpected format: {0}")]
     Format(String),
@@ -90,6 +92,8 @@ impl OffscreenRenderer {
                 .disable::<WinitPlugin>()
                 .set(bevy::log::LogPlugin {
                     level: bevy::log::Level::WARN,
+                    // "software rendering is slow" is expected on lavapipe, not news.
+                    filter: "wgpu=error,naga=warn,bevy_render::renderer=error".into(),
                     ..default()
                 }),
         )
@@ -140,7 +144,10 @@ impl OffscreenRenderer {
             .id();
         let result = self.capture(&handle);
         self.app.world_mut().despawn(camera);
-        self.app.world_mut().resource_mut::<Assets<Image>>().remove(&handle);
+        self.app
+            .world_mut()
+            .resource_mut::<Assets<Image>>()
+            .remove(&handle);
         result
     }
 

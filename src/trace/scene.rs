@@ -335,7 +335,11 @@ impl Scene {
         let g = space.geometry;
         let inradius = crate::space::invariants::inradius(space);
         let tube = 0.05 * inradius;
-        let edges = if parts.edges { space.edges.as_slice() } else { &[] };
+        let edges = if parts.edges {
+            space.edges.as_slice()
+        } else {
+            &[]
+        };
         let vertices = if parts.edges { space.vertices.len() } else { 0 };
         let mut objects: Vec<Object> = edges
             .iter()
