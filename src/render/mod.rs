@@ -237,15 +237,24 @@ pub struct TracerBindings {
     reduced: Option<(CachedTexture, BindGroup, CachedRenderPipelineId)>,
 }
 
+/// The views the tracer may draw, with what it knows of them so far.
+type TracerViews<'w, 's> = Query<
+    'w,
+    's,
+    (
+        Entity,
+        &'static ExtractedView,
+        &'static ViewTarget,
+        Option<&'static ExtractedCurvedView>,
+        Option<&'static mut TracerBindings>,
+    ),
+>;
+
+// A Bevy system takes its resources as arguments.
+#[allow(clippy::too_many_arguments)]
 fn prepare_tracer_views(
     mut commands: Commands,
-    views: Query<(
-        Entity,
-        &ExtractedView,
-        &ViewTarget,
-        Option<&ExtractedCurvedView>,
-        Option<&mut TracerBindings>,
-    )>,
+    views: TracerViews,
     tracer: Res<TracerPipeline>,
     mut pipelines: ResMut<SpecializedRenderPipelines<TracerPipeline>>,
     cache: Res<PipelineCache>,
