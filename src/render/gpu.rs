@@ -179,13 +179,13 @@ impl GpuScene {
         }
         for tube in &tubes {
             push_vec4(&mut words, tube.a);
-            push_vec4(&mut words, g.tangent_towards(tube.a, tube.b));
+            push_vec4(&mut words, tube.towards_b());
             let size = match g {
                 Geometry::Euclidean => tube.radius * tube.radius,
                 _ => g.cs(tube.radius).0.powi(2),
             };
             push_vec4(&mut words, tube.colour.extend(size));
-            let (c, s) = g.cs(g.distance(tube.a, tube.b));
+            let (c, s) = tube.cs_length();
             push_vec4(&mut words, DVec4::new(c, s, 0.0, 0.0));
         }
         debug_assert_eq!(words.len() * 4 + VIEW_WORDS * 4, bytes);

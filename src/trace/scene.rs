@@ -60,6 +60,18 @@ impl Tube {
         }
     }
 
+    /// Unit tangent at `a` towards `b`.
+    #[must_use]
+    pub fn towards_b(&self) -> DVec4 {
+        self.towards_b
+    }
+
+    /// `(C(L), S(L))` of the segment's length `L`.
+    #[must_use]
+    pub fn cs_length(&self) -> (f64, f64) {
+        self.cs_length
+    }
+
     /// `(σ, γ)` with `σ/γ = S(τ)/C(τ)` for the foot of `x` at distance τ from `a` along the
     /// line (up to a common positive factor).
     fn foot_coordinates(&self, geometry: Geometry, x: DVec4) -> (f64, f64) {
