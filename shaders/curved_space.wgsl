@@ -5,6 +5,8 @@
 //   SPHERICAL | EUCLIDEAN | HYPERBOLIC   the geometry: only its formulas are compiled
 //   FACE_COUNT, PARTNER_VECS             faces of the cell (partners packed 4 to a vec4<u32>)
 //   BALLS + BALL_COUNT, TUBES + TUBE_COUNT   the object kinds present and their numbers
+//   HIT_ID                               (benchmark) output what each ray met instead of a
+//                                        colour: object, crossings, face path, how it ended
 //
 // Points and tangents are 4-vectors with ⟨u,v⟩ = u.xyz·v.xyz + κ u.w v.w; a ray segment in
 // the cell is X(s) ∝ p + s v, a straight line of the chart, so faces are planes (N·X = 0)
@@ -290,6 +292,14 @@ fn partner(face: u32) -> u32 {
     return space.partners[face / 4u][face % 4u];
 }
 
+#ifdef HIT_ID
+// What the ray met (trace::TracedRay::id): object index + 1 (balls, then tubes; 0 for
+// none), crossings, a hash of the faces crossed, and how it ended (1 hit, 2 fog, 3 budget).
+var<private> hit_id: vec4<u32>;
+const FNV_OFFSET: u32 = 2166136261u;
+const FNV_PRIME: u32 = 16777619u;
+#endif
+
 // The colour seen along one camera ray (trace::first_hit and trace::trace_pixel).
 fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
     let fog = space.shading.fog.rgb;
@@ -299,6 +309,10 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
     var v = start_tangent;
     var travelled = 0.0;
     var skip = 0xffffffffu;
+#ifdef HIT_ID
+    var path = FNV_OFFSET;
+    hit_id = vec4<u32>(0u, 0u, path, 3u);
+#endif
     for (var crossings = 0u; crossings <= budget; crossings += 1u) {
         // The exit face: the smallest T = −(N·p)/(N·v) among faces with N·v > 0,
         // compared without dividing; the face just entered is skipped.
@@ -326,6 +340,9 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
         var albedo = vec3<f32>(0.0);
         var foot = vec4<f32>(0.0);
         var hit = false;
+#ifdef HIT_ID
+        var object = 0u;
+#endif
 #ifdef BALLS
         for (var i = 0u; i < #{BALL_COUNT}u; i += 1u) {
             let s = hit_ball(space.balls[i], p, v, s_hit);
@@ -334,6 +351,9 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
                 albedo = space.balls[i].colour.rgb;
                 foot = space.balls[i].centre;
                 hit = true;
+#ifdef HIT_ID
+                object = i + 1u;
+#endif
             }
         }
 #endif
@@ -345,6 +365,13 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
                 s_hit = s;
                 tube_hit = i;
                 hit = true;
+#ifdef HIT_ID
+#ifdef BALLS
+                object = #{BALL_COUNT}u + i + 1u;
+#else
+                object = i + 1u;
+#endif
+#endif
             }
         }
 #endif
@@ -358,13 +385,22 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
 #endif
             let d = travelled + distance_from_ratio(s_hit, 1.0);
             if d >= cutoff {
+#ifdef HIT_ID
+                hit_id = vec4<u32>(0u, crossings, path, 2u);
+#endif
                 return fog;
             }
+#ifdef HIT_ID
+            hit_id = vec4<u32>(object, crossings, path, 1u);
+#endif
             // Outward normal: away from the ball's centre or the tube's axis.
             let normal = unit_tangent(point, point - foot);
             return shade(point, normal, albedo, d);
         }
         if crossings == budget {
+#ifdef HIT_ID
+            hit_id = vec4<u32>(0u, crossings, path, 3u);
+#endif
             break;
         }
         // Cross: exit point (N·v) p − (N·p) v, tangent κ (N·p) p + (N·v) v, then the pairing.
@@ -374,7 +410,14 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
         p = project_point(m * at_face);
         v = unit_tangent(p, m * along);
         travelled += distance_from_ratio(num, den);
+#ifdef HIT_ID
+        path = (path ^ (face + 1u)) * FNV_PRIME;
+        hit_id = vec4<u32>(0u, crossings + 1u, path, 3u);
+#endif
         if travelled >= cutoff {
+#ifdef HIT_ID
+            hit_id.w = 2u;
+#endif
             return fog;
         }
         skip = partner(face);
@@ -403,8 +446,8 @@ fn srgb_to_linear(c: vec3<f32>) -> vec3<f32> {
     return select(high, low, c <= vec3<f32>(0.04045));
 }
 
-@fragment
-fn fragment(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
+// The colour seen through a fragment of the viewport.
+fn pixel_colour(position: vec4<f32>) -> vec3<f32> {
     let view = space.view;
     let size = view.lens.zw;
     let pixel = position.xy - view.origin.xy;
@@ -413,6 +456,18 @@ fn fragment(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     let f = view.frame;
     let p = f[3];
     let v = unit_tangent(p, px * f[0] + py * f[1] - f[2]);
-    let colour = clamp(trace(p, v), vec3<f32>(0.0), vec3<f32>(1.0));
-    return vec4<f32>(srgb_to_linear(colour), 1.0);
+    return clamp(trace(p, v), vec3<f32>(0.0), vec3<f32>(1.0));
 }
+
+#ifdef HIT_ID
+@fragment
+fn fragment(@builtin(position) position: vec4<f32>) -> @location(0) vec4<u32> {
+    _ = pixel_colour(position);
+    return hit_id;
+}
+#else
+@fragment
+fn fragment(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
+    return vec4<f32>(srgb_to_linear(pixel_colour(position)), 1.0);
+}
+#endif

@@ -27,6 +27,7 @@
 // `!(x < tol)` is how this crate rejects NaN along with large values: keep it.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+pub mod bench;
 pub mod geometry;
 pub mod player;
 pub mod plugin;

@@ -5,6 +5,7 @@
 
 use bevy::prelude::*;
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
+use bevy_curved_spaces::bench::BenchConfig;
 use bevy_curved_spaces::geometry::Vector4;
 use bevy_curved_spaces::render::FramesTraced;
 use bevy_curved_spaces::render::offscreen::{OffscreenRender, gpu_available, render_offscreen};
@@ -16,6 +17,8 @@ use bevy_curved_spaces::trace::{
     Camera, CellWalker, Limit, RenderSettings, Scene, Shading, Trace, chart_ray,
     render_with_progress,
 };
+use bevy_curved_spaces::plugin::AUTO_BUDGET_SAMPLES;
+use bevy_curved_spaces::trace::auto_budget;
 use bevy_curved_spaces::{ActiveSpace, CurvedSpaceCamera, CurvedSpacesPlugin, Quality};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use glam::{DVec3, DVec4, Vec4};
@@ -77,6 +80,9 @@ enum Command {
     Trace(TraceArgs),
     /// Render a picture of a space's default scene.
     Render(RenderArgs),
+    /// Measure speed against error: GPU frame times against a trivial material, accuracy
+    /// against the f64 reference, f32 drift, the fog cut-off; writes JSON, CSV and charts.
+    Bench(BenchArgs),
     /// Write a space as a space file (JSON), a template for your own spaces.
     Export {
         /// Seed space id or space file.
@@ -135,9 +141,10 @@ struct RenderArgs {
     /// Fog distance scale λ (default: three times the inradius). Rays stop at λ·ln 510.
     #[arg(long, value_parser = parse_positive, allow_hyphen_values = true)]
     fog: Option<f64>,
-    /// Crossing budget per ray (at most 10⁶).
-    #[arg(long, default_value_t = 64, value_parser = parse_crossings)]
-    crossings: usize,
+    /// Crossing budget per ray (at most 10⁶; default: the smallest that reaches the fog
+    /// cut-off for every sampled ray, chosen automatically).
+    #[arg(long, value_parser = parse_crossings)]
+    crossings: Option<usize>,
     /// Vertical field of view in degrees.
     #[arg(long, default_value_t = 70.0, value_parser = parse_fov)]
     fov: f64,
@@ -150,17 +157,40 @@ struct RenderArgs {
 }
 
 #[derive(Args)]
+struct BenchArgs {
+    /// A smoke run of every part, in seconds (one space per geometry, 160×90).
+    #[arg(long)]
+    quick: bool,
+    /// Folder for bench.json, the CSV tables and the charts (PNG and SVG).
+    #[arg(long, default_value = "results")]
+    out: PathBuf,
+    /// Only these seed spaces (comma-separated ids; default: all).
+    #[arg(long, value_delimiter = ',')]
+    spaces: Option<Vec<String>>,
+    /// Crossing budgets of the sweep (comma-separated; default 2,4,8,16,32,64).
+    #[arg(long, value_delimiter = ',', value_parser = clap::value_parser!(u32).range(1..=4096))]
+    budgets: Option<Vec<u32>>,
+    /// Timed resolutions (comma-separated WIDTHxHEIGHT; default 320x180,640x360,1280x720).
+    #[arg(long, value_delimiter = ',', value_parser = parse_size)]
+    sizes: Option<Vec<(u32, u32)>>,
+    /// Skip the GPU: only the CPU measurements (f32 drift, fog cut-off, automatic budgets).
+    #[arg(long)]
+    cpu_only: bool,
+}
+
+#[derive(Args)]
 struct WalkArgs {
     /// Seed space id or space file.
     #[arg(default_value = DEFAULT_SPACE)]
     space: String,
-    /// Speed against accuracy: crossing budget and traced resolution.
+    /// Speed against accuracy: the automatic crossing budget's target and the traced
+    /// resolution.
     #[arg(long, value_enum, default_value = "medium")]
     quality: QualityArg,
     /// Fog distance scale λ (default: three times the inradius).
     #[arg(long, value_parser = parse_positive, allow_hyphen_values = true)]
     fog: Option<f64>,
-    /// Crossing budget per ray (default: the quality's), 1 to 1024.
+    /// Crossing budget per ray, 1 to 1024 (default: automatic, from the fog and the quality).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
     crossings: Option<u32>,
     /// Start without the panel (F1 shows it).
@@ -503,10 +533,26 @@ fn render_command(args: &RenderArgs) -> Result<(), String> {
             ..Camera::default_for(&space)
         },
     };
+    let max_crossings = match args.crossings {
+        Some(n) => n,
+        None => {
+            let choice = auto_budget(
+                &space,
+                &scene,
+                Quality::High.miss_fraction(),
+                AUTO_BUDGET_SAMPLES,
+            );
+            eprintln!(
+                "automatic crossing budget: {} (the most any of {} sampled rays needs to reach an object before the fog cut-off)",
+                choice.budget, choice.samples
+            );
+            choice.budget as usize
+        }
+    };
     let settings = RenderSettings {
         width: args.size.0,
         height: args.size.1,
-        max_crossings: args.crossings,
+        max_crossings,
     };
     let started = Instant::now();
     let image = if args.cpu {
@@ -538,13 +584,12 @@ fn render_command(args: &RenderArgs) -> Result<(), String> {
             settings.height,
             settings.max_crossings
         );
-        let max_crossings = u32::try_from(args.crossings)
+        let max_crossings = u32::try_from(max_crossings)
             .ok()
             .filter(|&n| (1..=4096).contains(&n))
             .ok_or_else(|| {
                 format!(
-                    "the GPU tracer takes a crossing budget from 1 to 4096, got {} (use --cpu for more)",
-                    args.crossings
+                    "the GPU tracer takes a crossing budget from 1 to 4096, got {max_crossings} (use --cpu for more)"
                 )
             })?;
         render_offscreen(&OffscreenRender {
@@ -641,6 +686,99 @@ fn walk(args: &WalkArgs) -> Result<(), String> {
     }
 }
 
+fn bench(args: &BenchArgs) -> Result<(), String> {
+    let mut config = if args.quick {
+        BenchConfig::quick()
+    } else {
+        BenchConfig::full()
+    };
+    if let Some(spaces) = &args.spaces {
+        for id in spaces {
+            seed_space(id).map_err(|e| e.to_string())?;
+        }
+        config.spaces.clone_from(spaces);
+    }
+    if let Some(budgets) = &args.budgets {
+        config.budgets.clone_from(budgets);
+    }
+    if let Some(sizes) = &args.sizes {
+        config.sizes.clone_from(sizes);
+    }
+    config.cpu_only = args.cpu_only;
+    if !config.cpu_only && !gpu_available() {
+        return Err("no GPU adapter was found: install one (on Debian `apt-get install mesa-vulkan-drivers libvulkan1`) or pass --cpu-only".into());
+    }
+    if cfg!(debug_assertions) {
+        eprintln!(
+            "note: this is a debug build; for representative timings run `cargo run --release -- bench`"
+        );
+    }
+    eprintln!(
+        "benchmarking {} space(s) at {} size(s), budgets {:?}, fog {:?} inradii…",
+        config.spaces.len(),
+        config.sizes.len(),
+        config.budgets,
+        config.fog_factors
+    );
+    let started = Instant::now();
+    let progress = indicatif::ProgressBar::new(0);
+    let report = bevy_curved_spaces::bench::run(&config, &progress).map_err(|e| e.to_string())?;
+    if let Some(device) = &report.device {
+        say!(
+            "device: {} ({}, {}, {}); frame times from {}",
+            device.name,
+            device.device_type,
+            device.backend,
+            device.driver,
+            if device.timestamps {
+                "GPU timestamps"
+            } else {
+                "wall time around each submission"
+            }
+        );
+    }
+    for t in report.timings.iter().filter(|t| t.budget_from == "auto-high") {
+        if t.fog_factor != bevy_curved_spaces::bench::DEFAULT_FOG_FACTOR
+            || Some((t.width, t.height)) != config.sizes.iter().copied().max()
+        {
+            continue;
+        }
+        let error = report
+            .errors
+            .iter()
+            .find(|e| e.space == t.space && e.budget_from == t.budget_from && e.fog_factor == t.fog_factor);
+        say!(
+            "{:<22} {:>4}×{:<4} budget {:>4}: {:>9.3} ms ({:>6.1}× the trivial material), hits differing from f64 {:.3} %",
+            t.space,
+            t.width,
+            t.height,
+            t.budget,
+            t.median_ms,
+            t.ratio,
+            error.map_or(f64::NAN, |e| 100.0 * e.hit_differs)
+        );
+    }
+    for c in &report.cutoff {
+        if !c.within_bound {
+            eprintln!(
+                "warning: {} fog {} inradii: cut-off error {:.2e} exceeds its bound {:.2e}",
+                c.space, c.fog_factor, c.max_error, c.bound
+            );
+        }
+    }
+    let written = bevy_curved_spaces::bench::write_report(&report, &config, &args.out)
+        .map_err(|e| e.to_string())?;
+    say!(
+        "wrote {} files to {} in {:.1} s",
+        written.len(),
+        std::fs::canonicalize(&args.out)
+            .unwrap_or_else(|_| args.out.clone())
+            .display(),
+        started.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
 fn export(space: &Space, out: Option<&Path>) -> Result<(), String> {
     let text =
         serde_json::to_string_pretty(&SpaceRecord::from_space(space)).map_err(|e| e.to_string())?;
@@ -670,6 +808,7 @@ fn run(cli: Cli) -> Result<(), String> {
         Some(Command::Info { space, json }) => info(&resolve_space(&space)?, json),
         Some(Command::Trace(args)) => trace(&args),
         Some(Command::Render(args)) => render_command(&args),
+        Some(Command::Bench(args)) => bench(&args),
         Some(Command::Export { space, out }) => export(&resolve_space(&space)?, out.as_deref()),
     }
 }

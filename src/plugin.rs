@@ -18,7 +18,7 @@ use crate::player::{
 };
 use crate::render::{PreparedScene, TracerRenderPlugin, gpu::GpuScene};
 use crate::space::{Space, SpaceError, invariants, seed_space};
-use crate::trace::{Camera as TraceCamera, Scene, SceneParts, Shading};
+use crate::trace::{BudgetChoice, Camera as TraceCamera, Scene, SceneParts, Shading, auto_budget};
 use bevy::core_pipeline::tonemapping::{DebandDither, Tonemapping};
 use bevy::prelude::*;
 use std::sync::Arc;
@@ -26,30 +26,49 @@ use std::sync::Arc;
 /// The seed space shown when nothing else is chosen.
 pub const DEFAULT_SPACE: &str = "seifert-weber";
 
-/// Speed against accuracy presets: the crossing budget per ray and the fraction of the
-/// window's resolution that is traced.
+/// Speed against accuracy presets: how many rays the automatic crossing budget may leave
+/// short (shown as fog instead of a far object) and the fraction of the window's resolution
+/// that is traced.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Quality {
-    /// 12 crossings, half resolution.
+    /// Budget short for at most 2 % of rays, half resolution.
     Low,
-    /// 24 crossings, three quarters of the resolution.
+    /// Budget short for at most 0.5 % of rays, three quarters of the resolution.
     #[default]
     Medium,
-    /// 48 crossings, full resolution.
+    /// Budget enough for every sampled ray, full resolution.
     High,
 }
 
 impl Quality {
-    /// `(crossing budget, resolution scale)`.
+    /// The fraction of sampled rays the automatic budget may leave short. Such a ray shows
+    /// the fog colour instead of an object seen at distance `d`, an error of at most its fog
+    /// weight `e^(−d/λ)`.
     #[must_use]
-    pub fn knobs(self) -> (u32, f32) {
+    pub fn miss_fraction(self) -> f64 {
         match self {
-            Quality::Low => (12, 0.5),
-            Quality::Medium => (24, 0.75),
-            Quality::High => (48, 1.0),
+            Quality::Low => 0.02,
+            Quality::Medium => 0.005,
+            Quality::High => 0.0,
         }
     }
+
+    /// The fraction of the view's resolution that is traced.
+    #[must_use]
+    pub fn resolution_scale(self) -> f32 {
+        match self {
+            Quality::Low => 0.5,
+            Quality::Medium => 0.75,
+            Quality::High => 1.0,
+        }
+    }
+
+    pub const ALL: [Quality; 3] = [Quality::Low, Quality::Medium, Quality::High];
 }
+
+/// Rays sampled to choose the automatic crossing budget (a few ms to 0.1 s of CPU time when
+/// the space, the fog or the scene changes).
+pub const AUTO_BUDGET_SAMPLES: usize = 2048;
 
 /// Adds curved spaces to an app: the GPU tracer behind every [`CurvedSpaceCamera`], the
 /// first-person controls and (optionally) the egui panel.
@@ -59,7 +78,8 @@ pub struct CurvedSpacesPlugin {
     pub space: String,
     /// Fog distance scale λ; `None` for the space's default (three inradii).
     pub fog_distance: Option<f64>,
-    /// Crossing budget per ray; `None` for the quality preset's.
+    /// Crossing budget per ray; `None` to choose it from the fog distance and the scene
+    /// (see [`Quality::miss_fraction`]).
     pub max_crossings: Option<u32>,
     pub quality: Quality,
     /// Built-in first-person controls (WASD, mouse look, Q/E roll, Space/Shift, scroll).
@@ -150,8 +170,10 @@ impl ActiveSpace {
 pub struct TracerSettings {
     /// Fog distance scale λ; `None` for the space's default.
     pub fog_distance: Option<f64>,
-    /// Crossing budget per ray.
-    pub max_crossings: u32,
+    /// Crossing budget per ray; `None` for the automatic budget of `quality`.
+    pub max_crossings: Option<u32>,
+    /// What the automatic budget aims for.
+    pub quality: Quality,
     /// Fraction of the view's resolution that is traced (then scaled up), in (0, 1].
     pub resolution_scale: f32,
     pub parts: SceneParts,
@@ -170,6 +192,10 @@ impl TracerSettings {
 #[derive(Resource, Clone, Debug, Default, PartialEq)]
 pub struct TracerStatus {
     pub error: Option<String>,
+    /// The crossing budget in use.
+    pub budget: u32,
+    /// How the automatic budget was chosen (`None` when the budget is fixed).
+    pub auto_budget: Option<BudgetChoice>,
 }
 
 impl Plugin for CurvedSpacesPlugin {
@@ -182,11 +208,11 @@ impl Plugin for CurvedSpacesPlugin {
             });
             app.insert_resource(active);
         }
-        let (budget, scale) = self.quality.knobs();
         app.insert_resource(TracerSettings {
             fog_distance: self.fog_distance,
-            max_crossings: self.max_crossings.unwrap_or(budget).max(1),
-            resolution_scale: scale,
+            max_crossings: self.max_crossings.map(|b| b.max(1)),
+            quality: self.quality,
+            resolution_scale: self.quality.resolution_scale(),
             parts: SceneParts::default(),
         })
         .init_resource::<TracerStatus>()
@@ -276,10 +302,24 @@ fn upload_scene(
     }
     let space = &active.space;
     let scene = Scene::with_parts(space, settings.fog_for(space), settings.parts);
-    match GpuScene::new(space, &scene, settings.max_crossings) {
+    let auto = settings.max_crossings.is_none().then(|| {
+        auto_budget(
+            space,
+            &scene,
+            settings.quality.miss_fraction(),
+            AUTO_BUDGET_SAMPLES,
+        )
+    });
+    let budget = settings
+        .max_crossings
+        .or(auto.map(|a| a.budget))
+        .unwrap_or(1);
+    match GpuScene::new(space, &scene, budget) {
         Ok(gpu) => {
             commands.insert_resource(PreparedScene(Arc::new(gpu)));
             status.error = None;
+            status.budget = budget;
+            status.auto_budget = auto;
         }
         Err(e) => {
             error!("{e}");

@@ -2,7 +2,7 @@
 //! a screenshot (without the panel) to the working directory.
 
 use crate::player::{Holonomy, PlayerFrame, PlayerSettings};
-use crate::plugin::{ActiveSpace, CurvedSpaceCamera, TracerSettings, TracerStatus};
+use crate::plugin::{ActiveSpace, CurvedSpaceCamera, Quality, TracerSettings, TracerStatus};
 use crate::space::SEED_SPACES;
 use bevy::diagnostic::{DiagnosticsStore, FrameTimeDiagnosticsPlugin};
 use bevy::prelude::*;
@@ -135,12 +135,44 @@ fn panel(
             {
                 settings.fog_distance = Some(fog);
             }
-            let mut budget = settings.max_crossings;
-            if ui
-                .add(egui::Slider::new(&mut budget, 1..=128).text("crossing budget"))
-                .changed()
-            {
-                settings.max_crossings = budget;
+            let mut quality = settings.quality;
+            egui::ComboBox::from_label("quality")
+                .selected_text(format!("{quality:?}"))
+                .show_ui(ui, |ui| {
+                    for q in Quality::ALL {
+                        ui.selectable_value(&mut quality, q, format!("{q:?}"));
+                    }
+                });
+            if quality != settings.quality {
+                settings.quality = quality;
+                settings.resolution_scale = quality.resolution_scale();
+            }
+            let mut automatic = settings.max_crossings.is_none();
+            ui.horizontal(|ui| {
+                ui.checkbox(&mut automatic, "automatic crossing budget");
+                if let Some(auto) = status.auto_budget {
+                    ui.label(format!(
+                        "{} ({:.1} % of rays short)",
+                        auto.budget,
+                        100.0 * auto.missed_fraction
+                    ))
+                    .on_hover_text(
+                        "The smallest budget with which the quality's share of sampled rays \
+                         at most shows fog instead of a far object",
+                    );
+                }
+            });
+            if automatic != settings.max_crossings.is_none() {
+                settings.max_crossings = (!automatic).then_some(status.budget.max(1));
+            }
+            if let Some(fixed) = settings.max_crossings {
+                let mut budget = fixed;
+                if ui
+                    .add(egui::Slider::new(&mut budget, 1..=256).text("crossing budget"))
+                    .changed()
+                {
+                    settings.max_crossings = Some(budget);
+                }
             }
             let mut scale = settings.resolution_scale;
             if ui

@@ -3,32 +3,17 @@
 //! the Rust packer writes.
 
 use bevy::shader::ShaderDefVal;
+use bevy_curved_spaces::bench::BASELINE_WGSL;
 use bevy_curved_spaces::geometry::Geometry;
-use bevy_curved_spaces::render::gpu::{GpuScene, ShaderKey, TRACER_WGSL, UPSCALE_WGSL, VIEW_WORDS};
+use bevy_curved_spaces::render::gpu::{
+    GpuScene, ShaderKey, TRACER_WGSL, UPSCALE_WGSL, VIEW_WORDS, compose_wgsl,
+};
 use bevy_curved_spaces::space::SEED_SPACES;
 use bevy_curved_spaces::trace::{Scene, SceneParts, Shading};
-use naga_oil::compose::{Composer, NagaModuleDescriptor, ShaderDefValue, ShaderType};
-use std::collections::HashMap;
 
 fn compose(key: &ShaderKey) -> Result<naga::Module, String> {
-    let defs: HashMap<String, ShaderDefValue> = key
-        .shader_defs()
-        .into_iter()
-        .map(|d| match d {
-            ShaderDefVal::Bool(k, v) => (k, ShaderDefValue::Bool(v)),
-            ShaderDefVal::Int(k, v) => (k, ShaderDefValue::Int(v)),
-            ShaderDefVal::UInt(k, v) => (k, ShaderDefValue::UInt(v)),
-        })
-        .collect();
-    Composer::default()
-        .make_naga_module(NagaModuleDescriptor {
-            source: TRACER_WGSL,
-            file_path: "shaders/curved_space.wgsl",
-            shader_type: ShaderType::Wgsl,
-            shader_defs: defs,
-            additional_imports: &[],
-        })
-        .map_err(|e| format!("{key:?}: {e:?}"))
+    compose_wgsl(TRACER_WGSL, "shaders/curved_space.wgsl", &key.shader_defs())
+        .map_err(|e| format!("{key:?}: {e}"))
 }
 
 /// Validates a composed module and returns the size naga lays `SpaceUniform` out with.
@@ -190,13 +175,54 @@ fn a_scene_without_objects_and_a_zero_budget_are_refused_or_handled() {
 }
 
 #[test]
-fn the_upscaling_shader_validates() {
-    let module = naga::front::wgsl::parse_str(UPSCALE_WGSL).expect("parses");
-    naga::valid::Validator::new(
-        naga::valid::ValidationFlags::all(),
-        naga::valid::Capabilities::default(),
-    )
-    .validate(&module)
-    .expect("validates");
-    assert_eq!(module.entry_points.len(), 2);
+fn the_upscaling_and_benchmark_baseline_shaders_validate() {
+    for source in [UPSCALE_WGSL, BASELINE_WGSL] {
+        let module = naga::front::wgsl::parse_str(source).expect("parses");
+        naga::valid::Validator::new(
+            naga::valid::ValidationFlags::all(),
+            naga::valid::Capabilities::default(),
+        )
+        .validate(&module)
+        .expect("validates");
+        assert_eq!(module.entry_points.len(), 2);
+    }
+}
+
+/// The benchmark's `HIT_ID` variant writes what each ray met as `vec4<u32>`.
+#[test]
+fn the_hit_id_variant_validates_and_writes_four_integers() {
+    for geometry in Geometry::ALL {
+        for (balls, tubes) in [(0, 0), (3, 0), (0, 2), (3, 2)] {
+            let key = ShaderKey {
+                geometry,
+                faces: 12,
+                balls,
+                tubes,
+            };
+            let mut defs = key.shader_defs();
+            defs.push(ShaderDefVal::from("HIT_ID"));
+            let module = compose_wgsl(TRACER_WGSL, "curved_space.wgsl", &defs)
+                .unwrap_or_else(|e| panic!("{key:?} with HIT_ID: {e}"));
+            naga::valid::Validator::new(
+                naga::valid::ValidationFlags::all(),
+                naga::valid::Capabilities::default(),
+            )
+            .validate(&module)
+            .unwrap_or_else(|e| panic!("{key:?} with HIT_ID does not validate: {e:?}"));
+            let fragment = module
+                .entry_points
+                .iter()
+                .find(|e| e.name == "fragment")
+                .expect("a fragment entry point");
+            let result = fragment.function.result.as_ref().expect("returns a value");
+            assert_eq!(
+                module.types[result.ty].inner,
+                naga::TypeInner::Vector {
+                    size: naga::VectorSize::Quad,
+                    scalar: naga::Scalar::U32
+                },
+                "{key:?}"
+            );
+        }
+    }
 }

@@ -71,6 +71,33 @@ impl ShaderKey {
     }
 }
 
+/// Composes WGSL with shader defs through naga_oil (as Bevy does) into a naga module; the
+/// error names the file and what went wrong.
+pub fn compose_wgsl(
+    source: &str,
+    file_path: &str,
+    defs: &[ShaderDefVal],
+) -> Result<naga::Module, String> {
+    use naga_oil::compose::{Composer, NagaModuleDescriptor, ShaderDefValue, ShaderType};
+    let shader_defs = defs
+        .iter()
+        .map(|d| match d {
+            ShaderDefVal::Bool(k, v) => (k.clone(), ShaderDefValue::Bool(*v)),
+            ShaderDefVal::Int(k, v) => (k.clone(), ShaderDefValue::Int(*v)),
+            ShaderDefVal::UInt(k, v) => (k.clone(), ShaderDefValue::UInt(*v)),
+        })
+        .collect();
+    Composer::default()
+        .make_naga_module(NagaModuleDescriptor {
+            source,
+            file_path,
+            shader_type: ShaderType::Wgsl,
+            shader_defs,
+            additional_imports: &[],
+        })
+        .map_err(|e| format!("{file_path}: {e:?}"))
+}
+
 /// The scene cannot be given to the GPU tracer.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum GpuSceneError {

@@ -122,7 +122,8 @@ impl OffscreenRenderer {
         world.insert_resource(request.space.clone());
         world.insert_resource(TracerSettings {
             fog_distance: request.fog_distance,
-            max_crossings: request.max_crossings.max(1),
+            max_crossings: Some(request.max_crossings.max(1)),
+            quality: crate::plugin::Quality::High,
             resolution_scale: request.resolution_scale,
             parts: request.parts,
         });

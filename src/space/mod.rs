@@ -205,6 +205,23 @@ impl Space {
             .fold(f64::NEG_INFINITY, f64::max)
     }
 
+    /// Signed geodesic distance from the model point `p` to face `f`'s plane (positive
+    /// outside the cell): `S(d) = N̂·X` with the covector normalised to a unit vector of the
+    /// form (`asin`, identity, `asinh` of it).
+    #[must_use]
+    pub fn face_distance(&self, f: usize, p: DVec4) -> f64 {
+        let face = &self.faces[f];
+        let (n, r) = (face.normal.length(), face.offset);
+        let p = self.geometry.project_point(p);
+        match self.geometry {
+            Geometry::Euclidean => face.covector.dot(p / p.w) / n,
+            Geometry::Spherical => (face.covector.dot(p) / (n * n + r * r).sqrt())
+                .clamp(-1.0, 1.0)
+                .asin(),
+            Geometry::Hyperbolic => (face.covector.dot(p) / (n * n - r * r).sqrt()).asinh(),
+        }
+    }
+
     /// Whether any face is a mirror.
     #[must_use]
     pub fn has_mirrors(&self) -> bool {

@@ -3,14 +3,19 @@
 //! The walk is generic over precision ([`Vector4`]): `f64` is the reference, `f32` is what the
 //! GPU computes, and running both measures what f32 costs.
 
+mod budget;
 mod render;
 mod scene;
 
+pub use budget::{BudgetChoice, MAX_AUTO_BUDGET, SplitMix64, auto_budget, sample_rays};
+
 pub use render::{
-    Camera, RayEnd, RenderSettings, SceneHit, first_hit, render, render_with_progress, trace_pixel,
+    Camera, PATH_HASH_START, RayEnd, RenderSettings, SceneHit, TracedRay, colour_of, first_hit,
+    first_hit_traced, path_hash, render, to_byte, render_with_progress, trace_pixel,
 };
 pub use scene::{
-    Ball, DEFAULT_CUTOFF_WEIGHT, Hit, Light, Object, Scene, SceneParts, Shading, Tube, palette,
+    Ball, DEFAULT_CUTOFF_WEIGHT, Hit, Light, MAX_IMAGES, Object, PlaceError, Scene, SceneParts,
+    Shading, Tube, palette,
 };
 
 use crate::geometry::{Geometry, Real, Vector4};
@@ -157,10 +162,24 @@ impl<V: Vector4> CellWalker<V> {
         Ray { point, tangent }
     }
 
+    /// The ray put back onto the model: the point projected, the tangent made tangent there
+    /// and of unit length. The crossing formulas assume a unit tangent (in S³ and H³ the
+    /// exit tangent `κ (N·p) p + (N·v) v` is wrong for any other length), so every walk
+    /// starts with this.
+    #[must_use]
+    pub fn normalized(&self, ray: Ray<V>) -> Ray<V> {
+        let g = self.geometry;
+        let point = g.project_point(ray.point);
+        Ray {
+            point,
+            tangent: g.unit_tangent(point, ray.tangent),
+        }
+    }
+
     /// Traces a ray through the cell until the limit, recording each crossing.
     #[must_use]
     pub fn trace(&self, start: Ray<V>, limit: Limit) -> Trace<V> {
-        let mut ray = start;
+        let mut ray = self.normalized(start);
         let mut crossings = Vec::new();
         let mut distance = 0.0;
         let mut skip = None;

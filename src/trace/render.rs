@@ -90,8 +90,9 @@ pub enum RayEnd {
     Hit(SceneHit),
     /// It reached the fog cut-off distance after this many crossings.
     Fog(usize),
-    /// It used up the crossing budget.
-    Budget,
+    /// It used up the crossing budget (or found no exit: a degenerate ray) after this many
+    /// crossings.
+    Budget(usize),
 }
 
 /// Walks a camera ray through the cell: nearest object hit against the exit face, crossing
@@ -103,14 +104,61 @@ pub fn first_hit(
     start: Ray<DVec4>,
     max_crossings: usize,
 ) -> RayEnd {
+    first_hit_traced(walker, scene, start, max_crossings).end
+}
+
+/// How a camera ray ended and the faces it crossed on the way (as a hash).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TracedRay {
+    pub end: RayEnd,
+    /// FNV-1a-style hash of the crossed faces' indices + 1, in order (see [`path_hash`]).
+    pub path: u32,
+}
+
+/// The start of a face path hash.
+pub const PATH_HASH_START: u32 = 2_166_136_261;
+
+/// The path hash after crossing `face`: the shader's `HIT_ID` output computes the same, so
+/// GPU and CPU rays can be compared by what they met, not only by colour.
+#[must_use]
+pub fn path_hash(path: u32, face: usize) -> u32 {
+    (path ^ (face as u32 + 1)).wrapping_mul(16_777_619)
+}
+
+impl TracedRay {
+    /// What the shader's `HIT_ID` output writes for this ray: `[object + 1 (0 for none),
+    /// crossings, path hash, end]` with end 1 hit, 2 fog, 3 budget. `gpu_index` maps a scene
+    /// object to its index in the GPU's lists (balls first, then tubes).
+    #[must_use]
+    pub fn id(&self, gpu_index: impl Fn(usize) -> u32) -> [u32; 4] {
+        match self.end {
+            RayEnd::Hit(h) => [gpu_index(h.object) + 1, h.crossings as u32, self.path, 1],
+            RayEnd::Fog(c) => [0, c as u32, self.path, 2],
+            RayEnd::Budget(c) => [0, c as u32, self.path, 3],
+        }
+    }
+}
+
+/// [`first_hit`] with the hash of the crossed faces.
+#[must_use]
+pub fn first_hit_traced(
+    walker: &CellWalker<DVec4>,
+    scene: &Scene,
+    start: Ray<DVec4>,
+    max_crossings: usize,
+) -> TracedRay {
     let g = walker.geometry;
     let cutoff = scene.shading.cutoff_distance();
-    let mut ray = start;
+    let mut ray = walker.normalized(start);
     let mut distance = 0.0;
     let mut skip = None;
+    let mut path = PATH_HASH_START;
     for crossings in 0..=max_crossings {
         let Some(exit) = walker.exit(&ray, skip) else {
-            break;
+            return TracedRay {
+                end: RayEnd::Budget(crossings),
+                path,
+            };
         };
         let s_exit = exit.ratio();
         let nearest = scene
@@ -124,28 +172,37 @@ pub fn first_hit(
             .min_by(|a, b| a.1.s.total_cmp(&b.1.s));
         if let Some((object, hit)) = nearest {
             let d = distance + g.distance_from_ratio(hit.s, 1.0);
-            if d >= cutoff {
-                return RayEnd::Fog(crossings);
-            }
-            return RayEnd::Hit(SceneHit {
-                object,
-                hit,
-                distance: d,
-                crossings,
-            });
+            let end = if d >= cutoff {
+                RayEnd::Fog(crossings)
+            } else {
+                RayEnd::Hit(SceneHit {
+                    object,
+                    hit,
+                    distance: d,
+                    crossings,
+                })
+            };
+            return TracedRay { end, path };
         }
         if crossings == max_crossings {
             break;
         }
         let (next, length) = walker.cross(&ray, &exit);
         distance += length;
+        path = path_hash(path, exit.face);
         if distance >= cutoff {
-            return RayEnd::Fog(crossings + 1);
+            return TracedRay {
+                end: RayEnd::Fog(crossings + 1),
+                path,
+            };
         }
         ray = next;
         skip = Some(walker.partners[exit.face]);
     }
-    RayEnd::Budget
+    TracedRay {
+        end: RayEnd::Budget(max_crossings),
+        path,
+    }
 }
 
 /// The colour seen along one camera ray (fog where it meets nothing).
@@ -156,12 +213,24 @@ pub fn trace_pixel(
     start: Ray<DVec4>,
     max_crossings: usize,
 ) -> DVec3 {
-    match first_hit(walker, scene, start, max_crossings) {
+    colour_of(walker.geometry, scene, &first_hit(walker, scene, start, max_crossings))
+}
+
+/// The colour of a ray that ended as `end` (fog where it met nothing).
+#[must_use]
+pub fn colour_of(geometry: Geometry, scene: &Scene, end: &RayEnd) -> DVec3 {
+    match end {
         RayEnd::Hit(h) => scene
             .shading
-            .shade(walker.geometry, &scene.light, &h.hit, h.distance),
-        RayEnd::Fog(_) | RayEnd::Budget => scene.shading.fog_colour,
+            .shade(geometry, &scene.light, &h.hit, h.distance),
+        RayEnd::Fog(_) | RayEnd::Budget(_) => scene.shading.fog_colour,
     }
+}
+
+/// A colour in [0, 1] as the 8-bit value the renderers write.
+#[must_use]
+pub fn to_byte(x: f64) -> u8 {
+    (x.clamp(0.0, 1.0) * 255.0).round() as u8
 }
 
 /// Renders a picture (rows in parallel with rayon). Colours are written as they are
@@ -195,10 +264,7 @@ pub fn render_with_progress(
             for i in 0..w {
                 let ray = camera.ray(space.geometry, i, j, w, h);
                 let c = trace_pixel(&walker, scene, ray, settings.max_crossings);
-                row.extend(
-                    c.to_array()
-                        .map(|x| (x.clamp(0.0, 1.0) * 255.0).round() as u8),
-                );
+                row.extend(c.to_array().map(to_byte));
             }
             progress(done.fetch_add(1, Ordering::Relaxed) + 1, h);
             row

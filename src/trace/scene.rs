@@ -6,7 +6,7 @@
 
 use crate::geometry::Geometry;
 use crate::space::Space;
-use glam::{DVec3, DVec4};
+use glam::{DMat4, DVec3, DVec4};
 
 /// A metric ball `d(X, centre) ≤ radius`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -112,6 +112,68 @@ impl Tube {
 pub enum Object {
     Ball(Ball),
     Tube(Tube),
+}
+
+impl Object {
+    /// The object moved by the isometry `m`.
+    #[must_use]
+    pub fn transformed(&self, geometry: Geometry, m: DMat4) -> Object {
+        let map = |p: DVec4| geometry.project_point(m * p);
+        match self {
+            Object::Ball(b) => Object::Ball(Ball::new(geometry, map(b.centre), b.radius, b.colour)),
+            Object::Tube(t) => {
+                Object::Tube(Tube::new(geometry, map(t.a), map(t.b), t.radius, t.colour))
+            }
+        }
+    }
+
+    /// A metric ball `(centre, radius)` that contains the object.
+    #[must_use]
+    pub fn bounding_ball(&self, geometry: Geometry) -> (DVec4, f64) {
+        match self {
+            Object::Ball(b) => (b.centre, b.radius),
+            Object::Tube(t) => {
+                let half = 0.5 * geometry.distance(t.a, t.b);
+                let (mid, _) = geometry.geodesic(t.a, t.towards_b, half);
+                (geometry.project_point(mid), half + t.radius)
+            }
+        }
+    }
+
+    /// Whether two objects are the same (to `tolerance` in distance), a tube's ends in
+    /// either order.
+    #[must_use]
+    pub fn same_as(&self, other: &Object, geometry: Geometry, tolerance: f64) -> bool {
+        let near = |p: DVec4, q: DVec4| geometry.distance(p, q) <= tolerance;
+        match (self, other) {
+            (Object::Ball(a), Object::Ball(b)) => {
+                near(a.centre, b.centre)
+                    && (a.radius - b.radius).abs() <= tolerance
+                    && a.colour == b.colour
+            }
+            (Object::Tube(a), Object::Tube(b)) => {
+                ((near(a.a, b.a) && near(a.b, b.b)) || (near(a.a, b.b) && near(a.b, b.a)))
+                    && (a.radius - b.radius).abs() <= tolerance
+                    && a.colour == b.colour
+            }
+            _ => false,
+        }
+    }
+}
+
+/// The most images of one object [`Scene::place`] adds (an object far larger than the cell
+/// would need more, and is refused).
+pub const MAX_IMAGES: usize = 512;
+
+/// An object could not be placed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum PlaceError {
+    #[error("the object is not inside the cell: its centre is {0:.3} outside face {1}")]
+    Outside(f64, usize),
+    #[error(
+        "the object meets more than {MAX_IMAGES} copies of the cell; make it smaller than the cell"
+    )]
+    TooLarge,
 }
 
 /// A ray–object hit: the chart ratio `s` along the segment, the point and the object's
@@ -334,6 +396,60 @@ impl Default for SceneParts {
 }
 
 impl Scene {
+    /// Adds `object` (its centre inside the cell) and, where it sticks out through faces,
+    /// its images under the pairings that meet the cell, so that it is seen whole from
+    /// every side and in every copy of the cell. Images equal to an object already in the
+    /// scene are not added twice. Returns how many objects were added.
+    ///
+    /// A ray that leaves through face `f` continues from `g_f` of its exit point, so the
+    /// part of an object outside `f` is seen inside the cell as `g_f(object)`: that image
+    /// is added when the object's bounding ball reaches past `f` and the image's bounding
+    /// ball meets the cell; images of images are followed the same way (edges, vertices).
+    pub fn place(&mut self, space: &Space, object: Object) -> Result<usize, PlaceError> {
+        let g = space.geometry;
+        let (centre, _) = object.bounding_ball(g);
+        let faces = space.faces.len();
+        if let Some((f, d)) = (0..faces)
+            .map(|f| (f, space.face_distance(f, centre)))
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .filter(|(_, d)| *d > 1e-9)
+        {
+            return Err(PlaceError::Outside(d, f));
+        }
+        const SAME: f64 = 1e-9;
+        let meets_cell = |o: &Object| {
+            let (c, r) = o.bounding_ball(g);
+            (0..faces).all(|f| space.face_distance(f, c) < r)
+        };
+        let mut found: Vec<Object> = Vec::new();
+        let mut queue = vec![object];
+        while let Some(o) = queue.pop() {
+            if found.iter().any(|x| x.same_as(&o, g, SAME)) {
+                continue;
+            }
+            if found.len() >= MAX_IMAGES {
+                return Err(PlaceError::TooLarge);
+            }
+            let (c, r) = o.bounding_ball(g);
+            for (f, face) in space.faces.iter().enumerate() {
+                if space.face_distance(f, c) > -r {
+                    let image = o.transformed(g, face.pairing);
+                    if meets_cell(&image) && !found.iter().any(|x| x.same_as(&image, g, SAME)) {
+                        queue.push(image);
+                    }
+                }
+            }
+            found.push(o);
+        }
+        let before = self.objects.len();
+        for o in found {
+            if !self.objects.iter().any(|x| x.same_as(&o, g, SAME)) {
+                self.objects.push(o);
+            }
+        }
+        Ok(self.objects.len() - before)
+    }
+
     /// The default scene of a space: the cell's edges as thin tubes coloured by edge cycle,
     /// a small ball at each vertex, a ball at the centre and one light, with fog at `fog`.
     #[must_use]

@@ -1,0 +1,882 @@
+//! `curved-spaces bench`: speed against error, measured in one run.
+//!
+//! For every space it times the GPU tracer (the plugin's shader and uniform, in a plain wgpu
+//! harness) against a trivial fullscreen material of the same size, over resolutions,
+//! crossing budgets and fog distances; it measures in the same run what each setting costs
+//! in accuracy against the f64 CPU reference (pixels whose hit differs, colour error), the
+//! f32 drift of long rays, and the error of the fog cut-off against its stated bound. The
+//! figures go to JSON and CSV files and charts (PNG and SVG) in one folder.
+
+mod harness;
+mod plot;
+
+pub use harness::{BASELINE_WGSL, DeviceInfo, Frame, Harness, HarnessError, Output, Program};
+pub use plot::{Chart, PlotError, Series, write_chart};
+
+use crate::geometry::{Geometry, Vector4};
+use crate::plugin::Quality;
+use crate::render::gpu::{GpuScene, view_words};
+use crate::space::{Space, invariants, seed_space};
+use crate::trace::{
+    BudgetChoice, Camera, CellWalker, Limit, Object, RayEnd, Scene, auto_budget,
+    colour_of, first_hit_traced, sample_rays, to_byte,
+};
+use glam::{DVec4, Vec4};
+use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+
+/// The crossing budget of the "exact" reference: far more than any ray of the default
+/// scenes needs before the fog cut-off.
+pub const EXACT_BUDGET: usize = 4096;
+
+/// Machine epsilon of f32 (the GPU's precision).
+pub const F32_EPSILON: f64 = f32::EPSILON as f64;
+
+/// What to measure.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BenchConfig {
+    /// Seed space ids.
+    pub spaces: Vec<String>,
+    /// Resolutions the GPU frame time is measured at.
+    pub sizes: Vec<(u32, u32)>,
+    /// Resolution of the accuracy comparisons against the CPU reference.
+    pub error_size: (u32, u32),
+    /// Crossing budgets of the sweep (at the default fog).
+    pub budgets: Vec<u32>,
+    /// Fog distances of the sweep, in inradii (at the automatic budget).
+    pub fog_factors: Vec<f64>,
+    /// At least this many timed frames per setting…
+    pub min_frames: usize,
+    /// …and until this many seconds were spent on it (at most `max_frames`).
+    pub min_seconds: f64,
+    pub max_frames: usize,
+    /// Random rays per space for the f32 drift.
+    pub drift_rays: usize,
+    /// Crossing counts the drift is reported at.
+    pub drift_crossings: Vec<usize>,
+    /// Rays sampled for each automatic budget.
+    pub budget_samples: usize,
+    /// Skip the GPU part (CPU accuracy only).
+    pub cpu_only: bool,
+}
+
+impl BenchConfig {
+    /// The full benchmark (minutes on a software rasteriser, seconds on a GPU).
+    #[must_use]
+    pub fn full() -> Self {
+        Self {
+            spaces: crate::space::SEED_SPACES
+                .iter()
+                .map(|s| s.id.to_string())
+                .collect(),
+            sizes: vec![(320, 180), (640, 360), (1280, 720)],
+            error_size: (320, 180),
+            budgets: vec![2, 4, 8, 16, 32, 64],
+            fog_factors: vec![1.0, 2.0, 3.0, 4.0],
+            min_frames: 5,
+            min_seconds: 0.3,
+            max_frames: 200,
+            drift_rays: 64,
+            drift_crossings: vec![10, 30, 100, 1000],
+            budget_samples: 4096,
+            cpu_only: false,
+        }
+    }
+
+    /// A smoke run of every part (seconds): one space per geometry, small images.
+    #[must_use]
+    pub fn quick() -> Self {
+        Self {
+            spaces: vec!["3-torus".into(), "poincare".into(), "seifert-weber".into()],
+            sizes: vec![(160, 90)],
+            error_size: (160, 90),
+            budgets: vec![4, 16],
+            fog_factors: vec![1.0, 3.0],
+            min_frames: 2,
+            min_seconds: 0.0,
+            max_frames: 2,
+            drift_rays: 8,
+            drift_crossings: vec![10, 30, 100],
+            budget_samples: 512,
+            cpu_only: false,
+        }
+    }
+}
+
+/// Why the benchmark stopped.
+#[derive(Debug, thiserror::Error)]
+pub enum BenchError {
+    #[error(transparent)]
+    Space(#[from] crate::space::SpaceError),
+    #[error(transparent)]
+    Gpu(#[from] HarnessError),
+    #[error("the scene of {space} cannot be packed for the GPU: {error}")]
+    Scene {
+        space: String,
+        error: crate::render::gpu::GpuSceneError,
+    },
+    #[error(transparent)]
+    Plot(#[from] PlotError),
+    #[error("writing {path} failed: {error}")]
+    Write { path: String, error: String },
+    #[error("nothing to measure: {0}")]
+    Empty(&'static str),
+}
+
+/// GPU frame time of one setting.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TimingRow {
+    pub space: String,
+    pub geometry: &'static str,
+    pub width: u32,
+    pub height: u32,
+    pub budget: u32,
+    /// How the budget was chosen: "fixed", or the quality preset of the automatic budget.
+    pub budget_from: String,
+    pub fog_factor: f64,
+    pub frames: usize,
+    pub median_ms: f64,
+    pub p10_ms: f64,
+    pub p90_ms: f64,
+    /// Median frame time of the trivial material, measured interleaved with the tracer.
+    pub baseline_ms: f64,
+    /// `median_ms / baseline_ms`.
+    pub ratio: f64,
+}
+
+/// Accuracy of one setting against the f64 reference at the same camera.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ErrorRow {
+    pub space: String,
+    pub geometry: &'static str,
+    pub budget: u32,
+    pub budget_from: String,
+    pub fog_factor: f64,
+    pub width: u32,
+    pub height: u32,
+    /// Pixels whose hit (object and exit-face sequence) differs from the exact reference
+    /// (f64, budget [`EXACT_BUDGET`]): the budget's error and f32's together.
+    pub hit_differs: f64,
+    /// Pixels whose hit differs from the f64 reference with the same budget: f32's share.
+    pub hit_differs_same_budget: f64,
+    /// Colour error against the exact reference, in 8-bit levels.
+    pub mean_levels: f64,
+    pub max_levels: u32,
+    /// Pixels more than 10 levels off the exact reference.
+    pub over_10_levels: f64,
+}
+
+/// f32 against f64 along long rays.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DriftRow {
+    pub space: String,
+    pub geometry: &'static str,
+    pub crossings: usize,
+    pub rays: usize,
+    /// Rays whose f32 face sequence still equals the f64 one.
+    pub same_faces: f64,
+    /// Median geodesic distance travelled by then (f64).
+    pub median_distance: f64,
+    /// Geodesic distance between the f32 and the f64 point (median and max over the rays
+    /// that still agree).
+    pub median_position_error: f64,
+    pub max_position_error: f64,
+    /// Angle between the f32 and the f64 direction (radians), median over agreeing rays.
+    pub median_direction_error: f64,
+    /// The conditioning bound `ε₃₂ · n · G(d)` at the median distance: `G = e^d` (H³),
+    /// `1 + d` (E³), `1` (S³), with `n` the crossings (each adds rounding).
+    pub bound: f64,
+}
+
+/// The fog cut-off's error against tracing without it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CutoffRow {
+    pub space: String,
+    pub geometry: &'static str,
+    pub fog_factor: f64,
+    pub fog_distance: f64,
+    pub cutoff_distance: f64,
+    /// The stated bound: the fog weight at the cut-off, per channel in [0, 1].
+    pub bound: f64,
+    pub max_error: f64,
+    pub mean_error: f64,
+    pub within_bound: bool,
+    /// Reference rays (no cut-off) that used up [`EXACT_BUDGET`].
+    pub reference_budget_exhausted: f64,
+}
+
+/// The automatic budget of a quality preset and what it costs and buys.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct AutoBudgetRow {
+    pub space: String,
+    pub geometry: &'static str,
+    pub quality: String,
+    pub fog_factor: f64,
+    pub miss_fraction_allowed: f64,
+    #[serde(flatten)]
+    pub choice: BudgetChoice,
+}
+
+/// Everything one run measured.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct BenchReport {
+    pub device: Option<DeviceInfo>,
+    /// "release" or "debug".
+    pub build: &'static str,
+    pub cpu_threads: usize,
+    pub timings: Vec<TimingRow>,
+    pub errors: Vec<ErrorRow>,
+    pub drift: Vec<DriftRow>,
+    pub cutoff: Vec<CutoffRow>,
+    pub auto_budgets: Vec<AutoBudgetRow>,
+}
+
+/// One space with what the benchmark needs of it.
+struct Subject {
+    id: String,
+    space: Space,
+    inradius: f64,
+    camera: Camera,
+}
+
+impl Subject {
+    fn new(id: &str) -> Result<Self, BenchError> {
+        let space = seed_space(id)?;
+        Ok(Self {
+            id: id.to_string(),
+            inradius: invariants::inradius(&space),
+            camera: Camera::default_for(&space),
+            space,
+        })
+    }
+
+    fn geometry(&self) -> &'static str {
+        self.space.geometry.name()
+    }
+
+    fn scene(&self, fog_factor: f64) -> Scene {
+        Scene::default_for(&self.space, fog_factor * self.inradius)
+    }
+}
+
+/// The fog factor (λ / inradius) of the spaces' default fog.
+pub const DEFAULT_FOG_FACTOR: f64 = 3.0;
+
+/// Runs the benchmark; `progress` draws a bar on a terminal (hidden otherwise).
+pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, BenchError> {
+    if config.spaces.is_empty() {
+        return Err(BenchError::Empty("no spaces were named"));
+    }
+    let subjects = config
+        .spaces
+        .iter()
+        .map(|id| Subject::new(id))
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut harness = if config.cpu_only {
+        None
+    } else {
+        Some(Harness::new()?)
+    };
+    let gpu_steps = if harness.is_some() {
+        (config.budgets.len() + config.fog_factors.len()) * (config.sizes.len() + 1)
+    } else {
+        0
+    };
+    let per_space = gpu_steps + 2 + config.fog_factors.len();
+    progress.set_length((per_space * subjects.len()) as u64);
+    progress.set_style(
+        ProgressStyle::with_template(
+            "{spinner} [{elapsed_precise}] {bar:30} {pos}/{len} {msg} (eta {eta})",
+        )
+        .expect("a valid progress template"),
+    );
+    let mut report = BenchReport {
+        device: harness.as_ref().map(|h| h.info().clone()),
+        build: if cfg!(debug_assertions) {
+            "debug"
+        } else {
+            "release"
+        },
+        cpu_threads: rayon::current_num_threads(),
+        ..Default::default()
+    };
+    for subject in &subjects {
+        progress.set_message(format!("{}: f32 drift", subject.id));
+        report.drift.extend(drift(subject, config));
+        progress.inc(1);
+        progress.set_message(format!("{}: automatic budgets", subject.id));
+        let mut budgets = Vec::new();
+        for &fog in &config.fog_factors {
+            let scene = subject.scene(fog);
+            for quality in [Quality::Low, Quality::Medium, Quality::High] {
+                let allowed = quality.miss_fraction();
+                let choice = auto_budget(&subject.space, &scene, allowed, config.budget_samples);
+                budgets.push((fog, quality, choice.budget));
+                report.auto_budgets.push(AutoBudgetRow {
+                    space: subject.id.clone(),
+                    geometry: subject.geometry(),
+                    quality: format!("{quality:?}").to_lowercase(),
+                    fog_factor: fog,
+                    miss_fraction_allowed: allowed,
+                    choice,
+                });
+            }
+        }
+        progress.inc(1);
+        for &fog in &config.fog_factors {
+            progress.set_message(format!("{}: fog cut-off at λ = {fog} inradii", subject.id));
+            report.cutoff.push(cutoff(subject, fog, config.error_size));
+            progress.inc(1);
+        }
+        let Some(harness) = harness.as_mut() else {
+            continue;
+        };
+        // The budget sweep at the default fog, then the fog sweep at the automatic budget.
+        let mut settings: Vec<(u32, String, f64)> = config
+            .budgets
+            .iter()
+            .map(|&b| (b, "fixed".to_string(), DEFAULT_FOG_FACTOR))
+            .collect();
+        for &fog in &config.fog_factors {
+            let budget = budgets
+                .iter()
+                .find(|(f, q, _)| *f == fog && *q == Quality::High)
+                .map_or(64, |b| b.2);
+            settings.push((budget, "auto-high".to_string(), fog));
+        }
+        let mut exact_cache: Vec<(f64, Reference)> = Vec::new();
+        for (budget, from, fog) in settings {
+            let scene = subject.scene(fog);
+            let gpu = GpuScene::new(&subject.space, &scene, budget).map_err(|error| {
+                BenchError::Scene {
+                    space: subject.id.clone(),
+                    error,
+                }
+            })?;
+            for &(w, h) in &config.sizes {
+                progress.set_message(format!(
+                    "{}: {w}×{h}, budget {budget}, λ = {fog} inradii",
+                    subject.id
+                ));
+                let (stats, baseline) = time_setting(harness, subject, &gpu, (w, h), config)?;
+                report.timings.push(TimingRow {
+                    space: subject.id.clone(),
+                    geometry: subject.geometry(),
+                    width: w,
+                    height: h,
+                    budget,
+                    budget_from: from.clone(),
+                    fog_factor: fog,
+                    frames: stats.frames,
+                    median_ms: stats.median,
+                    p10_ms: stats.p10,
+                    p90_ms: stats.p90,
+                    baseline_ms: baseline.median,
+                    ratio: stats.median / baseline.median,
+                });
+                progress.inc(1);
+            }
+            progress.set_message(format!(
+                "{}: accuracy, budget {budget}, λ = {fog} inradii",
+                subject.id
+            ));
+            let exact = match exact_cache.iter().find(|(f, _)| *f == fog) {
+                Some((_, r)) => r.clone(),
+                None => {
+                    let r = Reference::trace(subject, &scene, config.error_size, EXACT_BUDGET);
+                    exact_cache.push((fog, r.clone()));
+                    r
+                }
+            };
+            let same = Reference::trace(subject, &scene, config.error_size, budget as usize);
+            let measured = gpu_pixels(harness, subject, &gpu, budget, config.error_size)?;
+            let against_exact = measured.compare(&exact);
+            let against_same = measured.compare(&same);
+            report.errors.push(ErrorRow {
+                space: subject.id.clone(),
+                geometry: subject.geometry(),
+                budget,
+                budget_from: from,
+                fog_factor: fog,
+                width: config.error_size.0,
+                height: config.error_size.1,
+                hit_differs: against_exact.hit_differs,
+                hit_differs_same_budget: against_same.hit_differs,
+                mean_levels: against_exact.mean_levels,
+                max_levels: against_exact.max_levels,
+                over_10_levels: against_exact.over_10_levels,
+            });
+            progress.inc(1);
+        }
+    }
+    progress.finish_and_clear();
+    Ok(report)
+}
+
+/// Median and spread of frame times (ms).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Stats {
+    frames: usize,
+    median: f64,
+    p10: f64,
+    p90: f64,
+}
+
+impl Stats {
+    fn of(mut times: Vec<f64>) -> Self {
+        times.sort_by(f64::total_cmp);
+        let at = |q: f64| times[((times.len() - 1) as f64 * q).round() as usize];
+        Self {
+            frames: times.len(),
+            median: at(0.5),
+            p10: at(0.1),
+            p90: at(0.9),
+        }
+    }
+}
+
+fn uniform_words(subject: &Subject, gpu: &GpuScene, size: (u32, u32)) -> Vec<u32> {
+    let view = view_words(
+        subject.camera.frame,
+        subject.camera.fov_y_degrees,
+        [0, 0],
+        [size.0, size.1],
+    );
+    view.iter().chain(gpu.words.iter()).copied().collect()
+}
+
+/// Times the tracer and the baseline, alternating frame by frame so that both see the same
+/// machine load; the first frame of each (pipeline compilation) is not counted.
+fn time_setting(
+    harness: &mut Harness,
+    subject: &Subject,
+    gpu: &GpuScene,
+    (w, h): (u32, u32),
+    config: &BenchConfig,
+) -> Result<(Stats, Stats), BenchError> {
+    let tracer = Program::Tracer(gpu.key, Output::Colour);
+    let frame = harness.frame(w, h, Output::Colour, &uniform_words(subject, gpu, (w, h)));
+    let baseline_frame = harness.frame(w, h, Output::Colour, &[]);
+    harness.draw(&tracer, &frame)?;
+    harness.draw(&Program::Baseline, &baseline_frame)?;
+    let (mut traced, mut base) = (Vec::new(), Vec::new());
+    let start = std::time::Instant::now();
+    while traced.len() < config.max_frames.max(1)
+        && (traced.len() < config.min_frames.max(1)
+            || start.elapsed().as_secs_f64() < config.min_seconds)
+    {
+        traced.push(harness.draw(&tracer, &frame)?);
+        base.push(harness.draw(&Program::Baseline, &baseline_frame)?);
+    }
+    Ok((Stats::of(traced), Stats::of(base)))
+}
+
+/// Per pixel: what the ray met (`[object + 1, crossings, path, end]`) and its 8-bit colour.
+#[derive(Clone, Debug, PartialEq)]
+struct Reference {
+    ids: Vec<[u32; 4]>,
+    rgb: Vec<[u8; 3]>,
+    /// Rays that used up the budget.
+    exhausted: usize,
+}
+
+/// How one picture differs from another.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Difference {
+    hit_differs: f64,
+    mean_levels: f64,
+    max_levels: u32,
+    over_10_levels: f64,
+}
+
+/// The index a scene object has on the GPU (balls first, then tubes).
+fn gpu_indices(scene: &Scene) -> Vec<u32> {
+    let balls = scene
+        .objects
+        .iter()
+        .filter(|o| matches!(o, Object::Ball(_)))
+        .count() as u32;
+    let (mut ball, mut tube) = (0u32, balls);
+    scene
+        .objects
+        .iter()
+        .map(|o| {
+            let counter = match o {
+                Object::Ball(_) => &mut ball,
+                Object::Tube(_) => &mut tube,
+            };
+            *counter += 1;
+            *counter - 1
+        })
+        .collect()
+}
+
+impl Reference {
+    /// The f64 reference picture with what each ray met.
+    fn trace(subject: &Subject, scene: &Scene, (w, h): (u32, u32), budget: usize) -> Self {
+        let walker = CellWalker::<DVec4>::new(&subject.space);
+        let index = gpu_indices(scene);
+        let g = subject.space.geometry;
+        let pixels: Vec<([u32; 4], [u8; 3], bool)> = (0..w * h)
+            .into_par_iter()
+            .map(|k| {
+                let ray = subject.camera.ray(g, k % w, k / w, w, h);
+                let traced = first_hit_traced(&walker, scene, ray, budget);
+                let colour = colour_of(g, scene, &traced.end).to_array().map(to_byte);
+                let exhausted = matches!(traced.end, RayEnd::Budget(c) if c == budget);
+                (traced.id(|o| index[o]), colour, exhausted)
+            })
+            .collect();
+        Self {
+            ids: pixels.iter().map(|p| p.0).collect(),
+            rgb: pixels.iter().map(|p| p.1).collect(),
+            exhausted: pixels.iter().filter(|p| p.2).count(),
+        }
+    }
+
+    fn compare(&self, reference: &Reference) -> Difference {
+        // A hit is the object and the faces crossed to it; fog and budget both show fog.
+        let key = |id: &[u32; 4]| if id[3] == 1 { (id[0], id[2]) } else { (0, 0) };
+        let n = self.ids.len().max(1) as f64;
+        let hit_differs = self
+            .ids
+            .iter()
+            .zip(&reference.ids)
+            .filter(|(a, b)| key(a) != key(b))
+            .count() as f64
+            / n;
+        let levels: Vec<u32> = self
+            .rgb
+            .iter()
+            .zip(&reference.rgb)
+            .map(|(a, b)| {
+                (0..3)
+                    .map(|c| u32::from(a[c].abs_diff(b[c])))
+                    .max()
+                    .unwrap_or(0)
+            })
+            .collect();
+        Difference {
+            hit_differs,
+            mean_levels: levels.iter().map(|&l| f64::from(l)).sum::<f64>() / n,
+            max_levels: levels.iter().copied().max().unwrap_or(0),
+            over_10_levels: levels.iter().filter(|&&l| l > 10).count() as f64 / n,
+        }
+    }
+}
+
+/// The GPU's picture and hit ids of a setting.
+fn gpu_pixels(
+    harness: &mut Harness,
+    subject: &Subject,
+    gpu: &GpuScene,
+    budget: u32,
+    size: (u32, u32),
+) -> Result<Reference, BenchError> {
+    let words = uniform_words(subject, gpu, size);
+    let colour = harness.frame(size.0, size.1, Output::Colour, &words);
+    harness.draw(&Program::Tracer(gpu.key, Output::Colour), &colour)?;
+    let rgba = harness.read_pixels(&colour)?;
+    let ids_frame = harness.frame(size.0, size.1, Output::HitId, &words);
+    harness.draw(&Program::Tracer(gpu.key, Output::HitId), &ids_frame)?;
+    let id_bytes = harness.read_pixels(&ids_frame)?;
+    let ids: Vec<[u32; 4]> = bytemuck::cast_slice::<u8, u32>(&id_bytes)
+        .chunks_exact(4)
+        .map(|c| [c[0], c[1], c[2], c[3]])
+        .collect();
+    Ok(Reference {
+        exhausted: ids.iter().filter(|id| id[3] == 3 && id[1] == budget).count(),
+        ids,
+        rgb: rgba.chunks_exact(4).map(|p| [p[0], p[1], p[2]]).collect(),
+    })
+}
+
+/// The conditioning factor `G(d)` of DESIGN.md §3.
+#[must_use]
+pub fn growth(geometry: Geometry, d: f64) -> f64 {
+    match geometry {
+        Geometry::Spherical => 1.0,
+        Geometry::Euclidean => 1.0 + d,
+        Geometry::Hyperbolic => d.exp(),
+    }
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    if v.is_empty() {
+        return f64::NAN;
+    }
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// f32 against f64 along `drift_rays` random rays, at each of `drift_crossings`.
+fn drift(subject: &Subject, config: &BenchConfig) -> Vec<DriftRow> {
+    let space = &subject.space;
+    let g = space.geometry;
+    let Some(&most) = config.drift_crossings.iter().max() else {
+        return Vec::new();
+    };
+    let w64 = CellWalker::<DVec4>::new(space);
+    let w32 = CellWalker::<Vec4>::new(space);
+    let rays = sample_rays(space, config.drift_rays, 0xd71f7);
+    let traces: Vec<_> = rays
+        .par_iter()
+        .map(|ray| {
+            let exact = w64.trace(*ray, Limit::Crossings(most));
+            let single = w32.trace(
+                crate::trace::Ray {
+                    point: Vec4::from_f64(ray.point),
+                    tangent: Vec4::from_f64(ray.tangent),
+                },
+                Limit::Crossings(most),
+            );
+            (exact, single)
+        })
+        .collect();
+    config
+        .drift_crossings
+        .iter()
+        .map(|&n| {
+            let mut agree = 0;
+            let (mut positions, mut directions, mut distances) = (vec![], vec![], vec![]);
+            for (exact, single) in &traces {
+                let (Some(a), Some(b)) = (exact.crossings.get(n - 1), single.crossings.get(n - 1))
+                else {
+                    continue;
+                };
+                distances.push(a.distance);
+                let same = exact.crossings[..n]
+                    .iter()
+                    .zip(&single.crossings[..n])
+                    .all(|(x, y)| x.face == y.face);
+                if !same {
+                    continue;
+                }
+                agree += 1;
+                let p32 = g.project_point(b.ray.point.to_f64());
+                positions.push(g.distance(a.ray.point, p32));
+                let v32 = g.unit_tangent(a.ray.point, b.ray.tangent.to_f64());
+                let d = v32 - a.ray.tangent;
+                let chord = g.form(d, d).max(0.0).sqrt();
+                directions.push(2.0 * (0.5 * chord).min(1.0).asin());
+            }
+            let d = median(distances);
+            DriftRow {
+                space: subject.id.clone(),
+                geometry: subject.geometry(),
+                crossings: n,
+                rays: traces.len(),
+                same_faces: agree as f64 / traces.len().max(1) as f64,
+                median_distance: d,
+                max_position_error: positions.iter().copied().fold(0.0, f64::max),
+                median_position_error: median(positions),
+                median_direction_error: median(directions),
+                bound: F32_EPSILON * n as f64 * growth(g, d),
+            }
+        })
+        .collect()
+}
+
+/// The error of the fog cut-off: the f64 picture with it against one traced without it.
+fn cutoff(subject: &Subject, fog_factor: f64, (w, h): (u32, u32)) -> CutoffRow {
+    let scene = subject.scene(fog_factor);
+    let mut uncut = scene.clone();
+    // A weight of 1e-15 puts the cut-off ~34.5 λ away: nothing is cut off that f64 can see.
+    uncut.shading.cutoff_weight = 1e-15;
+    let walker = CellWalker::<DVec4>::new(&subject.space);
+    let g = subject.space.geometry;
+    let errors: Vec<(f64, bool)> = (0..w * h)
+        .into_par_iter()
+        .map(|k| {
+            let ray = subject.camera.ray(g, k % w, k / w, w, h);
+            let cut = first_hit_traced(&walker, &scene, ray, EXACT_BUDGET).end;
+            let full = first_hit_traced(&walker, &uncut, ray, EXACT_BUDGET).end;
+            let error = (colour_of(g, &scene, &cut) - colour_of(g, &uncut, &full))
+                .abs()
+                .max_element();
+            (error, matches!(full, RayEnd::Budget(_)))
+        })
+        .collect();
+    let n = errors.len().max(1) as f64;
+    let max_error = errors.iter().map(|e| e.0).fold(0.0, f64::max);
+    let bound = scene.shading.cutoff_weight;
+    CutoffRow {
+        space: subject.id.clone(),
+        geometry: subject.geometry(),
+        fog_factor,
+        fog_distance: scene.shading.fog_distance,
+        cutoff_distance: scene.shading.cutoff_distance(),
+        bound,
+        max_error,
+        mean_error: errors.iter().map(|e| e.0).sum::<f64>() / n,
+        within_bound: max_error <= bound,
+        reference_budget_exhausted: errors.iter().filter(|e| e.1).count() as f64 / n,
+    }
+}
+
+/// Writes `report` as `bench.json`, one CSV per table and the charts into `dir`.
+pub fn write_report(report: &BenchReport, config: &BenchConfig, dir: &Path) -> Result<Vec<PathBuf>, BenchError> {
+    let write_err = |path: &Path, e: &dyn std::fmt::Display| BenchError::Write {
+        path: path.display().to_string(),
+        error: e.to_string(),
+    };
+    std::fs::create_dir_all(dir).map_err(|e| write_err(dir, &e))?;
+    let mut written = Vec::new();
+    let json = dir.join("bench.json");
+    let body = serde_json::to_string_pretty(&serde_json::json!({
+        "config": config,
+        "report": report,
+    }))
+    .map_err(|e| write_err(&json, &e))?;
+    std::fs::write(&json, body).map_err(|e| write_err(&json, &e))?;
+    written.push(json);
+    let tables: [(&str, Vec<serde_json::Value>); 5] = [
+        ("timings", to_values(&report.timings)),
+        ("errors", to_values(&report.errors)),
+        ("drift", to_values(&report.drift)),
+        ("cutoff", to_values(&report.cutoff)),
+        ("auto_budgets", to_values(&report.auto_budgets)),
+    ];
+    for (name, rows) in tables {
+        let path = dir.join(format!("{name}.csv"));
+        std::fs::write(&path, to_csv(&rows)).map_err(|e| write_err(&path, &e))?;
+        written.push(path);
+    }
+    for (stem, chart) in charts(report) {
+        let path = dir.join(stem);
+        write_chart(&chart, &path)?;
+        written.push(path.with_extension("png"));
+        written.push(path.with_extension("svg"));
+    }
+    Ok(written)
+}
+
+fn to_values<T: Serialize>(rows: &[T]) -> Vec<serde_json::Value> {
+    rows.iter()
+        .map(|r| serde_json::to_value(r).expect("rows are plain data"))
+        .collect()
+}
+
+/// Rows of JSON objects as CSV (columns in the first row's order).
+fn to_csv(rows: &[serde_json::Value]) -> String {
+    let Some(serde_json::Value::Object(first)) = rows.first() else {
+        return String::new();
+    };
+    let columns: Vec<&String> = first.keys().collect();
+    let mut out = columns
+        .iter()
+        .map(|c| c.as_str())
+        .collect::<Vec<_>>()
+        .join(",");
+    out.push('\n');
+    for row in rows {
+        let cells: Vec<String> = columns
+            .iter()
+            .map(|c| match row.get(c.as_str()) {
+                Some(serde_json::Value::String(s)) => s.clone(),
+                Some(serde_json::Value::Null) | None => String::new(),
+                Some(v) => v.to_string(),
+            })
+            .collect();
+        out.push_str(&cells.join(","));
+        out.push('\n');
+    }
+    out
+}
+
+/// The charts of a report: speed against error, error against crossings.
+#[must_use]
+pub fn charts(report: &BenchReport) -> Vec<(&'static str, Chart)> {
+    let mut charts = Vec::new();
+    let spaces: Vec<&String> = {
+        let mut s: Vec<&String> = report.errors.iter().map(|e| &e.space).collect();
+        s.dedup();
+        s
+    };
+    // Speed against error at the largest timed resolution, fixed budgets at the default fog.
+    if let Some(size) = report.timings.iter().map(|t| (t.width, t.height)).max() {
+        let series = spaces
+            .iter()
+            .map(|space| {
+                let points = report
+                    .errors
+                    .iter()
+                    .filter(|e| &&e.space == space && e.budget_from == "fixed")
+                    .filter_map(|e| {
+                        let t = report.timings.iter().find(|t| {
+                            &t.space == *space
+                                && t.budget == e.budget
+                                && t.budget_from == "fixed"
+                                && (t.width, t.height) == size
+                        })?;
+                        Some((t.median_ms, 100.0 * e.hit_differs.max(1e-4)))
+                    })
+                    .collect();
+                Series {
+                    name: space.to_string(),
+                    points,
+                    dashed: false,
+                }
+            })
+            .collect();
+        charts.push((
+            "speed_vs_error",
+            Chart {
+                title: format!(
+                    "Speed against error ({}×{}, crossing budgets {})",
+                    size.0,
+                    size.1,
+                    budget_list(report)
+                ),
+                x_label: "GPU frame time (ms)".into(),
+                y_label: "pixels whose hit differs from f64 (%)".into(),
+                log_x: true,
+                log_y: true,
+                series,
+            },
+        ));
+    }
+    // f32 drift against crossings, with the conditioning bound.
+    let mut series = Vec::new();
+    let mut drift_spaces: Vec<&String> = report.drift.iter().map(|d| &d.space).collect();
+    drift_spaces.dedup();
+    for space in drift_spaces {
+        let rows: Vec<&DriftRow> = report.drift.iter().filter(|d| &d.space == space).collect();
+        series.push(Series {
+            name: space.to_string(),
+            points: rows
+                .iter()
+                .filter(|d| d.median_position_error.is_finite())
+                .map(|d| (d.crossings as f64, d.median_position_error.max(1e-12)))
+                .collect(),
+            dashed: false,
+        });
+    }
+    charts.push((
+        "drift",
+        Chart {
+            title: "f32 against f64: median position error of long rays".into(),
+            x_label: "face crossings".into(),
+            y_label: "geodesic distance f32 to f64".into(),
+            log_x: true,
+            log_y: true,
+            series,
+        },
+    ));
+    charts
+}
+
+fn budget_list(report: &BenchReport) -> String {
+    let mut b: Vec<u32> = report
+        .errors
+        .iter()
+        .filter(|e| e.budget_from == "fixed")
+        .map(|e| e.budget)
+        .collect();
+    b.sort_unstable();
+    b.dedup();
+    b.iter().map(u32::to_string).collect::<Vec<_>>().join(", ")
+}
+

@@ -1,0 +1,107 @@
+//! The automatic crossing budget: the smallest budget with which (almost) every ray that
+//! would show something within the fog cut-off still reaches it.
+//!
+//! A ray that runs out of crossings shows the fog colour. That is already its colour when it
+//! meets nothing before the cut-off, so only rays that hit an object after many crossings
+//! need a large budget. Sampling rays from random points of the cell in random directions
+//! gives the distribution of the crossings a hit needs; the budget is its quantile at
+//! `1 − miss_fraction`. A ray beyond the budget is then wrong by at most its fog weight
+//! `e^(−d/λ)`, and at most `miss_fraction` of the sampled rays are.
+
+use super::{CellWalker, Ray, RayEnd, Scene, first_hit};
+use crate::space::{Space, invariants};
+use glam::{DVec3, DVec4};
+use rayon::prelude::*;
+
+/// The largest budget the automatic choice gives (the GPU loop's bound stays finite).
+pub const MAX_AUTO_BUDGET: u32 = 1024;
+
+/// A small deterministic generator (SplitMix64), so that sampled rays and the budget
+/// chosen from them are the same on every run.
+#[derive(Clone, Debug)]
+pub struct SplitMix64(pub u64);
+
+impl SplitMix64 {
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in `[0, 1)`.
+    pub fn unit(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// Uniform on the unit sphere.
+    pub fn direction(&mut self) -> DVec3 {
+        let z = 2.0 * self.unit() - 1.0;
+        let phi = std::f64::consts::TAU * self.unit();
+        let r = (1.0 - z * z).max(0.0).sqrt();
+        DVec3::new(r * phi.cos(), r * phi.sin(), z)
+    }
+}
+
+/// `count` rays from points spread through the cell's inscribed ball (within `0.95 ×`
+/// inradius of the centre) in directions uniform on the sphere.
+#[must_use]
+pub fn sample_rays(space: &Space, count: usize, seed: u64) -> Vec<Ray<DVec4>> {
+    let g = space.geometry;
+    let reach = 0.95 * invariants::inradius(space);
+    let mut rng = SplitMix64(seed);
+    (0..count)
+        .map(|_| {
+            let at = g.translation(rng.direction(), reach * rng.unit().cbrt()) * space.centre();
+            let point = g.project_point(at);
+            let dir = rng.direction();
+            let tangent = g.unit_tangent(point, g.translation_to(point) * dir.extend(0.0));
+            Ray { point, tangent }
+        })
+        .collect()
+}
+
+/// The budget chosen for a scene and what the sample said about it.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct BudgetChoice {
+    /// Crossings per ray.
+    pub budget: u32,
+    /// Fraction of the sampled rays that would hit something after more crossings than
+    /// `budget` (shown as fog instead).
+    pub missed_fraction: f64,
+    /// The most crossings any sampled hit needed (capped at [`MAX_AUTO_BUDGET`]).
+    pub most_needed: u32,
+    pub samples: usize,
+}
+
+/// The smallest budget with which at most `miss_fraction` of `samples` sampled rays miss an
+/// object they would hit before the fog cut-off; at least 1, at most [`MAX_AUTO_BUDGET`].
+#[must_use]
+pub fn auto_budget(space: &Space, scene: &Scene, miss_fraction: f64, samples: usize) -> BudgetChoice {
+    let walker = CellWalker::<DVec4>::new(space);
+    let rays = sample_rays(space, samples.max(1), 0x5eed_b0d6e7);
+    let cap = MAX_AUTO_BUDGET as usize;
+    let mut needed: Vec<u32> = rays
+        .par_iter()
+        .map(
+            |ray| match first_hit(&walker, scene, *ray, cap) {
+                RayEnd::Hit(h) => h.crossings as u32,
+                // Fog either way: any budget shows it.
+                RayEnd::Fog(_) => 0,
+                RayEnd::Budget(c) => c as u32,
+            },
+        )
+        .collect();
+    needed.sort_unstable();
+    let n = needed.len();
+    let allowed = ((miss_fraction.clamp(0.0, 1.0) * n as f64).floor() as usize).min(n - 1);
+    let budget = needed[n - 1 - allowed].max(1);
+    let missed = needed.iter().filter(|&&c| c > budget).count();
+    BudgetChoice {
+        budget,
+        missed_fraction: missed as f64 / n as f64,
+        most_needed: needed[n - 1],
+        samples: n,
+    }
+}

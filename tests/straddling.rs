@@ -1,0 +1,168 @@
+//! Objects that stick out of the cell through faces are drawn through their images under the
+//! pairings (only the images that meet the cell), so they look whole from everywhere.
+
+use bevy_curved_spaces::space::invariants::inradius;
+use bevy_curved_spaces::space::{SEED_SPACES, seed_space};
+use bevy_curved_spaces::trace::{
+    Ball, Camera, Object, PlaceError, RenderSettings, Scene, SceneParts, render,
+};
+use glam::{DVec3, DVec4};
+
+/// The default scene's edges and vertex balls sit on the cell's boundary and already come in
+/// complete orbits: placing them one by one adds no further image.
+#[test]
+fn the_default_scene_is_closed_under_its_pairings() {
+    for seed in SEED_SPACES {
+        let s = seed.build().expect("seed space builds");
+        let default = Scene::default_for(&s, 1.0);
+        let mut placed = Scene::with_parts(
+            &s,
+            1.0,
+            SceneParts {
+                edges: false,
+                centre_ball: false,
+            },
+        );
+        for o in &default.objects {
+            placed.place(&s, *o).expect("the object is in the cell");
+        }
+        assert_eq!(
+            placed.objects.len(),
+            default.objects.len(),
+            "{}: placing the default scene added images",
+            seed.id
+        );
+    }
+}
+
+/// An empty scene lit only by ambient light (so lighting does not depend on the cell).
+fn ambient_scene(space: &bevy_curved_spaces::space::Space) -> Scene {
+    let mut scene = Scene::with_parts(
+        space,
+        2.0,
+        SceneParts {
+            edges: false,
+            centre_ball: false,
+        },
+    );
+    scene.shading.ambient = 1.0;
+    scene
+}
+
+/// Translating the whole scene and the camera by the same vector changes nothing in the
+/// 3-torus (its translations commute with the deck group): a ball at the centre and the same
+/// ball moved onto a face corner (straddling three faces) give the same picture when placed,
+/// and a visibly different one when the ball is just pushed into the scene.
+#[test]
+fn a_ball_straddling_torus_faces_looks_as_if_it_were_whole() {
+    let s = seed_space("3-torus").expect("builds");
+    let g = s.geometry;
+    let shift = DVec3::new(0.5, 0.5, 0.35);
+    let ball = |at: DVec3| {
+        Object::Ball(Ball::new(
+            g,
+            g.from_chart(at).expect("chart point"),
+            0.3,
+            DVec3::new(0.9, 0.6, 0.3),
+        ))
+    };
+    let eye = DVec3::new(0.1, -0.2, 0.38);
+    let target = DVec3::new(0.0, 0.0, 0.0);
+    let settings = RenderSettings {
+        width: 96,
+        height: 54,
+        max_crossings: 64,
+    };
+    let centred = {
+        let mut scene = ambient_scene(&s);
+        scene.place(&s, ball(DVec3::ZERO)).expect("placed");
+        let camera = Camera::looking_at(g, eye, target, 70.0).expect("camera");
+        render(&s, &scene, &camera, &settings)
+    };
+    // The shifted camera, wrapped back into the cell [-0.5, 0.5]³.
+    let wrap = |v: DVec3| (v + DVec3::splat(0.5)).rem_euclid(DVec3::ONE) - DVec3::splat(0.5);
+    let camera = Camera::looking_at(g, wrap(eye + shift), wrap(eye + shift) + (target - eye), 70.0)
+        .expect("camera");
+    let mut straddling = ambient_scene(&s);
+    let added = straddling.place(&s, ball(shift)).expect("placed");
+    assert!(added >= 4, "a ball over a corner of three faces needs images, got {added}");
+    let placed = render(&s, &straddling, &camera, &settings);
+    let mut naive = ambient_scene(&s);
+    naive.objects.push(ball(shift));
+    let pushed = render(&s, &naive, &camera, &settings);
+
+    let differing = |a: &image::RgbImage, b: &image::RgbImage| {
+        a.pixels()
+            .zip(b.pixels())
+            .filter(|(p, q)| (0..3).any(|c| p[c].abs_diff(q[c]) > 2))
+            .count() as f64
+            / f64::from(a.width() * a.height())
+    };
+    let with_images = differing(&centred, &placed);
+    let without = differing(&centred, &pushed);
+    assert!(
+        with_images < 0.002,
+        "{:.2} % of pixels differ with the images",
+        100.0 * with_images
+    );
+    assert!(
+        without > 0.05,
+        "without images only {:.2} % differ: the test would not see a missing image",
+        100.0 * without
+    );
+}
+
+/// In every space a ball near a face gets images that all meet the cell, and a point of the
+/// ball just outside a face is inside the image beyond its partner.
+#[test]
+fn images_cover_the_part_outside_each_face() {
+    for seed in SEED_SPACES {
+        let s = seed.build().expect("seed space builds");
+        let g = s.geometry;
+        let r = inradius(&s);
+        let face = &s.faces[0];
+        // A ball centred 0.1 r inside face 0 with radius 0.3 r.
+        let centre = g.from_chart(face.normal * face.offset).expect("chart point");
+        let inward = g.tangent_from_chart(centre, -face.normal).expect("direction");
+        let (c, _) = g.geodesic(centre, inward, 0.1 * r);
+        let c = g.project_point(c);
+        let mut scene = ambient_scene(&s);
+        scene
+            .place(&s, Object::Ball(Ball::new(g, c, 0.3 * r, DVec3::ONE)))
+            .expect("placed");
+        assert!(scene.objects.len() >= 2, "{}: no image", seed.id);
+        // The point 0.1 r beyond face 0 along its normal is in the ball (0.2 r from c);
+        // the pairing maps it inside the cell, where an image must contain it.
+        let (beyond, _) = g.geodesic(centre, -inward, 0.1 * r);
+        let mapped = g.project_point(face.pairing * g.project_point(beyond));
+        assert!(s.outside_by(mapped) < 0.0, "{}: mapped point outside", seed.id);
+        let covered = scene.objects.iter().any(|o| match o {
+            Object::Ball(b) => g.distance(b.centre, mapped) < b.radius,
+            Object::Tube(_) => false,
+        });
+        assert!(covered, "{}: no image covers the part beyond face 0", seed.id);
+    }
+}
+
+#[test]
+fn misplaced_and_oversized_objects_are_refused() {
+    let s = seed_space("poincare").expect("builds");
+    let g = s.geometry;
+    let far = g.from_chart(DVec3::new(3.0, 0.0, 0.0)).expect("chart point");
+    let mut scene = ambient_scene(&s);
+    let outside = scene.place(&s, Object::Ball(Ball::new(g, far, 0.01, DVec3::ONE)));
+    assert!(
+        matches!(outside, Err(PlaceError::Outside(d, _)) if d > 0.1),
+        "{outside:?}"
+    );
+    let t = seed_space("3-torus").expect("builds");
+    let huge = scene.place(
+        &t,
+        Object::Ball(Ball::new(t.geometry, DVec4::W, 9.0, DVec3::ONE)),
+    );
+    assert_eq!(huge, Err(PlaceError::TooLarge));
+    assert!(
+        PlaceError::TooLarge.to_string().contains("smaller than the cell"),
+        "the message says what to do"
+    );
+}
