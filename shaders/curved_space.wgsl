@@ -3,6 +3,9 @@
 //
 // Shader defs (set by src/render/gpu.rs, one pipeline per combination):
 //   SPHERICAL | EUCLIDEAN | HYPERBOLIC   the geometry: only its formulas are compiled
+//   CURVED                               set with SPHERICAL or HYPERBOLIC
+//   GENERAL                              (benchmark) all three geometries and CURVED are set,
+//                                        the geometry and counts are read at run time
 //   FACE_COUNT, PARTNER_VECS             faces of the cell (partners packed 4 to a vec4<u32>)
 //   BALLS + BALL_COUNT, TUBES + TUBE_COUNT   the object kinds present and their numbers
 //   HIT_ID                               (benchmark) output what each ray met instead of a
@@ -65,12 +68,24 @@ struct SpaceUniform {
 #ifdef TUBES
     tubes: array<Tube, #{TUBE_COUNT}>,
 #endif
+#ifdef GENERAL
+    // κ, face count, ball count, tube count.
+    general: vec4<f32>,
+#endif
 }
 
 @group(0) @binding(0) var<uniform> space: SpaceUniform;
 
 const F32_EPSILON: f32 = 1.1920929e-7;
 
+#ifdef GENERAL
+// The unspecialised variant (benchmark only): every geometry's formulas are compiled and the
+// geometry and counts are read from the uniform at run time, over full-size arrays.
+fn kappa() -> f32 { return space.general.x; }
+fn face_count() -> u32 { return u32(space.general.y); }
+fn ball_count() -> u32 { return u32(space.general.z); }
+fn tube_count() -> u32 { return u32(space.general.w); }
+#else
 #ifdef SPHERICAL
 const KAPPA: f32 = 1.0;
 #endif
@@ -80,47 +95,76 @@ const KAPPA: f32 = 0.0;
 #ifdef HYPERBOLIC
 const KAPPA: f32 = -1.0;
 #endif
+// Constants of the specialised shader (the branches on them fold away when compiled).
+fn kappa() -> f32 { return KAPPA; }
+fn face_count() -> u32 { return #{FACE_COUNT}u; }
+#ifdef BALLS
+fn ball_count() -> u32 { return #{BALL_COUNT}u; }
+#endif
+#ifdef TUBES
+fn tube_count() -> u32 { return #{TUBE_COUNT}u; }
+#endif
+#endif
 
 // ---------------------------------------------------------------------------------------
 // Geometry (src/geometry/mod.rs)
 
 fn form(a: vec4<f32>, b: vec4<f32>) -> f32 {
 #ifdef EUCLIDEAN
-    return dot(a.xyz, b.xyz);
-#else
-    return dot(a.xyz, b.xyz) + KAPPA * a.w * b.w;
+    if kappa() == 0.0 {
+        return dot(a.xyz, b.xyz);
+    }
 #endif
+#ifdef CURVED
+    if kappa() != 0.0 {
+        return dot(a.xyz, b.xyz) + kappa() * a.w * b.w;
+    }
+#endif
+    return 0.0;
 }
 
 // Back onto the model along the ray through the origin of R⁴ (the chart point is kept).
 fn project_point(p: vec4<f32>) -> vec4<f32> {
 #ifdef EUCLIDEAN
-    return p / p.w;
+    if kappa() == 0.0 {
+        return p / p.w;
+    }
 #endif
 #ifdef SPHERICAL
-    return p * (select(1.0, -1.0, p.w < 0.0) / length(p));
+    if kappa() > 0.0 {
+        return p * (select(1.0, -1.0, p.w < 0.0) / length(p));
+    }
 #endif
 #ifdef HYPERBOLIC
-    let s = select(1.0, -1.0, p.w < 0.0);
-    let q = -form(p, p);
-    if q > 16.0 * F32_EPSILON * p.w * p.w {
-        return p * (s / sqrt(q));
+    if kappa() < 0.0 {
+        let s = select(1.0, -1.0, p.w < 0.0);
+        let q = -form(p, p);
+        if q > 16.0 * F32_EPSILON * p.w * p.w {
+            return p * (s / sqrt(q));
+        }
+        // Rounding pushed the point onto or past the sphere at infinity: pull its chart point
+        // inside, keeping its direction from the origin.
+        let w = abs(p.w);
+        let f = sqrt(1.0 - 8.0 * F32_EPSILON) * w / length(p.xyz);
+        let x = vec4<f32>(p.xyz * f, w);
+        return x / sqrt(-form(x, x));
     }
-    // Rounding pushed the point onto or past the sphere at infinity: pull its chart point
-    // inside, keeping its direction from the origin.
-    let w = abs(p.w);
-    let f = sqrt(1.0 - 8.0 * F32_EPSILON) * w / length(p.xyz);
-    let x = vec4<f32>(p.xyz * f, w);
-    return x / sqrt(-form(x, x));
 #endif
+    return p;
 }
 
 fn project_tangent(p: vec4<f32>, v: vec4<f32>) -> vec4<f32> {
 #ifdef EUCLIDEAN
-    return v - p * (v.w / p.w);
-#else
-    return v - p * (form(p, v) / form(p, p));
+    if kappa() == 0.0 {
+        return v - p * (v.w / p.w);
+    }
 #endif
+#ifdef CURVED
+    if kappa() != 0.0 {
+        return v - p * (form(p, v) / form(p, p));
+    }
+#endif
+    return v;
 }
 
 fn unit_tangent(p: vec4<f32>, v: vec4<f32>) -> vec4<f32> {
@@ -131,41 +175,62 @@ fn unit_tangent(p: vec4<f32>, v: vec4<f32>) -> vec4<f32> {
 // S(t): sin t, t or sinh t.
 fn s_of(t: f32) -> f32 {
 #ifdef SPHERICAL
-    return sin(t);
+    if kappa() > 0.0 {
+        return sin(t);
+    }
 #endif
 #ifdef EUCLIDEAN
-    return t;
+    if kappa() == 0.0 {
+        return t;
+    }
 #endif
 #ifdef HYPERBOLIC
-    return sinh(t);
+    if kappa() < 0.0 {
+        return sinh(t);
+    }
 #endif
+    return 0.0;
 }
 
 // Length of the segment from p to p + T v with T = num/den: atan T, T, atanh T.
 fn distance_from_ratio(num: f32, den: f32) -> f32 {
 #ifdef SPHERICAL
-    return atan2(num, den);
+    if kappa() > 0.0 {
+        return atan2(num, den);
+    }
 #endif
 #ifdef EUCLIDEAN
-    return num / den;
+    if kappa() == 0.0 {
+        return num / den;
+    }
 #endif
 #ifdef HYPERBOLIC
-    return 0.5 * log((den + num) / max(den - num, F32_EPSILON * den));
+    if kappa() < 0.0 {
+        return 0.5 * log((den + num) / max(den - num, F32_EPSILON * den));
+    }
 #endif
+    return 0.0;
 }
 
 // Geodesic distance in forms that stay accurate for near and far points.
 fn distance(p: vec4<f32>, q: vec4<f32>) -> f32 {
 #ifdef SPHERICAL
-    return 2.0 * atan2(length(p - q), length(p + q));
+    if kappa() > 0.0 {
+        return 2.0 * atan2(length(p - q), length(p + q));
+    }
 #endif
 #ifdef EUCLIDEAN
-    return length(p.xyz / p.w - q.xyz / q.w);
+    if kappa() == 0.0 {
+        return length(p.xyz / p.w - q.xyz / q.w);
+    }
 #endif
 #ifdef HYPERBOLIC
-    let d = p - q;
-    return 2.0 * asinh(sqrt(max(form(d, d), 0.0)) * 0.5);
+    if kappa() < 0.0 {
+        let d = p - q;
+        return 2.0 * asinh(sqrt(max(form(d, d), 0.0)) * 0.5);
+    }
 #endif
+    return 0.0;
 }
 
 fn tangent_towards(p: vec4<f32>, q: vec4<f32>) -> vec4<f32> {
@@ -200,23 +265,29 @@ fn in_range(s: f32, hi: f32) -> bool {
 fn hit_ball(ball: Ball, p: vec4<f32>, v: vec4<f32>, hi: f32) -> f32 {
     let c = ball.centre;
 #ifdef EUCLIDEAN
-    let d = p.xyz - c.xyz;
-    let r = ball.colour.w;
-    let t = roots(dot(v.xyz, v.xyz), 2.0 * dot(d, v.xyz), dot(d, d) - r * r);
-    if in_range(t.x, hi) { return t.x; }
-    if in_range(t.y, hi) { return t.y; }
-    return NO_HIT;
-#else
-    // (⟨p,c⟩ + s⟨v,c⟩)² = C(ρ)² (1 + κ s²), on the sheet where ⟨X,c⟩ has the sign of κ C(ρ).
-    let a = form(p, c);
-    let b = form(v, c);
-    let cr = ball.colour.w;
-    let sheet = KAPPA * cr;
-    let t = roots(b * b - KAPPA * cr * cr, 2.0 * a * b, a * a - cr * cr);
-    if in_range(t.x, hi) && (a + t.x * b) * sheet > 0.0 { return t.x; }
-    if in_range(t.y, hi) && (a + t.y * b) * sheet > 0.0 { return t.y; }
-    return NO_HIT;
+    if kappa() == 0.0 {
+        let d = p.xyz - c.xyz;
+        let r = ball.colour.w;
+        let t = roots(dot(v.xyz, v.xyz), 2.0 * dot(d, v.xyz), dot(d, d) - r * r);
+        if in_range(t.x, hi) { return t.x; }
+        if in_range(t.y, hi) { return t.y; }
+        return NO_HIT;
+    }
 #endif
+#ifdef CURVED
+    if kappa() != 0.0 {
+        // (⟨p,c⟩ + s⟨v,c⟩)² = C(ρ)² (1 + κ s²), on the sheet where ⟨X,c⟩ has the sign of κ C(ρ).
+        let a = form(p, c);
+        let b = form(v, c);
+        let cr = ball.colour.w;
+        let sheet = kappa() * cr;
+        let t = roots(b * b - kappa() * cr * cr, 2.0 * a * b, a * a - cr * cr);
+        if in_range(t.x, hi) && (a + t.x * b) * sheet > 0.0 { return t.x; }
+        if in_range(t.y, hi) && (a + t.y * b) * sheet > 0.0 { return t.y; }
+        return NO_HIT;
+    }
+#endif
+    return NO_HIT;
 }
 #endif
 
@@ -224,10 +295,16 @@ fn hit_ball(ball: Ball, p: vec4<f32>, v: vec4<f32>, hi: f32) -> f32 {
 // (σ, γ) with σ/γ = S(τ)/C(τ) for the foot of x at distance τ from a along the axis.
 fn tube_foot_coordinates(tube: Tube, x: vec4<f32>) -> vec2<f32> {
 #ifdef EUCLIDEAN
-    return vec2<f32>(dot(x.xyz / x.w - tube.a.xyz, tube.towards_b.xyz), 1.0);
-#else
-    return vec2<f32>(form(x, tube.towards_b), KAPPA * form(x, tube.a));
+    if kappa() == 0.0 {
+        return vec2<f32>(dot(x.xyz / x.w - tube.a.xyz, tube.towards_b.xyz), 1.0);
+    }
 #endif
+#ifdef CURVED
+    if kappa() != 0.0 {
+        return vec2<f32>(form(x, tube.towards_b), kappa() * form(x, tube.a));
+    }
+#endif
+    return vec2<f32>(0.0);
 }
 
 fn over_segment(tube: Tube, x: vec4<f32>) -> bool {
@@ -237,31 +314,43 @@ fn over_segment(tube: Tube, x: vec4<f32>) -> bool {
 
 fn tube_foot(tube: Tube, x: vec4<f32>) -> vec4<f32> {
 #ifdef EUCLIDEAN
-    return tube.a + tube_foot_coordinates(tube, x).x * tube.towards_b;
-#else
-    return project_point(KAPPA * form(x, tube.a) * tube.a + form(x, tube.towards_b) * tube.towards_b);
+    if kappa() == 0.0 {
+        return tube.a + tube_foot_coordinates(tube, x).x * tube.towards_b;
+    }
 #endif
+#ifdef CURVED
+    if kappa() != 0.0 {
+        return project_point(kappa() * form(x, tube.a) * tube.a + form(x, tube.towards_b) * tube.towards_b);
+    }
+#endif
+    return x;
 }
 
 fn hit_tube(tube: Tube, p: vec4<f32>, v: vec4<f32>, hi: f32) -> f32 {
+    var t = vec2<f32>(NO_HIT, NO_HIT);
 #ifdef EUCLIDEAN
-    let u = tube.towards_b.xyz;
-    let d0 = p.xyz - tube.a.xyz;
-    let d = d0 - dot(d0, u) * u;
-    let w = v.xyz - dot(v.xyz, u) * u;
-    let t = roots(dot(w, w), 2.0 * dot(d, w), dot(d, d) - tube.colour.w);
-#else
-    // κ⟨X,e1⟩² + ⟨X,e2⟩² = C(ρ)² ⟨X,X⟩ with ⟨X,X⟩ = κ + s², e1 = a, e2 = towards_b.
-    let a0 = form(p, tube.a);
-    let a1 = form(v, tube.a);
-    let b0 = form(p, tube.towards_b);
-    let b1 = form(v, tube.towards_b);
-    let cr2 = tube.colour.w;
-    let t = roots(
-        KAPPA * a1 * a1 + b1 * b1 - cr2,
-        2.0 * (KAPPA * a0 * a1 + b0 * b1),
-        KAPPA * a0 * a0 + b0 * b0 - KAPPA * cr2,
-    );
+    if kappa() == 0.0 {
+        let u = tube.towards_b.xyz;
+        let d0 = p.xyz - tube.a.xyz;
+        let d = d0 - dot(d0, u) * u;
+        let w = v.xyz - dot(v.xyz, u) * u;
+        t = roots(dot(w, w), 2.0 * dot(d, w), dot(d, d) - tube.colour.w);
+    }
+#endif
+#ifdef CURVED
+    if kappa() != 0.0 {
+        // κ⟨X,e1⟩² + ⟨X,e2⟩² = C(ρ)² ⟨X,X⟩ with ⟨X,X⟩ = κ + s², e1 = a, e2 = towards_b.
+        let a0 = form(p, tube.a);
+        let a1 = form(v, tube.a);
+        let b0 = form(p, tube.towards_b);
+        let b1 = form(v, tube.towards_b);
+        let cr2 = tube.colour.w;
+        t = roots(
+            kappa() * a1 * a1 + b1 * b1 - cr2,
+            2.0 * (kappa() * a0 * a1 + b0 * b1),
+            kappa() * a0 * a0 + b0 * b0 - kappa() * cr2,
+        );
+    }
 #endif
     if in_range(t.x, hi) && over_segment(tube, p + t.x * v) { return t.x; }
     if in_range(t.y, hi) && over_segment(tube, p + t.y * v) { return t.y; }
@@ -319,7 +408,7 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
         var face = 0xffffffffu;
         var num = 0.0;
         var den = 1.0;
-        for (var f = 0u; f < #{FACE_COUNT}u; f += 1u) {
+        for (var f = 0u; f < face_count(); f += 1u) {
             let n = space.covectors[f];
             let dn = dot(n, v);
             if f == skip || !(dn > 0.0) {
@@ -344,7 +433,7 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
         var object = 0u;
 #endif
 #ifdef BALLS
-        for (var i = 0u; i < #{BALL_COUNT}u; i += 1u) {
+        for (var i = 0u; i < ball_count(); i += 1u) {
             let s = hit_ball(space.balls[i], p, v, s_hit);
             if s < s_hit {
                 s_hit = s;
@@ -359,7 +448,7 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
 #endif
 #ifdef TUBES
         var tube_hit = 0xffffffffu;
-        for (var i = 0u; i < #{TUBE_COUNT}u; i += 1u) {
+        for (var i = 0u; i < tube_count(); i += 1u) {
             let s = hit_tube(space.tubes[i], p, v, s_hit);
             if s < s_hit {
                 s_hit = s;
@@ -367,7 +456,7 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
                 hit = true;
 #ifdef HIT_ID
 #ifdef BALLS
-                object = #{BALL_COUNT}u + i + 1u;
+                object = ball_count() + i + 1u;
 #else
                 object = i + 1u;
 #endif
@@ -405,7 +494,7 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
         }
         // Cross: exit point (N·v) p − (N·p) v, tangent κ (N·p) p + (N·v) v, then the pairing.
         let at_face = p * den + v * num;
-        let along = p * (-KAPPA * num) + v * den;
+        let along = p * (-kappa() * num) + v * den;
         let m = space.pairings[face];
         p = project_point(m * at_face);
         v = unit_tangent(p, m * along);

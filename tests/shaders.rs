@@ -49,6 +49,7 @@ fn every_shader_def_combination_validates_and_matches_the_packed_layout() {
                         faces,
                         balls,
                         tubes,
+                        general: false,
                     };
                     assert_eq!(
                         validate(&key),
@@ -89,6 +90,7 @@ fn each_geometry_compiles_only_its_own_formulas() {
             faces: 6,
             balls: 1,
             tubes: 1,
+            general: false,
         };
         let module = compose(&key).expect("composes");
         let text = format!("{:?}", module.functions);
@@ -112,6 +114,7 @@ fn each_geometry_compiles_only_its_own_formulas() {
         faces: 12,
         balls: 3,
         tubes: 0,
+        general: false,
     };
     let module = compose(&key).expect("composes");
     assert!(
@@ -198,6 +201,7 @@ fn the_hit_id_variant_validates_and_writes_four_integers() {
                 faces: 12,
                 balls,
                 tubes,
+                general: false,
             };
             let mut defs = key.shader_defs();
             defs.push(ShaderDefVal::from("HIT_ID"));
@@ -224,5 +228,38 @@ fn the_hit_id_variant_validates_and_writes_four_integers() {
                 "{key:?}"
             );
         }
+    }
+}
+
+/// The benchmark's unspecialised variant compiles every geometry's formulas, validates, and
+/// the generalised packing of every seed scene has naga's layout.
+#[test]
+fn the_general_variant_holds_every_geometry_and_packs_to_its_layout() {
+    for seed in SEED_SPACES {
+        let space = seed.build().expect("seed space builds");
+        let scene = Scene::default_for(&space, Shading::default_fog_distance(&space));
+        let gpu = GpuScene::new(&space, &scene, 16).expect("packs");
+        let general = gpu.generalised().expect("fits the general capacity");
+        assert!(general.key.general);
+        assert_eq!(
+            (general.words.len() + VIEW_WORDS) * 4,
+            validate(&general.key),
+            "{}: generalised words differ from the general shader's uniform",
+            seed.id
+        );
+        assert_eq!(general.generalised(), None, "already general");
+    }
+    let key = GpuScene::new(
+        &SEED_SPACES[0].build().expect("builds"),
+        &Scene::default_for(&SEED_SPACES[0].build().expect("builds"), 1.0),
+        4,
+    )
+    .expect("packs")
+    .generalised()
+    .expect("general")
+    .key;
+    let text = format!("{:?}", compose(&key).expect("composes").functions);
+    for f in ["Sin", "Sinh", "Atan2", "Asinh", "Log"] {
+        assert!(text.contains(&format!("fun: {f},")), "general shader lacks {f}");
     }
 }

@@ -55,7 +55,7 @@ fn ambient_scene(space: &bevy_curved_spaces::space::Space) -> Scene {
 /// and a visibly different one when the ball is just pushed into the scene.
 #[test]
 fn a_ball_straddling_torus_faces_looks_as_if_it_were_whole() {
-    let s = seed_space("3-torus").expect("builds");
+    let s = seed_space("torus").expect("builds");
     let g = s.geometry;
     let shift = DVec3::new(0.5, 0.5, 0.35);
     let ball = |at: DVec3| {
@@ -155,7 +155,7 @@ fn misplaced_and_oversized_objects_are_refused() {
         matches!(outside, Err(PlaceError::Outside(d, _)) if d > 0.1),
         "{outside:?}"
     );
-    let t = seed_space("3-torus").expect("builds");
+    let t = seed_space("torus").expect("builds");
     let huge = scene.place(
         &t,
         Object::Ball(Ball::new(t.geometry, DVec4::W, 9.0, DVec3::ONE)),

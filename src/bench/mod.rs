@@ -89,7 +89,7 @@ impl BenchConfig {
     #[must_use]
     pub fn quick() -> Self {
         Self {
-            spaces: vec!["3-torus".into(), "poincare".into(), "seifert-weber".into()],
+            spaces: vec!["torus".into(), "poincare".into(), "seifert-weber".into()],
             sizes: vec![(160, 90)],
             error_size: (160, 90),
             budgets: vec![4, 16],
@@ -161,10 +161,15 @@ pub struct ErrorRow {
     pub hit_differs: f64,
     /// Pixels whose hit differs from the f64 reference with the same budget: f32's share.
     pub hit_differs_same_budget: f64,
+    /// The floor under that share: pixels whose f64 hit changes when only the camera ray is
+    /// rounded to f32 (what any f32 tracer gets wrong at best, DESIGN.md §3). Far away in H³
+    /// a pixel covers many cells, so the hit there is decided below the pixel's size.
+    pub hit_floor_f32: f64,
     /// Colour error against the exact reference, in 8-bit levels.
     pub mean_levels: f64,
     pub max_levels: u32,
-    /// Pixels more than 10 levels off the exact reference.
+    /// Pixels more than 2 and more than 10 levels off the exact reference.
+    pub over_2_levels: f64,
     pub over_10_levels: f64,
 }
 
@@ -219,6 +224,24 @@ pub struct AutoBudgetRow {
     pub choice: BudgetChoice,
 }
 
+/// The specialised shader against the unspecialised one (same view, same scene).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SpecialisationRow {
+    pub space: String,
+    pub geometry: &'static str,
+    pub width: u32,
+    pub height: u32,
+    pub budget: u32,
+    pub specialised_ms: f64,
+    pub general_ms: f64,
+    /// `general_ms / specialised_ms`: how much faster specialising makes the frame.
+    pub gain: f64,
+    pub specialised_uniform_bytes: usize,
+    pub general_uniform_bytes: usize,
+    /// Pixels that differ between the two pictures (they compute the same formulas).
+    pub differing_pixels: f64,
+}
+
 /// Everything one run measured.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct BenchReport {
@@ -231,6 +254,7 @@ pub struct BenchReport {
     pub drift: Vec<DriftRow>,
     pub cutoff: Vec<CutoffRow>,
     pub auto_budgets: Vec<AutoBudgetRow>,
+    pub specialisation: Vec<SpecialisationRow>,
 }
 
 /// One space with what the benchmark needs of it.
@@ -280,7 +304,7 @@ pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, 
         Some(Harness::new()?)
     };
     let gpu_steps = if harness.is_some() {
-        (config.budgets.len() + config.fog_factors.len()) * (config.sizes.len() + 1)
+        (config.budgets.len() + config.fog_factors.len()) * (config.sizes.len() + 1) + 1
     } else {
         0
     };
@@ -346,6 +370,15 @@ pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, 
                 .map_or(64, |b| b.2);
             settings.push((budget, "auto-high".to_string(), fog));
         }
+        progress.set_message(format!("{}: specialised against general shader", subject.id));
+        let auto_default = budgets
+            .iter()
+            .find(|(f, q, _)| *f == DEFAULT_FOG_FACTOR && *q == Quality::High)
+            .map_or(32, |b| b.2);
+        report
+            .specialisation
+            .push(specialisation(harness, subject, auto_default, config)?);
+        progress.inc(1);
         let mut exact_cache: Vec<(f64, Reference)> = Vec::new();
         for (budget, from, fog) in settings {
             let scene = subject.scene(fog);
@@ -385,12 +418,21 @@ pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, 
             let exact = match exact_cache.iter().find(|(f, _)| *f == fog) {
                 Some((_, r)) => r.clone(),
                 None => {
-                    let r = Reference::trace(subject, &scene, config.error_size, EXACT_BUDGET);
+                    let r = Reference::trace(
+                        subject,
+                        &scene,
+                        config.error_size,
+                        EXACT_BUDGET,
+                        false,
+                    );
                     exact_cache.push((fog, r.clone()));
                     r
                 }
             };
-            let same = Reference::trace(subject, &scene, config.error_size, budget as usize);
+            let same =
+                Reference::trace(subject, &scene, config.error_size, budget as usize, false);
+            let rounded =
+                Reference::trace(subject, &scene, config.error_size, budget as usize, true);
             let measured = gpu_pixels(harness, subject, &gpu, budget, config.error_size)?;
             let against_exact = measured.compare(&exact);
             let against_same = measured.compare(&same);
@@ -404,8 +446,10 @@ pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, 
                 height: config.error_size.1,
                 hit_differs: against_exact.hit_differs,
                 hit_differs_same_budget: against_same.hit_differs,
+                hit_floor_f32: rounded.compare(&same).hit_differs,
                 mean_levels: against_exact.mean_levels,
                 max_levels: against_exact.max_levels,
+                over_2_levels: against_exact.over_2_levels,
                 over_10_levels: against_exact.over_10_levels,
             });
             progress.inc(1);
@@ -473,6 +517,66 @@ fn time_setting(
     Ok((Stats::of(traced), Stats::of(base)))
 }
 
+/// Times the specialised and the unspecialised shader on the same view, interleaved, at the
+/// middle timed resolution.
+fn specialisation(
+    harness: &mut Harness,
+    subject: &Subject,
+    budget: u32,
+    config: &BenchConfig,
+) -> Result<SpecialisationRow, BenchError> {
+    let scene = subject.scene(DEFAULT_FOG_FACTOR);
+    let packing_error = |error| BenchError::Scene {
+        space: subject.id.clone(),
+        error,
+    };
+    let special = GpuScene::new(&subject.space, &scene, budget).map_err(packing_error)?;
+    let general = special.generalised().ok_or(BenchError::Empty(
+        "the scene is larger than the general shader's capacity",
+    ))?;
+    let mut sizes = config.sizes.clone();
+    sizes.sort_unstable();
+    let (w, h) = sizes[sizes.len() / 2];
+    let a = harness.frame(w, h, Output::Colour, &uniform_words(subject, &special, (w, h)));
+    let b = harness.frame(w, h, Output::Colour, &uniform_words(subject, &general, (w, h)));
+    let (pa, pb) = (
+        Program::Tracer(special.key, Output::Colour),
+        Program::Tracer(general.key, Output::Colour),
+    );
+    harness.draw(&pa, &a)?;
+    harness.draw(&pb, &b)?;
+    let pixels_a = harness.read_pixels(&a)?;
+    let pixels_b = harness.read_pixels(&b)?;
+    let differing = pixels_a
+        .chunks_exact(4)
+        .zip(pixels_b.chunks_exact(4))
+        .filter(|(x, y)| x != y)
+        .count();
+    let (mut ta, mut tb) = (Vec::new(), Vec::new());
+    let start = std::time::Instant::now();
+    while ta.len() < config.max_frames.max(1)
+        && (ta.len() < config.min_frames.max(1)
+            || start.elapsed().as_secs_f64() < config.min_seconds)
+    {
+        ta.push(harness.draw(&pa, &a)?);
+        tb.push(harness.draw(&pb, &b)?);
+    }
+    let (sa, sb) = (Stats::of(ta), Stats::of(tb));
+    Ok(SpecialisationRow {
+        space: subject.id.clone(),
+        geometry: subject.geometry(),
+        width: w,
+        height: h,
+        budget,
+        specialised_ms: sa.median,
+        general_ms: sb.median,
+        gain: sb.median / sa.median,
+        specialised_uniform_bytes: special.key.uniform_bytes(),
+        general_uniform_bytes: general.key.uniform_bytes(),
+        differing_pixels: differing as f64 / f64::from(w * h),
+    })
+}
+
 /// Per pixel: what the ray met (`[object + 1, crossings, path, end]`) and its 8-bit colour.
 #[derive(Clone, Debug, PartialEq)]
 struct Reference {
@@ -488,6 +592,7 @@ struct Difference {
     hit_differs: f64,
     mean_levels: f64,
     max_levels: u32,
+    over_2_levels: f64,
     over_10_levels: f64,
 }
 
@@ -514,15 +619,26 @@ fn gpu_indices(scene: &Scene) -> Vec<u32> {
 }
 
 impl Reference {
-    /// The f64 reference picture with what each ray met.
-    fn trace(subject: &Subject, scene: &Scene, (w, h): (u32, u32), budget: usize) -> Self {
+    /// The f64 reference picture with what each ray met; with `round_start`, each camera ray
+    /// is first rounded to f32 (then traced in f64).
+    fn trace(
+        subject: &Subject,
+        scene: &Scene,
+        (w, h): (u32, u32),
+        budget: usize,
+        round_start: bool,
+    ) -> Self {
         let walker = CellWalker::<DVec4>::new(&subject.space);
         let index = gpu_indices(scene);
         let g = subject.space.geometry;
         let pixels: Vec<([u32; 4], [u8; 3], bool)> = (0..w * h)
             .into_par_iter()
             .map(|k| {
-                let ray = subject.camera.ray(g, k % w, k / w, w, h);
+                let mut ray = subject.camera.ray(g, k % w, k / w, w, h);
+                if round_start {
+                    ray.point = Vec4::from_f64(ray.point).to_f64();
+                    ray.tangent = Vec4::from_f64(ray.tangent).to_f64();
+                }
                 let traced = first_hit_traced(&walker, scene, ray, budget);
                 let colour = colour_of(g, scene, &traced.end).to_array().map(to_byte);
                 let exhausted = matches!(traced.end, RayEnd::Budget(c) if c == budget);
@@ -562,6 +678,7 @@ impl Reference {
             hit_differs,
             mean_levels: levels.iter().map(|&l| f64::from(l)).sum::<f64>() / n,
             max_levels: levels.iter().copied().max().unwrap_or(0),
+            over_2_levels: levels.iter().filter(|&&l| l > 2).count() as f64 / n,
             over_10_levels: levels.iter().filter(|&&l| l > 10).count() as f64 / n,
         }
     }
@@ -732,12 +849,13 @@ pub fn write_report(report: &BenchReport, config: &BenchConfig, dir: &Path) -> R
     .map_err(|e| write_err(&json, &e))?;
     std::fs::write(&json, body).map_err(|e| write_err(&json, &e))?;
     written.push(json);
-    let tables: [(&str, Vec<serde_json::Value>); 5] = [
+    let tables: [(&str, Vec<serde_json::Value>); 6] = [
         ("timings", to_values(&report.timings)),
         ("errors", to_values(&report.errors)),
         ("drift", to_values(&report.drift)),
         ("cutoff", to_values(&report.cutoff)),
         ("auto_budgets", to_values(&report.auto_budgets)),
+        ("specialisation", to_values(&report.specialisation)),
     ];
     for (name, rows) in tables {
         let path = dir.join(format!("{name}.csv"));
@@ -797,46 +915,60 @@ pub fn charts(report: &BenchReport) -> Vec<(&'static str, Chart)> {
     };
     // Speed against error at the largest timed resolution, fixed budgets at the default fog.
     if let Some(size) = report.timings.iter().map(|t| (t.width, t.height)).max() {
-        let series = spaces
-            .iter()
-            .map(|space| {
-                let points = report
-                    .errors
-                    .iter()
-                    .filter(|e| &&e.space == space && e.budget_from == "fixed")
-                    .filter_map(|e| {
-                        let t = report.timings.iter().find(|t| {
-                            &t.space == *space
-                                && t.budget == e.budget
-                                && t.budget_from == "fixed"
-                                && (t.width, t.height) == size
-                        })?;
-                        Some((t.median_ms, 100.0 * e.hit_differs.max(1e-4)))
-                    })
-                    .collect();
-                Series {
-                    name: space.to_string(),
-                    points,
-                    dashed: false,
-                }
-            })
-            .collect();
-        charts.push((
-            "speed_vs_error",
-            Chart {
-                title: format!(
-                    "Speed against error ({}×{}, crossing budgets {})",
-                    size.0,
-                    size.1,
-                    budget_list(report)
-                ),
-                x_label: "GPU frame time (ms)".into(),
-                y_label: "pixels whose hit differs from f64 (%)".into(),
-                log_x: true,
-                log_y: true,
-                series,
-            },
-        ));
+        let measures: [(&str, &str, fn(&ErrorRow) -> f64); 2] = [
+            (
+                "speed_vs_colour_error",
+                "mean colour error against f64 (8-bit levels)",
+                |e| e.mean_levels.max(1e-3),
+            ),
+            (
+                "speed_vs_hit_error",
+                "pixels whose hit differs from f64 (%)",
+                |e| 100.0 * e.hit_differs.max(1e-5),
+            ),
+        ];
+        for (stem, y_label, measure) in measures {
+            let series = spaces
+                .iter()
+                .map(|space| {
+                    let points = report
+                        .errors
+                        .iter()
+                        .filter(|e| &&e.space == space && e.budget_from == "fixed")
+                        .filter_map(|e| {
+                            let t = report.timings.iter().find(|t| {
+                                &t.space == *space
+                                    && t.budget == e.budget
+                                    && t.budget_from == "fixed"
+                                    && (t.width, t.height) == size
+                            })?;
+                            Some((t.median_ms, measure(e)))
+                        })
+                        .collect();
+                    Series {
+                        name: space.to_string(),
+                        points,
+                        dashed: false,
+                    }
+                })
+                .collect();
+            charts.push((
+                stem,
+                Chart {
+                    title: format!(
+                        "Speed against error, {}×{}, budgets {}",
+                        size.0,
+                        size.1,
+                        budget_list(report)
+                    ),
+                    x_label: "GPU frame time (ms)".into(),
+                    y_label: y_label.into(),
+                    log_x: true,
+                    log_y: true,
+                    series,
+                },
+            ));
+        }
     }
     // f32 drift against crossings, with the conditioning bound.
     let mut series = Vec::new();

@@ -37,6 +37,20 @@ pub enum PlotError {
 }
 
 const FONT: &str = "sans-serif";
+
+/// Distinct, dark-enough line colours (Tableau 10).
+const COLOURS: [(u8, u8, u8); 10] = [
+    (31, 119, 180),
+    (255, 127, 14),
+    (44, 160, 44),
+    (214, 39, 40),
+    (148, 103, 189),
+    (140, 86, 75),
+    (227, 119, 194),
+    (127, 127, 127),
+    (188, 189, 34),
+    (23, 190, 207),
+];
 const SIZE: (u32, u32) = (900, 560);
 
 fn register_font() {
@@ -120,7 +134,8 @@ where
                 .draw()
                 .map_err(|e| fail(&e))?;
             for (i, s) in chart.series.iter().enumerate() {
-                let colour = Palette99::pick(i).to_rgba();
+                let (r, g, b) = COLOURS[i % COLOURS.len()];
+                let colour = RGBColor(r, g, b).to_rgba();
                 let pts: Vec<(f64, f64)> = s
                     .points
                     .iter()

@@ -30,44 +30,66 @@ pub struct ShaderKey {
     pub faces: u32,
     pub balls: u32,
     pub tubes: u32,
+    /// The unspecialised variant (the benchmark's comparison): all geometries' formulas,
+    /// arrays of [`GENERAL_CAPACITY`], geometry and counts read from the uniform.
+    pub general: bool,
 }
+
+/// Array sizes of the unspecialised variant: faces, balls, tubes.
+pub const GENERAL_CAPACITY: (u32, u32, u32) = (crate::space::MAX_FACES as u32, 256, 256);
 
 impl ShaderKey {
     /// The shader defs of this key (see the header of `shaders/curved_space.wgsl`).
     #[must_use]
     pub fn shader_defs(&self) -> Vec<ShaderDefVal> {
-        let geometry = match self.geometry {
-            Geometry::Spherical => "SPHERICAL",
-            Geometry::Euclidean => "EUCLIDEAN",
-            Geometry::Hyperbolic => "HYPERBOLIC",
+        let (faces, balls, tubes) = self.array_sizes();
+        let mut defs: Vec<ShaderDefVal> = if self.general {
+            ["SPHERICAL", "EUCLIDEAN", "HYPERBOLIC", "CURVED", "GENERAL"]
+                .map(ShaderDefVal::from)
+                .into()
+        } else {
+            match self.geometry {
+                Geometry::Spherical => vec!["SPHERICAL".into(), "CURVED".into()],
+                Geometry::Euclidean => vec!["EUCLIDEAN".into()],
+                Geometry::Hyperbolic => vec!["HYPERBOLIC".into(), "CURVED".into()],
+            }
         };
-        let mut defs = vec![
-            ShaderDefVal::from(geometry),
-            ShaderDefVal::UInt("FACE_COUNT".into(), self.faces),
-            ShaderDefVal::UInt("PARTNER_VECS".into(), self.faces.div_ceil(4)),
-        ];
-        if self.balls > 0 {
+        defs.push(ShaderDefVal::UInt("FACE_COUNT".into(), faces));
+        defs.push(ShaderDefVal::UInt("PARTNER_VECS".into(), faces.div_ceil(4)));
+        if balls > 0 {
             defs.push("BALLS".into());
-            defs.push(ShaderDefVal::UInt("BALL_COUNT".into(), self.balls));
+            defs.push(ShaderDefVal::UInt("BALL_COUNT".into(), balls));
         }
-        if self.tubes > 0 {
+        if tubes > 0 {
             defs.push("TUBES".into());
-            defs.push(ShaderDefVal::UInt("TUBE_COUNT".into(), self.tubes));
+            defs.push(ShaderDefVal::UInt("TUBE_COUNT".into(), tubes));
         }
         defs
+    }
+
+    /// The sizes of the uniform's face, ball and tube arrays.
+    #[must_use]
+    pub fn array_sizes(&self) -> (u32, u32, u32) {
+        if self.general {
+            GENERAL_CAPACITY
+        } else {
+            (self.faces, self.balls, self.tubes)
+        }
     }
 
     /// Size in bytes of `SpaceUniform` for this key.
     #[must_use]
     pub fn uniform_bytes(&self) -> usize {
         let vec4 = 16;
+        let (faces, balls, tubes) = self.array_sizes();
         let view = VIEW_WORDS * 4;
         let shading_and_light = 4 * vec4;
-        let faces = self.faces as usize * (vec4 + 4 * vec4);
-        let partners = self.faces.div_ceil(4) as usize * vec4;
-        let balls = self.balls as usize * 2 * vec4;
-        let tubes = self.tubes as usize * 4 * vec4;
-        view + shading_and_light + faces + partners + balls + tubes
+        let partners = faces.div_ceil(4) as usize * vec4;
+        let faces = faces as usize * (vec4 + 4 * vec4);
+        let balls = balls as usize * 2 * vec4;
+        let tubes = tubes as usize * 4 * vec4;
+        let general = if self.general { vec4 } else { 0 };
+        view + shading_and_light + faces + partners + balls + tubes + general
     }
 }
 
@@ -161,6 +183,7 @@ impl GpuScene {
             faces: space.faces.len() as u32,
             balls: balls.len() as u32,
             tubes: tubes.len() as u32,
+            general: false,
         };
         let bytes = key.uniform_bytes();
         if bytes > MAX_UNIFORM_BYTES {
@@ -217,6 +240,52 @@ impl GpuScene {
         }
         debug_assert_eq!(words.len() * 4 + VIEW_WORDS * 4, bytes);
         Ok(Self { key, words })
+    }
+}
+
+impl GpuScene {
+    /// The same scene for the unspecialised shader variant: arrays padded to
+    /// [`GENERAL_CAPACITY`] and the geometry and counts appended. `None` if the scene has
+    /// more faces or objects than that.
+    #[must_use]
+    pub fn generalised(&self) -> Option<GpuScene> {
+        let k = self.key;
+        let (cap_faces, cap_balls, cap_tubes) = GENERAL_CAPACITY;
+        if k.general || k.faces > cap_faces || k.balls > cap_balls || k.tubes > cap_tubes {
+            return None;
+        }
+        let faces = k.faces as usize;
+        // (words per element, elements, capacity) of each array, in uniform order.
+        let arrays = [
+            (4, faces, cap_faces as usize),
+            (16, faces, cap_faces as usize),
+            (4, faces.div_ceil(4), (cap_faces as usize).div_ceil(4)),
+            (8, k.balls as usize, cap_balls as usize),
+            (16, k.tubes as usize, cap_tubes as usize),
+        ];
+        let header = 16;
+        let mut words = self.words[..header].to_vec();
+        let mut at = header;
+        for (size, count, capacity) in arrays {
+            words.extend_from_slice(&self.words[at..at + size * count]);
+            words.resize(words.len() + size * (capacity - count), 0);
+            at += size * count;
+        }
+        debug_assert_eq!(at, self.words.len());
+        let general = [
+            self.key.geometry.kappa() as f32,
+            k.faces as f32,
+            k.balls as f32,
+            k.tubes as f32,
+        ];
+        words.extend(general.map(f32::to_bits));
+        Some(GpuScene {
+            key: ShaderKey {
+                general: true,
+                ..k
+            },
+            words,
+        })
     }
 }
 
