@@ -403,8 +403,10 @@ impl Scene {
     ///
     /// A ray that leaves through face `f` continues from `g_f` of its exit point, so the
     /// part of an object outside `f` is seen inside the cell as `g_f(object)`: that image
-    /// is added when the object's bounding ball reaches past `f` and the image's bounding
-    /// ball meets the cell; images of images are followed the same way (edges, vertices).
+    /// is added when the object reaches past `f` and the image comes within reach of the
+    /// cell (tested at points along a tube's axis); images of images are followed the same way (edges, vertices).
+    /// The test is conservative: a tube whose flat end only touches the cell at a vertex
+    /// (an edge of a neighbouring cell) is kept too; it costs time, never a wrong pixel.
     pub fn place(&mut self, space: &Space, object: Object) -> Result<usize, PlaceError> {
         let g = space.geometry;
         let (centre, _) = object.bounding_ball(g);
@@ -417,9 +419,32 @@ impl Scene {
             return Err(PlaceError::Outside(d, f));
         }
         const SAME: f64 = 1e-9;
+        // Points along the object's core (a ball's centre, a tube's axis at spacing ≤ its
+        // radius) and the slack they need: every point of the object is within `reach` of one.
+        let cores = |o: &Object| -> (Vec<DVec4>, f64) {
+            match o {
+                Object::Ball(b) => (vec![b.centre], b.radius),
+                Object::Tube(t) => {
+                    let length = g.distance(t.a, t.b);
+                    let steps = ((length / t.radius.max(1e-9)).ceil() as usize).clamp(1, 256);
+                    let step = length / steps as f64;
+                    let points = (0..=steps)
+                        .map(|i| g.project_point(g.geodesic(t.a, t.towards_b, i as f64 * step).0))
+                        .collect();
+                    (points, t.radius + 0.5 * step)
+                }
+            }
+        };
+        // Conservative: a point whose largest face distance is under `reach` may be within
+        // `reach` of the cell (the face distances underestimate near edges and vertices).
         let meets_cell = |o: &Object| {
-            let (c, r) = o.bounding_ball(g);
-            (0..faces).all(|f| space.face_distance(f, c) < r)
+            let (points, reach) = cores(o);
+            points.iter().any(|p| {
+                (0..faces)
+                    .map(|f| space.face_distance(f, *p))
+                    .fold(f64::NEG_INFINITY, f64::max)
+                    < reach
+            })
         };
         let mut found: Vec<Object> = Vec::new();
         let mut queue = vec![object];
@@ -430,9 +455,9 @@ impl Scene {
             if found.len() >= MAX_IMAGES {
                 return Err(PlaceError::TooLarge);
             }
-            let (c, r) = o.bounding_ball(g);
+            let (points, reach) = cores(&o);
             for (f, face) in space.faces.iter().enumerate() {
-                if space.face_distance(f, c) > -r {
+                if points.iter().any(|p| space.face_distance(f, *p) > -reach) {
                     let image = o.transformed(g, face.pairing);
                     if meets_cell(&image) && !found.iter().any(|x| x.same_as(&image, g, SAME)) {
                         queue.push(image);
