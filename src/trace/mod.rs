@@ -162,13 +162,34 @@ impl<V: Vector4> CellWalker<V> {
         Ray { point, tangent }
     }
 
-    /// The ray put back onto the model: the point projected, the tangent made tangent there
-    /// and of unit length. The crossing formulas assume a unit tangent (in S³ and H³ the
-    /// exit tangent `κ (N·p) p + (N·v) v` is wrong for any other length), so every walk
-    /// starts with this.
+    /// The ray put back onto the model if it is off it: the point projected, the tangent
+    /// made tangent there and of unit length. The crossing formulas assume a unit tangent
+    /// (in S³ and H³ the exit tangent `κ (N·p) p + (N·v) v` is wrong for any other length),
+    /// so every walk starts with this. A ray already on the model to rounding is kept bit
+    /// for bit.
     #[must_use]
     pub fn normalized(&self, ray: Ray<V>) -> Ray<V> {
         let g = self.geometry;
+        let tolerance = V::Real::from_f64(64.0) * V::Real::EPSILON;
+        let one = V::Real::ONE;
+        // Forms of vectors with entries of size w are known to ε·w² only.
+        let w = ray.point.w().abs().max(one);
+        let scaled = tolerance * w * w;
+        let v = ray.tangent;
+        let (off_model, off_tangent) = match g {
+            Geometry::Euclidean => (
+                (ray.point.w() - one).abs() > tolerance,
+                v.w().abs() > tolerance,
+            ),
+            _ => (
+                (g.form(ray.point, ray.point) - V::Real::from_f64(g.kappa())).abs() > scaled,
+                g.form(ray.point, v).abs() > scaled,
+            ),
+        };
+        let off_unit = off_tangent || !((g.form(v, v) - one).abs() <= scaled);
+        if !off_model && !off_unit {
+            return ray;
+        }
         let point = g.project_point(ray.point);
         Ray {
             point,
