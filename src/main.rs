@@ -7,18 +7,18 @@ use bevy::prelude::*;
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
 use bevy_curved_spaces::bench::BenchConfig;
 use bevy_curved_spaces::geometry::Vector4;
+use bevy_curved_spaces::plugin::AUTO_BUDGET_SAMPLES;
 use bevy_curved_spaces::render::FramesTraced;
 use bevy_curved_spaces::render::offscreen::{OffscreenRender, gpu_available, render_offscreen};
 use bevy_curved_spaces::space::file::{SpaceRecord, load_space_file};
 use bevy_curved_spaces::space::invariants::Invariants;
 use bevy_curved_spaces::space::{SEED_SPACES, Space, SpaceError, seed_space};
 use bevy_curved_spaces::trace::SceneParts;
+use bevy_curved_spaces::trace::auto_budget;
 use bevy_curved_spaces::trace::{
     Camera, CellWalker, Limit, RenderSettings, Scene, Shading, Trace, chart_ray,
     render_with_progress,
 };
-use bevy_curved_spaces::plugin::AUTO_BUDGET_SAMPLES;
-use bevy_curved_spaces::trace::auto_budget;
 use bevy_curved_spaces::{ActiveSpace, CurvedSpaceCamera, CurvedSpacesPlugin, Quality};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use glam::{DVec3, DVec4, Vec4};
@@ -737,16 +737,19 @@ fn bench(args: &BenchArgs) -> Result<(), String> {
             }
         );
     }
-    for t in report.timings.iter().filter(|t| t.budget_from == "auto-high") {
+    for t in report
+        .timings
+        .iter()
+        .filter(|t| t.budget_from == "auto-high")
+    {
         if t.fog_factor != bevy_curved_spaces::bench::DEFAULT_FOG_FACTOR
             || Some((t.width, t.height)) != config.sizes.iter().copied().max()
         {
             continue;
         }
-        let error = report
-            .errors
-            .iter()
-            .find(|e| e.space == t.space && e.budget_from == t.budget_from && e.fog_factor == t.fog_factor);
+        let error = report.errors.iter().find(|e| {
+            e.space == t.space && e.budget_from == t.budget_from && e.fog_factor == t.fog_factor
+        });
         say!(
             "{:<22} {:>4}×{:<4} budget {:>4}: {:>9.3} ms ({:>6.1}× the trivial material), hits differing from f64 {:.3} %",
             t.space,

@@ -275,3 +275,90 @@ fn bad_input_gets_a_clear_error() {
     );
     fails_with(&["frobnicate"], "unrecognized subcommand");
 }
+
+/// `bench --quick` (what CI runs) writes every table and chart, and its figures hold the
+/// bounds they state: the fog cut-off's error is within its bound, f32 keeps the torus's
+/// faces within the conditioning bound, and the automatic budgets are ordered by quality.
+#[test]
+fn bench_quick_writes_results_that_respect_their_bounds() {
+    let dir = temp_dir("bench");
+    let out = run(&[
+        "bench",
+        "--quick",
+        "--spaces",
+        "torus,seifert-weber",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for file in [
+        "bench.json",
+        "timings.csv",
+        "errors.csv",
+        "drift.csv",
+        "cutoff.csv",
+        "auto_budgets.csv",
+        "specialisation.csv",
+        "speed_vs_colour_error.png",
+        "speed_vs_hit_error.svg",
+        "drift.png",
+    ] {
+        let meta = std::fs::metadata(dir.join(file)).unwrap_or_else(|e| panic!("{file}: {e}"));
+        assert!(meta.len() > 0, "{file} is empty");
+    }
+    let json: Value =
+        serde_json::from_slice(&std::fs::read(dir.join("bench.json")).unwrap()).unwrap();
+    let report = &json["report"];
+    assert!(report["device"]["name"].is_string());
+    let rows = |table: &str| report[table].as_array().unwrap().clone();
+    // 2 spaces × (2 budgets + 2 fogs) × 1 size.
+    assert_eq!(rows("timings").len(), 8);
+    for t in rows("timings") {
+        let ms = t["median_ms"].as_f64().unwrap();
+        assert!(ms.is_finite() && ms > 0.0, "{t}");
+    }
+    for c in rows("cutoff") {
+        assert!(
+            c["max_error"].as_f64().unwrap() <= c["bound"].as_f64().unwrap(),
+            "fog cut-off error above its bound: {c}"
+        );
+    }
+    for e in rows("errors") {
+        let hit = e["hit_differs"].as_f64().unwrap();
+        assert!((0.0..=1.0).contains(&hit), "{e}");
+        if e["space"] == "torus" && e["budget_from"] == "auto-high" {
+            assert_eq!(hit, 0.0, "f32 in the torus with a sufficient budget: {e}");
+        }
+    }
+    for d in rows("drift") {
+        if d["space"] == "torus" {
+            assert_eq!(d["same_faces"].as_f64(), Some(1.0), "{d}");
+            assert!(d["max_position_error"].as_f64().unwrap() <= d["bound"].as_f64().unwrap());
+        }
+    }
+    for space in ["torus", "seifert-weber"] {
+        let budgets: Vec<u64> = rows("auto_budgets")
+            .iter()
+            .filter(|b| b["space"] == space && b["fog_factor"].as_f64() == Some(3.0))
+            .map(|b| b["budget"].as_u64().unwrap())
+            .collect();
+        assert_eq!(budgets.len(), 3, "{space}: low, medium, high");
+        assert!(
+            budgets.windows(2).all(|w| w[0] <= w[1]),
+            "{space}: {budgets:?}"
+        );
+    }
+    for s in rows("specialisation") {
+        assert!(s["differing_pixels"].as_f64().unwrap() < 0.01, "{s}");
+        assert!(s["general_uniform_bytes"].as_u64() > s["specialised_uniform_bytes"].as_u64());
+    }
+    fails_with(
+        &["bench", "--quick", "--spaces", "nowhere"],
+        "unknown space",
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

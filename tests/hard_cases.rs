@@ -74,12 +74,21 @@ fn trace_both(space: &Space, start: Ray<DVec4>, crossings: usize, what: &str) {
     let t64 = w64.trace(start, Limit::Crossings(crossings));
     let t32 = w32.trace(to_f32(start), Limit::Crossings(crossings));
     for (n, t) in [(t64.crossings.len(), "f64"), (t32.crossings.len(), "f32")] {
-        assert_eq!(n, crossings, "{what} ({t}): the walk stopped after {n} crossings");
+        assert_eq!(
+            n, crossings,
+            "{what} ({t}): the walk stopped after {n} crossings"
+        );
     }
     let out64 = check_trace(&w64, &t64, &format!("{what} (f64)"));
     let out32 = check_trace(&w32, &t32, &format!("{what} (f32)"));
-    assert!(out64 <= F64_OUTSIDE, "{what}: f64 {out64:e} outside the cell");
-    assert!(out32 <= F32_OUTSIDE, "{what}: f32 {out32:e} outside the cell");
+    assert!(
+        out64 <= F64_OUTSIDE,
+        "{what}: f64 {out64:e} outside the cell"
+    );
+    assert!(
+        out32 <= F32_OUTSIDE,
+        "{what}: f32 {out32:e} outside the cell"
+    );
 }
 
 fn spaces() -> impl Iterator<Item = (&'static str, Space)> {
@@ -107,9 +116,9 @@ fn grazing_rays_stay_in_the_cell() {
             let centre = face.normal * face.offset;
             // Any direction in the face's plane (chart), tilted by 1e-7 towards the face.
             let along = face.normal.any_orthonormal_vector();
-            let from = g.to_chart(g.project_point(
-                g.from_chart(centre).unwrap() - 1e-3 * r * face.normal.extend(0.0),
-            ));
+            let from = g.to_chart(
+                g.project_point(g.from_chart(centre).unwrap() - 1e-3 * r * face.normal.extend(0.0)),
+            );
             let dir = along * 1e-7f64.cos() + face.normal * 1e-7f64.sin();
             trace_both(&s, ray(g, from, dir), 200, &format!("{id}: grazing"));
         }
@@ -213,7 +222,8 @@ fn directions_that_are_not_unit_walk_like_unit_ones() {
 #[test]
 fn near_ideal_hyperbolic_dodecahedra() {
     let g = Geometry::Hyperbolic;
-    for (dihedral_degrees, f32_holds) in [(62.0, true), (60.5, true), (60.05, true), (60.005, false)]
+    for (dihedral_degrees, f32_holds) in
+        [(62.0, true), (60.5, true), (60.05, true), (60.005, false)]
     {
         let r = dodecahedron_offset(g, f64::to_radians(dihedral_degrees));
         let covectors: Vec<DVec4> = dodecahedron_normals()
@@ -242,7 +252,8 @@ fn near_ideal_hyperbolic_dodecahedra() {
                 .collect(),
             partners: walker.partners.clone(),
         };
-        let what = format!("dihedral {dihedral_degrees}° (vertex at chart radius {vertex_radius:.6})");
+        let what =
+            format!("dihedral {dihedral_degrees}° (vertex at chart radius {vertex_radius:.6})");
         assert!(vertex_radius < 1.0, "{what}: not a compact cell");
         let mut rng = SplitMix64(5);
         let mut worst32 = f64::NEG_INFINITY;
@@ -269,7 +280,10 @@ fn near_ideal_hyperbolic_dodecahedra() {
         if f32_holds {
             assert!(worst32 <= F32_OUTSIDE, "{what}: f32 {worst32:e} outside");
         } else {
-            assert_eq!(worst32, 1.0, "{what}: f32 now holds here; move the stated limit");
+            assert_eq!(
+                worst32, 1.0,
+                "{what}: f32 now holds here; move the stated limit"
+            );
         }
     }
 }
@@ -311,8 +325,14 @@ fn spherical_cells_reaching_the_chart_equator() {
             // Chart coordinates scale with the half-width: the tolerance is relative to it.
             let out64 = check_trace(&walker, &t64, &what) / half_width;
             let out32 = check_trace(&w32, &t32, &what) / half_width;
-            assert!(out64 <= F64_OUTSIDE, "{what}: f64 {out64:e} (relative) outside");
-            assert!(out32 <= F32_OUTSIDE, "{what}: f32 {out32:e} (relative) outside");
+            assert!(
+                out64 <= F64_OUTSIDE,
+                "{what}: f64 {out64:e} (relative) outside"
+            );
+            assert!(
+                out32 <= F32_OUTSIDE,
+                "{what}: f32 {out32:e} (relative) outside"
+            );
             // Each point is on the model: |X| = 1, even where w is 6e-4.
             for c in &t64.crossings {
                 assert!((c.ray.point.length() - 1.0).abs() < 1e-12, "{what}: off S³");
@@ -343,7 +363,10 @@ fn standing_on_a_face_and_wiggling_across_an_edge() {
             crossings += crossed.len();
             frame = next;
         }
-        assert!(crossings <= 1, "{id}: {crossings} crossings while standing on a face");
+        assert!(
+            crossings <= 1,
+            "{id}: {crossings} crossings while standing on a face"
+        );
         assert!(g.frame_defect(frame) < 1e-9, "{id}: frame defect");
 
         let edge = &s.edges[0];
@@ -364,7 +387,13 @@ fn standing_on_a_face_and_wiggling_across_an_edge() {
             frame = g.orthonormalize_frame(next);
             worst = worst.max(s.outside_by(frame.w_axis));
         }
-        assert!(worst <= margin, "{id}: {worst:e} outside after wiggling across an edge");
-        assert!(g.frame_defect(frame) < 1e-9, "{id}: frame defect after wiggling");
+        assert!(
+            worst <= margin,
+            "{id}: {worst:e} outside after wiggling across an edge"
+        );
+        assert!(
+            g.frame_defect(frame) < 1e-9,
+            "{id}: frame defect after wiggling"
+        );
     }
 }

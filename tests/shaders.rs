@@ -260,6 +260,9 @@ fn the_general_variant_holds_every_geometry_and_packs_to_its_layout() {
     .key;
     let text = format!("{:?}", compose(&key).expect("composes").functions);
     for f in ["Sin", "Sinh", "Atan2", "Asinh", "Log"] {
-        assert!(text.contains(&format!("fun: {f},")), "general shader lacks {f}");
+        assert!(
+            text.contains(&format!("fun: {f},")),
+            "general shader lacks {f}"
+        );
     }
 }

@@ -36,7 +36,12 @@ fn placing_the_default_scene_changes_no_pixel() {
                 .filter(|o| matches!(o, Object::Ball(_)))
                 .count()
         };
-        assert_eq!(balls(&placed), balls(&default), "{}: ball images added", seed.id);
+        assert_eq!(
+            balls(&placed),
+            balls(&default),
+            "{}: ball images added",
+            seed.id
+        );
         let camera = Camera::default_for(&s);
         let settings = RenderSettings {
             width: 64,
@@ -104,11 +109,19 @@ fn a_ball_straddling_torus_faces_looks_as_if_it_were_whole() {
     };
     // The shifted camera, wrapped back into the cell [-0.5, 0.5]³.
     let wrap = |v: DVec3| (v + DVec3::splat(0.5)).rem_euclid(DVec3::ONE) - DVec3::splat(0.5);
-    let camera = Camera::looking_at(g, wrap(eye + shift), wrap(eye + shift) + (target - eye), 70.0)
-        .expect("camera");
+    let camera = Camera::looking_at(
+        g,
+        wrap(eye + shift),
+        wrap(eye + shift) + (target - eye),
+        70.0,
+    )
+    .expect("camera");
     let mut straddling = ambient_scene(&s);
     let added = straddling.place(&s, ball(shift)).expect("placed");
-    assert!(added >= 4, "a ball over a corner of three faces needs images, got {added}");
+    assert!(
+        added >= 4,
+        "a ball over a corner of three faces needs images, got {added}"
+    );
     let placed = render(&s, &straddling, &camera, &settings);
     let mut naive = ambient_scene(&s);
     naive.objects.push(ball(shift));
@@ -145,8 +158,12 @@ fn images_cover_the_part_outside_each_face() {
         let r = inradius(&s);
         let face = &s.faces[0];
         // A ball centred 0.1 r inside face 0 with radius 0.3 r.
-        let centre = g.from_chart(face.normal * face.offset).expect("chart point");
-        let inward = g.tangent_from_chart(centre, -face.normal).expect("direction");
+        let centre = g
+            .from_chart(face.normal * face.offset)
+            .expect("chart point");
+        let inward = g
+            .tangent_from_chart(centre, -face.normal)
+            .expect("direction");
         let (c, _) = g.geodesic(centre, inward, 0.1 * r);
         let c = g.project_point(c);
         let mut scene = ambient_scene(&s);
@@ -158,12 +175,20 @@ fn images_cover_the_part_outside_each_face() {
         // the pairing maps it inside the cell, where an image must contain it.
         let (beyond, _) = g.geodesic(centre, -inward, 0.1 * r);
         let mapped = g.project_point(face.pairing * g.project_point(beyond));
-        assert!(s.outside_by(mapped) < 0.0, "{}: mapped point outside", seed.id);
+        assert!(
+            s.outside_by(mapped) < 0.0,
+            "{}: mapped point outside",
+            seed.id
+        );
         let covered = scene.objects.iter().any(|o| match o {
             Object::Ball(b) => g.distance(b.centre, mapped) < b.radius,
             Object::Tube(_) => false,
         });
-        assert!(covered, "{}: no image covers the part beyond face 0", seed.id);
+        assert!(
+            covered,
+            "{}: no image covers the part beyond face 0",
+            seed.id
+        );
     }
 }
 
@@ -171,7 +196,9 @@ fn images_cover_the_part_outside_each_face() {
 fn misplaced_and_oversized_objects_are_refused() {
     let s = seed_space("poincare").expect("builds");
     let g = s.geometry;
-    let far = g.from_chart(DVec3::new(3.0, 0.0, 0.0)).expect("chart point");
+    let far = g
+        .from_chart(DVec3::new(3.0, 0.0, 0.0))
+        .expect("chart point");
     let mut scene = ambient_scene(&s);
     let outside = scene.place(&s, Object::Ball(Ball::new(g, far, 0.01, DVec3::ONE)));
     assert!(
@@ -185,7 +212,9 @@ fn misplaced_and_oversized_objects_are_refused() {
     );
     assert_eq!(huge, Err(PlaceError::TooLarge));
     assert!(
-        PlaceError::TooLarge.to_string().contains("smaller than the cell"),
+        PlaceError::TooLarge
+            .to_string()
+            .contains("smaller than the cell"),
         "the message says what to do"
     );
 }

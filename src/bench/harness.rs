@@ -97,16 +97,13 @@ pub struct Frame {
 impl Harness {
     /// Opens the first adapter wgpu finds (a GPU, or lavapipe).
     pub fn new() -> Result<Self, HarnessError> {
-        let instance =
-            wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle());
+        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle());
         let adapter = pollster_block(instance.request_adapter(&wgpu::RequestAdapterOptions {
             power_preference: wgpu::PowerPreference::HighPerformance,
             ..Default::default()
         }))
         .map_err(|_| HarnessError::NoAdapter)?;
-        let timestamps = adapter
-            .features()
-            .contains(wgpu::Features::TIMESTAMP_QUERY);
+        let timestamps = adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY);
         let features = if timestamps {
             wgpu::Features::TIMESTAMP_QUERY
         } else {
@@ -338,8 +335,8 @@ impl Harness {
     pub fn read_pixels(&self, frame: &Frame) -> Result<Vec<u8>, HarnessError> {
         let bpp = frame.output.bytes_per_pixel();
         let row = frame.width * bpp;
-        let padded = row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
-            * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+        let padded =
+            row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
         let buffer = self.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("readback"),
             size: u64::from(padded) * u64::from(frame.height),

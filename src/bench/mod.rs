@@ -18,8 +18,8 @@ use crate::plugin::Quality;
 use crate::render::gpu::{GpuScene, view_words};
 use crate::space::{Space, invariants, seed_space};
 use crate::trace::{
-    BudgetChoice, Camera, CellWalker, Limit, Object, RayEnd, Scene, auto_budget,
-    colour_of, first_hit_traced, sample_rays, to_byte,
+    BudgetChoice, Camera, CellWalker, Limit, Object, RayEnd, Scene, auto_budget, colour_of,
+    first_hit_traced, sample_rays, to_byte,
 };
 use glam::{DVec4, Vec4};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -370,7 +370,10 @@ pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, 
                 .map_or(64, |b| b.2);
             settings.push((budget, "auto-high".to_string(), fog));
         }
-        progress.set_message(format!("{}: specialised against general shader", subject.id));
+        progress.set_message(format!(
+            "{}: specialised against general shader",
+            subject.id
+        ));
         let auto_default = budgets
             .iter()
             .find(|(f, q, _)| *f == DEFAULT_FOG_FACTOR && *q == Quality::High)
@@ -418,19 +421,13 @@ pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, 
             let exact = match exact_cache.iter().find(|(f, _)| *f == fog) {
                 Some((_, r)) => r.clone(),
                 None => {
-                    let r = Reference::trace(
-                        subject,
-                        &scene,
-                        config.error_size,
-                        EXACT_BUDGET,
-                        false,
-                    );
+                    let r =
+                        Reference::trace(subject, &scene, config.error_size, EXACT_BUDGET, false);
                     exact_cache.push((fog, r.clone()));
                     r
                 }
             };
-            let same =
-                Reference::trace(subject, &scene, config.error_size, budget as usize, false);
+            let same = Reference::trace(subject, &scene, config.error_size, budget as usize, false);
             let rounded =
                 Reference::trace(subject, &scene, config.error_size, budget as usize, true);
             let measured = gpu_pixels(harness, subject, &gpu, budget, config.error_size)?;
@@ -537,8 +534,18 @@ fn specialisation(
     let mut sizes = config.sizes.clone();
     sizes.sort_unstable();
     let (w, h) = sizes[sizes.len() / 2];
-    let a = harness.frame(w, h, Output::Colour, &uniform_words(subject, &special, (w, h)));
-    let b = harness.frame(w, h, Output::Colour, &uniform_words(subject, &general, (w, h)));
+    let a = harness.frame(
+        w,
+        h,
+        Output::Colour,
+        &uniform_words(subject, &special, (w, h)),
+    );
+    let b = harness.frame(
+        w,
+        h,
+        Output::Colour,
+        &uniform_words(subject, &general, (w, h)),
+    );
     let (pa, pb) = (
         Program::Tracer(special.key, Output::Colour),
         Program::Tracer(general.key, Output::Colour),
@@ -704,7 +711,10 @@ fn gpu_pixels(
         .map(|c| [c[0], c[1], c[2], c[3]])
         .collect();
     Ok(Reference {
-        exhausted: ids.iter().filter(|id| id[3] == 3 && id[1] == budget).count(),
+        exhausted: ids
+            .iter()
+            .filter(|id| id[3] == 3 && id[1] == budget)
+            .count(),
         ids,
         rgb: rgba.chunks_exact(4).map(|p| [p[0], p[1], p[2]]).collect(),
     })
@@ -834,7 +844,11 @@ fn cutoff(subject: &Subject, fog_factor: f64, (w, h): (u32, u32)) -> CutoffRow {
 }
 
 /// Writes `report` as `bench.json`, one CSV per table and the charts into `dir`.
-pub fn write_report(report: &BenchReport, config: &BenchConfig, dir: &Path) -> Result<Vec<PathBuf>, BenchError> {
+pub fn write_report(
+    report: &BenchReport,
+    config: &BenchConfig,
+    dir: &Path,
+) -> Result<Vec<PathBuf>, BenchError> {
     let write_err = |path: &Path, e: &dyn std::fmt::Display| BenchError::Write {
         path: path.display().to_string(),
         error: e.to_string(),
@@ -904,6 +918,9 @@ fn to_csv(rows: &[serde_json::Value]) -> String {
     out
 }
 
+/// One number read off an accuracy row (a chart's y axis).
+type ErrorMeasure = fn(&ErrorRow) -> f64;
+
 /// The charts of a report: speed against error, error against crossings.
 #[must_use]
 pub fn charts(report: &BenchReport) -> Vec<(&'static str, Chart)> {
@@ -915,7 +932,7 @@ pub fn charts(report: &BenchReport) -> Vec<(&'static str, Chart)> {
     };
     // Speed against error at the largest timed resolution, fixed budgets at the default fog.
     if let Some(size) = report.timings.iter().map(|t| (t.width, t.height)).max() {
-        let measures: [(&str, &str, fn(&ErrorRow) -> f64); 2] = [
+        let measures: [(&str, &str, ErrorMeasure); 2] = [
             (
                 "speed_vs_colour_error",
                 "mean colour error against f64 (8-bit levels)",
@@ -1011,4 +1028,3 @@ fn budget_list(report: &BenchReport) -> String {
     b.dedup();
     b.iter().map(u32::to_string).collect::<Vec<_>>().join(", ")
 }
-

@@ -78,8 +78,14 @@ pub fn write_chart(chart: &Chart, stem: &Path) -> Result<(), PlotError> {
         root.present()
             .map_err(|e| PlotError::Draw(chart.title.clone(), e.to_string()))?;
     }
-    image::save_buffer(&png, &buffer, SIZE.0, SIZE.1, image::ExtendedColorType::Rgb8)
-        .map_err(|e| PlotError::Write(png.display().to_string(), e.to_string()))?;
+    image::save_buffer(
+        &png,
+        &buffer,
+        SIZE.0,
+        SIZE.1,
+        image::ExtendedColorType::Rgb8,
+    )
+    .map_err(|e| PlotError::Write(png.display().to_string(), e.to_string()))?;
     {
         let root = SVGBackend::new(&svg, SIZE).into_drawing_area();
         draw(chart, &root)?;

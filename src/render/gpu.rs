@@ -280,10 +280,7 @@ impl GpuScene {
         ];
         words.extend(general.map(f32::to_bits));
         Some(GpuScene {
-            key: ShaderKey {
-                general: true,
-                ..k
-            },
+            key: ShaderKey { general: true, ..k },
             words,
         })
     }

@@ -78,20 +78,23 @@ pub struct BudgetChoice {
 /// The smallest budget with which at most `miss_fraction` of `samples` sampled rays miss an
 /// object they would hit before the fog cut-off; at least 1, at most [`MAX_AUTO_BUDGET`].
 #[must_use]
-pub fn auto_budget(space: &Space, scene: &Scene, miss_fraction: f64, samples: usize) -> BudgetChoice {
+pub fn auto_budget(
+    space: &Space,
+    scene: &Scene,
+    miss_fraction: f64,
+    samples: usize,
+) -> BudgetChoice {
     let walker = CellWalker::<DVec4>::new(space);
     let rays = sample_rays(space, samples.max(1), 0x5eed_b0d6e7);
     let cap = MAX_AUTO_BUDGET as usize;
     let mut needed: Vec<u32> = rays
         .par_iter()
-        .map(
-            |ray| match first_hit(&walker, scene, *ray, cap) {
-                RayEnd::Hit(h) => h.crossings as u32,
-                // Fog either way: any budget shows it.
-                RayEnd::Fog(_) => 0,
-                RayEnd::Budget(c) => c as u32,
-            },
-        )
+        .map(|ray| match first_hit(&walker, scene, *ray, cap) {
+            RayEnd::Hit(h) => h.crossings as u32,
+            // Fog either way: any budget shows it.
+            RayEnd::Fog(_) => 0,
+            RayEnd::Budget(c) => c as u32,
+        })
         .collect();
     needed.sort_unstable();
     let n = needed.len();

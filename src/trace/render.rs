@@ -213,7 +213,11 @@ pub fn trace_pixel(
     start: Ray<DVec4>,
     max_crossings: usize,
 ) -> DVec3 {
-    colour_of(walker.geometry, scene, &first_hit(walker, scene, start, max_crossings))
+    colour_of(
+        walker.geometry,
+        scene,
+        &first_hit(walker, scene, start, max_crossings),
+    )
 }
 
 /// The colour of a ray that ended as `end` (fog where it met nothing).
