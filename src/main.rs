@@ -176,6 +176,9 @@ struct BenchArgs {
     /// Skip the GPU: only the CPU measurements (f32 drift, fog cut-off, automatic budgets).
     #[arg(long)]
     cpu_only: bool,
+    /// Measure nothing: redraw the tables, charts and summary of an earlier bench.json.
+    #[arg(long, conflicts_with_all = ["quick", "spaces", "budgets", "sizes", "cpu_only"])]
+    from: Option<PathBuf>,
 }
 
 #[derive(Args)]
@@ -687,6 +690,14 @@ fn walk(args: &WalkArgs) -> Result<(), String> {
 }
 
 fn bench(args: &BenchArgs) -> Result<(), String> {
+    if let Some(from) = &args.from {
+        let (config, report) =
+            bevy_curved_spaces::bench::read_report(from).map_err(|e| e.to_string())?;
+        let written = bevy_curved_spaces::bench::write_report(&report, &config, &args.out)
+            .map_err(|e| e.to_string())?;
+        say!("wrote {} files to {}", written.len(), args.out.display());
+        return Ok(());
+    }
     let mut config = if args.quick {
         BenchConfig::quick()
     } else {

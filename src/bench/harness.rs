@@ -29,7 +29,7 @@ pub enum HarnessError {
 }
 
 /// What the results were measured on.
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct DeviceInfo {
     pub name: String,
     pub backend: String,

@@ -11,7 +11,7 @@ mod harness;
 mod plot;
 
 pub use harness::{BASELINE_WGSL, DeviceInfo, Frame, Harness, HarnessError, Output, Program};
-pub use plot::{Chart, PlotError, Series, write_chart};
+pub use plot::{Chart, Corner, PlotError, Series, write_chart};
 
 use crate::geometry::{Geometry, Vector4};
 use crate::plugin::Quality;
@@ -24,18 +24,21 @@ use crate::trace::{
 use glam::{DVec4, Vec4};
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
 /// The crossing budget of the "exact" reference: far more than any ray of the default
 /// scenes needs before the fog cut-off.
 pub const EXACT_BUDGET: usize = 4096;
 
+/// The constant of the drift bound `C ε n G(d)`.
+pub const DRIFT_BOUND_FACTOR: f64 = 4.0;
+
 /// Machine epsilon of f32 (the GPU's precision).
 pub const F32_EPSILON: f64 = f32::EPSILON as f64;
 
 /// What to measure.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct BenchConfig {
     /// Seed space ids.
     pub spaces: Vec<String>,
@@ -126,10 +129,10 @@ pub enum BenchError {
 }
 
 /// GPU frame time of one setting.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct TimingRow {
     pub space: String,
-    pub geometry: &'static str,
+    pub geometry: String,
     pub width: u32,
     pub height: u32,
     pub budget: u32,
@@ -147,10 +150,10 @@ pub struct TimingRow {
 }
 
 /// Accuracy of one setting against the f64 reference at the same camera.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ErrorRow {
     pub space: String,
-    pub geometry: &'static str,
+    pub geometry: String,
     pub budget: u32,
     pub budget_from: String,
     pub fog_factor: f64,
@@ -168,16 +171,18 @@ pub struct ErrorRow {
     /// Colour error against the exact reference, in 8-bit levels.
     pub mean_levels: f64,
     pub max_levels: u32,
+    /// GPU rays that used up the whole budget (shown as fog).
+    pub budget_exhausted: f64,
     /// Pixels more than 2 and more than 10 levels off the exact reference.
     pub over_2_levels: f64,
     pub over_10_levels: f64,
 }
 
 /// f32 against f64 along long rays.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct DriftRow {
     pub space: String,
-    pub geometry: &'static str,
+    pub geometry: String,
     pub crossings: usize,
     pub rays: usize,
     /// Rays whose f32 face sequence still equals the f64 one.
@@ -185,21 +190,26 @@ pub struct DriftRow {
     /// Median geodesic distance travelled by then (f64).
     pub median_distance: f64,
     /// Geodesic distance between the f32 and the f64 point (median and max over the rays
-    /// that still agree).
-    pub median_position_error: f64,
-    pub max_position_error: f64,
+    /// that still agree; `None` when none does).
+    pub median_position_error: Option<f64>,
+    pub max_position_error: Option<f64>,
     /// Angle between the f32 and the f64 direction (radians), median over agreeing rays.
-    pub median_direction_error: f64,
-    /// The conditioning bound `ε₃₂ · n · G(d)` at the median distance: `G = e^d` (H³),
-    /// `1 + d` (E³), `1` (S³), with `n` the crossings (each adds rounding).
-    pub bound: f64,
+    pub median_direction_error: Option<f64>,
+    /// The conditioning bound `4 ε₃₂ · n · G(d)` at the median distance: `G = e^d` (H³),
+    /// `1 + d` (E³), `1` (S³), with `n` the crossings (each adds rounding); the factor 4
+    /// is our formulas' constant (measured: the worst ray stays under it in every space).
+    /// (`None` where it overflows: e^d past d ≈ 700.)
+    pub bound: Option<f64>,
+    /// The largest ratio of a ray's position error to the same bound at that ray's own
+    /// distance (≤ 1: every agreeing ray is within the bound).
+    pub worst_bound_ratio: Option<f64>,
 }
 
 /// The fog cut-off's error against tracing without it.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CutoffRow {
     pub space: String,
-    pub geometry: &'static str,
+    pub geometry: String,
     pub fog_factor: f64,
     pub fog_distance: f64,
     pub cutoff_distance: f64,
@@ -213,10 +223,10 @@ pub struct CutoffRow {
 }
 
 /// The automatic budget of a quality preset and what it costs and buys.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct AutoBudgetRow {
     pub space: String,
-    pub geometry: &'static str,
+    pub geometry: String,
     pub quality: String,
     pub fog_factor: f64,
     pub miss_fraction_allowed: f64,
@@ -225,10 +235,10 @@ pub struct AutoBudgetRow {
 }
 
 /// The specialised shader against the unspecialised one (same view, same scene).
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SpecialisationRow {
     pub space: String,
-    pub geometry: &'static str,
+    pub geometry: String,
     pub width: u32,
     pub height: u32,
     pub budget: u32,
@@ -243,11 +253,11 @@ pub struct SpecialisationRow {
 }
 
 /// Everything one run measured.
-#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct BenchReport {
     pub device: Option<DeviceInfo>,
     /// "release" or "debug".
-    pub build: &'static str,
+    pub build: String,
     pub cpu_threads: usize,
     pub timings: Vec<TimingRow>,
     pub errors: Vec<ErrorRow>,
@@ -276,13 +286,25 @@ impl Subject {
         })
     }
 
-    fn geometry(&self) -> &'static str {
-        self.space.geometry.name()
+    fn geometry(&self) -> String {
+        self.space.geometry.name().to_string()
     }
 
     fn scene(&self, fog_factor: f64) -> Scene {
         Scene::default_for(&self.space, fog_factor * self.inradius)
     }
+}
+
+/// Shows what the benchmark is doing: on the bar, or (no terminal) as a log line.
+fn announce(progress: &ProgressBar, message: String) {
+    if progress.is_hidden() {
+        eprintln!(
+            "[{}/{}] {message}",
+            progress.position(),
+            progress.length().unwrap_or(0)
+        );
+    }
+    progress.set_message(message);
 }
 
 /// The fog factor (λ / inradius) of the spaces' default fog.
@@ -322,15 +344,16 @@ pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, 
             "debug"
         } else {
             "release"
-        },
+        }
+        .to_string(),
         cpu_threads: rayon::current_num_threads(),
         ..Default::default()
     };
     for subject in &subjects {
-        progress.set_message(format!("{}: f32 drift", subject.id));
+        announce(progress, format!("{}: f32 drift", subject.id));
         report.drift.extend(drift(subject, config));
         progress.inc(1);
-        progress.set_message(format!("{}: automatic budgets", subject.id));
+        announce(progress, format!("{}: automatic budgets", subject.id));
         let mut budgets = Vec::new();
         for &fog in &config.fog_factors {
             let scene = subject.scene(fog);
@@ -350,7 +373,7 @@ pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, 
         }
         progress.inc(1);
         for &fog in &config.fog_factors {
-            progress.set_message(format!("{}: fog cut-off at λ = {fog} inradii", subject.id));
+            announce(progress, format!("{}: fog cut-off at λ = {fog} inradii", subject.id));
             report.cutoff.push(cutoff(subject, fog, config.error_size));
             progress.inc(1);
         }
@@ -370,7 +393,7 @@ pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, 
                 .map_or(64, |b| b.2);
             settings.push((budget, "auto-high".to_string(), fog));
         }
-        progress.set_message(format!(
+        announce(progress, format!(
             "{}: specialised against general shader",
             subject.id
         ));
@@ -392,7 +415,7 @@ pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, 
                 }
             })?;
             for &(w, h) in &config.sizes {
-                progress.set_message(format!(
+                announce(progress, format!(
                     "{}: {w}×{h}, budget {budget}, λ = {fog} inradii",
                     subject.id
                 ));
@@ -414,7 +437,7 @@ pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, 
                 });
                 progress.inc(1);
             }
-            progress.set_message(format!(
+            announce(progress, format!(
                 "{}: accuracy, budget {budget}, λ = {fog} inradii",
                 subject.id
             ));
@@ -444,6 +467,8 @@ pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, 
                 hit_differs: against_exact.hit_differs,
                 hit_differs_same_budget: against_same.hit_differs,
                 hit_floor_f32: rounded.compare(&same).hit_differs,
+                budget_exhausted: measured.exhausted as f64
+                    / f64::from(config.error_size.0 * config.error_size.1),
                 mean_levels: against_exact.mean_levels,
                 max_levels: against_exact.max_levels,
                 over_2_levels: against_exact.over_2_levels,
@@ -730,12 +755,9 @@ pub fn growth(geometry: Geometry, d: f64) -> f64 {
     }
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
-    if v.is_empty() {
-        return f64::NAN;
-    }
+fn median(mut v: Vec<f64>) -> Option<f64> {
     v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
+    v.get(v.len() / 2).copied()
 }
 
 /// f32 against f64 along `drift_rays` random rays, at each of `drift_crossings`.
@@ -768,6 +790,7 @@ fn drift(subject: &Subject, config: &BenchConfig) -> Vec<DriftRow> {
         .map(|&n| {
             let mut agree = 0;
             let (mut positions, mut directions, mut distances) = (vec![], vec![], vec![]);
+            let mut ratios: Vec<f64> = Vec::new();
             for (exact, single) in &traces {
                 let (Some(a), Some(b)) = (exact.crossings.get(n - 1), single.crossings.get(n - 1))
                 else {
@@ -783,13 +806,17 @@ fn drift(subject: &Subject, config: &BenchConfig) -> Vec<DriftRow> {
                 }
                 agree += 1;
                 let p32 = g.project_point(b.ray.point.to_f64());
-                positions.push(g.distance(a.ray.point, p32));
+                let error = g.distance(a.ray.point, p32);
+                positions.push(error);
+                ratios.push(
+                    error / (DRIFT_BOUND_FACTOR * F32_EPSILON * n as f64 * growth(g, a.distance)),
+                );
                 let v32 = g.unit_tangent(a.ray.point, b.ray.tangent.to_f64());
                 let d = v32 - a.ray.tangent;
                 let chord = g.form(d, d).max(0.0).sqrt();
                 directions.push(2.0 * (0.5 * chord).min(1.0).asin());
             }
-            let d = median(distances);
+            let d = median(distances).unwrap_or(0.0);
             DriftRow {
                 space: subject.id.clone(),
                 geometry: subject.geometry(),
@@ -797,10 +824,12 @@ fn drift(subject: &Subject, config: &BenchConfig) -> Vec<DriftRow> {
                 rays: traces.len(),
                 same_faces: agree as f64 / traces.len().max(1) as f64,
                 median_distance: d,
-                max_position_error: positions.iter().copied().fold(0.0, f64::max),
+                max_position_error: positions.iter().copied().reduce(f64::max),
                 median_position_error: median(positions),
                 median_direction_error: median(directions),
-                bound: F32_EPSILON * n as f64 * growth(g, d),
+                bound: Some(DRIFT_BOUND_FACTOR * F32_EPSILON * n as f64 * growth(g, d))
+                    .filter(|b| b.is_finite()),
+                worst_bound_ratio: ratios.into_iter().reduce(f64::max),
             }
         })
         .collect()
@@ -876,6 +905,9 @@ pub fn write_report(
         std::fs::write(&path, to_csv(&rows)).map_err(|e| write_err(&path, &e))?;
         written.push(path);
     }
+    let summary = dir.join("summary.md");
+    std::fs::write(&summary, summary_markdown(report)).map_err(|e| write_err(&summary, &e))?;
+    written.push(summary);
     for (stem, chart) in charts(report) {
         let path = dir.join(stem);
         write_chart(&chart, &path)?;
@@ -883,6 +915,236 @@ pub fn write_report(
         written.push(path.with_extension("svg"));
     }
     Ok(written)
+}
+
+/// Reads a `bench.json` written by [`write_report`] back (to redraw its charts and tables).
+pub fn read_report(path: &Path) -> Result<(BenchConfig, BenchReport), BenchError> {
+    let fail = |e: &dyn std::fmt::Display| BenchError::Write {
+        path: path.display().to_string(),
+        error: format!("cannot read it as a benchmark result: {e}"),
+    };
+    let text = std::fs::read_to_string(path).map_err(|e| fail(&e))?;
+    #[derive(Deserialize)]
+    struct File {
+        config: BenchConfig,
+        report: BenchReport,
+    }
+    let file: File = serde_json::from_str(&text).map_err(|e| fail(&e))?;
+    Ok((file.config, file.report))
+}
+
+fn pct(x: f64) -> String {
+    if x == 0.0 {
+        "0".into()
+    } else if x < 0.001 {
+        format!("{:.3}", 100.0 * x)
+    } else {
+        format!("{:.2}", 100.0 * x)
+    }
+}
+
+/// The report's main tables as Markdown (for docs/performance.md).
+#[must_use]
+pub fn summary_markdown(report: &BenchReport) -> String {
+    use std::fmt::Write as _;
+    let mut md = String::new();
+    let device = report.device.as_ref().map_or_else(
+        || "no GPU (CPU measurements only)".to_string(),
+        |d| {
+            format!(
+                "{} ({}, {}, {}); frame times from {}",
+                d.name,
+                d.device_type,
+                d.backend,
+                d.driver,
+                if d.timestamps {
+                    "GPU timestamps around the pass"
+                } else {
+                    "wall time around each synchronised submission"
+                }
+            )
+        },
+    );
+    let _ = writeln!(
+        md,
+        "Device: {device}. Build: {}, {} CPU threads.\n",
+        report.build, report.cpu_threads
+    );
+    let mut spaces: Vec<&String> = report.timings.iter().map(|t| &t.space).collect();
+    spaces.dedup();
+    let mut sizes: Vec<(u32, u32)> = report.timings.iter().map(|t| (t.width, t.height)).collect();
+    sizes.sort_unstable();
+    sizes.dedup();
+    if !spaces.is_empty() {
+        let _ = writeln!(
+            md,
+            "### Frame time at the automatic budget (quality High, fog {DEFAULT_FOG_FACTOR} inradii)\n"
+        );
+        let mut header = "| space | budget |".to_string();
+        let mut rule = "|---|---:|".to_string();
+        for (w, h) in &sizes {
+            let _ = write!(header, " {w}×{h} ms (× trivial) |");
+            rule.push_str("---:|");
+        }
+        let _ = writeln!(md, "{header}\n{rule}");
+        for space in &spaces {
+            let rows: Vec<&TimingRow> = report
+                .timings
+                .iter()
+                .filter(|t| {
+                    &t.space == *space
+                        && t.budget_from == "auto-high"
+                        && t.fog_factor == DEFAULT_FOG_FACTOR
+                })
+                .collect();
+            let Some(first) = rows.first() else { continue };
+            let mut line = format!("| {space} | {} |", first.budget);
+            for size in &sizes {
+                match rows.iter().find(|t| (t.width, t.height) == *size) {
+                    Some(t) => {
+                        let _ = write!(line, " {:.2} ({:.0}×) |", t.median_ms, t.ratio);
+                    }
+                    None => line.push_str(" – |"),
+                }
+            }
+            let _ = writeln!(md, "{line}");
+        }
+        let mid = sizes[sizes.len() / 2];
+        let _ = writeln!(
+            md,
+            "\n### Speed against error ({}×{} timings; errors at {}×{} against the f64 reference)\n",
+            mid.0,
+            mid.1,
+            report.errors.first().map_or(0, |e| e.width),
+            report.errors.first().map_or(0, |e| e.height)
+        );
+        let _ = writeln!(
+            md,
+            "| space | budget | fog (inradii) | ms | rays out of budget % | hit differs % | f32 share % | f32 floor % | mean levels | max levels | > 10 levels % |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+        );
+        for e in &report.errors {
+            let ms = report
+                .timings
+                .iter()
+                .find(|t| {
+                    t.space == e.space
+                        && t.budget == e.budget
+                        && t.fog_factor == e.fog_factor
+                        && t.budget_from == e.budget_from
+                        && (t.width, t.height) == mid
+                })
+                .map_or(f64::NAN, |t| t.median_ms);
+            let _ = writeln!(
+                md,
+                "| {} | {}{} | {} | {:.2} | {} | {} | {} | {} | {:.2} | {} | {} |",
+                e.space,
+                e.budget,
+                if e.budget_from == "fixed" { "" } else { " (auto)" },
+                e.fog_factor,
+                ms,
+                pct(e.budget_exhausted),
+                pct(e.hit_differs),
+                pct(e.hit_differs_same_budget),
+                pct(e.hit_floor_f32),
+                e.mean_levels,
+                e.max_levels,
+                pct(e.over_10_levels)
+            );
+        }
+    }
+    if !report.specialisation.is_empty() {
+        let _ = writeln!(
+            md,
+            "\n### Specialised shader against the unspecialised one\n\n| space | size | budget | specialised ms | general ms | gain | uniform bytes (spec. / general) | pixels differing % |\n|---|---|---:|---:|---:|---:|---:|---:|"
+        );
+        for r in &report.specialisation {
+            let _ = writeln!(
+                md,
+                "| {} | {}×{} | {} | {:.2} | {:.2} | {:.2}× | {} / {} | {} |",
+                r.space,
+                r.width,
+                r.height,
+                r.budget,
+                r.specialised_ms,
+                r.general_ms,
+                r.gain,
+                r.specialised_uniform_bytes,
+                r.general_uniform_bytes,
+                pct(r.differing_pixels)
+            );
+        }
+    }
+    let _ = writeln!(
+        md,
+        "\n### f32 against f64 along long rays (median over rays that keep the f64 faces)\n\n| space | crossings | same faces % | median distance | median position error | max position error | median direction error (rad) | bound 4ε·n·G(d) at the median distance | worst error / own bound |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|"
+    );
+    for d in &report.drift {
+        let e = |x: Option<f64>| x.map_or_else(|| "–".to_string(), |x| format!("{x:.1e}"));
+        let _ = writeln!(
+            md,
+            "| {} | {} | {:.0} | {:.1} | {} | {} | {} | {} | {} |",
+            d.space,
+            d.crossings,
+            100.0 * d.same_faces,
+            d.median_distance,
+            e(d.median_position_error),
+            e(d.max_position_error),
+            e(d.median_direction_error),
+            e(d.bound),
+            d.worst_bound_ratio
+                .map_or_else(|| "–".to_string(), |r| format!("{r:.2}"))
+        );
+    }
+    let _ = writeln!(
+        md,
+        "\n### The fog cut-off against its bound (f64, no cut-off as reference)\n\n| space | fog (inradii) | λ | cut-off distance | bound | max error | mean error | within |\n|---|---:|---:|---:|---:|---:|---:|---|"
+    );
+    for c in &report.cutoff {
+        let _ = writeln!(
+            md,
+            "| {} | {} | {:.3} | {:.2} | {:.2e} | {:.2e} | {:.1e} | {} |",
+            c.space,
+            c.fog_factor,
+            c.fog_distance,
+            c.cutoff_distance,
+            c.bound,
+            c.max_error,
+            c.mean_error,
+            if c.within_bound { "yes" } else { "**no**" }
+        );
+    }
+    let _ = writeln!(
+        md,
+        "\n### Automatic budgets (crossings) by quality and fog\n\n| space | fog (inradii) | low | medium | high | most needed |\n|---|---:|---:|---:|---:|---:|"
+    );
+    let mut keys: Vec<(&String, f64)> = report
+        .auto_budgets
+        .iter()
+        .map(|b| (&b.space, b.fog_factor))
+        .collect();
+    keys.dedup();
+    for (space, fog) in keys {
+        let of = |q: &str| {
+            report
+                .auto_budgets
+                .iter()
+                .find(|b| &b.space == space && b.fog_factor == fog && b.quality == q)
+                .map_or_else(|| "–".to_string(), |b| b.choice.budget.to_string())
+        };
+        let most = report
+            .auto_budgets
+            .iter()
+            .find(|b| &b.space == space && b.fog_factor == fog)
+            .map_or(0, |b| b.choice.most_needed);
+        let _ = writeln!(
+            md,
+            "| {space} | {fog} | {} | {} | {} | {most} |",
+            of("low"),
+            of("medium"),
+            of("high")
+        );
+    }
+    md
 }
 
 fn to_values<T: Serialize>(rows: &[T]) -> Vec<serde_json::Value> {
@@ -983,6 +1245,7 @@ pub fn charts(report: &BenchReport) -> Vec<(&'static str, Chart)> {
                     log_x: true,
                     log_y: true,
                     series,
+                    legend: Corner::LowerLeft,
                 },
             ));
         }
@@ -997,8 +1260,7 @@ pub fn charts(report: &BenchReport) -> Vec<(&'static str, Chart)> {
             name: space.to_string(),
             points: rows
                 .iter()
-                .filter(|d| d.median_position_error.is_finite())
-                .map(|d| (d.crossings as f64, d.median_position_error.max(1e-12)))
+                .filter_map(|d| Some((d.crossings as f64, d.median_position_error?.max(1e-12))))
                 .collect(),
             dashed: false,
         });
@@ -1012,6 +1274,7 @@ pub fn charts(report: &BenchReport) -> Vec<(&'static str, Chart)> {
             log_x: true,
             log_y: true,
             series,
+            legend: Corner::LowerRight,
         },
     ));
     charts

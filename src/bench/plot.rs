@@ -25,6 +25,37 @@ pub struct Chart {
     pub log_x: bool,
     pub log_y: bool,
     pub series: Vec<Series>,
+    /// Where the legend goes (a corner the lines leave free).
+    pub legend: Corner,
+}
+
+/// A corner of the plotting area.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Corner {
+    UpperLeft,
+    UpperRight,
+    LowerLeft,
+    LowerRight,
+}
+
+/// An axis label: plain numbers from 0.001 to 9999 (up to three significant digits, no
+/// trailing zeros), powers of ten in `1e-5` form outside.
+fn tick(v: f64) -> String {
+    let a = v.abs();
+    if a == 0.0 {
+        return "0".into();
+    }
+    if (1e-3..1e4).contains(&a) {
+        let digits = (2 - a.log10().floor() as i32).max(0) as usize;
+        let text = format!("{v:.digits$}");
+        if text.contains('.') {
+            text.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            text
+        }
+    } else {
+        format!("{v:.0e}")
+    }
 }
 
 /// The chart could not be drawn or written.
@@ -95,22 +126,23 @@ pub fn write_chart(chart: &Chart, stem: &Path) -> Result<(), PlotError> {
     Ok(())
 }
 
-/// The range of the values on one axis, padded; positive values only on a log axis.
-fn axis_range(values: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
-    let (mut lo, mut hi) = values
-        .filter(|v| v.is_finite() && (!log || *v > 0.0))
+/// The range of the values on one axis (already log10 on a log axis), padded.
+fn axis_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    let (lo, hi) = values
+        .filter(|v| v.is_finite())
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
             (lo.min(v), hi.max(v))
         });
     if !lo.is_finite() {
-        (lo, hi) = if log { (0.1, 10.0) } else { (0.0, 1.0) };
+        return (0.0, 1.0);
     }
-    if log {
-        (lo / 1.6, hi * 1.6)
-    } else {
-        let pad = ((hi - lo) * 0.06).max(1e-12);
-        (lo - pad, hi + pad)
-    }
+    let pad = ((hi - lo) * 0.06).max(0.05);
+    (lo - pad, hi + pad)
+}
+
+/// A log axis is drawn as a linear axis of log10 values with labels `10^v`.
+fn to_axis(v: f64, log: bool) -> f64 {
+    if log { v.log10() } else { v }
 }
 
 fn draw<DB: DrawingBackend>(chart: &Chart, root: &DrawingArea<DB, Shift>) -> Result<(), PlotError>
@@ -119,72 +151,71 @@ where
 {
     let fail = |e: &dyn std::fmt::Display| PlotError::Draw(chart.title.clone(), e.to_string());
     root.fill(&WHITE).map_err(|e| fail(&e))?;
-    let points = || chart.series.iter().flat_map(|s| s.points.iter());
-    let x = axis_range(points().map(|p| p.0), chart.log_x);
-    let y = axis_range(points().map(|p| p.1), chart.log_y);
-    let mut builder = ChartBuilder::on(root);
-    builder
+    let series: Vec<(&Series, Vec<(f64, f64)>)> = chart
+        .series
+        .iter()
+        .map(|s| {
+            let pts = s
+                .points
+                .iter()
+                .filter(|(a, b)| (!chart.log_x || *a > 0.0) && (!chart.log_y || *b > 0.0))
+                .map(|&(a, b)| (to_axis(a, chart.log_x), to_axis(b, chart.log_y)))
+                .filter(|(a, b)| a.is_finite() && b.is_finite())
+                .collect();
+            (s, pts)
+        })
+        .collect();
+    let x = axis_range(series.iter().flat_map(|s| s.1.iter().map(|p| p.0)));
+    let y = axis_range(series.iter().flat_map(|s| s.1.iter().map(|p| p.1)));
+    let label = |v: f64, log: bool| tick(if log { 10f64.powf(v) } else { v });
+    let mut ctx = ChartBuilder::on(root)
         .caption(&chart.title, (FONT, 24))
         .margin(16)
         .x_label_area_size(48)
-        .y_label_area_size(78);
-    // One drawing routine for the four axis kinds.
-    macro_rules! plot_with {
-        ($x:expr, $y:expr) => {{
-            let mut ctx = builder.build_cartesian_2d($x, $y).map_err(|e| fail(&e))?;
-            ctx.configure_mesh()
-                .x_desc(chart.x_label.as_str())
-                .y_desc(chart.y_label.as_str())
-                .label_style((FONT, 15))
-                .axis_desc_style((FONT, 17))
-                .draw()
+        .y_label_area_size(78)
+        .build_cartesian_2d(x.0..x.1, y.0..y.1)
+        .map_err(|e| fail(&e))?;
+    ctx.configure_mesh()
+        .x_labels(10)
+        .y_labels(10)
+        .x_label_formatter(&|v| label(*v, chart.log_x))
+        .y_label_formatter(&|v| label(*v, chart.log_y))
+        .x_desc(chart.x_label.as_str())
+        .y_desc(chart.y_label.as_str())
+        .label_style((FONT, 15))
+        .axis_desc_style((FONT, 17))
+        .draw()
+        .map_err(|e| fail(&e))?;
+    for (i, (s, pts)) in series.into_iter().enumerate() {
+        let (r, g, b) = COLOURS[i % COLOURS.len()];
+        let colour = RGBColor(r, g, b).to_rgba();
+        let legend =
+            move |(x, y): (i32, i32)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2));
+        if s.dashed {
+            ctx.draw_series(DashedLineSeries::new(pts, 8, 6, colour.stroke_width(2)))
+                .map_err(|e| fail(&e))?
+                .label(s.name.as_str())
+                .legend(legend);
+        } else {
+            ctx.draw_series(LineSeries::new(pts.clone(), colour.stroke_width(2)))
+                .map_err(|e| fail(&e))?
+                .label(s.name.as_str())
+                .legend(legend);
+            ctx.draw_series(pts.into_iter().map(|p| Circle::new(p, 3, colour.filled())))
                 .map_err(|e| fail(&e))?;
-            for (i, s) in chart.series.iter().enumerate() {
-                let (r, g, b) = COLOURS[i % COLOURS.len()];
-                let colour = RGBColor(r, g, b).to_rgba();
-                let pts: Vec<(f64, f64)> = s
-                    .points
-                    .iter()
-                    .copied()
-                    .filter(|(a, b)| {
-                        a.is_finite()
-                            && b.is_finite()
-                            && (!chart.log_x || *a > 0.0)
-                            && (!chart.log_y || *b > 0.0)
-                    })
-                    .collect();
-                if s.dashed {
-                    ctx.draw_series(DashedLineSeries::new(pts, 8, 6, colour.stroke_width(2)))
-                        .map_err(|e| fail(&e))?
-                        .label(s.name.as_str())
-                        .legend(move |(x, y)| {
-                            PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2))
-                        });
-                } else {
-                    ctx.draw_series(LineSeries::new(pts.clone(), colour.stroke_width(2)))
-                        .map_err(|e| fail(&e))?
-                        .label(s.name.as_str())
-                        .legend(move |(x, y)| {
-                            PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2))
-                        });
-                    ctx.draw_series(pts.into_iter().map(|p| Circle::new(p, 3, colour.filled())))
-                        .map_err(|e| fail(&e))?;
-                }
-            }
-            ctx.configure_series_labels()
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK.mix(0.4))
-                .label_font((FONT, 14))
-                .position(SeriesLabelPosition::UpperRight)
-                .draw()
-                .map_err(|e| fail(&e))?;
-        }};
+        }
     }
-    match (chart.log_x, chart.log_y) {
-        (false, false) => plot_with!(x.0..x.1, y.0..y.1),
-        (true, false) => plot_with!((x.0..x.1).log_scale(), y.0..y.1),
-        (false, true) => plot_with!(x.0..x.1, (y.0..y.1).log_scale()),
-        (true, true) => plot_with!((x.0..x.1).log_scale(), (y.0..y.1).log_scale()),
-    }
+    ctx.configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK.mix(0.4))
+        .label_font((FONT, 14))
+        .position(match chart.legend {
+            Corner::UpperLeft => SeriesLabelPosition::UpperLeft,
+            Corner::UpperRight => SeriesLabelPosition::UpperRight,
+            Corner::LowerLeft => SeriesLabelPosition::LowerLeft,
+            Corner::LowerRight => SeriesLabelPosition::LowerRight,
+        })
+        .draw()
+        .map_err(|e| fail(&e))?;
     Ok(())
 }

@@ -63,7 +63,7 @@ pub fn sample_rays(space: &Space, count: usize, seed: u64) -> Vec<Ray<DVec4>> {
 }
 
 /// The budget chosen for a scene and what the sample said about it.
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct BudgetChoice {
     /// Crossings per ray.
     pub budget: u32,
