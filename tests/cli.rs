@@ -340,7 +340,10 @@ fn bench_quick_writes_results_that_respect_their_bounds() {
             assert!(d["max_position_error"].as_f64().unwrap() <= d["bound"].as_f64().unwrap());
         }
         if let Some(r) = d["worst_bound_ratio"].as_f64() {
-            assert!(r <= 1.0, "a ray's f32 drift exceeds its conditioning bound: {d}");
+            assert!(
+                r <= 1.0,
+                "a ray's f32 drift exceeds its conditioning bound: {d}"
+            );
         }
     }
     for space in ["torus", "seifert-weber"] {

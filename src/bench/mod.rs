@@ -373,7 +373,10 @@ pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, 
         }
         progress.inc(1);
         for &fog in &config.fog_factors {
-            announce(progress, format!("{}: fog cut-off at λ = {fog} inradii", subject.id));
+            announce(
+                progress,
+                format!("{}: fog cut-off at λ = {fog} inradii", subject.id),
+            );
             report.cutoff.push(cutoff(subject, fog, config.error_size));
             progress.inc(1);
         }
@@ -393,10 +396,10 @@ pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, 
                 .map_or(64, |b| b.2);
             settings.push((budget, "auto-high".to_string(), fog));
         }
-        announce(progress, format!(
-            "{}: specialised against general shader",
-            subject.id
-        ));
+        announce(
+            progress,
+            format!("{}: specialised against general shader", subject.id),
+        );
         let auto_default = budgets
             .iter()
             .find(|(f, q, _)| *f == DEFAULT_FOG_FACTOR && *q == Quality::High)
@@ -415,10 +418,13 @@ pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, 
                 }
             })?;
             for &(w, h) in &config.sizes {
-                announce(progress, format!(
-                    "{}: {w}×{h}, budget {budget}, λ = {fog} inradii",
-                    subject.id
-                ));
+                announce(
+                    progress,
+                    format!(
+                        "{}: {w}×{h}, budget {budget}, λ = {fog} inradii",
+                        subject.id
+                    ),
+                );
                 let (stats, baseline) = time_setting(harness, subject, &gpu, (w, h), config)?;
                 report.timings.push(TimingRow {
                     space: subject.id.clone(),
@@ -437,10 +443,13 @@ pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, 
                 });
                 progress.inc(1);
             }
-            announce(progress, format!(
-                "{}: accuracy, budget {budget}, λ = {fog} inradii",
-                subject.id
-            ));
+            announce(
+                progress,
+                format!(
+                    "{}: accuracy, budget {budget}, λ = {fog} inradii",
+                    subject.id
+                ),
+            );
             let exact = match exact_cache.iter().find(|(f, _)| *f == fog) {
                 Some((_, r)) => r.clone(),
                 None => {
@@ -1039,7 +1048,11 @@ pub fn summary_markdown(report: &BenchReport) -> String {
                 "| {} | {}{} | {} | {:.2} | {} | {} | {} | {} | {:.2} | {} | {} |",
                 e.space,
                 e.budget,
-                if e.budget_from == "fixed" { "" } else { " (auto)" },
+                if e.budget_from == "fixed" {
+                    ""
+                } else {
+                    " (auto)"
+                },
                 e.fog_factor,
                 ms,
                 pct(e.budget_exhausted),

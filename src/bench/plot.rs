@@ -189,8 +189,9 @@ where
     for (i, (s, pts)) in series.into_iter().enumerate() {
         let (r, g, b) = COLOURS[i % COLOURS.len()];
         let colour = RGBColor(r, g, b).to_rgba();
-        let legend =
-            move |(x, y): (i32, i32)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2));
+        let legend = move |(x, y): (i32, i32)| {
+            PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2))
+        };
         if s.dashed {
             ctx.draw_series(DashedLineSeries::new(pts, 8, 6, colour.stroke_width(2)))
                 .map_err(|e| fail(&e))?
