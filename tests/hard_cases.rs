@@ -106,6 +106,27 @@ fn ray(g: Geometry, from: DVec3, dir: DVec3) -> Ray<DVec4> {
     }
 }
 
+/// The f64 and f32 walkers of a cell whose faces are all mirrors (a billiard: the walk only
+/// needs faces and reflections, not a valid orbifold).
+fn mirrored_walkers(g: Geometry, covectors: &[DVec4]) -> (CellWalker<DVec4>, CellWalker<Vec4>) {
+    let pairings: Vec<_> = covectors.iter().map(|c| g.reflection(*c)).collect();
+    let partners: Vec<usize> = (0..covectors.len()).collect();
+    (
+        CellWalker {
+            geometry: g,
+            covectors: covectors.to_vec(),
+            pairings: pairings.clone(),
+            partners: partners.clone(),
+        },
+        CellWalker {
+            geometry: g,
+            covectors: covectors.iter().map(|c| Vec4::from_f64(*c)).collect(),
+            pairings: pairings.iter().map(|m| Vec4::matrix_from_f64(*m)).collect(),
+            partners,
+        },
+    )
+}
+
 /// A ray running along a face at 1e-7 rad towards it, 1e-3 inradii inside.
 #[test]
 fn grazing_rays_stay_in_the_cell() {
@@ -236,22 +257,7 @@ fn near_ideal_hyperbolic_dodecahedra() {
             let m = glam::DMat3::from_cols(n[0], n[2], n[4]).transpose();
             (m.inverse() * DVec3::splat(r)).length()
         };
-        let walker = CellWalker::<DVec4> {
-            geometry: g,
-            covectors: covectors.clone(),
-            pairings: covectors.iter().map(|c| g.reflection(*c)).collect(),
-            partners: (0..12).collect(),
-        };
-        let w32 = CellWalker::<Vec4> {
-            geometry: g,
-            covectors: covectors.iter().map(|c| Vec4::from_f64(*c)).collect(),
-            pairings: walker
-                .pairings
-                .iter()
-                .map(|m| Vec4::matrix_from_f64(*m))
-                .collect(),
-            partners: walker.partners.clone(),
-        };
+        let (walker, w32) = mirrored_walkers(g, &covectors);
         let what =
             format!("dihedral {dihedral_degrees}° (vertex at chart radius {vertex_radius:.6})");
         assert!(vertex_radius < 1.0, "{what}: not a compact cell");
@@ -301,22 +307,7 @@ fn spherical_cells_reaching_the_chart_equator() {
             .collect();
         let corner_w = 1.0 / (1.0 + 3.0 * half_width * half_width).sqrt();
         let what = format!("half-width {half_width} (corner w = {corner_w:.1e})");
-        let walker = CellWalker::<DVec4> {
-            geometry: g,
-            covectors: covectors.clone(),
-            pairings: covectors.iter().map(|c| g.reflection(*c)).collect(),
-            partners: (0..6).collect(),
-        };
-        let w32 = CellWalker::<Vec4> {
-            geometry: g,
-            covectors: covectors.iter().map(|c| Vec4::from_f64(*c)).collect(),
-            pairings: walker
-                .pairings
-                .iter()
-                .map(|m| Vec4::matrix_from_f64(*m))
-                .collect(),
-            partners: walker.partners.clone(),
-        };
+        let (walker, w32) = mirrored_walkers(g, &covectors);
         let mut rng = SplitMix64(9);
         for _ in 0..16 {
             let start = ray(g, DVec3::ZERO, rng.direction());
