@@ -35,6 +35,7 @@ fn main() -> ExitCode {
         fog_distance: Some(fog),
         max_crossings: crossings,
         parts: SceneParts::default(),
+        objects: Vec::new(),
         resolution_scale: 1.0,
     }) {
         Ok(image) => image,

@@ -37,7 +37,7 @@ pub mod trace;
 pub mod ui;
 
 pub use plugin::{
-    ActiveSpace, CurvedSpaceCamera, CurvedSpacesPlugin, CurvedSpacesSystems, Quality,
+    ActiveSpace, CurvedSpaceCamera, CurvedSpacesPlugin, CurvedSpacesSystems, Quality, SceneObjects,
     TracerSettings,
 };
 
@@ -47,7 +47,7 @@ pub mod prelude {
     pub use crate::player::{Holonomy, KeyBindings, PlayerFrame, PlayerSettings};
     pub use crate::plugin::{
         ActiveSpace, CurvedSpaceCamera, CurvedSpacesPlugin, CurvedSpacesSystems, Quality,
-        TracerSettings,
+        SceneObjects, TracerSettings,
     };
     pub use crate::space::{SEED_SPACES, Space, SpaceError, seed_space};
 }

@@ -604,6 +604,7 @@ fn render_command(args: &RenderArgs) -> Result<(), String> {
             fog_distance: Some(fog),
             max_crossings,
             parts: SceneParts::default(),
+            objects: Vec::new(),
             resolution_scale: 1.0,
         })
         .map_err(|e| e.to_string())?

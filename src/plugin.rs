@@ -18,7 +18,9 @@ use crate::player::{
 };
 use crate::render::{PreparedScene, TracerRenderPlugin, gpu::GpuScene};
 use crate::space::{Space, SpaceError, invariants, seed_space};
-use crate::trace::{BudgetChoice, Camera as TraceCamera, Scene, SceneParts, Shading, auto_budget};
+use crate::trace::{
+    BudgetChoice, Camera as TraceCamera, Object, Scene, SceneParts, Shading, auto_budget,
+};
 use bevy::core_pipeline::tonemapping::{DebandDither, Tonemapping};
 use bevy::prelude::*;
 use std::sync::Arc;
@@ -188,6 +190,14 @@ impl TracerSettings {
     }
 }
 
+/// Your own objects in the curved space, added to the default scene parts: metric balls and
+/// geodesic tubes with their centres inside the cell (`trace::Ball::new`, `trace::Tube::new`
+/// in model coordinates). One that sticks out through faces is drawn through its images
+/// under the pairings that meet the cell ([`Scene::place`]), so it looks whole from every
+/// side. A misplaced object is reported in [`TracerStatus::error`] and left out.
+#[derive(Resource, Clone, Debug, Default, PartialEq)]
+pub struct SceneObjects(pub Vec<Object>);
+
 /// The last problem the tracer had with the scene (shown in the UI), if any.
 #[derive(Resource, Clone, Debug, Default, PartialEq)]
 pub struct TracerStatus {
@@ -216,6 +226,7 @@ impl Plugin for CurvedSpacesPlugin {
             parts: SceneParts::default(),
         })
         .init_resource::<TracerStatus>()
+        .init_resource::<SceneObjects>()
         .init_resource::<PlayerSettings>()
         .init_resource::<KeyBindings>()
         .init_resource::<MouseLook>()
@@ -289,19 +300,46 @@ fn reset_players_on_switch(
     }
 }
 
-/// Packs the scene for the GPU when the space or the settings changed.
+/// The scene the tracer shows: the default parts and the user's objects with their images.
+/// Objects that cannot be placed are left out and described in the returned message.
+#[must_use]
+pub fn build_scene(
+    space: &Space,
+    settings: &TracerSettings,
+    objects: &[Object],
+) -> (Scene, Option<String>) {
+    let mut scene = Scene::with_parts(space, settings.fog_for(space), settings.parts);
+    let problems: Vec<String> = objects
+        .iter()
+        .enumerate()
+        .filter_map(|(i, o)| {
+            scene
+                .place(space, *o)
+                .err()
+                .map(|e| format!("scene object {i}: {e}"))
+        })
+        .collect();
+    for p in &problems {
+        warn!("{p}");
+    }
+    (scene, (!problems.is_empty()).then(|| problems.join("; ")))
+}
+
+/// Packs the scene for the GPU when the space, the settings or the objects changed.
 fn upload_scene(
     active: Res<ActiveSpace>,
     settings: Res<TracerSettings>,
+    objects: Res<SceneObjects>,
     mut status: ResMut<TracerStatus>,
     prepared: Option<Res<PreparedScene>>,
     mut commands: Commands,
 ) {
-    if prepared.is_some() && !active.is_changed() && !settings.is_changed() {
+    if prepared.is_some() && !active.is_changed() && !settings.is_changed() && !objects.is_changed()
+    {
         return;
     }
     let space = &active.space;
-    let scene = Scene::with_parts(space, settings.fog_for(space), settings.parts);
+    let (scene, problems) = build_scene(space, &settings, &objects.0);
     let auto = settings.max_crossings.is_none().then(|| {
         auto_budget(
             space,
@@ -317,7 +355,7 @@ fn upload_scene(
     match GpuScene::new(space, &scene, budget) {
         Ok(gpu) => {
             commands.insert_resource(PreparedScene(Arc::new(gpu)));
-            status.error = None;
+            status.error = problems;
             status.budget = budget;
             status.auto_budget = auto;
         }

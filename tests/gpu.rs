@@ -85,6 +85,7 @@ fn every_seed_space_renders_on_the_gpu_like_the_cpu_reference() {
                 fog_distance: Some(fog),
                 max_crossings: crossings as u32,
                 parts: SceneParts::default(),
+                objects: Vec::new(),
                 resolution_scale: 1.0,
             })
             .unwrap_or_else(|e| panic!("{}: {e}", seed.id));
@@ -145,6 +146,7 @@ fn a_reduced_resolution_is_traced_and_scaled_up() {
         fog_distance: None,
         max_crossings: 24,
         parts: SceneParts::default(),
+        objects: Vec::new(),
         resolution_scale: 1.0,
     };
     let full = renderer.render(&request).expect("full resolution");
@@ -164,4 +166,107 @@ fn a_reduced_resolution_is_traced_and_scaled_up() {
         "the reduced picture shows another scene"
     );
     assert!(c.differing > 0.02, "the resolution scale had no effect");
+}
+
+/// Your own objects through the plugin (`SceneObjects`): a ball over a corner of the torus
+/// cell and one sticking out of a Seifert–Weber face are drawn through their images on the
+/// GPU exactly as the CPU reference draws the same placed scene, and a ball outside the cell
+/// is left out with a message.
+#[test]
+fn placed_objects_straddling_faces_render_alike_on_gpu_and_cpu() {
+    use bevy_curved_spaces::plugin::{TracerSettings, build_scene};
+    use bevy_curved_spaces::trace::{Ball, Object};
+    use glam::DVec3;
+    let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
+    for (id, at, radius) in [
+        ("torus", DVec3::new(0.45, 0.45, 0.4), 0.25),
+        ("seifert-weber", DVec3::new(0.0, 0.3, 0.55), 0.35),
+    ] {
+        let space = bevy_curved_spaces::space::seed_space(id).expect("builds");
+        let g = space.geometry;
+        let centre = g.from_chart(at).expect("chart point");
+        let ball = Object::Ball(Ball::new(g, centre, radius, DVec3::new(0.3, 0.9, 0.5)));
+        let parts = SceneParts {
+            edges: true,
+            centre_ball: false,
+        };
+        let settings = TracerSettings {
+            fog_distance: None,
+            max_crossings: Some(24),
+            quality: bevy_curved_spaces::Quality::High,
+            resolution_scale: 1.0,
+            parts,
+        };
+        let (scene, problems) = build_scene(&space, &settings, &[ball]);
+        assert_eq!(problems, None, "{id}");
+        let defaults = Scene::with_parts(&space, settings.fog_for(&space), parts);
+        assert!(
+            scene.objects.len() >= defaults.objects.len() + 2,
+            "{id}: the ball needs at least one image"
+        );
+        let camera = Camera::default_for(&space);
+        let cpu = render(
+            &space,
+            &scene,
+            &camera,
+            &RenderSettings {
+                width: WIDTH,
+                height: HEIGHT,
+                max_crossings: 24,
+            },
+        );
+        let request = OffscreenRender {
+            space: ActiveSpace::new(id, space.clone()),
+            width: WIDTH,
+            height: HEIGHT,
+            frame: camera.frame,
+            fov_y_degrees: camera.fov_y_degrees,
+            fog_distance: None,
+            max_crossings: 24,
+            parts,
+            objects: vec![ball],
+            resolution_scale: 1.0,
+        };
+        let gpu = renderer.render(&request).expect("renders");
+        let (c, _) = compare(&gpu, &cpu);
+        println!(
+            "{id} with a straddling ball: differing {:.3} %, mean error {:.3}/255",
+            100.0 * c.differing,
+            c.mean_error
+        );
+        assert!(
+            c.differing <= MAX_DIFFERING,
+            "{id}: {:.2} %",
+            100.0 * c.differing
+        );
+        // Without the ball the picture changes: the test sees the objects.
+        let mut plain = request.clone();
+        plain.objects.clear();
+        let (without, _) = compare(&renderer.render(&plain).expect("renders"), &gpu);
+        assert!(without.differing > 0.02, "{id}: the ball is not visible");
+    }
+    let space = SEED_SPACES[0].build().expect("builds");
+    let far = space
+        .geometry
+        .from_chart(DVec3::new(2.0, 0.0, 0.0))
+        .expect("chart point");
+    let settings = TracerSettings {
+        fog_distance: None,
+        max_crossings: None,
+        quality: bevy_curved_spaces::Quality::Medium,
+        resolution_scale: 1.0,
+        parts: SceneParts::default(),
+    };
+    let outside = Object::Ball(Ball::new(space.geometry, far, 0.1, DVec3::ONE));
+    let (scene, problems) = build_scene(&space, &settings, &[outside]);
+    assert!(
+        problems.is_some_and(|p| p.contains("scene object 0") && p.contains("not inside the cell")),
+        "a misplaced object is named"
+    );
+    assert_eq!(
+        scene.objects.len(),
+        Scene::with_parts(&space, settings.fog_for(&space), settings.parts)
+            .objects
+            .len()
+    );
 }

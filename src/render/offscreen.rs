@@ -3,9 +3,11 @@
 //! Used by the CLI's GPU `render`, the headless example and the GPU-vs-CPU tests.
 
 use crate::player::PlayerFrame;
-use crate::plugin::{ActiveSpace, CurvedSpaceCamera, CurvedSpacesPlugin, TracerSettings};
+use crate::plugin::{
+    ActiveSpace, CurvedSpaceCamera, CurvedSpacesPlugin, SceneObjects, TracerSettings,
+};
 use crate::render::FramesTraced;
-use crate::trace::SceneParts;
+use crate::trace::{Object, SceneParts};
 use bevy::app::{PluginsState, ScheduleRunnerPlugin};
 use bevy::camera::{ImageRenderTarget, RenderTarget};
 use bevy::prelude::*;
@@ -31,6 +33,8 @@ pub struct OffscreenRender {
     pub fog_distance: Option<f64>,
     pub max_crossings: u32,
     pub parts: SceneParts,
+    /// Objects added to the scene (see [`SceneObjects`]).
+    pub objects: Vec<Object>,
     /// Fraction of the resolution that is traced (then scaled up), in (0, 1].
     pub resolution_scale: f32,
 }
@@ -127,6 +131,7 @@ impl OffscreenRenderer {
             resolution_scale: request.resolution_scale,
             parts: request.parts,
         });
+        world.insert_resource(SceneObjects(request.objects.clone()));
         let mut target = Image::new_target_texture(w, h, TextureFormat::Rgba8UnormSrgb, None);
         target.texture_descriptor.usage |= TextureUsages::COPY_SRC;
         let handle = world.resource_mut::<Assets<Image>>().add(target);
