@@ -9,6 +9,7 @@ use bevy_curved_spaces::bench::BenchConfig;
 use bevy_curved_spaces::geometry::Vector4;
 use bevy_curved_spaces::plugin::AUTO_BUDGET_SAMPLES;
 use bevy_curved_spaces::render::FramesTraced;
+use bevy_curved_spaces::render::gpu::MAX_GPU_BUDGET;
 use bevy_curved_spaces::render::offscreen::{OffscreenRender, gpu_available, render_offscreen};
 use bevy_curved_spaces::space::file::{SpaceRecord, load_space_file};
 use bevy_curved_spaces::space::invariants::Invariants;
@@ -589,10 +590,10 @@ fn render_command(args: &RenderArgs) -> Result<(), String> {
         );
         let max_crossings = u32::try_from(max_crossings)
             .ok()
-            .filter(|&n| (1..=4096).contains(&n))
+            .filter(|&n| (1..=MAX_GPU_BUDGET).contains(&n))
             .ok_or_else(|| {
                 format!(
-                    "the GPU tracer takes a crossing budget from 1 to 4096, got {max_crossings} (use --cpu for more)"
+                    "the GPU tracer takes a crossing budget from 1 to {MAX_GPU_BUDGET}, got {max_crossings} (use --cpu for more)"
                 )
             })?;
         render_offscreen(&OffscreenRender {

@@ -146,6 +146,29 @@ fn grazing_rays_stay_in_the_cell() {
     }
 }
 
+/// Rays from the centre exactly through every vertex and every edge midpoint, in f64 and
+/// f32: they hop around the vertex or edge and go on, inside the cell.
+#[test]
+fn rays_exactly_through_edges_and_vertices_in_both_precisions() {
+    for (id, s) in spaces() {
+        let g = s.geometry;
+        let mut targets: Vec<DVec3> = s.vertices.clone();
+        targets.extend(
+            s.edges
+                .iter()
+                .map(|e| (s.vertices[e.vertices[0]] + s.vertices[e.vertices[1]]) / 2.0),
+        );
+        for (i, target) in targets.iter().enumerate() {
+            trace_both(
+                &s,
+                ray(g, DVec3::ZERO, *target),
+                100,
+                &format!("{id}: target {i}"),
+            );
+        }
+    }
+}
+
 /// Rays starting exactly on a face centre, an edge midpoint and a vertex, in 64 directions
 /// each (half of them pointing out of the cell: they cross at once).
 #[test]

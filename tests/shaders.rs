@@ -6,7 +6,7 @@ use bevy::shader::ShaderDefVal;
 use bevy_curved_spaces::bench::BASELINE_WGSL;
 use bevy_curved_spaces::geometry::Geometry;
 use bevy_curved_spaces::render::gpu::{
-    GpuScene, ShaderKey, TRACER_WGSL, UPSCALE_WGSL, VIEW_WORDS, compose_wgsl,
+    GpuScene, MAX_GPU_BUDGET, ShaderKey, TRACER_WGSL, UPSCALE_WGSL, VIEW_WORDS, compose_wgsl,
 };
 use bevy_curved_spaces::space::SEED_SPACES;
 use bevy_curved_spaces::trace::{Scene, SceneParts, Shading};
@@ -175,6 +175,16 @@ fn a_scene_without_objects_and_a_zero_budget_are_refused_or_handled() {
     assert_eq!((gpu.key.balls, gpu.key.tubes), (0, 0));
     validate(&gpu.key);
     assert!(GpuScene::new(&space, &scene, 0).is_err());
+    // Every shader loop is bounded: the budget by MAX_GPU_BUDGET, faces and objects by the
+    // counts the shader is compiled with.
+    assert!(GpuScene::new(&space, &scene, MAX_GPU_BUDGET).is_ok());
+    let too_many = GpuScene::new(&space, &scene, MAX_GPU_BUDGET + 1);
+    assert!(
+        too_many
+            .as_ref()
+            .is_err_and(|e| e.to_string().contains("more than the GPU tracer takes")),
+        "{too_many:?}"
+    );
 }
 
 #[test]

@@ -20,6 +20,10 @@ pub const UPSCALE_WGSL: &str = include_str!("../../shaders/upscale.wgsl");
 /// wgpu's default `max_uniform_buffer_binding_size`: the tracer's data must fit in it.
 pub const MAX_UNIFORM_BYTES: usize = 64 << 10;
 
+/// The largest crossing budget the GPU tracer takes: every loop of the shader is bounded by
+/// it (and by the face and object counts), so no frame can run away.
+pub const MAX_GPU_BUDGET: u32 = 4096;
+
 /// Words of the per-view part at the start of the uniform (`View`: a mat4 and two vec4).
 pub const VIEW_WORDS: usize = 24;
 
@@ -135,6 +139,10 @@ pub enum GpuSceneError {
     },
     #[error("the crossing budget must be at least 1, got {0}")]
     NoCrossings(u32),
+    #[error(
+        "a crossing budget of {0} is more than the GPU tracer takes ({MAX_GPU_BUDGET}): a frame could run for seconds; the fog ends rays long before"
+    )]
+    BudgetTooLarge(u32),
 }
 
 /// A space and its scene, packed for the GPU (everything but the per-view camera part).
@@ -160,6 +168,9 @@ impl GpuScene {
     pub fn new(space: &Space, scene: &Scene, max_crossings: u32) -> Result<Self, GpuSceneError> {
         if max_crossings == 0 {
             return Err(GpuSceneError::NoCrossings(max_crossings));
+        }
+        if max_crossings > MAX_GPU_BUDGET {
+            return Err(GpuSceneError::BudgetTooLarge(max_crossings));
         }
         let g = space.geometry;
         let balls: Vec<_> = scene
