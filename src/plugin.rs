@@ -332,6 +332,7 @@ fn upload_scene(
     objects: Res<SceneObjects>,
     mut status: ResMut<TracerStatus>,
     prepared: Option<Res<PreparedScene>>,
+    mut last_choice: Local<Option<(Arc<Space>, Scene, Quality, BudgetChoice)>>,
     mut commands: Commands,
 ) {
     if prepared.is_some() && !active.is_changed() && !settings.is_changed() && !objects.is_changed()
@@ -340,13 +341,21 @@ fn upload_scene(
     }
     let space = &active.space;
     let (scene, problems) = build_scene(space, &settings, &objects.0);
+    // The automatic budget depends on the space, the scene and the quality only: a change
+    // of the resolution scale or a fixed budget's toggling does not sample rays again.
     let auto = settings.max_crossings.is_none().then(|| {
-        auto_budget(
-            space,
-            &scene,
-            settings.quality.miss_fraction(),
-            AUTO_BUDGET_SAMPLES,
-        )
+        let quality = settings.quality;
+        match last_choice.as_ref() {
+            Some((s, sc, q, choice)) if Arc::ptr_eq(s, space) && *sc == scene && *q == quality => {
+                *choice
+            }
+            _ => {
+                let choice =
+                    auto_budget(space, &scene, quality.miss_fraction(), AUTO_BUDGET_SAMPLES);
+                *last_choice = Some((space.clone(), scene.clone(), quality, choice));
+                choice
+            }
+        }
     });
     let budget = settings
         .max_crossings
