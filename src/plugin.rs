@@ -325,6 +325,14 @@ pub fn build_scene(
     (scene, (!problems.is_empty()).then(|| problems.join("; ")))
 }
 
+/// The automatic budget last chosen and what it was chosen for.
+struct BudgetCache {
+    space: Arc<Space>,
+    scene: Scene,
+    quality: Quality,
+    choice: BudgetChoice,
+}
+
 /// Packs the scene for the GPU when the space, the settings or the objects changed.
 fn upload_scene(
     active: Res<ActiveSpace>,
@@ -332,7 +340,7 @@ fn upload_scene(
     objects: Res<SceneObjects>,
     mut status: ResMut<TracerStatus>,
     prepared: Option<Res<PreparedScene>>,
-    mut last_choice: Local<Option<(Arc<Space>, Scene, Quality, BudgetChoice)>>,
+    mut last_choice: Local<Option<BudgetCache>>,
     mut commands: Commands,
 ) {
     if prepared.is_some() && !active.is_changed() && !settings.is_changed() && !objects.is_changed()
@@ -346,13 +354,18 @@ fn upload_scene(
     let auto = settings.max_crossings.is_none().then(|| {
         let quality = settings.quality;
         match last_choice.as_ref() {
-            Some((s, sc, q, choice)) if Arc::ptr_eq(s, space) && *sc == scene && *q == quality => {
-                *choice
+            Some(c) if Arc::ptr_eq(&c.space, space) && c.scene == scene && c.quality == quality => {
+                c.choice
             }
             _ => {
                 let choice =
                     auto_budget(space, &scene, quality.miss_fraction(), AUTO_BUDGET_SAMPLES);
-                *last_choice = Some((space.clone(), scene.clone(), quality, choice));
+                *last_choice = Some(BudgetCache {
+                    space: space.clone(),
+                    scene: scene.clone(),
+                    quality,
+                    choice,
+                });
                 choice
             }
         }
