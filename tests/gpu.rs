@@ -13,6 +13,15 @@ use bevy_curved_spaces::trace::{Camera, RenderSettings, Scene, SceneParts, Shadi
 use image::RgbImage;
 use std::path::PathBuf;
 
+/// One GPU test at a time: several headless apps rendering at once on lavapipe starve each
+/// other's frames (a capture then raced the tracer now and then).
+static GPU: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+fn gpu_lock() -> std::sync::MutexGuard<'static, ()> {
+    GPU.lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
 const WIDTH: u32 = 160;
 const HEIGHT: u32 = 90;
 /// A pixel "differs" when a channel is off by more than this (of 255).
@@ -54,6 +63,7 @@ fn compare(gpu: &RgbImage, cpu: &RgbImage) -> (Comparison, RgbImage) {
 
 #[test]
 fn every_seed_space_renders_on_the_gpu_like_the_cpu_reference() {
+    let _gpu = gpu_lock();
     let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| {
         panic!("{e}\n(the GPU tests need a Vulkan driver: run scripts/setup-system.sh)")
     });
@@ -134,6 +144,7 @@ fn every_seed_space_renders_on_the_gpu_like_the_cpu_reference() {
 
 #[test]
 fn a_reduced_resolution_is_traced_and_scaled_up() {
+    let _gpu = gpu_lock();
     let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
     let space = SEED_SPACES[0].build().expect("seed space builds");
     let camera = Camera::default_for(&space);
@@ -174,6 +185,7 @@ fn a_reduced_resolution_is_traced_and_scaled_up() {
 /// is left out with a message.
 #[test]
 fn placed_objects_straddling_faces_render_alike_on_gpu_and_cpu() {
+    let _gpu = gpu_lock();
     use bevy_curved_spaces::plugin::{TracerSettings, build_scene};
     use bevy_curved_spaces::trace::{Ball, Object};
     use glam::DVec3;
