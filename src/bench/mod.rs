@@ -536,16 +536,33 @@ fn time_setting(
     let baseline_frame = harness.frame(w, h, Output::Colour, &[]);
     harness.draw(&tracer, &frame)?;
     harness.draw(&Program::Baseline, &baseline_frame)?;
-    let (mut traced, mut base) = (Vec::new(), Vec::new());
+    time_interleaved(
+        harness,
+        (&tracer, &frame),
+        (&Program::Baseline, &baseline_frame),
+        config,
+    )
+}
+
+/// Times two programs frame by frame in turn (so both see the same machine load) for at
+/// least `min_frames` and `min_seconds`, at most `max_frames`. Draw each once before: the
+/// first frame compiles the pipeline.
+fn time_interleaved(
+    harness: &mut Harness,
+    (pa, a): (&Program, &Frame),
+    (pb, b): (&Program, &Frame),
+    config: &BenchConfig,
+) -> Result<(Stats, Stats), BenchError> {
+    let (mut ta, mut tb) = (Vec::new(), Vec::new());
     let start = std::time::Instant::now();
-    while traced.len() < config.max_frames.max(1)
-        && (traced.len() < config.min_frames.max(1)
+    while ta.len() < config.max_frames.max(1)
+        && (ta.len() < config.min_frames.max(1)
             || start.elapsed().as_secs_f64() < config.min_seconds)
     {
-        traced.push(harness.draw(&tracer, &frame)?);
-        base.push(harness.draw(&Program::Baseline, &baseline_frame)?);
+        ta.push(harness.draw(pa, a)?);
+        tb.push(harness.draw(pb, b)?);
     }
-    Ok((Stats::of(traced), Stats::of(base)))
+    Ok((Stats::of(ta), Stats::of(tb)))
 }
 
 /// Times the specialised and the unspecialised shader on the same view, interleaved, at the
@@ -593,16 +610,7 @@ fn specialisation(
         .zip(pixels_b.chunks_exact(4))
         .filter(|(x, y)| x != y)
         .count();
-    let (mut ta, mut tb) = (Vec::new(), Vec::new());
-    let start = std::time::Instant::now();
-    while ta.len() < config.max_frames.max(1)
-        && (ta.len() < config.min_frames.max(1)
-            || start.elapsed().as_secs_f64() < config.min_seconds)
-    {
-        ta.push(harness.draw(&pa, &a)?);
-        tb.push(harness.draw(&pb, &b)?);
-    }
-    let (sa, sb) = (Stats::of(ta), Stats::of(tb));
+    let (sa, sb) = time_interleaved(harness, (&pa, &a), (&pb, &b), config)?;
     Ok(SpecialisationRow {
         space: subject.id.clone(),
         geometry: subject.geometry(),
