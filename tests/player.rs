@@ -8,6 +8,7 @@ use bevy::time::TimeUpdateStrategy;
 use bevy_curved_spaces::player::{PlayerSettings, step_frame, wrap_into_cell};
 use bevy_curved_spaces::prelude::*;
 use bevy_curved_spaces::space::invariants::{circumradius, inradius};
+use bevy_curved_spaces::trace::SplitMix64;
 use glam::{DMat4, DVec3};
 use std::time::Duration;
 
@@ -272,19 +273,6 @@ fn switching_space_at_run_time_resets_the_player() {
     assert!(Geometry::Spherical.frame_defect(f) < 1e-12);
 }
 
-/// A small deterministic generator (SplitMix64).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    }
-}
-
 #[test]
 fn a_million_random_steps_keep_the_frame_orthonormal_and_inside() {
     let margin = PlayerSettings::default().wrap_margin;
@@ -292,15 +280,16 @@ fn a_million_random_steps_keep_the_frame_orthonormal_and_inside() {
         let space = seed.build().expect("seed space builds");
         let g = space.geometry;
         let r = inradius(&space);
-        let mut rng = Rng(0xC0FFEE);
+        let mut rng = SplitMix64(0xC0FFEE);
+        let mut next = || 2.0 * rng.unit() - 1.0;
         let mut f = bevy_curved_spaces::trace::Camera::default_for(&space).frame;
         let mut worst_defect = 0.0f64;
         let mut worst_outside = f64::NEG_INFINITY;
         let mut crossings = 0;
         for _ in 0..1_000_000 {
             let motion = bevy_curved_spaces::player::PlayerMotion {
-                translation: DVec3::new(rng.next(), rng.next(), rng.next()) * 0.05 * r,
-                rotation: DVec3::new(rng.next(), rng.next(), rng.next()) * 0.2,
+                translation: DVec3::new(next(), next(), next()) * 0.05 * r,
+                rotation: DVec3::new(next(), next(), next()) * 0.2,
             };
             let (next, crossed) = wrap_into_cell(&space, step_frame(g, f, &motion), margin);
             crossings += crossed.len();

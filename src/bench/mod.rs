@@ -15,10 +15,10 @@ pub use plot::{Chart, Corner, PlotError, Series, write_chart};
 
 use crate::geometry::{Geometry, Vector4};
 use crate::plugin::Quality;
-use crate::render::gpu::{GpuScene, view_words};
+use crate::render::gpu::{GpuScene, gpu_object_indices, view_words};
 use crate::space::{Space, invariants, seed_space};
 use crate::trace::{
-    BudgetChoice, Camera, CellWalker, Limit, Object, RayEnd, Scene, auto_budget, colour_of,
+    BudgetChoice, Camera, CellWalker, Limit, RayEnd, Scene, auto_budget, colour_of,
     first_hit_traced, sample_rays, to_byte,
 };
 use glam::{DVec4, Vec4};
@@ -645,28 +645,6 @@ struct Difference {
     over_10_levels: f64,
 }
 
-/// The index a scene object has on the GPU (balls first, then tubes).
-fn gpu_indices(scene: &Scene) -> Vec<u32> {
-    let balls = scene
-        .objects
-        .iter()
-        .filter(|o| matches!(o, Object::Ball(_)))
-        .count() as u32;
-    let (mut ball, mut tube) = (0u32, balls);
-    scene
-        .objects
-        .iter()
-        .map(|o| {
-            let counter = match o {
-                Object::Ball(_) => &mut ball,
-                Object::Tube(_) => &mut tube,
-            };
-            *counter += 1;
-            *counter - 1
-        })
-        .collect()
-}
-
 impl Reference {
     /// The f64 reference picture with what each ray met; with `round_start`, each camera ray
     /// is first rounded to f32 (then traced in f64).
@@ -678,7 +656,7 @@ impl Reference {
         round_start: bool,
     ) -> Self {
         let walker = CellWalker::<DVec4>::new(&subject.space);
-        let index = gpu_indices(scene);
+        let index = gpu_object_indices(scene);
         let g = subject.space.geometry;
         let pixels: Vec<([u32; 4], [u8; 3], bool)> = (0..w * h)
             .into_par_iter()

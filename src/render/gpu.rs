@@ -145,6 +145,30 @@ pub enum GpuSceneError {
     BudgetTooLarge(u32),
 }
 
+/// The index each scene object has in the shader's lists, which [`GpuScene::new`] fills with
+/// the balls first, then the tubes, each in scene order (the `HIT_ID` output reports it).
+#[must_use]
+pub fn gpu_object_indices(scene: &Scene) -> Vec<u32> {
+    let balls = scene
+        .objects
+        .iter()
+        .filter(|o| matches!(o, Object::Ball(_)))
+        .count() as u32;
+    let (mut ball, mut tube) = (0u32, balls);
+    scene
+        .objects
+        .iter()
+        .map(|o| {
+            let counter = match o {
+                Object::Ball(_) => &mut ball,
+                Object::Tube(_) => &mut tube,
+            };
+            *counter += 1;
+            *counter - 1
+        })
+        .collect()
+}
+
 /// A space and its scene, packed for the GPU (everything but the per-view camera part).
 #[derive(Clone, Debug, PartialEq)]
 pub struct GpuScene {
