@@ -37,6 +37,7 @@ fn main() -> ExitCode {
         parts: SceneParts::default(),
         objects: Vec::new(),
         resolution_scale: 1.0,
+        stereo: Default::default(),
     }) {
         Ok(image) => image,
         Err(e) => {

@@ -54,6 +54,7 @@ fn main() -> ExitCode {
         },
         objects: vec![ball],
         resolution_scale: 1.0,
+        stereo: Default::default(),
     });
     match picture.map(|image| image.save("place-objects.png")) {
         Ok(Ok(())) => {

@@ -10,18 +10,27 @@
 //   BALLS + BALL_COUNT, TUBES + TUBE_COUNT   the object kinds present and their numbers
 //   HIT_ID                               (benchmark) output what each ray met instead of a
 //                                        colour: object, crossings, face path, how it ended
+//   STEREO_SPLIT                         two eyes in two halves of the view (src/stereo.rs)
+//   ANAGLYPH                             two eyes traced per pixel and mixed by two matrices
 //
 // Points and tangents are 4-vectors with ⟨u,v⟩ = u.xyz·v.xyz + κ u.w v.w; a ray segment in
 // the cell is X(s) ∝ p + s v, a straight line of the chart, so faces are planes (N·X = 0)
 // and balls and tubes are quadrics in s.
 
 struct View {
-    // Columns: right, up, back, position (an isometry of the model).
-    frame: mat4x4<f32>,
-    // tan(fov_y / 2), aspect ratio, viewport width, viewport height (pixels).
+    // The eyes' frames, left then right (both the head's in mono). Columns: right, up, back,
+    // position (an isometry of the model).
+    frames: array<mat4x4<f32>, 2>,
+    // Frustum tangents left, right, bottom, top: image point (u, v) looks along
+    // x·right + y·up − back with x = mix(left, right, u), y = mix(top, bottom, v).
     lens: vec4<f32>,
-    // Viewport origin (pixels), unused, unused.
-    origin: vec4<f32>,
+    // Viewport origin and size (pixels).
+    viewport: vec4<f32>,
+    // Where the second half of a split view starts (x, y in pixels; 0: no split), whether
+    // the eyes are swapped (0 or 1), unused.
+    split: vec4<f32>,
+    // Anaglyph matrices (left, right; upper 3×3) acting on linear RGB.
+    anaglyph: array<mat4x4<f32>, 2>,
 }
 
 struct Shading {
@@ -535,17 +544,50 @@ fn srgb_to_linear(c: vec3<f32>) -> vec3<f32> {
     return select(high, low, c <= vec3<f32>(0.04045));
 }
 
-// The colour seen through a fragment of the viewport.
-fn pixel_colour(position: vec4<f32>) -> vec3<f32> {
-    let view = space.view;
-    let size = view.lens.zw;
-    let pixel = position.xy - view.origin.xy;
-    let px = (2.0 * pixel.x / size.x - 1.0) * view.lens.x * view.lens.y;
-    let py = (1.0 - 2.0 * pixel.y / size.y) * view.lens.x;
-    let f = view.frame;
+#ifdef ANAGLYPH
+fn linear_to_srgb(c: vec3<f32>) -> vec3<f32> {
+    let low = c * 12.92;
+    let high = 1.055 * pow(c, vec3<f32>(1.0 / 2.4)) - 0.055;
+    return select(high, low, c <= vec3<f32>(0.0031308));
+}
+#endif
+
+// The colour seen by eye `eye` through image point `uv` of its picture (ViewLayout::ray).
+fn eye_colour(eye: u32, uv: vec2<f32>) -> vec3<f32> {
+    let lens = space.view.lens;
+    let px = mix(lens.x, lens.y, uv.x);
+    let py = mix(lens.w, lens.z, uv.y);
+    let f = space.view.frames[eye];
     let p = f[3];
     let v = unit_tangent(p, px * f[0] + py * f[1] - f[2]);
     return clamp(trace(p, v), vec3<f32>(0.0), vec3<f32>(1.0));
+}
+
+// The colour seen through a fragment of the viewport (ViewLayout::eye_at and rays_at).
+fn pixel_colour(position: vec4<f32>) -> vec3<f32> {
+    let view = space.view;
+    let pixel = position.xy - view.viewport.xy;
+    var size = view.viewport.zw;
+#ifdef STEREO_SPLIT
+    let split = view.split.xy;
+    let second = (split.x > 0.0 && pixel.x >= split.x) || (split.y > 0.0 && pixel.y >= split.y);
+    let half = select(0u, 1u, second);
+    let local = pixel - f32(half) * split;
+    size = select(size, split, split > vec2<f32>(0.0));
+    return eye_colour(half ^ u32(view.split.z), local / size);
+#else
+#ifdef ANAGLYPH
+    let uv = pixel / size;
+    let left = srgb_to_linear(eye_colour(0u, uv));
+    let right = srgb_to_linear(eye_colour(1u, uv));
+    let mixed = (view.anaglyph[0] * vec4<f32>(left, 0.0)).rgb
+        + (view.anaglyph[1] * vec4<f32>(right, 0.0)).rgb;
+    // Returned encoded, like the other paths: the fragment decodes it once more.
+    return linear_to_srgb(clamp(mixed, vec3<f32>(0.0), vec3<f32>(1.0)));
+#else
+    return eye_colour(0u, pixel / size);
+#endif
+#endif
 }
 
 #ifdef HIT_ID

@@ -33,6 +33,7 @@ pub mod player;
 pub mod plugin;
 pub mod render;
 pub mod space;
+pub mod stereo;
 pub mod trace;
 pub mod ui;
 
@@ -49,5 +50,7 @@ pub mod prelude {
         ActiveSpace, CurvedSpaceCamera, CurvedSpacesPlugin, CurvedSpacesSystems, Quality,
         SceneObjects, TracerSettings,
     };
+    pub use crate::render::CurvedSpaceEye;
     pub use crate::space::{SEED_SPACES, Space, SpaceError, seed_space};
+    pub use crate::stereo::{StereoMode, StereoSettings};
 }

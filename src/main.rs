@@ -13,12 +13,15 @@ use bevy_curved_spaces::render::gpu::MAX_GPU_BUDGET;
 use bevy_curved_spaces::render::offscreen::{OffscreenRender, gpu_available, render_offscreen};
 use bevy_curved_spaces::space::file::{SpaceRecord, load_space_file};
 use bevy_curved_spaces::space::invariants::Invariants;
+use bevy_curved_spaces::space::invariants::inradius;
 use bevy_curved_spaces::space::{SEED_SPACES, Space, SpaceError, seed_space};
+use bevy_curved_spaces::stereo::{
+    StereoMode, StereoSettings, UnknownStereoMode, ViewLayout, check_ipd, eye_frames,
+};
 use bevy_curved_spaces::trace::SceneParts;
 use bevy_curved_spaces::trace::auto_budget;
 use bevy_curved_spaces::trace::{
-    Camera, CellWalker, Limit, RenderSettings, Scene, Shading, Trace, chart_ray,
-    render_with_progress,
+    Camera, CellWalker, Limit, RenderSettings, Scene, Shading, Trace, chart_ray, render_view,
 };
 use bevy_curved_spaces::{ActiveSpace, CurvedSpaceCamera, CurvedSpacesPlugin, Quality};
 use clap::{Args, Parser, Subcommand, ValueEnum};
@@ -155,6 +158,42 @@ struct RenderArgs {
     /// Chart point the camera looks at.
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true, requires = "eye")]
     look_at: Option<DVec3>,
+    #[command(flatten)]
+    stereo: StereoArgs,
+}
+
+/// Stereo options shared by `walk` and `render`.
+#[derive(Args, Clone, Copy, Default)]
+struct StereoArgs {
+    /// Stereo mode: mono, side-by-side, side-by-side-half, top-bottom, top-bottom-half,
+    /// anaglyph (red–cyan, Dubois), anaglyph-optimized, anaglyph-red-cyan.
+    #[arg(long, default_value = "mono", value_parser = parse_stereo)]
+    stereo: StereoMode,
+    /// Distance between the eyes in the space's units (default: 0.043 × the cell's
+    /// inradius, so that the inradius feels like 1.5 m).
+    #[arg(long, value_parser = parse_positive, allow_hyphen_values = true)]
+    ipd: Option<f64>,
+    /// Put the right eye's picture where the left one's goes (cross-eyed viewing).
+    #[arg(long)]
+    swap_eyes: bool,
+}
+
+impl StereoArgs {
+    /// The settings, with the eye distance checked against the cell.
+    fn settings(&self, space: &Space) -> Result<StereoSettings, String> {
+        if let Some(ipd) = self.ipd {
+            check_ipd(ipd, inradius(space)).map_err(|e| e.to_string())?;
+        }
+        Ok(StereoSettings {
+            mode: self.stereo,
+            ipd: self.ipd,
+            swap_eyes: self.swap_eyes,
+        })
+    }
+}
+
+fn parse_stereo(s: &str) -> Result<StereoMode, String> {
+    s.parse().map_err(|e: UnknownStereoMode| e.to_string())
 }
 
 #[derive(Args)]
@@ -203,6 +242,8 @@ struct WalkArgs {
     /// Save a screenshot of the window to this PNG once the view has settled, then quit.
     #[arg(long)]
     screenshot: Option<PathBuf>,
+    #[command(flatten)]
+    stereo: StereoArgs,
 }
 
 /// `walk --screenshot`: where to save, and whether it was requested.
@@ -558,6 +599,30 @@ fn render_command(args: &RenderArgs) -> Result<(), String> {
         height: args.size.1,
         max_crossings,
     };
+    let stereo = args.stereo.settings(&space)?;
+    let eyes = if stereo.mode.is_stereo() {
+        let ipd = stereo.ipd_for(inradius(&space));
+        let eyes = eye_frames(&space, camera.frame, ipd);
+        let wrapped: Vec<String> = eyes
+            .iter()
+            .zip(["left", "right"])
+            .filter(|(e, _)| !e.crossed.is_empty())
+            .map(|(e, name)| format!("the {name} eye is wrapped through face(s) {:?}", e.crossed))
+            .collect();
+        eprintln!(
+            "stereo {}: eyes {ipd:.4} apart (the inradius feels like {:.2} m){}",
+            stereo.mode,
+            inradius(&space) / stereo.units_per_metre(inradius(&space)),
+            if wrapped.is_empty() {
+                String::new()
+            } else {
+                format!("; {}", wrapped.join(", "))
+            }
+        );
+        eyes.map(|e| e.frame)
+    } else {
+        [camera.frame; 2]
+    };
     let started = Instant::now();
     let image = if args.cpu {
         eprintln!(
@@ -571,7 +636,15 @@ fn render_command(args: &RenderArgs) -> Result<(), String> {
         );
         // A percentage on a terminal, updated every 5 %; nothing in logs.
         let tty = std::io::stderr().is_terminal();
-        render_with_progress(&space, &scene, &camera, &settings, |done, rows| {
+        let layout = ViewLayout::new(
+            stereo.mode,
+            stereo.swap_eyes,
+            eyes,
+            camera.fov_y_degrees,
+            settings.width,
+            settings.height,
+        );
+        render_view(&space, &scene, &layout, &settings, |done, rows| {
             if tty && (done * 20 / rows != (done - 1) * 20 / rows || done == rows) {
                 eprint!("\r{:>3} %", done * 100 / rows);
                 if done == rows {
@@ -607,6 +680,7 @@ fn render_command(args: &RenderArgs) -> Result<(), String> {
             parts: SceneParts::default(),
             objects: Vec::new(),
             resolution_scale: 1.0,
+            stereo,
         })
         .map_err(|e| e.to_string())?
     };
@@ -647,12 +721,14 @@ fn walk(args: &WalkArgs) -> Result<(), String> {
             unreachable!("`render SPACE` parses as the render command")
         };
         render.fog = args.fog;
+        render.stereo = args.stereo;
         if !gpu_available() {
             eprintln!("no GPU adapter found: using the CPU reference renderer");
             render.cpu = true;
         }
         return render_command(&render);
     }
+    let stereo = args.stereo.settings(&space)?;
     let active = ActiveSpace::new(&args.space, space);
     eprintln!(
         "walking in {}: click to look around, WASD to move, Esc releases the mouse, F1 the panel",
@@ -672,6 +748,7 @@ fn walk(args: &WalkArgs) -> Result<(), String> {
         max_crossings: args.crossings,
         quality: args.quality.into(),
         ui: true,
+        stereo,
         ..default()
     })
     .insert_resource(bevy_curved_spaces::ui::PanelVisible(!args.no_ui))

@@ -18,6 +18,7 @@ use crate::player::{
 };
 use crate::render::{PreparedScene, TracerRenderPlugin, gpu::GpuScene};
 use crate::space::{Space, SpaceError, invariants, seed_space};
+use crate::stereo::StereoSettings;
 use crate::trace::{
     BudgetChoice, Camera as TraceCamera, Object, Scene, SceneParts, Shading, auto_budget,
 };
@@ -88,6 +89,8 @@ pub struct CurvedSpacesPlugin {
     pub controls: bool,
     /// The egui panel (toggled with F1; needs a window).
     pub ui: bool,
+    /// Stereo mode and eye distance at start ([`StereoSettings`], changeable at run time).
+    pub stereo: StereoSettings,
 }
 
 impl Default for CurvedSpacesPlugin {
@@ -99,6 +102,7 @@ impl Default for CurvedSpacesPlugin {
             quality: Quality::default(),
             controls: true,
             ui: false,
+            stereo: StereoSettings::default(),
         }
     }
 }
@@ -225,6 +229,7 @@ impl Plugin for CurvedSpacesPlugin {
             resolution_scale: self.quality.resolution_scale(),
             parts: SceneParts::default(),
         })
+        .insert_resource(self.stereo)
         .init_resource::<TracerStatus>()
         .init_resource::<SceneObjects>()
         .init_resource::<PlayerSettings>()

@@ -97,6 +97,7 @@ fn every_seed_space_renders_on_the_gpu_like_the_cpu_reference() {
                 parts: SceneParts::default(),
                 objects: Vec::new(),
                 resolution_scale: 1.0,
+                stereo: Default::default(),
             })
             .unwrap_or_else(|e| panic!("{}: {e}", seed.id));
         let (c, diff) = compare(&gpu, &cpu);
@@ -159,6 +160,7 @@ fn a_reduced_resolution_is_traced_and_scaled_up() {
         parts: SceneParts::default(),
         objects: Vec::new(),
         resolution_scale: 1.0,
+        stereo: Default::default(),
     };
     let full = renderer.render(&request).expect("full resolution");
     request.resolution_scale = 0.25;
@@ -238,6 +240,7 @@ fn placed_objects_straddling_faces_render_alike_on_gpu_and_cpu() {
             parts,
             objects: vec![ball],
             resolution_scale: 1.0,
+            stereo: Default::default(),
         };
         let gpu = renderer.render(&request).expect("renders");
         let (c, _) = compare(&gpu, &cpu);

@@ -513,12 +513,7 @@ impl Stats {
 }
 
 fn uniform_words(subject: &Subject, gpu: &GpuScene, size: (u32, u32)) -> Vec<u32> {
-    let view = view_words(
-        subject.camera.frame,
-        subject.camera.fov_y_degrees,
-        [0, 0],
-        [size.0, size.1],
-    );
+    let view = view_words(&subject.camera.layout(size.0, size.1), [0, 0]);
     view.iter().chain(gpu.words.iter()).copied().collect()
 }
 

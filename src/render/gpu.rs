@@ -7,6 +7,7 @@
 
 use crate::geometry::Geometry;
 use crate::space::Space;
+use crate::stereo::{ViewKind, ViewLayout};
 use crate::trace::{Object, Scene};
 use bevy::shader::ShaderDefVal;
 use glam::{DMat4, DVec4};
@@ -24,8 +25,9 @@ pub const MAX_UNIFORM_BYTES: usize = 64 << 10;
 /// it (and by the face and object counts), so no frame can run away.
 pub const MAX_GPU_BUDGET: u32 = 4096;
 
-/// Words of the per-view part at the start of the uniform (`View`: a mat4 and two vec4).
-pub const VIEW_WORDS: usize = 24;
+/// Words of the per-view part at the start of the uniform (`View`: two eye frames, three
+/// vec4 and the two anaglyph matrices).
+pub const VIEW_WORDS: usize = 76;
 
 /// What the shader is specialised on: one compiled pipeline per key.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -321,25 +323,52 @@ impl GpuScene {
     }
 }
 
-/// The per-view part of the uniform: the camera frame (columns right, up, back, position),
-/// `tan(fov_y/2)`, the aspect ratio and the viewport (origin and size in pixels).
+/// The per-view part of the uniform (`View` in the shader): the eyes' frames (columns
+/// right, up, back, position), the frustum tangents, the viewport (origin and size in
+/// pixels), the stereo split and eye swap, and the anaglyph matrices.
 #[must_use]
-pub fn view_words(
-    frame: DMat4,
-    fov_y_degrees: f64,
-    origin: [u32; 2],
-    size: [u32; 2],
-) -> [u32; VIEW_WORDS] {
+pub fn view_words(layout: &ViewLayout, origin: [u32; 2]) -> [u32; VIEW_WORDS] {
     let mut words = Vec::with_capacity(VIEW_WORDS);
-    push_mat4(&mut words, frame);
-    let (w, h) = (f64::from(size[0].max(1)), f64::from(size[1].max(1)));
+    for frame in layout.frames {
+        push_mat4(&mut words, frame);
+    }
+    let lens = layout.lens;
     push_vec4(
         &mut words,
-        DVec4::new((fov_y_degrees.to_radians() / 2.0).tan(), w / h, w, h),
+        DVec4::new(lens.left, lens.right, lens.bottom, lens.top),
     );
     push_vec4(
         &mut words,
-        DVec4::new(f64::from(origin[0]), f64::from(origin[1]), 0.0, 0.0),
+        DVec4::new(
+            f64::from(origin[0]),
+            f64::from(origin[1]),
+            layout.size[0],
+            layout.size[1],
+        ),
     );
-    words.try_into().expect("a mat4 and two vec4 are 24 words")
+    push_vec4(
+        &mut words,
+        DVec4::new(
+            layout.split[0],
+            layout.split[1],
+            f64::from(u8::from(layout.swap_eyes)),
+            0.0,
+        ),
+    );
+    for m in [layout.anaglyph.0, layout.anaglyph.1] {
+        push_mat4(&mut words, DMat4::from_mat3(m));
+    }
+    words
+        .try_into()
+        .expect("four mat4 and three vec4 are 76 words")
+}
+
+/// The shader defs of a view kind (added to the scene's, [`ShaderKey::shader_defs`]).
+#[must_use]
+pub fn view_shader_defs(kind: ViewKind) -> Vec<ShaderDefVal> {
+    match kind {
+        ViewKind::Mono => vec![],
+        ViewKind::Split => vec!["STEREO_SPLIT".into()],
+        ViewKind::Anaglyph => vec!["ANAGLYPH".into()],
+    }
 }

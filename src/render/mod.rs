@@ -10,6 +10,7 @@ pub mod offscreen;
 
 use crate::player::PlayerFrame;
 use crate::plugin::CurvedSpaceCamera;
+use crate::stereo::{Lens, StereoMode, StereoSettings, ViewKind, ViewLayout, eye_frames};
 use bevy::asset::{load_internal_asset, uuid_handle};
 use bevy::core_pipeline::{Core3d, Core3dSystems, tonemapping::tonemapping};
 use bevy::prelude::*;
@@ -32,7 +33,7 @@ use bevy::render::{
     view::{ExtractedView, ViewTarget},
 };
 use bevy::shader::Shader;
-use gpu::{GpuScene, ShaderKey, view_words};
+use gpu::{GpuScene, ShaderKey, view_shader_defs, view_words};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -63,11 +64,25 @@ impl FramesTraced {
 /// A curved-space view in the render world.
 #[derive(Component, Clone, Debug)]
 pub struct ExtractedCurvedView {
-    pub frame: glam::DMat4,
+    /// The eyes' frames `[left, right]`, each inside the cell (both the head's in mono).
+    pub eyes: [glam::DMat4; 2],
+    pub stereo: StereoMode,
+    pub swap_eyes: bool,
     pub fov_y_degrees: f64,
+    /// The frustum of a [`CurvedSpaceEye`] (an XR view); `None` for the symmetric one of
+    /// `fov_y_degrees` and the view's aspect.
+    pub lens: Option<Lens>,
     /// Fraction of the view's resolution that is traced, in (0, 1].
     pub resolution_scale: f32,
     pub scene: Arc<GpuScene>,
+}
+
+/// Marks a curved-space camera that is one eye of a head-mounted display: it is drawn as
+/// one view with its own (asymmetric) frustum, and the [`StereoSettings`] do not apply to
+/// it. Its [`PlayerFrame`] is the eye's frame, kept inside the cell by its owner.
+#[derive(Component, Clone, Copy, Debug, PartialEq)]
+pub struct CurvedSpaceEye {
+    pub lens: Lens,
 }
 
 impl SyncComponent for CurvedSpaceCamera {
@@ -115,23 +130,53 @@ impl Plugin for TracerRenderPlugin {
     }
 }
 
+/// The main world's view of a curved-space camera.
+type CurvedCameras<'w, 's> = Query<
+    'w,
+    's,
+    (
+        RenderEntity,
+        &'static CurvedSpaceCamera,
+        &'static PlayerFrame,
+        Option<&'static CurvedSpaceEye>,
+    ),
+>;
+
 fn extract_curved_views(
     mut commands: Commands,
     scene: Extract<Option<Res<PreparedScene>>>,
     settings: Extract<Option<Res<crate::plugin::TracerSettings>>>,
-    views: Extract<Query<(RenderEntity, &CurvedSpaceCamera, &PlayerFrame)>>,
+    stereo: Extract<Option<Res<StereoSettings>>>,
+    active: Extract<Option<Res<crate::plugin::ActiveSpace>>>,
+    views: Extract<CurvedCameras>,
 ) {
     let resolution_scale = settings
         .as_ref()
         .map_or(1.0, |s| s.resolution_scale)
         .clamp(0.05, 1.0);
-    let Some(scene) = scene.as_ref() else {
+    let (Some(scene), Some(active)) = (scene.as_ref(), active.as_ref()) else {
         return;
     };
-    for (entity, camera, frame) in &views {
+    let stereo = stereo.as_deref().copied().unwrap_or_default();
+    for (entity, camera, frame, eye) in &views {
+        // An XR eye is one view with its own frustum; other cameras show the stereo mode.
+        let mode = if eye.is_some() {
+            StereoMode::Mono
+        } else {
+            stereo.mode
+        };
+        let eyes = if mode.is_stereo() {
+            let ipd = stereo.ipd_for(active.inradius);
+            eye_frames(&active.space, frame.0, ipd).map(|e| e.frame)
+        } else {
+            [frame.0; 2]
+        };
         commands.entity(entity).insert(ExtractedCurvedView {
-            frame: frame.0,
+            eyes,
+            stereo: mode,
+            swap_eyes: stereo.swap_eyes,
             fov_y_degrees: camera.fov_y_degrees,
+            lens: eye.map(|e| e.lens),
             resolution_scale,
             scene: scene.0.clone(),
         });
@@ -146,11 +191,12 @@ pub struct TracerPipeline {
     sampler: Sampler,
 }
 
-/// One pipeline per shader key and target format.
+/// One pipeline per shader key, view kind and target format.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct TracerPipelineKey {
     /// `None` for the upscaling pass.
     pub shader: Option<ShaderKey>,
+    pub view: ViewKind,
     pub format: TextureFormat,
 }
 
@@ -163,7 +209,7 @@ impl SpecializedRenderPipeline for TracerPipeline {
                 "curved_space_tracer",
                 TRACER_SHADER,
                 &self.layout,
-                k.shader_defs(),
+                [k.shader_defs(), view_shader_defs(key.view)].concat(),
             ),
             None => (
                 "curved_space_upscale",
@@ -275,6 +321,7 @@ fn prepare_tracer_views(
             &tracer,
             TracerPipelineKey {
                 shader: Some(curved.scene.key),
+                view: curved.stereo.kind(),
                 format,
             },
         );
@@ -309,6 +356,7 @@ fn prepare_tracer_views(
                 &tracer,
                 TracerPipelineKey {
                     shader: None,
+                    view: ViewKind::Mono,
                     format,
                 },
             );
@@ -319,7 +367,18 @@ fn prepare_tracer_views(
             Some(_) => ([0, 0], scaled),
             None => ([viewport.x, viewport.y], full),
         };
-        let head = view_words(curved.frame, curved.fov_y_degrees, origin, size);
+        let layout = match curved.lens {
+            Some(lens) => ViewLayout::mono(curved.eyes[0], lens, size[0], size[1]),
+            None => ViewLayout::new(
+                curved.stereo,
+                curved.swap_eyes,
+                curved.eyes,
+                curved.fov_y_degrees,
+                size[0],
+                size[1],
+            ),
+        };
+        let head = view_words(&layout, origin);
         let words: Vec<u32> = head.iter().chain(&curved.scene.words).copied().collect();
         let data: &[u8] = bytemuck::cast_slice(&words);
         match bindings {

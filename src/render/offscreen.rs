@@ -7,6 +7,7 @@ use crate::plugin::{
     ActiveSpace, CurvedSpaceCamera, CurvedSpacesPlugin, SceneObjects, TracerSettings,
 };
 use crate::render::FramesTraced;
+use crate::stereo::StereoSettings;
 use crate::trace::{Object, SceneParts};
 use bevy::app::{PluginsState, ScheduleRunnerPlugin};
 use bevy::camera::{ImageRenderTarget, RenderTarget};
@@ -37,6 +38,8 @@ pub struct OffscreenRender {
     pub objects: Vec<Object>,
     /// Fraction of the resolution that is traced (then scaled up), in (0, 1].
     pub resolution_scale: f32,
+    /// Stereo mode, eye distance and eye swap (the frame is the head's).
+    pub stereo: StereoSettings,
 }
 
 /// Why no picture came back.
@@ -132,6 +135,7 @@ impl OffscreenRenderer {
             parts: request.parts,
         });
         world.insert_resource(SceneObjects(request.objects.clone()));
+        world.insert_resource(request.stereo);
         let mut target = Image::new_target_texture(w, h, TextureFormat::Rgba8UnormSrgb, None);
         target.texture_descriptor.usage |= TextureUsages::COPY_SRC;
         let handle = world.resource_mut::<Assets<Image>>().add(target);

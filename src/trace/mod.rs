@@ -11,7 +11,7 @@ pub use budget::{BudgetChoice, MAX_AUTO_BUDGET, SplitMix64, auto_budget, sample_
 
 pub use render::{
     Camera, PATH_HASH_START, RayEnd, RenderSettings, SceneHit, TracedRay, colour_of, first_hit,
-    first_hit_traced, path_hash, render, render_with_progress, to_byte, trace_pixel,
+    first_hit_traced, path_hash, render, render_view, render_with_progress, to_byte, trace_pixel,
 };
 pub use scene::{
     Ball, DEFAULT_CUTOFF_WEIGHT, Hit, Light, MAX_IMAGES, Object, PlaceError, Scene, SceneParts,

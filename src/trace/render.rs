@@ -5,6 +5,7 @@
 use super::{CellWalker, Ray, Scene, scene::Hit};
 use crate::geometry::{Geometry, GeometryError};
 use crate::space::Space;
+use crate::stereo::{PixelRays, StereoMode, ViewLayout};
 use glam::{DMat4, DVec3, DVec4};
 use image::RgbImage;
 use rayon::prelude::*;
@@ -45,20 +46,25 @@ impl Camera {
     }
 
     /// The unit tangent of the ray through pixel `(i, j)` of a `width × height` image:
-    /// `normalize(px·right + py·up − back)`.
+    /// `normalize(px·right + py·up − back)` (the mono case of [`ViewLayout`]).
     #[must_use]
     pub fn ray(&self, geometry: Geometry, i: u32, j: u32, width: u32, height: u32) -> Ray<DVec4> {
-        let half = (self.fov_y_degrees.to_radians() / 2.0).tan();
-        let aspect = width as f64 / height as f64;
-        let px = (2.0 * (i as f64 + 0.5) / width as f64 - 1.0) * half * aspect;
-        let py = (1.0 - 2.0 * (j as f64 + 0.5) / height as f64) * half;
-        let f = self.frame;
-        let v = px * f.x_axis + py * f.y_axis - f.z_axis;
-        let point = f.w_axis;
-        Ray {
-            point,
-            tangent: geometry.unit_tangent(point, v),
+        match self.layout(width, height).rays_at(geometry, i, j) {
+            PixelRays::One(ray) | PixelRays::Two(ray, _) => ray,
         }
+    }
+
+    /// The mono pixel mapping of a `width × height` image.
+    #[must_use]
+    pub fn layout(&self, width: u32, height: u32) -> ViewLayout {
+        ViewLayout::new(
+            StereoMode::Mono,
+            false,
+            [self.frame; 2],
+            self.fov_y_degrees,
+            width,
+            height,
+        )
     }
 }
 
@@ -258,7 +264,23 @@ pub fn render_with_progress(
     settings: &RenderSettings,
     progress: impl Fn(u32, u32) + Sync,
 ) -> RgbImage {
+    let layout = camera.layout(settings.width, settings.height);
+    render_view(space, scene, &layout, settings, progress)
+}
+
+/// Renders a view of any layout (mono, stereo halves, anaglyph; see [`ViewLayout`]),
+/// calling `progress(rows_done, rows)` as rows complete. The picture is
+/// `settings.width × settings.height`; the layout should have been made for that size.
+#[must_use]
+pub fn render_view(
+    space: &Space,
+    scene: &Scene,
+    layout: &ViewLayout,
+    settings: &RenderSettings,
+    progress: impl Fn(u32, u32) + Sync,
+) -> RgbImage {
     let walker = CellWalker::<DVec4>::new(space);
+    let g = space.geometry;
     let (w, h) = (settings.width, settings.height);
     let done = AtomicU32::new(0);
     let rows: Vec<Vec<u8>> = (0..h)
@@ -266,8 +288,14 @@ pub fn render_with_progress(
         .map(|j| {
             let mut row = Vec::with_capacity(3 * w as usize);
             for i in 0..w {
-                let ray = camera.ray(space.geometry, i, j, w, h);
-                let c = trace_pixel(&walker, scene, ray, settings.max_crossings);
+                let colour = |ray| {
+                    trace_pixel(&walker, scene, ray, settings.max_crossings)
+                        .clamp(DVec3::ZERO, DVec3::ONE)
+                };
+                let c = match layout.rays_at(g, i, j) {
+                    PixelRays::One(ray) => colour(ray),
+                    PixelRays::Two(left, right) => layout.mix_anaglyph(colour(left), colour(right)),
+                };
                 row.extend(c.to_array().map(to_byte));
             }
             progress(done.fetch_add(1, Ordering::Relaxed) + 1, h);
