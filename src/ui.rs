@@ -4,6 +4,7 @@
 use crate::player::{Holonomy, PlayerFrame, PlayerSettings};
 use crate::plugin::{ActiveSpace, CurvedSpaceCamera, Quality, TracerSettings, TracerStatus};
 use crate::space::SEED_SPACES;
+use crate::stereo::{HUMAN_IPD_METRES, StereoMode, StereoSettings, default_ipd};
 use bevy::diagnostic::{DiagnosticsStore, FrameTimeDiagnosticsPlugin};
 use bevy::prelude::*;
 use bevy::render::view::screenshot::{Screenshot, save_to_disk};
@@ -22,6 +23,8 @@ pub struct PanelVisible(pub bool);
 pub struct UiKeys {
     pub toggle_panel: KeyCode,
     pub screenshot: KeyCode,
+    /// Steps through the stereo modes.
+    pub next_stereo_mode: KeyCode,
 }
 
 impl Default for UiKeys {
@@ -29,6 +32,7 @@ impl Default for UiKeys {
         Self {
             toggle_panel: KeyCode::F1,
             screenshot: KeyCode::F12,
+            next_stereo_mode: KeyCode::F3,
         }
     }
 }
@@ -47,7 +51,7 @@ impl Plugin for CurvedSpacesUiPlugin {
         app.init_resource::<PointerOverUi>()
             .init_resource::<UiKeys>()
             .insert_resource(PanelVisible(true))
-            .add_systems(Update, (toggle_panel, take_screenshot))
+            .add_systems(Update, (toggle_panel, take_screenshot, next_stereo_mode))
             .add_systems(EguiPrimaryContextPass, panel);
     }
 }
@@ -55,6 +59,67 @@ impl Plugin for CurvedSpacesUiPlugin {
 fn toggle_panel(keys: Res<ButtonInput<KeyCode>>, ui: Res<UiKeys>, mut shown: ResMut<PanelVisible>) {
     if keys.just_pressed(ui.toggle_panel) {
         shown.0 = !shown.0;
+    }
+}
+
+fn next_stereo_mode(
+    keys: Res<ButtonInput<KeyCode>>,
+    ui: Res<UiKeys>,
+    mut stereo: ResMut<StereoSettings>,
+) {
+    if keys.just_pressed(ui.next_stereo_mode) {
+        let modes = StereoMode::ALL;
+        let at = modes.iter().position(|m| *m == stereo.mode).unwrap_or(0);
+        stereo.mode = modes[(at + 1) % modes.len()];
+        info!("stereo mode: {}", stereo.mode.label());
+    }
+}
+
+/// The stereo mode, the eye distance (with the world scale it gives) and the eye swap.
+fn stereo_controls(ui: &mut egui::Ui, stereo: &mut ResMut<StereoSettings>, inradius: f64) {
+    let mut mode = stereo.mode;
+    egui::ComboBox::from_label("stereo")
+        .selected_text(mode.label())
+        .show_ui(ui, |ui| {
+            for m in StereoMode::ALL {
+                ui.selectable_value(&mut mode, m, m.label());
+            }
+        });
+    if mode != stereo.mode {
+        stereo.mode = mode;
+    }
+    if !mode.is_stereo() {
+        return;
+    }
+    let default_ipd = default_ipd(inradius);
+    let mut ipd = stereo.ipd_for(inradius);
+    if ui
+        .add(
+            egui::Slider::new(
+                &mut ipd,
+                0.1 * default_ipd..=inradius.min(10.0 * default_ipd),
+            )
+            .logarithmic(true)
+            .text("eye distance"),
+        )
+        .on_hover_text(
+            "Distance between the eyes in the space's units: it sets how big the cell feels",
+        )
+        .changed()
+    {
+        stereo.ipd = Some(ipd);
+    }
+    ui.label(format!(
+        "the inradius feels like {:.2} m (eyes {:.0} mm apart)",
+        inradius / stereo.units_per_metre(inradius),
+        1000.0 * HUMAN_IPD_METRES
+    ));
+    let mut swap = stereo.swap_eyes;
+    if ui
+        .checkbox(&mut swap, "swap eyes (cross-eyed viewing)")
+        .changed()
+    {
+        stereo.swap_eyes = swap;
     }
 }
 
@@ -89,6 +154,7 @@ fn panel(
     mut settings: ResMut<TracerSettings>,
     mut player: ResMut<PlayerSettings>,
     status: Res<TracerStatus>,
+    mut stereo: ResMut<StereoSettings>,
     diagnostics: Res<DiagnosticsStore>,
     mut cameras: Query<(&mut CurvedSpaceCamera, &PlayerFrame, &Holonomy)>,
 ) -> Result {
@@ -198,6 +264,8 @@ fn panel(
                 settings.parts = parts;
             }
             ui.separator();
+            stereo_controls(ui, &mut stereo, active.inradius);
+            ui.separator();
             let fps = diagnostics
                 .get(&FrameTimeDiagnosticsPlugin::FPS)
                 .and_then(|d| d.smoothed());
@@ -235,7 +303,7 @@ fn panel(
             }
             ui.label(
                 egui::RichText::new(
-                    "click: mouse look · Esc: release · WASD, Space/Shift, Q/E · scroll: speed · F1: panel · F12: screenshot",
+                    "click: mouse look · Esc: release · WASD, Space/Shift, Q/E · scroll: speed · F1: panel · F3: stereo mode · F12: screenshot",
                 )
                 .small(),
             );
