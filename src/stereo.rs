@@ -145,7 +145,7 @@ impl StereoMode {
 
 impl fmt::Display for StereoMode {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
+        f.pad(self.name())
     }
 }
 

@@ -368,3 +368,50 @@ fn bench_quick_writes_results_that_respect_their_bounds() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn render_stereo_writes_both_eyes_and_names_bad_stereo_options() {
+    let dir = temp_dir("stereo");
+    let out = dir.join("pair.png");
+    let run_ok = run(&[
+        "render",
+        "torus",
+        "--cpu",
+        "--stereo",
+        "side-by-side",
+        "--size",
+        "64x24",
+        "--crossings",
+        "8",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(
+        run_ok.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run_ok.stderr)
+    );
+    let err = String::from_utf8_lossy(&run_ok.stderr);
+    assert!(err.contains("stereo side-by-side: eyes"), "{err}");
+    let img = image::open(&out).expect("a PNG").to_rgb8();
+    assert_eq!(img.dimensions(), (64, 24));
+    let left = image::imageops::crop_imm(&img, 0, 0, 32, 24).to_image();
+    let right = image::imageops::crop_imm(&img, 32, 0, 32, 24).to_image();
+    assert_ne!(left, right, "the two halves are two eyes");
+    fails_with(
+        &["render", "torus", "--cpu", "--stereo", "sideways"],
+        "unknown stereo mode \"sideways\"",
+    );
+    fails_with(
+        &[
+            "render", "torus", "--cpu", "--stereo", "anaglyph", "--ipd", "2",
+        ],
+        "more than the cell's inradius",
+    );
+    fails_with(
+        &[
+            "render", "torus", "--cpu", "--stereo", "anaglyph", "--ipd", "-0.1",
+        ],
+        "expected a positive number",
+    );
+}

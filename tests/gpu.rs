@@ -285,3 +285,170 @@ fn placed_objects_straddling_faces_render_alike_on_gpu_and_cpu() {
             .len()
     );
 }
+
+/// Stereo on the GPU: both eyes traced by the same shader agree with the CPU reference in
+/// every layout and in all three geometries, with the eyes' own frames (one of them wrapped
+/// through a face where the head is near one).
+#[test]
+fn stereo_layouts_render_alike_on_gpu_and_cpu() {
+    let _gpu = gpu_lock();
+    use bevy_curved_spaces::space::invariants::inradius;
+    use bevy_curved_spaces::stereo::{StereoMode, StereoSettings, ViewLayout, eye_frames};
+    use bevy_curved_spaces::trace::render_view;
+    let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
+    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("gpu-vs-cpu");
+    for (id, mode) in [
+        ("torus", StereoMode::SideBySide),
+        ("seifert-weber", StereoMode::TopBottomHalf),
+        ("poincare", StereoMode::AnaglyphDubois),
+        ("mirrored-dodecahedron", StereoMode::AnaglyphRedCyan),
+        ("half-turn", StereoMode::SideBySideHalf),
+    ] {
+        let space = bevy_curved_spaces::space::seed_space(id).expect("builds");
+        let camera = Camera::default_for(&space);
+        let stereo = StereoSettings {
+            mode,
+            ipd: Some(0.1 * inradius(&space)),
+            swap_eyes: false,
+        };
+        let eyes = eye_frames(&space, camera.frame, stereo.ipd_for(inradius(&space)));
+        let layout = ViewLayout::new(
+            mode,
+            false,
+            eyes.map(|e| e.frame),
+            camera.fov_y_degrees,
+            WIDTH,
+            HEIGHT,
+        );
+        let fog = Shading::default_fog_distance(&space);
+        let scene = Scene::with_parts(&space, fog, SceneParts::default());
+        let settings = RenderSettings {
+            width: WIDTH,
+            height: HEIGHT,
+            max_crossings: 24,
+        };
+        let cpu = render_view(&space, &scene, &layout, &settings, |_, _| {});
+        let gpu = renderer
+            .render(&OffscreenRender {
+                space: ActiveSpace::new(id, space.clone()),
+                width: WIDTH,
+                height: HEIGHT,
+                frame: camera.frame,
+                fov_y_degrees: camera.fov_y_degrees,
+                fog_distance: Some(fog),
+                max_crossings: 24,
+                parts: SceneParts::default(),
+                objects: Vec::new(),
+                resolution_scale: 1.0,
+                stereo,
+            })
+            .unwrap_or_else(|e| panic!("{id}: {e}"));
+        let (c, diff) = compare(&gpu, &cpu);
+        println!(
+            "{id:<22} {mode:<18} differing {:.3} %, mean error {:.3}/255, max {}",
+            100.0 * c.differing,
+            c.mean_error,
+            c.max_error
+        );
+        if c.differing > MAX_DIFFERING {
+            std::fs::create_dir_all(&out).expect("create output folder");
+            for (name, img) in [("gpu", &gpu), ("cpu", &cpu), ("diff", &diff)] {
+                img.save(out.join(format!("{id}-{mode}-{name}.png")))
+                    .expect("write image");
+            }
+        }
+        assert!(
+            c.differing <= MAX_DIFFERING,
+            "{id} {mode}: {:.2} % of pixels differ (images in {})",
+            100.0 * c.differing,
+            out.display()
+        );
+        // The stereo picture is not the mono one: the test sees the eyes.
+        let mono = render(&space, &scene, &camera, &settings);
+        assert!(compare(&gpu, &mono).0.differing > 0.05, "{id} {mode}");
+    }
+}
+
+/// The parallax measured on the GPU's side-by-side picture of a ball straight ahead in the
+/// torus is what flat geometry predicts: the centre of the ball's outline in each eye is at
+/// `(tan(θ+α) + tan(θ−α))/2` with `tan θ = (b/2)/d` and `sin α = r/D`.
+#[test]
+fn gpu_disparity_in_the_torus_matches_the_geometry() {
+    let _gpu = gpu_lock();
+    use bevy_curved_spaces::geometry::ORIGIN;
+    use bevy_curved_spaces::stereo::{StereoMode, StereoSettings};
+    use bevy_curved_spaces::trace::{Ball, Object};
+    use glam::DVec3;
+    let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
+    let space = bevy_curved_spaces::space::seed_space("torus").expect("builds");
+    let g = space.geometry;
+    let (d, ipd, radius, fov) = (0.6, 0.06, 0.08, 40.0_f64);
+    let head = g.translation(DVec3::Z, d / 2.0);
+    let centre = g.translation(DVec3::Z, -d / 2.0) * ORIGIN;
+    let ball = Object::Ball(Ball::new(g, centre, radius, DVec3::ONE));
+    let picture = renderer
+        .render(&OffscreenRender {
+            space: ActiveSpace::new("torus", space.clone()),
+            width: WIDTH,
+            height: HEIGHT,
+            frame: head,
+            fov_y_degrees: fov,
+            fog_distance: None,
+            max_crossings: 8,
+            parts: SceneParts {
+                edges: false,
+                centre_ball: false,
+            },
+            objects: vec![ball],
+            resolution_scale: 1.0,
+            stereo: StereoSettings {
+                mode: StereoMode::SideBySide,
+                ipd: Some(ipd),
+                swap_eyes: false,
+            },
+        })
+        .expect("renders");
+    let fog = Shading::default_fog_distance(&space);
+    let fog_colour = Scene::default_for(&space, fog).shading.fog_colour * 255.0;
+    // Pixels per unit of tan(angle), the same in x and y (square pixels).
+    let f = f64::from(HEIGHT) / 2.0 / (fov.to_radians() / 2.0).tan();
+    let eye_width = f64::from(WIDTH) / 2.0;
+    let mut measured = [0.0; 2];
+    for (eye, sign) in [(0u32, 1.0), (1u32, -1.0)] {
+        let theta = sign * (ipd / 2.0 / d).atan();
+        let distance = (d * d + ipd * ipd / 4.0).sqrt();
+        let alpha = (radius / distance).asin();
+        let want = ((theta + alpha).tan() + (theta - alpha).tan()) / 2.0;
+        // The ball's pixels near where it should be (its copies are smaller and far off).
+        let (cx, cy) = (eye_width / 2.0 + want * f, f64::from(HEIGHT) / 2.0);
+        let window = 1.5 * alpha.tan() * f;
+        let (mut sx, mut sy, mut n) = (0.0, 0.0, 0.0);
+        for j in 0..HEIGHT {
+            for i in 0..WIDTH / 2 {
+                let (x, y) = (f64::from(i) + 0.5, f64::from(j) + 0.5);
+                if (x - cx).hypot(y - cy) > window {
+                    continue;
+                }
+                let p = picture.get_pixel(i + eye * WIDTH / 2, j);
+                let off = (0..3).any(|k| (f64::from(p[k]) - fog_colour[k]).abs() > 25.0);
+                if off {
+                    sx += x;
+                    sy += y;
+                    n += 1.0;
+                }
+            }
+        }
+        assert!(n > 100.0, "eye {eye}: the ball covers {n} pixels");
+        let (mx, my) = (sx / n, sy / n);
+        println!(
+            "eye {eye}: ball centre at {mx:.3}, {my:.3} px; the geometry predicts {cx:.3}, {cy:.3}"
+        );
+        assert!((mx - cx).abs() < 0.3 && (my - cy).abs() < 0.3);
+        measured[eye as usize] = mx;
+    }
+    println!(
+        "GPU disparity {:.3} px (tan θ alone gives {:.3} px)",
+        measured[0] - measured[1],
+        ipd / d * f
+    );
+}

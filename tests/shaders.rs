@@ -276,3 +276,40 @@ fn the_general_variant_holds_every_geometry_and_packs_to_its_layout() {
         );
     }
 }
+
+/// The stereo variants (eyes in two halves, or two eyes per pixel for an anaglyph) compose,
+/// validate and keep the packed layout.
+#[test]
+fn stereo_variants_validate_with_the_same_layout() {
+    use bevy_curved_spaces::render::gpu::view_shader_defs;
+    use bevy_curved_spaces::stereo::ViewKind;
+    for geometry in Geometry::ALL {
+        for kind in [ViewKind::Split, ViewKind::Anaglyph] {
+            let key = ShaderKey {
+                geometry,
+                faces: 12,
+                balls: 3,
+                tubes: 2,
+                general: false,
+            };
+            let defs = [key.shader_defs(), view_shader_defs(kind)].concat();
+            let module = compose_wgsl(TRACER_WGSL, "curved_space.wgsl", &defs)
+                .unwrap_or_else(|e| panic!("{key:?} {kind:?}: {e}"));
+            naga::valid::Validator::new(
+                naga::valid::ValidationFlags::all(),
+                naga::valid::Capabilities::default(),
+            )
+            .validate(&module)
+            .unwrap_or_else(|e| panic!("{key:?} {kind:?} does not validate: {e:?}"));
+            let mut layouter = naga::proc::Layouter::default();
+            layouter.update(module.to_ctx()).expect("layout");
+            let (handle, _) = module
+                .types
+                .iter()
+                .find(|(_, t)| t.name.as_deref() == Some("SpaceUniform"))
+                .expect("SpaceUniform");
+            assert_eq!(layouter[handle].size as usize, key.uniform_bytes());
+        }
+        assert!(view_shader_defs(ViewKind::Mono).is_empty());
+    }
+}
