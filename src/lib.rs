@@ -29,6 +29,7 @@
 
 pub mod bench;
 pub mod geometry;
+pub mod headset;
 pub mod player;
 pub mod plugin;
 pub mod render;
@@ -36,6 +37,8 @@ pub mod space;
 pub mod stereo;
 pub mod trace;
 pub mod ui;
+#[cfg(feature = "xr")]
+pub mod xr;
 
 pub use plugin::{
     ActiveSpace, CurvedSpaceCamera, CurvedSpacesPlugin, CurvedSpacesSystems, Quality, SceneObjects,

@@ -244,6 +244,10 @@ struct WalkArgs {
     screenshot: Option<PathBuf>,
     #[command(flatten)]
     stereo: StereoArgs,
+    /// Walk with an OpenXR headset (SteamVR, Monado, a Meta runtime; needs a build with
+    /// `--features xr`). Without a runtime, falls back to desktop stereo.
+    #[arg(long)]
+    xr: bool,
 }
 
 /// `walk --screenshot`: where to save, and whether it was requested.
@@ -709,8 +713,45 @@ fn display_available() -> bool {
         .any(|v| std::env::var_os(v).is_some_and(|x| !x.is_empty()))
 }
 
+/// Whether a headset can be used: an OpenXR loader and runtime, in a build with `xr`.
+fn xr_runtime() -> Result<(), String> {
+    #[cfg(feature = "xr")]
+    {
+        bevy_curved_spaces::xr::probe_runtime().map_err(|e| e.to_string())
+    }
+    #[cfg(not(feature = "xr"))]
+    {
+        Err("this build has no OpenXR support (build it with `cargo build --release --features xr`)".into())
+    }
+}
+
 fn walk(args: &WalkArgs) -> Result<(), String> {
     let space = resolve_space(&args.space)?;
+    let mut args_stereo = args.stereo;
+    if args.xr {
+        match xr_runtime() {
+            #[cfg(feature = "xr")]
+            Ok(()) if display_available() => return walk_xr(args, space),
+            Ok(()) => {
+                eprintln!("an OpenXR runtime was found, but no display to open the app's window on")
+            }
+            Err(e) => eprintln!("{e}"),
+        }
+        if !args_stereo.stereo.is_stereo() {
+            args_stereo.stereo = StereoMode::SideBySide;
+        }
+        eprintln!(
+            "falling back to desktop stereo: {} (choose another with --stereo)",
+            args_stereo.stereo.label()
+        );
+    }
+    let args = &WalkArgs {
+        stereo: args_stereo,
+        xr: false,
+        space: args.space.clone(),
+        screenshot: args.screenshot.clone(),
+        ..*args
+    };
     if !display_available() {
         eprintln!(
             "no display found (DISPLAY and WAYLAND_DISPLAY are unset): rendering {} offscreen to curved-spaces.png instead",
@@ -761,6 +802,54 @@ fn walk(args: &WalkArgs) -> Result<(), String> {
             requested: false,
         })
         .add_systems(Update, screenshot_then_exit);
+    }
+    match app.run() {
+        AppExit::Success => Ok(()),
+        AppExit::Error(code) => Err(format!("the app stopped with error code {code}")),
+    }
+}
+
+/// `walk --xr` with a runtime: the headset's views are traced, the window mirrors the head.
+#[cfg(feature = "xr")]
+fn walk_xr(args: &WalkArgs, space: Space) -> Result<(), String> {
+    use bevy_curved_spaces::xr::{CurvedSpacesXrPlugin, add_xr_plugins, xr_available};
+    let stereo = args.stereo.settings(&space)?;
+    let active = ActiveSpace::new(&args.space, space);
+    eprintln!(
+        "walking in {} with a headset: left thumbstick walks, right thumbstick turns; the window mirrors the head",
+        active.space.name
+    );
+    let mut app = App::new();
+    app.add_plugins(add_xr_plugins(DefaultPlugins).set(WindowPlugin {
+        primary_window: Some(Window {
+            title: format!("curved spaces (XR mirror): {}", active.space.name),
+            ..default()
+        }),
+        ..default()
+    }))
+    .insert_resource(active)
+    .add_plugins(CurvedSpacesPlugin {
+        fog_distance: args.fog,
+        max_crossings: args.crossings,
+        quality: args.quality.into(),
+        ui: true,
+        stereo,
+        ..default()
+    })
+    .insert_resource(bevy_curved_spaces::ui::PanelVisible(!args.no_ui));
+    if xr_available(app.world()) {
+        app.add_plugins(CurvedSpacesXrPlugin::default());
+    } else {
+        eprintln!(
+            "the OpenXR runtime did not start a session: falling back to desktop stereo in the window"
+        );
+        let mut settings = app.world_mut().resource_mut::<StereoSettings>();
+        if !settings.mode.is_stereo() {
+            settings.mode = StereoMode::SideBySide;
+        }
+        app.add_systems(Startup, |mut commands: Commands| {
+            commands.spawn((Camera3d::default(), CurvedSpaceCamera::default()));
+        });
     }
     match app.run() {
         AppExit::Success => Ok(()),

@@ -100,7 +100,8 @@ impl OffscreenRenderer {
                 .set(bevy::log::LogPlugin {
                     level: bevy::log::Level::WARN,
                     // "software rendering is slow" is expected on lavapipe, not news.
-                    filter: "wgpu=error,naga=warn,bevy_render::renderer=error".into(),
+                    filter: "wgpu=error,wgpu_hal::gles=off,naga=warn,bevy_render::renderer=error"
+                        .into(),
                     ..default()
                 }),
         )

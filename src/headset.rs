@@ -1,0 +1,155 @@
+//! A head-mounted display's poses mapped to frames in the curved space, without any XR
+//! runtime (the `xr` feature's glue feeds it; tests drive it with pose sequences).
+//!
+//! The headset reports rigid poses in the room (metres, right-handed, y up, looking along
+//! −z: the same axes as our frames' right, up, back). The head's motion since the last pose,
+//! `Δ = P_last⁻¹ · P_now` (a translation `t` and a rotation `R` in the head's own axes), is
+//! applied as *local* motion of the head's frame in the space, `F ← F · T(s·t) · R` with `s`
+//! the world scale in space units per metre. So walking in the room walks along geodesics,
+//! through faces (wrapping with holonomy, as the desktop player does), and a closed walk in
+//! the room comes back rotated and displaced by the space's curvature, as it must.
+//!
+//! Each eye is the head's frame moved by the eye's own pose relative to the head
+//! (`P_head⁻¹ · P_eye`, which holds the IPD and any canting of the displays), scaled the
+//! same way, and wrapped into the cell with its own pairing ([`crate::stereo::wrap_eye`]).
+
+use crate::geometry::Geometry;
+use crate::player::{Holonomy, wrap_into_cell};
+use crate::space::Space;
+use crate::stereo::{Eye, wrap_eye};
+use glam::{DMat4, DQuat, DVec3};
+
+/// A rigid pose in the room: metres and a unit quaternion (OpenXR's `Posef`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RoomPose {
+    pub position: DVec3,
+    pub orientation: DQuat,
+}
+
+impl Default for RoomPose {
+    fn default() -> Self {
+        Self::IDENTITY
+    }
+}
+
+impl RoomPose {
+    pub const IDENTITY: RoomPose = RoomPose {
+        position: DVec3::ZERO,
+        orientation: DQuat::IDENTITY,
+    };
+
+    #[must_use]
+    pub fn new(position: DVec3, orientation: DQuat) -> Self {
+        Self {
+            position,
+            orientation: orientation.normalize(),
+        }
+    }
+
+    /// `other` seen from this pose: its translation and rotation in this pose's axes.
+    #[must_use]
+    pub fn relative(&self, other: &RoomPose) -> (DVec3, DQuat) {
+        let inverse = self.orientation.conjugate();
+        (
+            inverse * (other.position - self.position),
+            (inverse * other.orientation).normalize(),
+        )
+    }
+
+    /// The head between two eye poses: the mean position and the halfway orientation.
+    #[must_use]
+    pub fn between(a: &RoomPose, b: &RoomPose) -> RoomPose {
+        RoomPose::new(
+            (a.position + b.position) / 2.0,
+            a.orientation.slerp(b.orientation, 0.5),
+        )
+    }
+}
+
+/// A frame moved by a local translation `t` (space units, in the frame's axes) along the
+/// geodesic, then turned by `rotation` about its new position.
+#[must_use]
+pub fn local_motion(geometry: Geometry, frame: DMat4, t: DVec3, rotation: DQuat) -> DMat4 {
+    let mut f = frame;
+    let distance = t.length();
+    if distance > 0.0 && distance.is_finite() {
+        f *= geometry.translation(t / distance, distance);
+    }
+    if rotation != DQuat::IDENTITY && rotation.is_finite() {
+        f *= DMat4::from_quat(rotation.normalize());
+    }
+    f
+}
+
+/// The head of a headset wearer in the curved space.
+#[derive(Clone, Debug, PartialEq)]
+pub struct HeadTracker {
+    /// The head's frame (columns right, up, back, position), inside the cell.
+    pub frame: DMat4,
+    pub holonomy: Holonomy,
+    /// Space units per metre of the room.
+    pub units_per_metre: f64,
+    /// How far past a face the head may go before it wraps (as the desktop player).
+    pub wrap_margin: f64,
+    last: Option<RoomPose>,
+}
+
+impl HeadTracker {
+    /// A head at `frame`; the first pose it is given only sets the room's reference.
+    #[must_use]
+    pub fn new(frame: DMat4, units_per_metre: f64, wrap_margin: f64) -> Self {
+        Self {
+            frame,
+            holonomy: Holonomy::default(),
+            units_per_metre,
+            wrap_margin,
+            last: None,
+        }
+    }
+
+    /// The last head pose seen.
+    #[must_use]
+    pub fn last_pose(&self) -> Option<RoomPose> {
+        self.last
+    }
+
+    /// Moves the head by its motion in the room since the last pose and wraps it into the
+    /// cell. Returns the faces crossed.
+    pub fn track(&mut self, space: &Space, head: RoomPose) -> Vec<usize> {
+        let Some(last) = self.last.replace(head) else {
+            return Vec::new();
+        };
+        let (t, r) = last.relative(&head);
+        let moved = local_motion(space.geometry, self.frame, t * self.units_per_metre, r);
+        self.wrap(space, moved)
+    }
+
+    /// Controller locomotion: a local translation (space units, head axes) and a turn about
+    /// the head's up axis (radians, counter-clockwise seen from above). The room reference
+    /// is kept, so the next pose continues from here.
+    pub fn locomote(&mut self, space: &Space, translation: DVec3, yaw: f64) -> Vec<usize> {
+        let turn = DQuat::from_rotation_y(yaw);
+        let moved = local_motion(space.geometry, self.frame, translation, turn);
+        self.wrap(space, moved)
+    }
+
+    fn wrap(&mut self, space: &Space, frame: DMat4) -> Vec<usize> {
+        let (wrapped, crossed) = wrap_into_cell(space, frame, self.wrap_margin);
+        for &face in &crossed {
+            self.holonomy.record(face, space.faces[face].pairing);
+        }
+        self.frame = wrapped;
+        crossed
+    }
+
+    /// An eye's frame from its room pose and the head's: the head's frame moved by the
+    /// eye's pose relative to the head, wrapped into the cell with its own pairing.
+    #[must_use]
+    pub fn eye(&self, space: &Space, head: &RoomPose, eye: &RoomPose) -> Eye {
+        let (t, r) = head.relative(eye);
+        wrap_eye(
+            space,
+            local_motion(space.geometry, self.frame, t * self.units_per_metre, r),
+        )
+    }
+}
