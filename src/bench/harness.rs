@@ -3,7 +3,8 @@
 //! is timed by itself (GPU timestamps around the pass where the adapter has them, else wall
 //! time from submission to completion) and its pixels can be read back.
 
-use crate::render::gpu::{ShaderKey, TRACER_WGSL, compose_wgsl};
+use crate::render::gpu::{ShaderKey, TRACER_WGSL, compose_wgsl, view_shader_defs};
+use crate::stereo::ViewKind;
 use bevy::shader::ShaderDefVal;
 use std::collections::HashMap;
 use std::time::Instant;
@@ -68,8 +69,8 @@ impl Output {
 /// Which shader a pipeline runs.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub enum Program {
-    /// The tracer with these shader defs.
-    Tracer(ShaderKey, Output),
+    /// The tracer with these shader defs, for this kind of view.
+    Tracer(ShaderKey, ViewKind, Output),
     /// The trivial fullscreen material.
     Baseline,
 }
@@ -156,8 +157,8 @@ impl Harness {
     fn pipeline(&mut self, program: &Program) -> Result<&wgpu::RenderPipeline, HarnessError> {
         if !self.pipelines.contains_key(program) {
             let (source, path, defs, output) = match program {
-                Program::Tracer(key, output) => {
-                    let mut defs = key.shader_defs();
+                Program::Tracer(key, view, output) => {
+                    let mut defs = [key.shader_defs(), view_shader_defs(*view)].concat();
                     if *output == Output::HitId {
                         defs.push(ShaderDefVal::from("HIT_ID"));
                     }

@@ -17,6 +17,7 @@ use crate::geometry::{Geometry, Vector4};
 use crate::plugin::Quality;
 use crate::render::gpu::{GpuScene, gpu_object_indices, view_words};
 use crate::space::{Space, invariants, seed_space};
+use crate::stereo::{StereoMode, ViewKind, ViewLayout, default_ipd, eye_frames};
 use crate::trace::{
     BudgetChoice, Camera, CellWalker, Limit, RayEnd, Scene, auto_budget, colour_of,
     first_hit_traced, sample_rays, to_byte,
@@ -252,6 +253,26 @@ pub struct SpecialisationRow {
     pub differing_pixels: f64,
 }
 
+/// Stereo against mono: the same head, the same scene, the same size, the eyes traced by the
+/// same shader (each timed interleaved with mono).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StereoRow {
+    pub space: String,
+    pub geometry: String,
+    pub width: u32,
+    pub height: u32,
+    pub budget: u32,
+    pub mono_ms: f64,
+    /// Side by side: one ray per pixel, each half its own eye.
+    pub side_by_side_ms: f64,
+    /// `side_by_side_ms / mono_ms` (measured in the same loop).
+    pub side_by_side_ratio: f64,
+    /// Anaglyph: two rays per pixel.
+    pub anaglyph_ms: f64,
+    /// `anaglyph_ms / mono_ms` (measured in the same loop).
+    pub anaglyph_ratio: f64,
+}
+
 /// Everything one run measured.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct BenchReport {
@@ -265,6 +286,9 @@ pub struct BenchReport {
     pub cutoff: Vec<CutoffRow>,
     pub auto_budgets: Vec<AutoBudgetRow>,
     pub specialisation: Vec<SpecialisationRow>,
+    /// Absent from reports written before stereo existed.
+    #[serde(default)]
+    pub stereo: Vec<StereoRow>,
 }
 
 /// One space with what the benchmark needs of it.
@@ -326,7 +350,7 @@ pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, 
         Some(Harness::new()?)
     };
     let gpu_steps = if harness.is_some() {
-        (config.budgets.len() + config.fog_factors.len()) * (config.sizes.len() + 1) + 1
+        (config.budgets.len() + config.fog_factors.len()) * (config.sizes.len() + 1) + 2
     } else {
         0
     };
@@ -407,6 +431,11 @@ pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, 
         report
             .specialisation
             .push(specialisation(harness, subject, auto_default, config)?);
+        progress.inc(1);
+        announce(progress, format!("{}: stereo against mono", subject.id));
+        report
+            .stereo
+            .push(stereo_cost(harness, subject, auto_default, config)?);
         progress.inc(1);
         let mut exact_cache: Vec<(f64, Reference)> = Vec::new();
         for (budget, from, fog) in settings {
@@ -526,7 +555,7 @@ fn time_setting(
     (w, h): (u32, u32),
     config: &BenchConfig,
 ) -> Result<(Stats, Stats), BenchError> {
-    let tracer = Program::Tracer(gpu.key, Output::Colour);
+    let tracer = Program::Tracer(gpu.key, ViewKind::Mono, Output::Colour);
     let frame = harness.frame(w, h, Output::Colour, &uniform_words(subject, gpu, (w, h)));
     let baseline_frame = harness.frame(w, h, Output::Colour, &[]);
     harness.draw(&tracer, &frame)?;
@@ -593,8 +622,8 @@ fn specialisation(
         &uniform_words(subject, &general, (w, h)),
     );
     let (pa, pb) = (
-        Program::Tracer(special.key, Output::Colour),
-        Program::Tracer(general.key, Output::Colour),
+        Program::Tracer(special.key, ViewKind::Mono, Output::Colour),
+        Program::Tracer(general.key, ViewKind::Mono, Output::Colour),
     );
     harness.draw(&pa, &a)?;
     harness.draw(&pb, &b)?;
@@ -618,6 +647,58 @@ fn specialisation(
         specialised_uniform_bytes: special.key.uniform_bytes(),
         general_uniform_bytes: general.key.uniform_bytes(),
         differing_pixels: differing as f64 / f64::from(w * h),
+    })
+}
+
+/// Times side-by-side and anaglyph stereo against mono at the middle timed resolution, each
+/// interleaved with mono.
+fn stereo_cost(
+    harness: &mut Harness,
+    subject: &Subject,
+    budget: u32,
+    config: &BenchConfig,
+) -> Result<StereoRow, BenchError> {
+    let scene = subject.scene(DEFAULT_FOG_FACTOR);
+    let gpu = GpuScene::new(&subject.space, &scene, budget).map_err(|error| BenchError::Scene {
+        space: subject.id.clone(),
+        error,
+    })?;
+    let mut sizes = config.sizes.clone();
+    sizes.sort_unstable();
+    let (w, h) = sizes[sizes.len() / 2];
+    let ipd = default_ipd(subject.inradius);
+    let eyes = eye_frames(&subject.space, subject.camera.frame, ipd).map(|e| e.frame);
+    let frame_of = |harness: &mut Harness, mode: StereoMode| {
+        let layout = ViewLayout::new(mode, false, eyes, subject.camera.fov_y_degrees, w, h);
+        let words: Vec<u32> = view_words(&layout, [0, 0])
+            .iter()
+            .chain(gpu.words.iter())
+            .copied()
+            .collect();
+        let program = Program::Tracer(gpu.key, mode.kind(), Output::Colour);
+        (program, harness.frame(w, h, Output::Colour, &words))
+    };
+    let mono = frame_of(harness, StereoMode::Mono);
+    let mut measured = Vec::new();
+    for mode in [StereoMode::SideBySide, StereoMode::AnaglyphDubois] {
+        let other = frame_of(harness, mode);
+        harness.draw(&mono.0, &mono.1)?;
+        harness.draw(&other.0, &other.1)?;
+        let (m, o) = time_interleaved(harness, (&mono.0, &mono.1), (&other.0, &other.1), config)?;
+        measured.push((m.median, o.median));
+    }
+    let [(mono_a, sbs), (mono_b, anaglyph)] = [measured[0], measured[1]];
+    Ok(StereoRow {
+        space: subject.id.clone(),
+        geometry: subject.geometry(),
+        width: w,
+        height: h,
+        budget,
+        mono_ms: 0.5 * (mono_a + mono_b),
+        side_by_side_ms: sbs,
+        side_by_side_ratio: sbs / mono_a,
+        anaglyph_ms: anaglyph,
+        anaglyph_ratio: anaglyph / mono_b,
     })
 }
 
@@ -716,10 +797,16 @@ fn gpu_pixels(
 ) -> Result<Reference, BenchError> {
     let words = uniform_words(subject, gpu, size);
     let colour = harness.frame(size.0, size.1, Output::Colour, &words);
-    harness.draw(&Program::Tracer(gpu.key, Output::Colour), &colour)?;
+    harness.draw(
+        &Program::Tracer(gpu.key, ViewKind::Mono, Output::Colour),
+        &colour,
+    )?;
     let rgba = harness.read_pixels(&colour)?;
     let ids_frame = harness.frame(size.0, size.1, Output::HitId, &words);
-    harness.draw(&Program::Tracer(gpu.key, Output::HitId), &ids_frame)?;
+    harness.draw(
+        &Program::Tracer(gpu.key, ViewKind::Mono, Output::HitId),
+        &ids_frame,
+    )?;
     let id_bytes = harness.read_pixels(&ids_frame)?;
     let ids: Vec<[u32; 4]> = bytemuck::cast_slice::<u8, u32>(&id_bytes)
         .chunks_exact(4)
@@ -882,13 +969,14 @@ pub fn write_report(
     .map_err(|e| write_err(&json, &e))?;
     std::fs::write(&json, body).map_err(|e| write_err(&json, &e))?;
     written.push(json);
-    let tables: [(&str, Vec<serde_json::Value>); 6] = [
+    let tables: [(&str, Vec<serde_json::Value>); 7] = [
         ("timings", to_values(&report.timings)),
         ("errors", to_values(&report.errors)),
         ("drift", to_values(&report.drift)),
         ("cutoff", to_values(&report.cutoff)),
         ("auto_budgets", to_values(&report.auto_budgets)),
         ("specialisation", to_values(&report.specialisation)),
+        ("stereo", to_values(&report.stereo)),
     ];
     for (name, rows) in tables {
         let path = dir.join(format!("{name}.csv"));
@@ -1065,6 +1153,27 @@ pub fn summary_markdown(report: &BenchReport) -> String {
                 r.specialised_uniform_bytes,
                 r.general_uniform_bytes,
                 pct(r.differing_pixels)
+            );
+        }
+    }
+    if !report.stereo.is_empty() {
+        let _ = writeln!(
+            md,
+            "\n### Stereo against mono (same head and scene, each timed interleaved with mono)\n\n| space | size | budget | mono ms | side by side ms | × mono | anaglyph ms | × mono |\n|---|---|---:|---:|---:|---:|---:|---:|"
+        );
+        for r in &report.stereo {
+            let _ = writeln!(
+                md,
+                "| {} | {}×{} | {} | {:.2} | {:.2} | {:.2}× | {:.2} | {:.2}× |",
+                r.space,
+                r.width,
+                r.height,
+                r.budget,
+                r.mono_ms,
+                r.side_by_side_ms,
+                r.side_by_side_ratio,
+                r.anaglyph_ms,
+                r.anaglyph_ratio
             );
         }
     }
