@@ -297,21 +297,39 @@ fn stereo_layouts_render_alike_on_gpu_and_cpu() {
     use bevy_curved_spaces::trace::render_view;
     let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
     let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("gpu-vs-cpu");
-    for (id, mode) in [
-        ("torus", StereoMode::SideBySide),
-        ("seifert-weber", StereoMode::TopBottomHalf),
-        ("poincare", StereoMode::AnaglyphDubois),
-        ("mirrored-dodecahedron", StereoMode::AnaglyphRedCyan),
-        ("half-turn", StereoMode::SideBySideHalf),
+    // The torus head 0.01 inside its +x face: the right eye is wrapped through it.
+    let torus = bevy_curved_spaces::space::seed_space("torus").expect("builds");
+    let near_face = torus.geometry.translation(glam::DVec3::X, 0.49)
+        * torus.geometry.rotation(glam::DVec3::Y, 0.3);
+    for (id, mode, head, wrapped) in [
+        ("torus", StereoMode::SideBySide, None, false),
+        ("torus", StereoMode::SideBySide, Some(near_face), true),
+        ("seifert-weber", StereoMode::TopBottomHalf, None, false),
+        ("poincare", StereoMode::AnaglyphDubois, None, false),
+        (
+            "mirrored-dodecahedron",
+            StereoMode::AnaglyphRedCyan,
+            None,
+            false,
+        ),
+        ("half-turn", StereoMode::SideBySideHalf, None, false),
     ] {
         let space = bevy_curved_spaces::space::seed_space(id).expect("builds");
-        let camera = Camera::default_for(&space);
+        let mut camera = Camera::default_for(&space);
+        if let Some(frame) = head {
+            camera.frame = frame;
+        }
         let stereo = StereoSettings {
             mode,
-            ipd: Some(0.1 * inradius(&space)),
+            ipd: Some(0.12 * inradius(&space)),
             swap_eyes: false,
         };
         let eyes = eye_frames(&space, camera.frame, stereo.ipd_for(inradius(&space)));
+        assert_eq!(
+            !eyes[1].crossed.is_empty(),
+            wrapped,
+            "{id}: the right eye's wrap"
+        );
         let layout = ViewLayout::new(
             mode,
             false,
@@ -344,6 +362,7 @@ fn stereo_layouts_render_alike_on_gpu_and_cpu() {
             })
             .unwrap_or_else(|e| panic!("{id}: {e}"));
         let (c, diff) = compare(&gpu, &cpu);
+        let id = if wrapped { "torus-eye-wrapped" } else { id };
         println!(
             "{id:<22} {mode:<18} differing {:.3} %, mean error {:.3}/255, max {}",
             100.0 * c.differing,

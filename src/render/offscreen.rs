@@ -137,6 +137,10 @@ impl OffscreenRenderer {
         });
         world.insert_resource(SceneObjects(request.objects.clone()));
         world.insert_resource(request.stereo);
+        // A changed space puts every player back at its start view in the next update:
+        // let that happen before the camera exists, so the requested frame is kept.
+        self.app.update();
+        let world = self.app.world_mut();
         let mut target = Image::new_target_texture(w, h, TextureFormat::Rgba8UnormSrgb, None);
         target.texture_descriptor.usage |= TextureUsages::COPY_SRC;
         let handle = world.resource_mut::<Assets<Image>>().add(target);
