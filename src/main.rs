@@ -776,26 +776,16 @@ fn walk(args: &WalkArgs) -> Result<(), String> {
         active.space.name
     );
     let mut app = App::new();
-    app.add_plugins(DefaultPlugins.set(WindowPlugin {
-        primary_window: Some(Window {
-            title: format!("curved spaces: {}", active.space.name),
-            ..default()
-        }),
-        ..default()
-    }))
-    .insert_resource(active)
-    .add_plugins(CurvedSpacesPlugin {
-        fog_distance: args.fog,
-        max_crossings: args.crossings,
-        quality: args.quality.into(),
-        ui: true,
-        stereo,
-        ..default()
-    })
-    .insert_resource(bevy_curved_spaces::ui::PanelVisible(!args.no_ui))
-    .add_systems(Startup, |mut commands: Commands| {
-        commands.spawn((Camera3d::default(), CurvedSpaceCamera::default()));
-    });
+    app.add_plugins(DefaultPlugins.set(window_titled(format!(
+        "curved spaces: {}",
+        active.space.name
+    ))));
+    add_walk_plugins(&mut app, args, active, stereo).add_systems(
+        Startup,
+        |mut commands: Commands| {
+            commands.spawn((Camera3d::default(), CurvedSpaceCamera::default()));
+        },
+    );
     if let Some(path) = &args.screenshot {
         app.insert_resource(ScreenshotThenExit {
             path: path.clone(),
@@ -803,7 +793,38 @@ fn walk(args: &WalkArgs) -> Result<(), String> {
         })
         .add_systems(Update, screenshot_then_exit);
     }
-    match app.run() {
+    exit_result(app.run())
+}
+
+/// The window of `walk`.
+fn window_titled(title: String) -> WindowPlugin {
+    WindowPlugin {
+        primary_window: Some(Window { title, ..default() }),
+        ..default()
+    }
+}
+
+/// The space, the plugin with `walk`'s options and the panel's visibility.
+fn add_walk_plugins<'a>(
+    app: &'a mut App,
+    args: &WalkArgs,
+    active: ActiveSpace,
+    stereo: StereoSettings,
+) -> &'a mut App {
+    app.insert_resource(active)
+        .add_plugins(CurvedSpacesPlugin {
+            fog_distance: args.fog,
+            max_crossings: args.crossings,
+            quality: args.quality.into(),
+            ui: true,
+            stereo,
+            ..default()
+        })
+        .insert_resource(bevy_curved_spaces::ui::PanelVisible(!args.no_ui))
+}
+
+fn exit_result(exit: AppExit) -> Result<(), String> {
+    match exit {
         AppExit::Success => Ok(()),
         AppExit::Error(code) => Err(format!("the app stopped with error code {code}")),
     }
@@ -820,23 +841,11 @@ fn walk_xr(args: &WalkArgs, space: Space) -> Result<(), String> {
         active.space.name
     );
     let mut app = App::new();
-    app.add_plugins(add_xr_plugins(DefaultPlugins).set(WindowPlugin {
-        primary_window: Some(Window {
-            title: format!("curved spaces (XR mirror): {}", active.space.name),
-            ..default()
-        }),
-        ..default()
-    }))
-    .insert_resource(active)
-    .add_plugins(CurvedSpacesPlugin {
-        fog_distance: args.fog,
-        max_crossings: args.crossings,
-        quality: args.quality.into(),
-        ui: true,
-        stereo,
-        ..default()
-    })
-    .insert_resource(bevy_curved_spaces::ui::PanelVisible(!args.no_ui));
+    app.add_plugins(add_xr_plugins(DefaultPlugins).set(window_titled(format!(
+        "curved spaces (XR mirror): {}",
+        active.space.name
+    ))));
+    add_walk_plugins(&mut app, args, active, stereo);
     if xr_available(app.world()) {
         app.add_plugins(CurvedSpacesXrPlugin::default());
     } else {
@@ -851,10 +860,7 @@ fn walk_xr(args: &WalkArgs, space: Space) -> Result<(), String> {
             commands.spawn((Camera3d::default(), CurvedSpaceCamera::default()));
         });
     }
-    match app.run() {
-        AppExit::Success => Ok(()),
-        AppExit::Error(code) => Err(format!("the app stopped with error code {code}")),
-    }
+    exit_result(app.run())
 }
 
 fn bench(args: &BenchArgs) -> Result<(), String> {
