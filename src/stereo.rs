@@ -101,6 +101,16 @@ impl StereoMode {
         }
     }
 
+    /// Whether the eyes share the picture side by side (x) or on top of each other (y).
+    #[must_use]
+    pub const fn split_axes(self) -> [bool; 2] {
+        match self {
+            StereoMode::SideBySide | StereoMode::SideBySideHalf => [true, false],
+            StereoMode::TopBottom | StereoMode::TopBottomHalf => [false, true],
+            _ => [false, false],
+        }
+    }
+
     /// Whether two eyes are drawn.
     #[must_use]
     pub const fn is_stereo(self) -> bool {

@@ -471,3 +471,69 @@ fn gpu_disparity_in_the_torus_matches_the_geometry() {
         ipd / d * f
     );
 }
+
+/// At a reduced resolution the picture is scaled up, but the two eyes of a side-by-side or
+/// top-bottom view are not blended where their halves meet: the first row or column of the
+/// second eye continues that eye's picture (it is as close to its neighbour inside the
+/// half as the picture's rows and columns are on average), instead of being a mix of the
+/// two eyes.
+#[test]
+fn scaled_up_stereo_halves_do_not_mix_at_the_split() {
+    let _gpu = gpu_lock();
+    use bevy_curved_spaces::stereo::{StereoMode, StereoSettings};
+    let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
+    let space = bevy_curved_spaces::space::seed_space("seifert-weber").expect("builds");
+    let camera = Camera::default_for(&space);
+    for (mode, vertical) in [
+        (StereoMode::SideBySide, false),
+        (StereoMode::TopBottom, true),
+    ] {
+        let picture = renderer
+            .render(&OffscreenRender {
+                space: ActiveSpace::new("seifert-weber", space.clone()),
+                width: WIDTH,
+                height: HEIGHT,
+                frame: camera.frame,
+                fov_y_degrees: camera.fov_y_degrees,
+                fog_distance: None,
+                max_crossings: 24,
+                parts: SceneParts::default(),
+                objects: Vec::new(),
+                resolution_scale: 0.5,
+                stereo: StereoSettings {
+                    mode,
+                    ..Default::default()
+                },
+            })
+            .expect("renders");
+        // Mean absolute difference between line k and line k + 1 (columns, or rows).
+        let (lines, length) = if vertical {
+            (HEIGHT, WIDTH)
+        } else {
+            (WIDTH, HEIGHT)
+        };
+        let pixel = |line: u32, at: u32| {
+            let (x, y) = if vertical { (at, line) } else { (line, at) };
+            picture.get_pixel(x, y).0.map(f64::from)
+        };
+        let step = |k: u32| {
+            (0..length)
+                .map(|at| {
+                    let (a, b) = (pixel(k, at), pixel(k + 1, at));
+                    (0..3).map(|c| (a[c] - b[c]).abs()).sum::<f64>() / 3.0
+                })
+                .sum::<f64>()
+                / f64::from(length)
+        };
+        let split = lines / 2;
+        let typical = (1..lines - 2).map(step).sum::<f64>() / f64::from(lines - 3);
+        let inside_second = step(split);
+        println!(
+            "{mode}: first line of the second eye vs its neighbour {inside_second:.2} levels; typical step {typical:.2}"
+        );
+        assert!(
+            inside_second < 2.0 * typical,
+            "{mode}: the second eye's first line is mixed with the first eye"
+        );
+    }
+}

@@ -189,8 +189,18 @@ fn a_scene_without_objects_and_a_zero_budget_are_refused_or_handled() {
 
 #[test]
 fn the_upscaling_and_benchmark_baseline_shaders_validate() {
-    for source in [UPSCALE_WGSL, BASELINE_WGSL] {
-        let module = naga::front::wgsl::parse_str(source).expect("parses");
+    let upscale = |defs: &[&str]| {
+        let defs: Vec<ShaderDefVal> = defs.iter().map(|d| (*d).into()).collect();
+        compose_wgsl(UPSCALE_WGSL, "upscale.wgsl", &defs).expect("composes")
+    };
+    let baseline = compose_wgsl(BASELINE_WGSL, "bench_baseline.wgsl", &[]).expect("composes");
+    // Mono, side by side and top and bottom (the halves kept apart).
+    for module in [
+        upscale(&[]),
+        upscale(&["SPLIT_X"]),
+        upscale(&["SPLIT_Y"]),
+        baseline,
+    ] {
         naga::valid::Validator::new(
             naga::valid::ValidationFlags::all(),
             naga::valid::Capabilities::default(),

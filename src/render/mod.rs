@@ -197,6 +197,9 @@ pub struct TracerPipelineKey {
     /// `None` for the upscaling pass.
     pub shader: Option<ShaderKey>,
     pub view: ViewKind,
+    /// The upscaling pass of a split view: whether the halves are side by side (x) or on
+    /// top of each other (y).
+    pub split: [bool; 2],
     pub format: TextureFormat,
 }
 
@@ -215,7 +218,12 @@ impl SpecializedRenderPipeline for TracerPipeline {
                 "curved_space_upscale",
                 UPSCALE_SHADER,
                 &self.upscale_layout,
-                vec![],
+                key.split
+                    .iter()
+                    .zip(["SPLIT_X", "SPLIT_Y"])
+                    .filter(|(split, _)| **split)
+                    .map(|(_, def)| def.into())
+                    .collect(),
             ),
         };
         RenderPipelineDescriptor {
@@ -322,6 +330,7 @@ fn prepare_tracer_views(
             TracerPipelineKey {
                 shader: Some(curved.scene.key),
                 view: curved.stereo.kind(),
+                split: [false; 2],
                 format,
             },
         );
@@ -357,6 +366,7 @@ fn prepare_tracer_views(
                 TracerPipelineKey {
                     shader: None,
                     view: ViewKind::Mono,
+                    split: curved.stereo.split_axes(),
                     format,
                 },
             );
