@@ -210,6 +210,9 @@ pub struct TracerStatus {
     pub budget: u32,
     /// How the automatic budget was chosen (`None` when the budget is fixed).
     pub auto_budget: Option<BudgetChoice>,
+    /// What is wrong with the [`StereoSettings`], if anything (the default eye distance is
+    /// used meanwhile).
+    pub stereo_error: Option<String>,
 }
 
 impl Plugin for CurvedSpacesPlugin {
@@ -252,7 +255,7 @@ impl Plugin for CurvedSpacesPlugin {
                     .chain()
                     .in_set(CurvedSpacesSystems::Move),
                 player::wrap_players.in_set(CurvedSpacesSystems::Wrap),
-                upload_scene.in_set(CurvedSpacesSystems::Upload),
+                (upload_scene, check_stereo_settings).in_set(CurvedSpacesSystems::Upload),
             ),
         )
         .add_observer(start_camera);
@@ -303,6 +306,25 @@ fn reset_players_on_switch(
         frame.0 = start;
         *holonomy = Holonomy::default();
     }
+}
+
+/// Reports an eye distance that cannot be used (the tracer falls back to the default).
+fn check_stereo_settings(
+    stereo: Res<StereoSettings>,
+    active: Res<ActiveSpace>,
+    mut status: ResMut<TracerStatus>,
+) {
+    if !stereo.is_changed() && !active.is_changed() {
+        return;
+    }
+    let problem = stereo
+        .ipd
+        .and_then(|ipd| crate::stereo::check_ipd(ipd, active.inradius).err())
+        .map(|e| format!("{e}; using the default eye distance"));
+    if let Some(p) = &problem {
+        warn!("{p}");
+    }
+    status.stereo_error = problem;
 }
 
 /// The scene the tracer shows: the default parts and the user's objects with their images.

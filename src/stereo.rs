@@ -218,10 +218,13 @@ pub struct StereoSettings {
 }
 
 impl StereoSettings {
-    /// The eye distance in use for a cell of this inradius.
+    /// The eye distance in use for a cell of this inradius: the chosen one, or the default
+    /// where none is chosen or the chosen one fails [`check_ipd`].
     #[must_use]
     pub fn ipd_for(&self, inradius: f64) -> f64 {
-        self.ipd.unwrap_or_else(|| default_ipd(inradius))
+        self.ipd
+            .filter(|&ipd| check_ipd(ipd, inradius).is_ok())
+            .unwrap_or_else(|| default_ipd(inradius))
     }
 
     /// Space units per metre at this eye distance (the "world scale").

@@ -298,7 +298,7 @@ fn panel(
                 Some(r) => ui.label(format!("injectivity radius {r:.6}")),
                 None => ui.label("injectivity radius: not enumerated"),
             };
-            if let Some(e) = &status.error {
+            for e in [&status.error, &status.stereo_error].into_iter().flatten() {
                 ui.colored_label(egui::Color32::LIGHT_RED, e);
             }
             ui.label(

@@ -314,3 +314,35 @@ fn a_million_random_steps_keep_the_frame_orthonormal_and_inside() {
         );
     }
 }
+
+/// Stereo settings change at run time; an eye distance the cell cannot take is named in
+/// `TracerStatus::stereo_error` and the default is used meanwhile.
+#[test]
+fn an_unusable_eye_distance_is_reported_and_replaced_by_the_default() {
+    use bevy_curved_spaces::plugin::TracerStatus;
+    use bevy_curved_spaces::stereo::default_ipd;
+    let (mut app, _) = test_app("torus");
+    let inradius = app.world().resource::<ActiveSpace>().inradius;
+    {
+        let mut stereo = app.world_mut().resource_mut::<StereoSettings>();
+        stereo.mode = StereoMode::SideBySide;
+        stereo.ipd = Some(3.0);
+    }
+    app.update();
+    let error = app.world().resource::<TracerStatus>().stereo_error.clone();
+    assert!(
+        error
+            .as_deref()
+            .is_some_and(|e| e.contains("more than the cell's inradius") && e.contains("default")),
+        "{error:?}"
+    );
+    let stereo = *app.world().resource::<StereoSettings>();
+    assert_eq!(stereo.ipd_for(inradius), default_ipd(inradius));
+    app.world_mut().resource_mut::<StereoSettings>().ipd = Some(0.05);
+    app.update();
+    assert_eq!(app.world().resource::<TracerStatus>().stereo_error, None);
+    assert_eq!(
+        app.world().resource::<StereoSettings>().ipd_for(inradius),
+        0.05
+    );
+}
