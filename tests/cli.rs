@@ -415,3 +415,38 @@ fn render_stereo_writes_both_eyes_and_names_bad_stereo_options() {
         "expected a positive number",
     );
 }
+
+/// `walk --xr` where no headset can be used (no display here, and a build without the `xr`
+/// feature or no OpenXR runtime) says why and falls back to desktop stereo: side by side,
+/// rendered offscreen to the PNG it names.
+#[test]
+fn walk_xr_without_a_runtime_falls_back_to_desktop_stereo() {
+    let dir = temp_dir("xr");
+    let out = Command::new(env!("CARGO_BIN_EXE_curved-spaces"))
+        .args(["walk", "torus", "--xr"])
+        .current_dir(&dir)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .expect("the binary runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(
+        err.contains("no OpenXR support")
+            || err.contains("OpenXR runtime")
+            || err.contains("OpenXR loader"),
+        "{err}"
+    );
+    assert!(
+        err.contains("falling back to desktop stereo: side by side"),
+        "{err}"
+    );
+    let img = image::open(dir.join("curved-spaces.png"))
+        .expect("a PNG")
+        .to_rgb8();
+    let (w, h) = img.dimensions();
+    let left = image::imageops::crop_imm(&img, 0, 0, w / 2, h).to_image();
+    let right = image::imageops::crop_imm(&img, w / 2, 0, w / 2, h).to_image();
+    assert_ne!(left, right, "two eyes side by side");
+    std::fs::remove_dir_all(&dir).ok();
+}
