@@ -1,5 +1,5 @@
 //! The GPU side: the scene packed for the WGSL tracer ([`gpu`]) and a small render node that
-//! draws it over every camera carrying [`CurvedSpaceCamera`](crate::CurvedSpaceCamera).
+//! draws it over every camera carrying [`CurvedSpaceCamera`].
 //!
 //! Modelled on Bevy 0.19's `FullscreenMaterial`, which specialises only on the target
 //! format: the tracer is also specialised on the geometry, the face count and the object
