@@ -14,7 +14,7 @@
 //! same way, and wrapped into the cell with its own pairing ([`crate::stereo::wrap_eye`]).
 
 use crate::geometry::Geometry;
-use crate::player::{Holonomy, wrap_into_cell};
+use crate::player::{Holonomy, translate_local, wrap_into_cell};
 use crate::space::Space;
 use crate::stereo::{Eye, wrap_eye};
 use glam::{DMat4, DQuat, DVec3};
@@ -70,11 +70,7 @@ impl RoomPose {
 /// geodesic, then turned by `rotation` about its new position.
 #[must_use]
 pub fn local_motion(geometry: Geometry, frame: DMat4, t: DVec3, rotation: DQuat) -> DMat4 {
-    let mut f = frame;
-    let distance = t.length();
-    if distance > 0.0 && distance.is_finite() {
-        f *= geometry.translation(t / distance, distance);
-    }
+    let mut f = translate_local(geometry, frame, t);
     if rotation != DQuat::IDENTITY && rotation.is_finite() {
         f *= DMat4::from_quat(rotation.normalize());
     }
@@ -105,12 +101,6 @@ impl HeadTracker {
             wrap_margin,
             last: None,
         }
-    }
-
-    /// The last head pose seen.
-    #[must_use]
-    pub fn last_pose(&self) -> Option<RoomPose> {
-        self.last
     }
 
     /// Moves the head by its motion in the room since the last pose and wraps it into the

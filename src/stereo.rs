@@ -11,6 +11,7 @@
 //! writes it into the shader's uniform, where `shaders/curved_space.wgsl` mirrors it.
 
 use crate::geometry::Geometry;
+use crate::player::translate_local;
 use crate::space::Space;
 use crate::trace::Ray;
 use glam::{DMat3, DMat4, DVec3, DVec4};
@@ -271,12 +272,10 @@ pub struct Eye {
 /// then wrapped into the cell through the faces it is past.
 #[must_use]
 pub fn offset_eye(space: &Space, head: DMat4, offset: f64) -> Eye {
-    let moved = if offset == 0.0 {
-        head
-    } else {
-        head * space.geometry.translation(DVec3::X, offset)
-    };
-    wrap_eye(space, moved)
+    wrap_eye(
+        space,
+        translate_local(space.geometry, head, DVec3::X * offset),
+    )
 }
 
 /// A frame wrapped into the cell (no margin: an eye past a face by any amount is moved).
@@ -347,15 +346,6 @@ impl Lens {
             self.top * (1.0 - v) + self.bottom * v,
         )
     }
-
-    /// The image point `(u, v)` of direction coefficients `(x, y)` (inverse of [`Lens::at`]).
-    #[must_use]
-    pub fn image_point(&self, x: f64, y: f64) -> (f64, f64) {
-        (
-            (x - self.left) / (self.right - self.left),
-            (self.top - y) / (self.top - self.bottom),
-        )
-    }
 }
 
 /// How a view's pixels map to eyes and camera rays: what the CPU reference renders and the
@@ -398,12 +388,17 @@ impl ViewLayout {
         height: u32,
     ) -> Self {
         let (w, h) = (f64::from(width.max(1)), f64::from(height.max(1)));
-        let (split, aspect) = match stereo {
-            StereoMode::SideBySide => ([w / 2.0, 0.0], (w / 2.0) / h),
-            StereoMode::SideBySideHalf => ([w / 2.0, 0.0], w / h),
-            StereoMode::TopBottom => ([0.0, h / 2.0], w / (h / 2.0)),
-            StereoMode::TopBottomHalf => ([0.0, h / 2.0], w / h),
-            _ => ([0.0, 0.0], w / h),
+        let [split_x, split_y] = stereo.split_axes();
+        let split = [
+            if split_x { w / 2.0 } else { 0.0 },
+            if split_y { h / 2.0 } else { 0.0 },
+        ];
+        // Each eye's picture keeps its own aspect, unless squeezed into its half (3D TVs).
+        let aspect = match stereo {
+            StereoMode::SideBySideHalf | StereoMode::TopBottomHalf => w / h,
+            _ if split_x => (w / 2.0) / h,
+            _ if split_y => w / (h / 2.0),
+            _ => w / h,
         };
         Self {
             frames: eyes,
@@ -459,6 +454,14 @@ impl ViewLayout {
         Ray {
             point,
             tangent: geometry.unit_tangent(point, x * f.x_axis + y * f.y_axis - f.z_axis),
+        }
+    }
+
+    /// The camera ray through the centre of pixel `(i, j)`: the left eye's for an anaglyph.
+    #[must_use]
+    pub fn ray_at(&self, geometry: Geometry, i: u32, j: u32) -> Ray<DVec4> {
+        match self.rays_at(geometry, i, j) {
+            PixelRays::One(ray) | PixelRays::Two(ray, _) => ray,
         }
     }
 

@@ -125,15 +125,23 @@ impl Default for PlayerSettings {
     }
 }
 
+/// The frame moved by `t` in its own axes (right, up, back): along the geodesic in that
+/// direction by `|t|`. A zero or non-finite `t` leaves it where it is.
+#[must_use]
+pub fn translate_local(geometry: Geometry, frame: DMat4, t: DVec3) -> DMat4 {
+    let distance = t.length();
+    if distance > 0.0 && distance.is_finite() {
+        frame * geometry.translation(t / distance, distance)
+    } else {
+        frame
+    }
+}
+
 /// The frame after a local motion: translate along the local direction, then turn.
 /// Rotations are applied about right, up and back in that order, each by its angle.
 #[must_use]
 pub fn step_frame(geometry: Geometry, frame: DMat4, motion: &PlayerMotion) -> DMat4 {
-    let mut f = frame;
-    let distance = motion.translation.length();
-    if distance > 0.0 && distance.is_finite() {
-        f *= geometry.translation(motion.translation / distance, distance);
-    }
+    let mut f = translate_local(geometry, frame, motion.translation);
     for (axis, angle) in [
         (DVec3::X, motion.rotation.x),
         (DVec3::Y, motion.rotation.y),

@@ -49,9 +49,7 @@ impl Camera {
     /// `normalize(px·right + py·up − back)` (the mono case of [`ViewLayout`]).
     #[must_use]
     pub fn ray(&self, geometry: Geometry, i: u32, j: u32, width: u32, height: u32) -> Ray<DVec4> {
-        match self.layout(width, height).rays_at(geometry, i, j) {
-            PixelRays::One(ray) | PixelRays::Two(ray, _) => ray,
-        }
+        self.layout(width, height).ray_at(geometry, i, j)
     }
 
     /// The mono pixel mapping of a `width × height` image.
