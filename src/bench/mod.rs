@@ -67,6 +67,14 @@ pub struct BenchConfig {
 }
 
 impl BenchConfig {
+    /// The middle of the timed resolutions (by width): where the specialisation and stereo
+    /// comparisons are timed.
+    fn middle_size(&self) -> (u32, u32) {
+        let mut sizes = self.sizes.clone();
+        sizes.sort_unstable();
+        sizes[sizes.len() / 2]
+    }
+
     /// The full benchmark (minutes on a software rasteriser, seconds on a GPU).
     #[must_use]
     pub fn full() -> Self {
@@ -314,6 +322,14 @@ impl Subject {
         self.space.geometry.name().to_string()
     }
 
+    /// The scene packed for the GPU with a crossing budget.
+    fn pack(&self, scene: &Scene, budget: u32) -> Result<GpuScene, BenchError> {
+        GpuScene::new(&self.space, scene, budget).map_err(|error| BenchError::Scene {
+            space: self.id.clone(),
+            error,
+        })
+    }
+
     fn scene(&self, fog_factor: f64) -> Scene {
         Scene::default_for(&self.space, fog_factor * self.inradius)
     }
@@ -440,12 +456,7 @@ pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, 
         let mut exact_cache: Vec<(f64, Reference)> = Vec::new();
         for (budget, from, fog) in settings {
             let scene = subject.scene(fog);
-            let gpu = GpuScene::new(&subject.space, &scene, budget).map_err(|error| {
-                BenchError::Scene {
-                    space: subject.id.clone(),
-                    error,
-                }
-            })?;
+            let gpu = subject.pack(&scene, budget)?;
             for &(w, h) in &config.sizes {
                 announce(
                     progress,
@@ -541,8 +552,9 @@ impl Stats {
     }
 }
 
-fn uniform_words(subject: &Subject, gpu: &GpuScene, size: (u32, u32)) -> Vec<u32> {
-    let view = view_words(&subject.camera.layout(size.0, size.1), [0, 0]);
+/// The whole uniform of a view of `layout` onto a packed scene.
+fn uniform_words(layout: &ViewLayout, gpu: &GpuScene) -> Vec<u32> {
+    let view = view_words(layout, [0, 0]);
     view.iter().chain(gpu.words.iter()).copied().collect()
 }
 
@@ -556,7 +568,12 @@ fn time_setting(
     config: &BenchConfig,
 ) -> Result<(Stats, Stats), BenchError> {
     let tracer = Program::Tracer(gpu.key, ViewKind::Mono, Output::Colour);
-    let frame = harness.frame(w, h, Output::Colour, &uniform_words(subject, gpu, (w, h)));
+    let frame = harness.frame(
+        w,
+        h,
+        Output::Colour,
+        &uniform_words(&subject.camera.layout(w, h), gpu),
+    );
     let baseline_frame = harness.frame(w, h, Output::Colour, &[]);
     harness.draw(&tracer, &frame)?;
     harness.draw(&Program::Baseline, &baseline_frame)?;
@@ -598,29 +615,14 @@ fn specialisation(
     config: &BenchConfig,
 ) -> Result<SpecialisationRow, BenchError> {
     let scene = subject.scene(DEFAULT_FOG_FACTOR);
-    let packing_error = |error| BenchError::Scene {
-        space: subject.id.clone(),
-        error,
-    };
-    let special = GpuScene::new(&subject.space, &scene, budget).map_err(packing_error)?;
+    let special = subject.pack(&scene, budget)?;
     let general = special.generalised().ok_or(BenchError::Empty(
         "the scene is larger than the general shader's capacity",
     ))?;
-    let mut sizes = config.sizes.clone();
-    sizes.sort_unstable();
-    let (w, h) = sizes[sizes.len() / 2];
-    let a = harness.frame(
-        w,
-        h,
-        Output::Colour,
-        &uniform_words(subject, &special, (w, h)),
-    );
-    let b = harness.frame(
-        w,
-        h,
-        Output::Colour,
-        &uniform_words(subject, &general, (w, h)),
-    );
+    let (w, h) = config.middle_size();
+    let mono = subject.camera.layout(w, h);
+    let a = harness.frame(w, h, Output::Colour, &uniform_words(&mono, &special));
+    let b = harness.frame(w, h, Output::Colour, &uniform_words(&mono, &general));
     let (pa, pb) = (
         Program::Tracer(special.key, ViewKind::Mono, Output::Colour),
         Program::Tracer(general.key, ViewKind::Mono, Output::Colour),
@@ -659,22 +661,13 @@ fn stereo_cost(
     config: &BenchConfig,
 ) -> Result<StereoRow, BenchError> {
     let scene = subject.scene(DEFAULT_FOG_FACTOR);
-    let gpu = GpuScene::new(&subject.space, &scene, budget).map_err(|error| BenchError::Scene {
-        space: subject.id.clone(),
-        error,
-    })?;
-    let mut sizes = config.sizes.clone();
-    sizes.sort_unstable();
-    let (w, h) = sizes[sizes.len() / 2];
+    let gpu = subject.pack(&scene, budget)?;
+    let (w, h) = config.middle_size();
     let ipd = default_ipd(subject.inradius);
     let eyes = eye_frames(&subject.space, subject.camera.frame, ipd).map(|e| e.frame);
     let frame_of = |harness: &mut Harness, mode: StereoMode| {
         let layout = ViewLayout::new(mode, false, eyes, subject.camera.fov_y_degrees, w, h);
-        let words: Vec<u32> = view_words(&layout, [0, 0])
-            .iter()
-            .chain(gpu.words.iter())
-            .copied()
-            .collect();
+        let words = uniform_words(&layout, &gpu);
         let program = Program::Tracer(gpu.key, mode.kind(), Output::Colour);
         (program, harness.frame(w, h, Output::Colour, &words))
     };
@@ -734,10 +727,11 @@ impl Reference {
         let walker = CellWalker::<DVec4>::new(&subject.space);
         let index = gpu_object_indices(scene);
         let g = subject.space.geometry;
+        let layout = subject.camera.layout(w, h);
         let pixels: Vec<([u32; 4], [u8; 3], bool)> = (0..w * h)
             .into_par_iter()
             .map(|k| {
-                let mut ray = subject.camera.ray(g, k % w, k / w, w, h);
+                let mut ray = layout.ray_at(g, k % w, k / w);
                 if round_start {
                     ray.point = Vec4::from_f64(ray.point).to_f64();
                     ray.tangent = Vec4::from_f64(ray.tangent).to_f64();
@@ -795,7 +789,7 @@ fn gpu_pixels(
     budget: u32,
     size: (u32, u32),
 ) -> Result<Reference, BenchError> {
-    let words = uniform_words(subject, gpu, size);
+    let words = uniform_words(&subject.camera.layout(size.0, size.1), gpu);
     let colour = harness.frame(size.0, size.1, Output::Colour, &words);
     harness.draw(
         &Program::Tracer(gpu.key, ViewKind::Mono, Output::Colour),
@@ -920,10 +914,11 @@ fn cutoff(subject: &Subject, fog_factor: f64, (w, h): (u32, u32)) -> CutoffRow {
     uncut.shading.cutoff_weight = 1e-15;
     let walker = CellWalker::<DVec4>::new(&subject.space);
     let g = subject.space.geometry;
+    let layout = subject.camera.layout(w, h);
     let errors: Vec<(f64, bool)> = (0..w * h)
         .into_par_iter()
         .map(|k| {
-            let ray = subject.camera.ray(g, k % w, k / w, w, h);
+            let ray = layout.ray_at(g, k % w, k / w);
             let cut = first_hit_traced(&walker, &scene, ray, EXACT_BUDGET).end;
             let full = first_hit_traced(&walker, &uncut, ray, EXACT_BUDGET).end;
             let error = (colour_of(g, &scene, &cut) - colour_of(g, &uncut, &full))
