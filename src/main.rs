@@ -605,7 +605,8 @@ fn render_command(args: &RenderArgs) -> Result<(), String> {
     };
     let stereo = args.stereo.settings(&space)?;
     let eyes = if stereo.mode.is_stereo() {
-        let ipd = stereo.ipd_for(inradius(&space));
+        let inradius = inradius(&space);
+        let ipd = stereo.ipd_for(inradius);
         let eyes = eye_frames(&space, camera.frame, ipd);
         let wrapped: Vec<String> = eyes
             .iter()
@@ -616,7 +617,7 @@ fn render_command(args: &RenderArgs) -> Result<(), String> {
         eprintln!(
             "stereo {}: eyes {ipd:.4} apart (the inradius feels like {:.2} m){}",
             stereo.mode,
-            inradius(&space) / stereo.units_per_metre(inradius(&space)),
+            inradius / stereo.units_per_metre(inradius),
             if wrapped.is_empty() {
                 String::new()
             } else {
@@ -713,6 +714,15 @@ fn display_available() -> bool {
         .any(|v| std::env::var_os(v).is_some_and(|x| !x.is_empty()))
 }
 
+/// The stereo mode shown instead of a headset: the one asked for, side by side if none.
+fn desktop_stereo(asked: StereoMode) -> StereoMode {
+    if asked.is_stereo() {
+        asked
+    } else {
+        StereoMode::SideBySide
+    }
+}
+
 /// Whether a headset can be used: an OpenXR loader and runtime, in a build with `xr`.
 fn xr_runtime() -> Result<(), String> {
     #[cfg(feature = "xr")]
@@ -727,7 +737,7 @@ fn xr_runtime() -> Result<(), String> {
 
 fn walk(args: &WalkArgs) -> Result<(), String> {
     let space = resolve_space(&args.space)?;
-    let mut args_stereo = args.stereo;
+    let mut stereo_args = args.stereo;
     if args.xr {
         match xr_runtime() {
             #[cfg(feature = "xr")]
@@ -737,21 +747,12 @@ fn walk(args: &WalkArgs) -> Result<(), String> {
             }
             Err(e) => eprintln!("{e}"),
         }
-        if !args_stereo.stereo.is_stereo() {
-            args_stereo.stereo = StereoMode::SideBySide;
-        }
+        stereo_args.stereo = desktop_stereo(stereo_args.stereo);
         eprintln!(
             "falling back to desktop stereo: {} (choose another with --stereo)",
-            args_stereo.stereo.label()
+            stereo_args.stereo.label()
         );
     }
-    let args = &WalkArgs {
-        stereo: args_stereo,
-        xr: false,
-        space: args.space.clone(),
-        screenshot: args.screenshot.clone(),
-        ..*args
-    };
     if !display_available() {
         eprintln!(
             "no display found (DISPLAY and WAYLAND_DISPLAY are unset): rendering {} offscreen to curved-spaces.png instead",
@@ -762,14 +763,14 @@ fn walk(args: &WalkArgs) -> Result<(), String> {
             unreachable!("`render SPACE` parses as the render command")
         };
         render.fog = args.fog;
-        render.stereo = args.stereo;
+        render.stereo = stereo_args;
         if !gpu_available() {
             eprintln!("no GPU adapter found: using the CPU reference renderer");
             render.cpu = true;
         }
         return render_command(&render);
     }
-    let stereo = args.stereo.settings(&space)?;
+    let stereo = stereo_args.settings(&space)?;
     let active = ActiveSpace::new(&args.space, space);
     eprintln!(
         "walking in {}: click to look around, WASD to move, Esc releases the mouse, F1 the panel",
@@ -853,9 +854,7 @@ fn walk_xr(args: &WalkArgs, space: Space) -> Result<(), String> {
             "the OpenXR runtime did not start a session: falling back to desktop stereo in the window"
         );
         let mut settings = app.world_mut().resource_mut::<StereoSettings>();
-        if !settings.mode.is_stereo() {
-            settings.mode = StereoMode::SideBySide;
-        }
+        settings.mode = desktop_stereo(settings.mode);
         app.add_systems(Startup, |mut commands: Commands| {
             commands.spawn((Camera3d::default(), CurvedSpaceCamera::default()));
         });

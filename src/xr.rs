@@ -292,7 +292,7 @@ fn drive_eyes(
     active: Res<ActiveSpace>,
     stereo: Res<StereoSettings>,
     player: Res<PlayerSettings>,
-    head: Option<ResMut<XrHead>>,
+    mut existing: Option<ResMut<XrHead>>,
     mut commands: Commands,
     mut eyes: Query<(&XrCamera, &mut PlayerFrame, &mut CurvedSpaceEye)>,
 ) {
@@ -303,13 +303,19 @@ fn drive_eyes(
     let head_pose = RoomPose::between(&poses[0], &poses[1]);
     let space = &active.space;
     let scale = stereo.units_per_metre(active.inradius);
-    let mut head = match head {
-        Some(h) => h.0.clone(),
-        None => HeadTracker::new(
-            TraceCamera::default_for(space).frame,
-            scale,
-            player.wrap_margin,
-        ),
+    // The head is tracked in place; the first frame creates it at the space's start view.
+    let mut created = None;
+    let head = match existing.as_deref_mut() {
+        Some(XrHead(tracker)) => tracker,
+        None => {
+            &mut created
+                .insert(XrHead(HeadTracker::new(
+                    TraceCamera::default_for(space).frame,
+                    scale,
+                    player.wrap_margin,
+                )))
+                .0
+        }
     };
     head.units_per_metre = scale;
     head.track(space, head_pose);
@@ -327,7 +333,9 @@ fn drive_eyes(
             f64::from(f.angle_up),
         );
     }
-    commands.insert_resource(XrHead(head));
+    if let Some(head) = created {
+        commands.insert_resource(head);
+    }
 }
 
 fn mirror_head(
