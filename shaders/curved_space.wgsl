@@ -544,14 +544,6 @@ fn srgb_to_linear(c: vec3<f32>) -> vec3<f32> {
     return select(high, low, c <= vec3<f32>(0.04045));
 }
 
-#ifdef ANAGLYPH
-fn linear_to_srgb(c: vec3<f32>) -> vec3<f32> {
-    let low = c * 12.92;
-    let high = 1.055 * pow(c, vec3<f32>(1.0 / 2.4)) - 0.055;
-    return select(high, low, c <= vec3<f32>(0.0031308));
-}
-#endif
-
 // The colour seen by eye `eye` through image point `uv` of its picture (ViewLayout::ray).
 fn eye_colour(eye: u32, uv: vec2<f32>) -> vec3<f32> {
     let lens = space.view.lens;
@@ -563,7 +555,8 @@ fn eye_colour(eye: u32, uv: vec2<f32>) -> vec3<f32> {
     return clamp(trace(p, v), vec3<f32>(0.0), vec3<f32>(1.0));
 }
 
-// The colour seen through a fragment of the viewport (ViewLayout::eye_at and rays_at).
+// The linear colour seen through a fragment of the viewport (ViewLayout::eye_at and
+// rays_at); the target stores its sRGB encoding, the value the CPU reference writes.
 fn pixel_colour(position: vec4<f32>) -> vec3<f32> {
     let view = space.view;
     let pixel = position.xy - view.viewport.xy;
@@ -574,7 +567,7 @@ fn pixel_colour(position: vec4<f32>) -> vec3<f32> {
     let half = select(0u, 1u, second);
     let local = pixel - f32(half) * split;
     size = select(size, split, split > vec2<f32>(0.0));
-    return eye_colour(half ^ u32(view.split.z), local / size);
+    return srgb_to_linear(eye_colour(half ^ u32(view.split.z), local / size));
 #else
 #ifdef ANAGLYPH
     let uv = pixel / size;
@@ -582,10 +575,9 @@ fn pixel_colour(position: vec4<f32>) -> vec3<f32> {
     let right = srgb_to_linear(eye_colour(1u, uv));
     let mixed = (view.anaglyph[0] * vec4<f32>(left, 0.0)).rgb
         + (view.anaglyph[1] * vec4<f32>(right, 0.0)).rgb;
-    // Returned encoded, like the other paths: the fragment decodes it once more.
-    return linear_to_srgb(clamp(mixed, vec3<f32>(0.0), vec3<f32>(1.0)));
+    return clamp(mixed, vec3<f32>(0.0), vec3<f32>(1.0));
 #else
-    return eye_colour(0u, pixel / size);
+    return srgb_to_linear(eye_colour(0u, pixel / size));
 #endif
 #endif
 }
@@ -599,6 +591,6 @@ fn fragment(@builtin(position) position: vec4<f32>) -> @location(0) vec4<u32> {
 #else
 @fragment
 fn fragment(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
-    return vec4<f32>(srgb_to_linear(pixel_colour(position)), 1.0);
+    return vec4<f32>(pixel_colour(position), 1.0);
 }
 #endif
