@@ -8,6 +8,14 @@
 //                                        the geometry and counts are read at run time
 //   FACE_COUNT, PARTNER_VECS             faces of the cell (partners packed 4 to a vec4<u32>)
 //   BALLS + BALL_COUNT, TUBES + TUBE_COUNT   the object kinds present and their numbers
+//   GLOBES + GLOBE_COUNT                 textured balls (equirectangular, spinning)
+//   DISCS + DISC_COUNT                   flat discs
+//   INSTANCES + INSTANCE_COUNT           placed meshes (src/scene/mesh.rs)
+//   AVATAR                               the player's avatar mesh (frames in the view)
+//   MESHES                               any mesh: the scene data buffer with the
+//                                        hierarchies, triangles and materials
+//   TEXTURES                             textures in the scene data buffer
+//   LIGHTS + LIGHT_COUNT, LIGHT_IMAGES   point lights, each with up to LIGHT_IMAGES copies
 //   HIT_ID                               (benchmark) output what each ray met instead of a
 //                                        colour: object, crossings, face path, how it ended
 //   STEREO_SPLIT                         two eyes in two halves of the view (src/stereo.rs)
@@ -27,10 +35,15 @@ struct View {
     // Viewport origin and size (pixels).
     viewport: vec4<f32>,
     // Where the second half of a split view starts (x, y in pixels; 0: no split), whether
-    // the eyes are swapped (0 or 1), unused.
+    // the eyes are swapped (0 or 1), the scene's time in seconds (the globes' spin).
     split: vec4<f32>,
     // Anaglyph matrices (left, right; upper 3×3) acting on linear RGB.
     anaglyph: array<mat4x4<f32>, 2>,
+    // The avatar's images: frame and inverse, one pair each.
+    avatar: array<mat4x4<f32>, 16>,
+    // Avatar images in use, the distance from the eye within which avatar hits are passed
+    // through, the root node of its mesh, unused.
+    avatar_info: vec4<f32>,
 }
 
 struct Shading {
@@ -40,16 +53,51 @@ struct Shading {
     params: vec4<f32>,
 }
 
+#ifdef LIGHTS
 struct Light {
-    position: vec4<f32>,
-    // Colour × power (rgb), unused.
+    // Colour × power (rgb), number of images in use.
     colour: vec4<f32>,
+    // The light and its images under the pairings: a point is lit by the nearest.
+    images: array<vec4<f32>, #{LIGHT_IMAGES}>,
 }
+#endif
 
 struct Ball {
     centre: vec4<f32>,
     // Albedo (rgb) and C(ρ) (the radius ρ itself in E³).
     colour: vec4<f32>,
+    // Emission (rgb), unused.
+    emission: vec4<f32>,
+}
+
+struct Globe {
+    centre: vec4<f32>,
+    // Albedo (rgb) and C(ρ) (ρ in E³).
+    colour: vec4<f32>,
+    // Emission (rgb), texture index.
+    emission: vec4<f32>,
+    // Spin in radians per second, unused ×3.
+    spin: vec4<f32>,
+    // The inverse of the globe's orientation frame.
+    inverse: mat4x4<f32>,
+}
+
+struct Disc {
+    centre: vec4<f32>,
+    // Unit tangent at the centre.
+    normal: vec4<f32>,
+    // The plane's covector (P·X = 0).
+    covector: vec4<f32>,
+    // Albedo (rgb), radius.
+    colour: vec4<f32>,
+    emission: vec4<f32>,
+}
+
+struct Instance {
+    frame: mat4x4<f32>,
+    inverse: mat4x4<f32>,
+    // Root node, material override (or 0xffffffff), unused, unused.
+    info: vec4<u32>,
 }
 
 struct Tube {
@@ -60,12 +108,18 @@ struct Tube {
     colour: vec4<f32>,
     // C(L), S(L) of the segment length L, unused, unused.
     length: vec4<f32>,
+    emission: vec4<f32>,
 }
 
 struct SpaceUniform {
     view: View,
     shading: Shading,
-    light: Light,
+    // Where the scene data buffer's parts start (in vec4): triangles, materials, texture
+    // table, texels (the hierarchies' nodes start at 0).
+    data: vec4<u32>,
+#ifdef LIGHTS
+    lights: array<Light, #{LIGHT_COUNT}>,
+#endif
     // Face covectors N_f: the cell is N_f·X ≤ 0.
     covectors: array<vec4<f32>, #{FACE_COUNT}>,
     // Face pairings g_f: a ray leaving through f comes back through partner(f).
@@ -77,6 +131,15 @@ struct SpaceUniform {
 #ifdef TUBES
     tubes: array<Tube, #{TUBE_COUNT}>,
 #endif
+#ifdef GLOBES
+    globes: array<Globe, #{GLOBE_COUNT}>,
+#endif
+#ifdef DISCS
+    discs: array<Disc, #{DISC_COUNT}>,
+#endif
+#ifdef INSTANCES
+    instances: array<Instance, #{INSTANCE_COUNT}>,
+#endif
 #ifdef GENERAL
     // κ, face count, ball count, tube count.
     general: vec4<f32>,
@@ -84,6 +147,16 @@ struct SpaceUniform {
 }
 
 @group(0) @binding(0) var<uniform> space: SpaceUniform;
+
+#ifdef MESHES
+// Hierarchy nodes (2 vec4 each), triangles (8), materials (2), the texture table (1 each)
+// and texels (4 per vec4, RGBA8 sRGB), as written by src/render/gpu.rs.
+@group(0) @binding(1) var<storage, read> scene_data: array<vec4<u32>>;
+#else
+#ifdef TEXTURES
+@group(0) @binding(1) var<storage, read> scene_data: array<vec4<u32>>;
+#endif
+#endif
 
 const F32_EPSILON: f32 = 1.1920929e-7;
 
@@ -269,14 +342,13 @@ fn in_range(s: f32, hi: f32) -> bool {
     return s > 0.0 && s < hi && abs(s) < NO_HIT;
 }
 
-#ifdef BALLS
-// The first s in (0, hi) where the ray enters the ball, or NO_HIT.
-fn hit_ball(ball: Ball, p: vec4<f32>, v: vec4<f32>, hi: f32) -> f32 {
-    let c = ball.centre;
+// The first s in (0, hi) where the ray enters the ball of centre c and size C(ρ) (ρ in
+// E³), or NO_HIT.
+fn hit_ball_at(c: vec4<f32>, size: f32, p: vec4<f32>, v: vec4<f32>, hi: f32) -> f32 {
 #ifdef EUCLIDEAN
     if kappa() == 0.0 {
         let d = p.xyz - c.xyz;
-        let r = ball.colour.w;
+        let r = size;
         let t = roots(dot(v.xyz, v.xyz), 2.0 * dot(d, v.xyz), dot(d, d) - r * r);
         if in_range(t.x, hi) { return t.x; }
         if in_range(t.y, hi) { return t.y; }
@@ -288,7 +360,7 @@ fn hit_ball(ball: Ball, p: vec4<f32>, v: vec4<f32>, hi: f32) -> f32 {
         // (⟨p,c⟩ + s⟨v,c⟩)² = C(ρ)² (1 + κ s²), on the sheet where ⟨X,c⟩ has the sign of κ C(ρ).
         let a = form(p, c);
         let b = form(v, c);
-        let cr = ball.colour.w;
+        let cr = size;
         let sheet = kappa() * cr;
         let t = roots(b * b - kappa() * cr * cr, 2.0 * a * b, a * a - cr * cr);
         if in_range(t.x, hi) && (a + t.x * b) * sheet > 0.0 { return t.x; }
@@ -297,6 +369,20 @@ fn hit_ball(ball: Ball, p: vec4<f32>, v: vec4<f32>, hi: f32) -> f32 {
     }
 #endif
     return NO_HIT;
+}
+
+#ifdef DISCS
+// Where the ray meets the disc's plane within its radius, or NO_HIT.
+fn hit_disc(disc: Disc, p: vec4<f32>, v: vec4<f32>, hi: f32) -> f32 {
+    let s = -dot(disc.covector, p) / dot(disc.covector, v);
+    if !(s > 0.0 && s < hi) {
+        return NO_HIT;
+    }
+    let x = project_point(p + s * v);
+    if !(distance(x, disc.centre) <= disc.colour.w) {
+        return NO_HIT;
+    }
+    return s;
 }
 #endif
 
@@ -367,21 +453,264 @@ fn hit_tube(tube: Tube, p: vec4<f32>, v: vec4<f32>, hi: f32) -> f32 {
 }
 #endif
 
+#ifdef MESHES
+fn fdata(i: u32) -> vec4<f32> {
+    return bitcast<vec4<f32>>(scene_data[i]);
+}
+#else
+#ifdef TEXTURES
+fn fdata(i: u32) -> vec4<f32> {
+    return bitcast<vec4<f32>>(scene_data[i]);
+}
+#endif
+#endif
+
+#ifdef TEXTURES
+fn srgb_channel_to_linear(c: vec3<f32>) -> vec3<f32> {
+    let low = c / 12.92;
+    let high = pow((c + 0.055) / 1.055, vec3<f32>(2.4));
+    return select(high, low, c <= vec3<f32>(0.04045));
+}
+
+// The linear colour of texel (x, y) of texture `tex` (Texture::texel).
+fn texel(tex: u32, x: u32, y: u32) -> vec3<f32> {
+    let info = scene_data[space.data.z + tex];
+    let i = info.x + y * info.y + x;
+    let word = scene_data[space.data.w + i / 4u][i % 4u];
+    let c = vec3<f32>(f32(word & 255u), f32((word >> 8u) & 255u), f32((word >> 16u) & 255u));
+    return srgb_channel_to_linear(c / 255.0);
+}
+
+// Bilinear between texel centres, u wrapping, v clamped (Texture::sample).
+fn sample_texture(tex: u32, uv: vec2<f32>) -> vec3<f32> {
+    let info = scene_data[space.data.z + tex];
+    let w = f32(info.y);
+    let h = f32(info.z);
+    let x = (uv.x - floor(uv.x)) * w - 0.5;
+    let y = clamp(clamp(uv.y, 0.0, 1.0) * h - 0.5, 0.0, h - 1.0);
+    let x0 = floor(x);
+    let y0 = floor(y);
+    let fx = x - x0;
+    let fy = y - y0;
+    let xa = u32(x0 - w * floor(x0 / w));
+    let xb = u32((x0 + 1.0) - w * floor((x0 + 1.0) / w));
+    let ya = u32(y0);
+    let yb = u32(min(y0 + 1.0, h - 1.0));
+    let top = mix(texel(tex, xa, ya), texel(tex, xb, ya), fx);
+    let bottom = mix(texel(tex, xa, yb), texel(tex, xb, yb), fx);
+    return mix(top, bottom, fy);
+}
+#endif
+
+#ifdef GLOBES
+// Texture coordinates of a globe's point x (BallTexture::uv).
+fn globe_uv(globe: Globe, x: vec4<f32>) -> vec2<f32> {
+    let local = globe.inverse * x;
+    let d = normalize(local.xyz);
+    let turn = 6.283185307179586;
+    let longitude = atan2(d.x, d.z) - globe.spin.x * space.view.split.w;
+    let u = longitude / turn + 0.5;
+    return vec2<f32>(u - floor(u), acos(clamp(d.y, -1.0, 1.0)) / 3.141592653589793);
+}
+#endif
+
+#ifdef MESHES
+// A mesh hit: s along the segment, the triangle, the barycentric weights of corners 1
+// and 2, and the chart point in the mesh's frame.
+struct MeshHit {
+    s: f32,
+    triangle: u32,
+    uv: vec2<f32>,
+    local: vec3<f32>,
+}
+
+// The slab test of node n: entry parameter or NO_HIT.
+fn node_entry(n: u32, o: vec3<f32>, inv_d: vec3<f32>, hi: f32) -> f32 {
+    let lo = fdata(2u * n).xyz;
+    let up = fdata(2u * n + 1u).xyz;
+    let t0 = (lo - o) * inv_d;
+    let t1 = (up - o) * inv_d;
+    let tmin = min(t0, t1);
+    let tmax = max(t0, t1);
+    let near = max(max(max(tmin.x, tmin.y), tmin.z), 0.0);
+    let far = min(min(min(tmax.x, tmax.y), tmax.z), hi);
+    return select(NO_HIT, near, near <= far);
+}
+
+const BVH_STACK: u32 = 32u;
+
+// The first hit of the mesh with root node `root` placed by `inverse` (cell → mesh chart)
+// on the segment p + s v, s in (0, hi) (Scene::intersect_mesh, Mesh::intersect).
+fn hit_mesh(root: u32, inverse: mat4x4<f32>, p: vec4<f32>, v: vec4<f32>, hi: f32) -> MeshHit {
+    var best = MeshHit(NO_HIT, 0u, vec2<f32>(0.0), vec3<f32>(0.0));
+    let lp = inverse * p;
+    let lv = inverse * v;
+    if !(lp.w > 0.0) {
+        return best;
+    }
+    let o = lp.xyz / lp.w;
+    let d = lv.xyz - o * lv.w;
+    let den = lp.w + hi * lv.w;
+    var t_best = select(NO_HIT, hi / den, den > 0.0);
+    let inv_d = 1.0 / d;
+    var stack: array<u32, BVH_STACK>;
+    var top = 0u;
+    var node = root;
+    var found = false;
+    var hit_t = 0.0;
+    // Each node is visited at most once; the cap only guards against bad data.
+    for (var steps = 0u; steps < 1048576u; steps += 1u) {
+        let info = scene_data[2u * node + 1u].w;
+        let index = scene_data[2u * node].w;
+        var descend = false;
+        if info > 0u {
+            let tri_base = space.data.x;
+            for (var i = index; i < index + info; i += 1u) {
+                let b = tri_base + 8u * i;
+                let a = fdata(b).xyz;
+                let e1 = fdata(b + 1u).xyz;
+                let e2 = fdata(b + 2u).xyz;
+                let pv = cross(d, e2);
+                let det = dot(e1, pv);
+                if det == 0.0 {
+                    continue;
+                }
+                let inv = 1.0 / det;
+                let tv = o - a;
+                let u = dot(tv, pv) * inv;
+                if u < 0.0 || u > 1.0 {
+                    continue;
+                }
+                let qv = cross(tv, e1);
+                let w = dot(d, qv) * inv;
+                if w < 0.0 || u + w > 1.0 {
+                    continue;
+                }
+                let t = dot(e2, qv) * inv;
+                if t > 0.0 && t < t_best {
+                    t_best = t;
+                    hit_t = t;
+                    found = true;
+                    best.triangle = i;
+                    best.uv = vec2<f32>(u, w);
+                }
+            }
+        } else {
+            let a = node + 1u;
+            let b = index;
+            let ta = node_entry(a, o, inv_d, t_best);
+            let tb = node_entry(b, o, inv_d, t_best);
+            if ta < NO_HIT && tb < NO_HIT {
+                if top < BVH_STACK {
+                    stack[top] = select(a, b, ta <= tb);
+                    top += 1u;
+                }
+                node = select(b, a, ta <= tb);
+                descend = true;
+            } else if ta < NO_HIT {
+                node = a;
+                descend = true;
+            } else if tb < NO_HIT {
+                node = b;
+                descend = true;
+            }
+        }
+        if descend {
+            continue;
+        }
+        // The next subtree from the stack that is still nearer than the best hit.
+        var next = false;
+        while top > 0u {
+            top -= 1u;
+            let candidate = stack[top];
+            if node_entry(candidate, o, inv_d, t_best) < NO_HIT {
+                node = candidate;
+                next = true;
+                break;
+            }
+        }
+        if !next {
+            break;
+        }
+    }
+    if found {
+        let s = hit_t * lp.w / (1.0 - hit_t * lv.w);
+        if s > 0.0 && s < hi {
+            best.s = s;
+            best.local = o + hit_t * d;
+        }
+    }
+    return best;
+}
+
+// The normal and the material's colour and emission of a mesh hit (Scene::intersect_mesh).
+struct Surface {
+    normal: vec4<f32>,
+    albedo: vec3<f32>,
+    emission: vec3<f32>,
+}
+
+fn mesh_surface(hit: MeshHit, frame: mat4x4<f32>, material_override: u32, point: vec4<f32>, v: vec4<f32>) -> Surface {
+    let b = space.data.x + 8u * hit.triangle;
+    let w = vec3<f32>(1.0 - hit.uv.x - hit.uv.y, hit.uv.x, hit.uv.y);
+    let n = normalize(fdata(b + 3u).xyz * w.x + fdata(b + 4u).xyz * w.y + fdata(b + 5u).xyz * w.z);
+    var local_normal = vec4<f32>(n, 0.0);
+    if kappa() != 0.0 {
+        local_normal.w = -dot(n, hit.local) / kappa();
+    }
+    var normal = unit_tangent(point, frame * local_normal);
+    if form(normal, v) > 0.0 {
+        normal = -normal;
+    }
+    var material = scene_data[b].w;
+    if material_override != 0xffffffffu {
+        material = material_override;
+    }
+    let m0 = fdata(space.data.y + 2u * material);
+    let m1 = fdata(space.data.y + 2u * material + 1u);
+    var albedo = m0.rgb;
+#ifdef TEXTURES
+    let tex = scene_data[space.data.y + 2u * material].w;
+    if tex != 0xffffffffu {
+        let uv01 = fdata(b + 6u);
+        let uv2 = fdata(b + 7u).xy;
+        let uv = uv01.xy * w.x + uv01.zw * w.y + uv2 * w.z;
+        albedo *= sample_texture(tex, uv);
+    }
+#endif
+    return Surface(normal, albedo, m1.rgb);
+}
+#endif
+
 // ---------------------------------------------------------------------------------------
 // Shading (trace::Shading::shade)
 
-fn shade(point: vec4<f32>, normal: vec4<f32>, albedo: vec3<f32>, d: f32) -> vec3<f32> {
+fn shade(point: vec4<f32>, normal: vec4<f32>, albedo: vec3<f32>, emission: vec3<f32>, d: f32) -> vec3<f32> {
     let ambient = space.shading.fog.w;
     var lit = vec3<f32>(ambient);
-    let light = space.light;
-    let dl = distance(point, light.position);
-    if dl > 0.0 {
-        let l = tangent_towards(point, light.position);
-        let lambert = max(form(normal, l), 0.0);
-        let s = max(abs(s_of(dl)), space.shading.params.z);
-        lit += (1.0 - ambient) * light.colour.rgb * (lambert / (s * s));
+#ifdef LIGHTS
+    for (var i = 0u; i < #{LIGHT_COUNT}u; i += 1u) {
+        let light = space.lights[i];
+        // The nearest of the light's images.
+        var at = light.images[0];
+        var dl = distance(point, at);
+        for (var k = 1u; k < u32(light.colour.w); k += 1u) {
+            let q = light.images[k];
+            let dq = distance(point, q);
+            if dq < dl {
+                dl = dq;
+                at = q;
+            }
+        }
+        if dl > 0.0 {
+            let l = tangent_towards(point, at);
+            let lambert = max(form(normal, l), 0.0);
+            let s = max(abs(s_of(dl)), space.shading.params.z);
+            lit += (1.0 - ambient) * light.colour.rgb * (lambert / (s * s));
+        }
     }
-    let surface = min(albedo * lit, vec3<f32>(1.0));
+#endif
+    let surface = min(albedo * lit + emission, vec3<f32>(1.0));
     let w = exp(-d / space.shading.params.x);
     return w * surface + (1.0 - w) * space.shading.fog.rgb;
 }
@@ -395,6 +724,32 @@ fn partner(face: u32) -> u32 {
 // none), crossings, a hash of the faces crossed, and how it ended (1 hit, 2 fog, 3 budget).
 var<private> hit_id: vec4<u32>;
 const FNV_OFFSET: u32 = 2166136261u;
+
+// The object's place in the GPU's lists (gpu::gpu_object_indices): balls, tubes, globes,
+// discs, mesh instances, then the avatar's images.
+fn object_number(kind: u32, index: u32) -> u32 {
+    var base = 0u;
+    var counts = array<u32, 5>(0u, 0u, 0u, 0u, 0u);
+#ifdef BALLS
+    counts[0] = ball_count();
+#endif
+#ifdef TUBES
+    counts[1] = tube_count();
+#endif
+#ifdef GLOBES
+    counts[2] = #{GLOBE_COUNT}u;
+#endif
+#ifdef DISCS
+    counts[3] = #{DISC_COUNT}u;
+#endif
+#ifdef INSTANCES
+    counts[4] = #{INSTANCE_COUNT}u;
+#endif
+    for (var k = 1u; k < kind; k += 1u) {
+        base += counts[k - 1u];
+    }
+    return base + index;
+}
 const FNV_PRIME: u32 = 16777619u;
 #endif
 
@@ -435,52 +790,79 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
         }
         // The nearest object before the exit face.
         var s_hit = num / den;
-        var albedo = vec3<f32>(0.0);
-        var foot = vec4<f32>(0.0);
-        var hit = false;
-#ifdef HIT_ID
-        var object = 0u;
+        // What was hit: 0 nothing, 1 ball, 2 tube, 3 globe, 4 disc, 5 mesh instance,
+        // 6 avatar image; and its index.
+        var kind = 0u;
+        var index = 0u;
+#ifdef MESHES
+        var mesh_hit = MeshHit(NO_HIT, 0u, vec2<f32>(0.0), vec3<f32>(0.0));
 #endif
 #ifdef BALLS
         for (var i = 0u; i < ball_count(); i += 1u) {
-            let s = hit_ball(space.balls[i], p, v, s_hit);
+            let s = hit_ball_at(space.balls[i].centre, space.balls[i].colour.w, p, v, s_hit);
             if s < s_hit {
                 s_hit = s;
-                albedo = space.balls[i].colour.rgb;
-                foot = space.balls[i].centre;
-                hit = true;
-#ifdef HIT_ID
-                object = i + 1u;
-#endif
+                kind = 1u;
+                index = i;
             }
         }
 #endif
 #ifdef TUBES
-        var tube_hit = 0xffffffffu;
         for (var i = 0u; i < tube_count(); i += 1u) {
             let s = hit_tube(space.tubes[i], p, v, s_hit);
             if s < s_hit {
                 s_hit = s;
-                tube_hit = i;
-                hit = true;
-#ifdef HIT_ID
-#ifdef BALLS
-                object = ball_count() + i + 1u;
-#else
-                object = i + 1u;
-#endif
-#endif
+                kind = 2u;
+                index = i;
             }
         }
 #endif
-        if hit {
-            let point = project_point(p + s_hit * v);
-#ifdef TUBES
-            if tube_hit != 0xffffffffu {
-                albedo = space.tubes[tube_hit].colour.rgb;
-                foot = tube_foot(space.tubes[tube_hit], point);
+#ifdef GLOBES
+        for (var i = 0u; i < #{GLOBE_COUNT}u; i += 1u) {
+            let s = hit_ball_at(space.globes[i].centre, space.globes[i].colour.w, p, v, s_hit);
+            if s < s_hit {
+                s_hit = s;
+                kind = 3u;
+                index = i;
             }
+        }
 #endif
+#ifdef DISCS
+        for (var i = 0u; i < #{DISC_COUNT}u; i += 1u) {
+            let s = hit_disc(space.discs[i], p, v, s_hit);
+            if s < s_hit {
+                s_hit = s;
+                kind = 4u;
+                index = i;
+            }
+        }
+#endif
+#ifdef INSTANCES
+        for (var i = 0u; i < #{INSTANCE_COUNT}u; i += 1u) {
+            let h = hit_mesh(space.instances[i].info.x, space.instances[i].inverse, p, v, s_hit);
+            if h.s < s_hit {
+                s_hit = h.s;
+                kind = 5u;
+                index = i;
+                mesh_hit = h;
+            }
+        }
+#endif
+#ifdef AVATAR
+        let avatar = space.view.avatar_info;
+        for (var i = 0u; i < u32(avatar.x); i += 1u) {
+            let h = hit_mesh(u32(avatar.z), space.view.avatar[2u * i + 1u], p, v, s_hit);
+            // The copy the eye sits in is passed through.
+            if h.s < s_hit && travelled + distance_from_ratio(h.s, 1.0) >= avatar.y {
+                s_hit = h.s;
+                kind = 6u;
+                index = i;
+                mesh_hit = h;
+            }
+        }
+#endif
+        if kind != 0u {
+            let point = project_point(p + s_hit * v);
             let d = travelled + distance_from_ratio(s_hit, 1.0);
             if d >= cutoff {
 #ifdef HIT_ID
@@ -489,11 +871,67 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
                 return fog;
             }
 #ifdef HIT_ID
-            hit_id = vec4<u32>(object, crossings, path, 1u);
+            hit_id = vec4<u32>(object_number(kind, index) + 1u, crossings, path, 1u);
 #endif
-            // Outward normal: away from the ball's centre or the tube's axis.
-            let normal = unit_tangent(point, point - foot);
-            return shade(point, normal, albedo, d);
+            var normal = vec4<f32>(0.0);
+            var albedo = vec3<f32>(0.0);
+            var emission = vec3<f32>(0.0);
+#ifdef BALLS
+            if kind == 1u {
+                let ball = space.balls[index];
+                normal = unit_tangent(point, point - ball.centre);
+                albedo = ball.colour.rgb;
+                emission = ball.emission.rgb;
+            }
+#endif
+#ifdef TUBES
+            if kind == 2u {
+                let tube = space.tubes[index];
+                normal = unit_tangent(point, point - tube_foot(tube, point));
+                albedo = tube.colour.rgb;
+                emission = tube.emission.rgb;
+            }
+#endif
+#ifdef GLOBES
+            if kind == 3u {
+                let globe = space.globes[index];
+                normal = unit_tangent(point, point - globe.centre);
+                albedo = globe.colour.rgb;
+#ifdef TEXTURES
+                albedo *= sample_texture(u32(globe.emission.w), globe_uv(globe, point));
+#endif
+                emission = globe.emission.rgb;
+            }
+#endif
+#ifdef DISCS
+            if kind == 4u {
+                let disc = space.discs[index];
+                normal = unit_tangent(point, disc.normal);
+                if form(normal, v) > 0.0 {
+                    normal = -normal;
+                }
+                albedo = disc.colour.rgb;
+                emission = disc.emission.rgb;
+            }
+#endif
+#ifdef INSTANCES
+            if kind == 5u {
+                let instance = space.instances[index];
+                let surface = mesh_surface(mesh_hit, instance.frame, instance.info.y, point, v);
+                normal = surface.normal;
+                albedo = surface.albedo;
+                emission = surface.emission;
+            }
+#endif
+#ifdef AVATAR
+            if kind == 6u {
+                let surface = mesh_surface(mesh_hit, space.view.avatar[2u * index], 0xffffffffu, point, v);
+                normal = surface.normal;
+                albedo = surface.albedo;
+                emission = surface.emission;
+            }
+#endif
+            return shade(point, normal, albedo, emission, d);
         }
         if crossings == budget {
 #ifdef HIT_ID

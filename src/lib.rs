@@ -33,6 +33,7 @@ pub mod headset;
 pub mod player;
 pub mod plugin;
 pub mod render;
+pub mod scene;
 pub mod space;
 pub mod stereo;
 pub mod trace;

@@ -49,7 +49,9 @@ fn every_shader_def_combination_validates_and_matches_the_packed_layout() {
                         faces,
                         balls,
                         tubes,
-                        general: false,
+                        lights: 1,
+                        light_images: faces + 1,
+                        ..ShaderKey::empty(geometry)
                     };
                     assert_eq!(
                         validate(&key),
@@ -62,6 +64,55 @@ fn every_shader_def_combination_validates_and_matches_the_packed_layout() {
         }
     }
     assert_eq!(checked, 3 * 5 * 3 * 3);
+}
+
+/// Globes, discs, meshes, the avatar, textures and several lights, alone and together, in
+/// every geometry: each combination validates (plain and with `HIT_ID`) and naga's layout
+/// of the uniform is the packer's.
+#[test]
+fn scene_content_variants_validate_and_match_the_packed_layout() {
+    let mut checked = 0;
+    for geometry in Geometry::ALL {
+        for (globes, discs, instances, avatar, textures, lights) in [
+            (1, 0, 0, false, true, 1),
+            (0, 2, 0, false, false, 3),
+            (0, 0, 3, false, false, 1),
+            (0, 0, 0, true, false, 1),
+            (0, 0, 2, false, true, 0),
+            (2, 3, 4, true, true, 4),
+        ] {
+            let key = ShaderKey {
+                faces: 12,
+                balls: 2,
+                tubes: 1,
+                globes,
+                discs,
+                instances,
+                avatar,
+                textures,
+                lights,
+                light_images: 13,
+                ..ShaderKey::empty(geometry)
+            };
+            assert_eq!(
+                validate(&key),
+                key.uniform_bytes(),
+                "{key:?}: naga's layout differs from the packer's size"
+            );
+            let mut defs = key.shader_defs();
+            defs.push(ShaderDefVal::from("HIT_ID"));
+            let module = compose_wgsl(TRACER_WGSL, "curved_space.wgsl", &defs)
+                .unwrap_or_else(|e| panic!("{key:?} with HIT_ID: {e}"));
+            naga::valid::Validator::new(
+                naga::valid::ValidationFlags::all(),
+                naga::valid::Capabilities::default(),
+            )
+            .validate(&module)
+            .unwrap_or_else(|e| panic!("{key:?} with HIT_ID does not validate: {e:?}"));
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, 18);
 }
 
 #[test]
@@ -90,7 +141,7 @@ fn each_geometry_compiles_only_its_own_formulas() {
             faces: 6,
             balls: 1,
             tubes: 1,
-            general: false,
+            ..ShaderKey::empty(geometry)
         };
         let module = compose(&key).expect("composes");
         let text = format!("{:?}", module.functions);
@@ -114,7 +165,7 @@ fn each_geometry_compiles_only_its_own_formulas() {
         faces: 12,
         balls: 3,
         tubes: 0,
-        general: false,
+        ..ShaderKey::empty(Geometry::Hyperbolic)
     };
     let module = compose(&key).expect("composes");
     assert!(
@@ -221,7 +272,7 @@ fn the_hit_id_variant_validates_and_writes_four_integers() {
                 faces: 12,
                 balls,
                 tubes,
-                general: false,
+                ..ShaderKey::empty(geometry)
             };
             let mut defs = key.shader_defs();
             defs.push(ShaderDefVal::from("HIT_ID"));
@@ -300,7 +351,9 @@ fn stereo_variants_validate_with_the_same_layout() {
                 faces: 12,
                 balls: 3,
                 tubes: 2,
-                general: false,
+                lights: 2,
+                light_images: 13,
+                ..ShaderKey::empty(geometry)
             };
             let defs = [key.shader_defs(), view_shader_defs(kind)].concat();
             let module = compose_wgsl(TRACER_WGSL, "curved_space.wgsl", &defs)

@@ -127,16 +127,28 @@ impl Harness {
         };
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("space uniform"),
-            entries: &[wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::FRAGMENT,
-                ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Uniform,
-                    has_dynamic_offset: false,
-                    min_binding_size: None,
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
                 },
-                count: None,
-            }],
+                wgpu::BindGroupLayoutEntry {
+                    binding: 1,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Storage { read_only: true },
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
+            ],
         });
         let timestamp_period_ns = f64::from(queue.get_timestamp_period());
         Ok(Self {
@@ -214,7 +226,14 @@ impl Harness {
 
     /// A target of `width × height` with `words` as the shader's uniform.
     #[must_use]
-    pub fn frame(&self, width: u32, height: u32, output: Output, words: &[u32]) -> Frame {
+    pub fn frame(
+        &self,
+        width: u32,
+        height: u32,
+        output: Output,
+        words: &[u32],
+        scene_data: &[u32],
+    ) -> Frame {
         let texture = self.device.create_texture(&wgpu::TextureDescriptor {
             label: Some("bench target"),
             size: wgpu::Extent3d {
@@ -239,13 +258,31 @@ impl Harness {
                 contents: bytemuck::cast_slice(contents),
                 usage: wgpu::BufferUsages::UNIFORM,
             });
+        let data: &[u32] = if scene_data.is_empty() {
+            &[0; 4]
+        } else {
+            scene_data
+        };
+        let data = self
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("scene data"),
+                contents: bytemuck::cast_slice(data),
+                usage: wgpu::BufferUsages::STORAGE,
+            });
         let bind_group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: None,
             layout: &self.layout,
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: buffer.as_entire_binding(),
-            }],
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: buffer.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: data.as_entire_binding(),
+                },
+            ],
         });
         Frame {
             width,

@@ -554,7 +554,7 @@ impl Stats {
 
 /// The whole uniform of a view of `layout` onto a packed scene.
 fn uniform_words(layout: &ViewLayout, gpu: &GpuScene) -> Vec<u32> {
-    let view = view_words(layout, [0, 0]);
+    let view = view_words(layout, [0, 0], &crate::render::gpu::ViewExtras::default());
     view.iter().chain(gpu.words.iter()).copied().collect()
 }
 
@@ -573,8 +573,9 @@ fn time_setting(
         h,
         Output::Colour,
         &uniform_words(&subject.camera.layout(w, h), gpu),
+        &gpu.data,
     );
-    let baseline_frame = harness.frame(w, h, Output::Colour, &[]);
+    let baseline_frame = harness.frame(w, h, Output::Colour, &[], &[]);
     harness.draw(&tracer, &frame)?;
     harness.draw(&Program::Baseline, &baseline_frame)?;
     time_interleaved(
@@ -621,8 +622,20 @@ fn specialisation(
     ))?;
     let (w, h) = config.middle_size();
     let mono = subject.camera.layout(w, h);
-    let a = harness.frame(w, h, Output::Colour, &uniform_words(&mono, &special));
-    let b = harness.frame(w, h, Output::Colour, &uniform_words(&mono, &general));
+    let a = harness.frame(
+        w,
+        h,
+        Output::Colour,
+        &uniform_words(&mono, &special),
+        &special.data,
+    );
+    let b = harness.frame(
+        w,
+        h,
+        Output::Colour,
+        &uniform_words(&mono, &general),
+        &general.data,
+    );
     let (pa, pb) = (
         Program::Tracer(special.key, ViewKind::Mono, Output::Colour),
         Program::Tracer(general.key, ViewKind::Mono, Output::Colour),
@@ -669,7 +682,10 @@ fn stereo_cost(
         let layout = ViewLayout::new(mode, false, eyes, subject.camera.fov_y_degrees, w, h);
         let words = uniform_words(&layout, &gpu);
         let program = Program::Tracer(gpu.key, mode.kind(), Output::Colour);
-        (program, harness.frame(w, h, Output::Colour, &words))
+        (
+            program,
+            harness.frame(w, h, Output::Colour, &words, &gpu.data),
+        )
     };
     let mono = frame_of(harness, StereoMode::Mono);
     let mut measured = Vec::new();
@@ -790,13 +806,13 @@ fn gpu_pixels(
     size: (u32, u32),
 ) -> Result<Reference, BenchError> {
     let words = uniform_words(&subject.camera.layout(size.0, size.1), gpu);
-    let colour = harness.frame(size.0, size.1, Output::Colour, &words);
+    let colour = harness.frame(size.0, size.1, Output::Colour, &words, &gpu.data);
     harness.draw(
         &Program::Tracer(gpu.key, ViewKind::Mono, Output::Colour),
         &colour,
     )?;
     let rgba = harness.read_pixels(&colour)?;
-    let ids_frame = harness.frame(size.0, size.1, Output::HitId, &words);
+    let ids_frame = harness.frame(size.0, size.1, Output::HitId, &words, &gpu.data);
     harness.draw(
         &Program::Tracer(gpu.key, ViewKind::Mono, Output::HitId),
         &ids_frame,

@@ -26,8 +26,8 @@ pub const MAX_UNIFORM_BYTES: usize = 64 << 10;
 pub const MAX_GPU_BUDGET: u32 = 4096;
 
 /// Words of the per-view part at the start of the uniform (`View`: two eye frames, three
-/// vec4 and the two anaglyph matrices).
-pub const VIEW_WORDS: usize = 76;
+/// vec4, the two anaglyph matrices, the avatar's frames and a vec4 about them).
+pub const VIEW_WORDS: usize = 76 + 16 * 16 + 4;
 
 /// What the shader is specialised on: one compiled pipeline per key.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -36,6 +36,18 @@ pub struct ShaderKey {
     pub faces: u32,
     pub balls: u32,
     pub tubes: u32,
+    /// Textured balls.
+    pub globes: u32,
+    pub discs: u32,
+    /// Placed meshes.
+    pub instances: u32,
+    pub lights: u32,
+    /// Images per light (the light and its copies through the faces).
+    pub light_images: u32,
+    /// Whether the player's avatar is drawn.
+    pub avatar: bool,
+    /// Whether any texture is used.
+    pub textures: bool,
     /// The unspecialised variant (the benchmark's comparison): all geometries' formulas,
     /// arrays of [`GENERAL_CAPACITY`], geometry and counts read from the uniform.
     pub general: bool,
@@ -45,6 +57,26 @@ pub struct ShaderKey {
 pub const GENERAL_CAPACITY: (u32, u32, u32) = (crate::space::MAX_FACES as u32, 256, 256);
 
 impl ShaderKey {
+    /// The key of an empty scene in `geometry` (no faces, objects or lights): a start for
+    /// struct-update syntax.
+    #[must_use]
+    pub fn empty(geometry: Geometry) -> Self {
+        Self {
+            geometry,
+            faces: 0,
+            balls: 0,
+            tubes: 0,
+            globes: 0,
+            discs: 0,
+            instances: 0,
+            lights: 0,
+            light_images: 0,
+            avatar: false,
+            textures: false,
+            general: false,
+        }
+    }
+
     /// The shader defs of this key (see the header of `shaders/curved_space.wgsl`).
     #[must_use]
     pub fn shader_defs(&self) -> Vec<ShaderDefVal> {
@@ -62,13 +94,32 @@ impl ShaderKey {
         };
         defs.push(ShaderDefVal::UInt("FACE_COUNT".into(), faces));
         defs.push(ShaderDefVal::UInt("PARTNER_VECS".into(), faces.div_ceil(4)));
-        if balls > 0 {
-            defs.push("BALLS".into());
-            defs.push(ShaderDefVal::UInt("BALL_COUNT".into(), balls));
+        let mut counted = |flag: &str, count_def: &str, n: u32| {
+            if n > 0 {
+                defs.push(flag.into());
+                defs.push(ShaderDefVal::UInt(count_def.into(), n));
+            }
+        };
+        counted("BALLS", "BALL_COUNT", balls);
+        counted("TUBES", "TUBE_COUNT", tubes);
+        counted("GLOBES", "GLOBE_COUNT", self.globes);
+        counted("DISCS", "DISC_COUNT", self.discs);
+        counted("INSTANCES", "INSTANCE_COUNT", self.instances);
+        counted("LIGHTS", "LIGHT_COUNT", self.lights);
+        if self.lights > 0 {
+            defs.push(ShaderDefVal::UInt(
+                "LIGHT_IMAGES".into(),
+                self.light_images.max(1),
+            ));
         }
-        if tubes > 0 {
-            defs.push("TUBES".into());
-            defs.push(ShaderDefVal::UInt("TUBE_COUNT".into(), tubes));
+        if self.avatar {
+            defs.push("AVATAR".into());
+        }
+        if self.avatar || self.instances > 0 {
+            defs.push("MESHES".into());
+        }
+        if self.textures {
+            defs.push("TEXTURES".into());
         }
         defs
     }
@@ -89,13 +140,26 @@ impl ShaderKey {
         let vec4 = 16;
         let (faces, balls, tubes) = self.array_sizes();
         let view = VIEW_WORDS * 4;
-        let shading_and_light = 4 * vec4;
+        let shading_and_data = 3 * vec4;
+        let lights = self.lights as usize * (1 + self.light_images.max(1) as usize) * vec4;
         let partners = faces.div_ceil(4) as usize * vec4;
         let faces = faces as usize * (vec4 + 4 * vec4);
-        let balls = balls as usize * 2 * vec4;
-        let tubes = tubes as usize * 4 * vec4;
+        let balls = balls as usize * 3 * vec4;
+        let tubes = tubes as usize * 5 * vec4;
+        let globes = self.globes as usize * 8 * vec4;
+        let discs = self.discs as usize * 5 * vec4;
+        let instances = self.instances as usize * 9 * vec4;
         let general = if self.general { vec4 } else { 0 };
-        view + shading_and_light + faces + partners + balls + tubes + general
+        view + shading_and_data
+            + lights
+            + faces
+            + partners
+            + balls
+            + tubes
+            + globes
+            + discs
+            + instances
+            + general
     }
 }
 
@@ -130,14 +194,14 @@ pub fn compose_wgsl(
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum GpuSceneError {
     #[error(
-        "the scene needs {bytes} bytes of uniform data ({faces} faces, {balls} balls, {tubes} tubes), more than the {limit} bytes a GPU is guaranteed to bind; show fewer objects"
+        "the scene needs {bytes} bytes of uniform data ({faces} faces, {objects} objects with their images, {lights} lights), more than the {limit} bytes a GPU is guaranteed to bind; show fewer objects"
     )]
     TooLarge {
         bytes: usize,
         limit: usize,
         faces: u32,
-        balls: u32,
-        tubes: u32,
+        objects: usize,
+        lights: u32,
     },
     #[error("the crossing budget must be at least 1, got {0}")]
     NoCrossings(u32),
@@ -147,28 +211,53 @@ pub enum GpuSceneError {
     BudgetTooLarge(u32),
 }
 
+/// The kinds of the GPU's object lists, in their order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+enum GpuKind {
+    Ball,
+    Tube,
+    Globe,
+    Disc,
+    Instance,
+}
+
+fn gpu_kind(o: &Object) -> GpuKind {
+    match o {
+        Object::Ball(b) if b.texture.is_some() => GpuKind::Globe,
+        Object::Ball(_) => GpuKind::Ball,
+        Object::Tube(_) => GpuKind::Tube,
+        Object::Disc(_) => GpuKind::Disc,
+        Object::Mesh(_) => GpuKind::Instance,
+    }
+}
+
 /// The index each scene object has in the shader's lists, which [`GpuScene::new`] fills with
-/// the balls first, then the tubes, each in scene order (the `HIT_ID` output reports it).
+/// the plain balls first, then the tubes, the textured balls (globes), the discs and the
+/// meshes, each in scene order (the `HIT_ID` output reports it). The avatar's images come
+/// after all of them, as in [`crate::trace::SceneHit::object`].
 #[must_use]
 pub fn gpu_object_indices(scene: &Scene) -> Vec<u32> {
-    let balls = scene
-        .objects
+    let kinds: Vec<GpuKind> = scene.objects.iter().map(gpu_kind).collect();
+    kinds
         .iter()
-        .filter(|o| matches!(o, Object::Ball(_)))
-        .count() as u32;
-    let (mut ball, mut tube) = (0u32, balls);
-    scene
-        .objects
-        .iter()
-        .map(|o| {
-            let counter = match o {
-                Object::Ball(_) => &mut ball,
-                Object::Tube(_) => &mut tube,
-            };
-            *counter += 1;
-            *counter - 1
+        .enumerate()
+        .map(|(i, k)| {
+            let before = kinds.iter().filter(|x| *x < k).count();
+            let same = kinds[..i].iter().filter(|x| *x == k).count();
+            (before + same) as u32
         })
         .collect()
+}
+
+/// The avatar as the GPU draws it: its mesh's root node and the distance within which its
+/// hits are passed through.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GpuAvatar {
+    /// Index into the scene's meshes.
+    pub mesh: u32,
+    pub root: u32,
+    pub radius: f64,
+    pub skip: f64,
 }
 
 /// A space and its scene, packed for the GPU (everything but the per-view camera part).
@@ -177,6 +266,10 @@ pub struct GpuScene {
     pub key: ShaderKey,
     /// The words of `SpaceUniform` after `view`.
     pub words: Vec<u32>,
+    /// The scene data buffer (`scene_data`): hierarchy nodes, triangles, materials, the
+    /// texture table and texels. At least one vec4, so it can always be bound.
+    pub data: Vec<u32>,
+    pub avatar: Option<GpuAvatar>,
 }
 
 fn push_vec4(words: &mut Vec<u32>, v: DVec4) {
@@ -189,6 +282,89 @@ fn push_mat4(words: &mut Vec<u32>, m: DMat4) {
     }
 }
 
+/// `x` rounded to an f32 no larger (`down`) or no smaller than it: node boxes stay
+/// conservative in f32.
+fn f32_rounded(x: f64, down: bool) -> f32 {
+    let y = x as f32;
+    match (down, f64::from(y).partial_cmp(&x)) {
+        (true, Some(std::cmp::Ordering::Greater)) => y.next_down(),
+        (false, Some(std::cmp::Ordering::Less)) => y.next_up(),
+        _ => y,
+    }
+}
+
+/// Packs the meshes, materials and textures into the scene data buffer; returns it with
+/// the offsets of its parts (triangles, materials, texture table, texels, in vec4) and each
+/// mesh's root node.
+fn pack_scene_data(scene: &Scene) -> (Vec<u32>, [u32; 4], Vec<u32>) {
+    let f = |x: f64| (x as f32).to_bits();
+    let node_count: usize = scene.meshes.iter().map(|m| m.nodes.len()).sum();
+    let tri_count: usize = scene.meshes.iter().map(|m| m.triangles.len()).sum();
+    let mut data = Vec::with_capacity(8 * node_count + 32 * tri_count + 64);
+    let mut roots = Vec::with_capacity(scene.meshes.len());
+    let (mut node_base, mut tri_base) = (0u32, 0u32);
+    for mesh in &scene.meshes {
+        roots.push(node_base);
+        for n in &mesh.nodes {
+            let index = if n.count > 0 {
+                n.index + tri_base
+            } else {
+                n.index + node_base
+            };
+            let (lo, hi) = (n.bounds.min, n.bounds.max);
+            data.extend([
+                f32_rounded(lo.x, true).to_bits(),
+                f32_rounded(lo.y, true).to_bits(),
+                f32_rounded(lo.z, true).to_bits(),
+                index,
+            ]);
+            data.extend([
+                f32_rounded(hi.x, false).to_bits(),
+                f32_rounded(hi.y, false).to_bits(),
+                f32_rounded(hi.z, false).to_bits(),
+                n.count,
+            ]);
+        }
+        node_base += mesh.nodes.len() as u32;
+        tri_base += mesh.triangles.len() as u32;
+    }
+    let triangles = (data.len() / 4) as u32;
+    for mesh in &scene.meshes {
+        for t in &mesh.triangles {
+            let [a, b, c] = t.corners;
+            data.extend([f(a.x), f(a.y), f(a.z), t.material]);
+            for e in [b - a, c - a] {
+                data.extend([f(e.x), f(e.y), f(e.z), 0]);
+            }
+            for n in t.normals {
+                data.extend([f(n.x), f(n.y), f(n.z), 0]);
+            }
+            let [u0, u1, u2] = t.uvs;
+            data.extend([f(u0.x), f(u0.y), f(u1.x), f(u1.y)]);
+            data.extend([f(u2.x), f(u2.y), 0, 0]);
+        }
+    }
+    let materials = (data.len() / 4) as u32;
+    for m in &scene.materials {
+        let c = m.colour;
+        data.extend([f(c.x), f(c.y), f(c.z), m.texture.unwrap_or(u32::MAX)]);
+        let e = m.emission;
+        data.extend([f(e.x), f(e.y), f(e.z), 0]);
+    }
+    let table = (data.len() / 4) as u32;
+    let mut texel_offset = 0u32;
+    for t in &scene.textures {
+        data.extend([texel_offset, t.width, t.height, 0]);
+        texel_offset += t.texels.len() as u32;
+    }
+    let texels = (data.len() / 4) as u32;
+    for t in &scene.textures {
+        data.extend_from_slice(&t.texels);
+    }
+    data.resize(data.len().div_ceil(4).max(1) * 4, 0);
+    (data, [triangles, materials, table, texels], roots)
+}
+
 impl GpuScene {
     /// Packs a space and a scene with a crossing budget per ray.
     pub fn new(space: &Space, scene: &Scene, max_crossings: u32) -> Result<Self, GpuSceneError> {
@@ -199,27 +375,35 @@ impl GpuScene {
             return Err(GpuSceneError::BudgetTooLarge(max_crossings));
         }
         let g = space.geometry;
-        let balls: Vec<_> = scene
-            .objects
+        let of_kind = |k: GpuKind| -> Vec<&Object> {
+            scene.objects.iter().filter(|o| gpu_kind(o) == k).collect()
+        };
+        let (balls, tubes, globes, discs, instances) = (
+            of_kind(GpuKind::Ball),
+            of_kind(GpuKind::Tube),
+            of_kind(GpuKind::Globe),
+            of_kind(GpuKind::Disc),
+            of_kind(GpuKind::Instance),
+        );
+        let (data, offsets, roots) = pack_scene_data(scene);
+        let light_images = scene
+            .lights
             .iter()
-            .filter_map(|o| match o {
-                Object::Ball(b) => Some(b),
-                Object::Tube(_) => None,
-            })
-            .collect();
-        let tubes: Vec<_> = scene
-            .objects
-            .iter()
-            .filter_map(|o| match o {
-                Object::Tube(t) => Some(t),
-                Object::Ball(_) => None,
-            })
-            .collect();
+            .map(|l| l.images.len())
+            .max()
+            .unwrap_or(0) as u32;
         let key = ShaderKey {
             geometry: g,
             faces: space.faces.len() as u32,
             balls: balls.len() as u32,
             tubes: tubes.len() as u32,
+            globes: globes.len() as u32,
+            discs: discs.len() as u32,
+            instances: instances.len() as u32,
+            lights: scene.lights.len() as u32,
+            light_images,
+            avatar: scene.avatar.is_some(),
+            textures: !scene.textures.is_empty(),
             general: false,
         };
         let bytes = key.uniform_bytes();
@@ -228,12 +412,15 @@ impl GpuScene {
                 bytes,
                 limit: MAX_UNIFORM_BYTES,
                 faces: key.faces,
-                balls: key.balls,
-                tubes: key.tubes,
+                objects: scene.objects.len(),
+                lights: key.lights,
             });
         }
+        let size = |r: f64| match g {
+            Geometry::Euclidean => r,
+            _ => g.cs(r).0,
+        };
         let shading = &scene.shading;
-        let light = &scene.light;
         let mut words = Vec::with_capacity(bytes / 4);
         push_vec4(&mut words, shading.fog_colour.extend(shading.ambient));
         push_vec4(
@@ -245,8 +432,19 @@ impl GpuScene {
                 f64::from(max_crossings),
             ),
         );
-        push_vec4(&mut words, light.position);
-        push_vec4(&mut words, (light.colour * light.power).extend(0.0));
+        words.extend(offsets);
+        for light in &scene.lights {
+            push_vec4(
+                &mut words,
+                (light.colour * light.power).extend(light.images.len() as f64),
+            );
+            for k in 0..light_images as usize {
+                push_vec4(
+                    &mut words,
+                    light.images.get(k).copied().unwrap_or(light.position),
+                );
+            }
+        }
         for face in &space.faces {
             push_vec4(&mut words, face.covector);
         }
@@ -256,27 +454,64 @@ impl GpuScene {
         let mut partners: Vec<u32> = space.faces.iter().map(|f| f.partner as u32).collect();
         partners.resize(4 * space.faces.len().div_ceil(4), 0);
         words.extend(partners);
-        for ball in &balls {
-            push_vec4(&mut words, ball.centre);
-            let size = match g {
-                Geometry::Euclidean => ball.radius,
-                _ => g.cs(ball.radius).0,
-            };
-            push_vec4(&mut words, ball.colour.extend(size));
+        for o in &balls {
+            if let Object::Ball(ball) = o {
+                push_vec4(&mut words, ball.centre);
+                push_vec4(&mut words, ball.colour.extend(size(ball.radius)));
+                push_vec4(&mut words, ball.emission.extend(0.0));
+            }
         }
-        for tube in &tubes {
-            push_vec4(&mut words, tube.a);
-            push_vec4(&mut words, tube.towards_b());
-            let size = match g {
-                Geometry::Euclidean => tube.radius * tube.radius,
-                _ => g.cs(tube.radius).0.powi(2),
-            };
-            push_vec4(&mut words, tube.colour.extend(size));
-            let (c, s) = tube.cs_length();
-            push_vec4(&mut words, DVec4::new(c, s, 0.0, 0.0));
+        for o in &tubes {
+            if let Object::Tube(tube) = o {
+                push_vec4(&mut words, tube.a);
+                push_vec4(&mut words, tube.towards_b());
+                push_vec4(&mut words, tube.colour.extend(size(tube.radius).powi(2)));
+                let (c, s) = tube.cs_length();
+                push_vec4(&mut words, DVec4::new(c, s, 0.0, 0.0));
+                push_vec4(&mut words, tube.emission.extend(0.0));
+            }
+        }
+        for o in &globes {
+            if let Object::Ball(ball) = o
+                && let Some(t) = ball.texture
+            {
+                push_vec4(&mut words, ball.centre);
+                push_vec4(&mut words, ball.colour.extend(size(ball.radius)));
+                push_vec4(&mut words, ball.emission.extend(f64::from(t.texture)));
+                push_vec4(&mut words, DVec4::new(t.spin, 0.0, 0.0, 0.0));
+                push_mat4(&mut words, g.inverse(t.frame));
+            }
+        }
+        for o in &discs {
+            if let Object::Disc(disc) = o {
+                push_vec4(&mut words, disc.centre);
+                push_vec4(&mut words, disc.normal);
+                push_vec4(&mut words, disc.covector(g));
+                push_vec4(&mut words, disc.colour.extend(disc.radius));
+                push_vec4(&mut words, disc.emission.extend(0.0));
+            }
+        }
+        for o in &instances {
+            if let Object::Mesh(m) = o {
+                push_mat4(&mut words, m.frame);
+                push_mat4(&mut words, m.inverse);
+                let root = roots.get(m.mesh as usize).copied().unwrap_or(0);
+                words.extend([root, m.material.unwrap_or(u32::MAX), 0, 0]);
+            }
         }
         debug_assert_eq!(words.len() * 4 + VIEW_WORDS * 4, bytes);
-        Ok(Self { key, words })
+        let avatar = scene.avatar.as_ref().map(|a| GpuAvatar {
+            mesh: a.mesh,
+            root: roots.get(a.mesh as usize).copied().unwrap_or(0),
+            radius: scene.meshes.get(a.mesh as usize).map_or(0.0, |m| m.radius),
+            skip: a.skip,
+        });
+        Ok(Self {
+            key,
+            words,
+            data,
+            avatar,
+        })
     }
 }
 
@@ -288,7 +523,14 @@ impl GpuScene {
     pub fn generalised(&self) -> Option<GpuScene> {
         let k = self.key;
         let (cap_faces, cap_balls, cap_tubes) = GENERAL_CAPACITY;
-        if k.general || k.faces > cap_faces || k.balls > cap_balls || k.tubes > cap_tubes {
+        // Only balls and tubes have general arrays.
+        let other_kinds = k.globes + k.discs + k.instances > 0 || k.avatar;
+        if k.general
+            || other_kinds
+            || k.faces > cap_faces
+            || k.balls > cap_balls
+            || k.tubes > cap_tubes
+        {
             return None;
         }
         let faces = k.faces as usize;
@@ -297,10 +539,11 @@ impl GpuScene {
             (4, faces, cap_faces as usize),
             (16, faces, cap_faces as usize),
             (4, faces.div_ceil(4), (cap_faces as usize).div_ceil(4)),
-            (8, k.balls as usize, cap_balls as usize),
-            (16, k.tubes as usize, cap_tubes as usize),
+            (12, k.balls as usize, cap_balls as usize),
+            (20, k.tubes as usize, cap_tubes as usize),
         ];
-        let header = 16;
+        // Shading, data offsets and the lights.
+        let header = 12 + 4 * k.lights as usize * (1 + k.light_images.max(1) as usize);
         let mut words = self.words[..header].to_vec();
         let mut at = header;
         for (size, count, capacity) in arrays {
@@ -319,15 +562,50 @@ impl GpuScene {
         Some(GpuScene {
             key: ShaderKey { general: true, ..k },
             words,
+            data: self.data.clone(),
+            avatar: None,
         })
+    }
+}
+
+/// What a view's uniform holds besides the eyes: the scene's time (the globes' spin) and
+/// the avatar's images at the player's frame.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ViewExtras {
+    pub time: f64,
+    /// At most [`crate::trace::MAX_AVATAR_IMAGES`] are drawn.
+    pub avatar: Vec<crate::trace::MeshInstance>,
+    /// Avatar hits nearer than this to the eye are passed through.
+    pub avatar_skip: f64,
+    /// The root node of the avatar's mesh.
+    pub avatar_root: u32,
+}
+
+impl ViewExtras {
+    /// The extras of a scene's view at `time` with the avatar (if the scene has one) at the
+    /// player's `frame`.
+    #[must_use]
+    pub fn new(space: &Space, gpu: &GpuScene, frame: DMat4, time: f64) -> Self {
+        let Some(a) = gpu.avatar else {
+            return Self {
+                time,
+                ..Self::default()
+            };
+        };
+        Self {
+            time,
+            avatar: crate::trace::avatar_instances(space, a.mesh, a.radius, frame),
+            avatar_skip: a.skip,
+            avatar_root: a.root,
+        }
     }
 }
 
 /// The per-view part of the uniform (`View` in the shader): the eyes' frames (columns
 /// right, up, back, position), the frustum tangents, the viewport (origin and size in
-/// pixels), the stereo split and eye swap, and the anaglyph matrices.
+/// pixels), the stereo split, eye swap and time, the anaglyph matrices and the avatar.
 #[must_use]
-pub fn view_words(layout: &ViewLayout, origin: [u32; 2]) -> [u32; VIEW_WORDS] {
+pub fn view_words(layout: &ViewLayout, origin: [u32; 2], extras: &ViewExtras) -> [u32; VIEW_WORDS] {
     let mut words = Vec::with_capacity(VIEW_WORDS);
     for frame in layout.frames {
         push_mat4(&mut words, frame);
@@ -352,15 +630,32 @@ pub fn view_words(layout: &ViewLayout, origin: [u32; 2]) -> [u32; VIEW_WORDS] {
             layout.split[0],
             layout.split[1],
             f64::from(u8::from(layout.swap_eyes)),
-            0.0,
+            extras.time,
         ),
     );
     for m in [layout.anaglyph.0, layout.anaglyph.1] {
         push_mat4(&mut words, DMat4::from_mat3(m));
     }
-    words
-        .try_into()
-        .expect("four mat4 and three vec4 are 76 words")
+    let images = extras.avatar.len().min(crate::trace::MAX_AVATAR_IMAGES);
+    for k in 0..crate::trace::MAX_AVATAR_IMAGES {
+        let (frame, inverse) = extras
+            .avatar
+            .get(k)
+            .filter(|_| k < images)
+            .map_or((DMat4::IDENTITY, DMat4::IDENTITY), |m| (m.frame, m.inverse));
+        push_mat4(&mut words, frame);
+        push_mat4(&mut words, inverse);
+    }
+    push_vec4(
+        &mut words,
+        DVec4::new(
+            images as f64,
+            extras.avatar_skip,
+            f64::from(extras.avatar_root),
+            0.0,
+        ),
+    );
+    words.try_into().expect("the view is VIEW_WORDS words")
 }
 
 /// The shader defs of a view kind (added to the scene's, [`ShaderKey::shader_defs`]).

@@ -24,7 +24,9 @@ use bevy::render::{
         Sampler, SamplerBindingType, SamplerDescriptor, ShaderStages, SpecializedRenderPipeline,
         SpecializedRenderPipelines, TextureDescriptor, TextureDimension, TextureFormat,
         TextureSampleType, TextureUsages, TextureView, VertexState,
-        binding_types::{sampler, texture_2d, uniform_buffer_sized},
+        binding_types::{
+            sampler, storage_buffer_read_only_sized, texture_2d, uniform_buffer_sized,
+        },
     },
     renderer::{RenderContext, RenderDevice, RenderQueue, ViewQuery},
     sync_component::{SyncComponent, SyncComponentPlugin},
@@ -33,7 +35,7 @@ use bevy::render::{
     view::{ExtractedView, ViewTarget},
 };
 use bevy::shader::Shader;
-use gpu::{GpuScene, ShaderKey, view_shader_defs, view_words};
+use gpu::{GpuScene, ShaderKey, ViewExtras, view_shader_defs, view_words};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -75,6 +77,8 @@ pub struct ExtractedCurvedView {
     /// Fraction of the view's resolution that is traced, in (0, 1].
     pub resolution_scale: f32,
     pub scene: Arc<GpuScene>,
+    /// The scene's time and the avatar at the head's frame.
+    pub extras: ViewExtras,
 }
 
 /// Marks a curved-space camera that is one eye of a head-mounted display: it is drawn as
@@ -148,8 +152,10 @@ fn extract_curved_views(
     settings: Extract<Option<Res<crate::plugin::TracerSettings>>>,
     stereo: Extract<Option<Res<StereoSettings>>>,
     active: Extract<Option<Res<crate::plugin::ActiveSpace>>>,
+    time: Extract<Option<Res<Time>>>,
     views: Extract<CurvedCameras>,
 ) {
+    let seconds = time.as_ref().map_or(0.0, |t| t.elapsed_secs_f64());
     let resolution_scale = settings
         .as_ref()
         .map_or(1.0, |s| s.resolution_scale)
@@ -179,6 +185,7 @@ fn extract_curved_views(
             lens: eye.map(|e| e.lens),
             resolution_scale,
             scene: scene.0.clone(),
+            extras: ViewExtras::new(&active.space, &scene.0, frame.0, seconds),
         });
     }
 }
@@ -253,9 +260,12 @@ impl SpecializedRenderPipeline for TracerPipeline {
 fn init_tracer_pipeline(mut commands: Commands, device: Res<RenderDevice>) {
     let layout = BindGroupLayoutDescriptor::new(
         "curved_space_tracer_layout",
-        &BindGroupLayoutEntries::single(
+        &BindGroupLayoutEntries::sequential(
             ShaderStages::VERTEX_FRAGMENT,
-            uniform_buffer_sized(false, None),
+            (
+                uniform_buffer_sized(false, None),
+                storage_buffer_read_only_sized(false, None),
+            ),
         ),
     );
     let upscale_layout = BindGroupLayoutDescriptor::new(
@@ -285,6 +295,8 @@ fn init_tracer_pipeline(mut commands: Commands, device: Res<RenderDevice>) {
 pub struct TracerBindings {
     buffer: Buffer,
     bytes: usize,
+    /// The scene whose data buffer the bind group holds.
+    scene: Arc<GpuScene>,
     bind_group: BindGroup,
     pipeline: CachedRenderPipelineId,
     /// The reduced-resolution target, its upscaling bind group and pipeline.
@@ -388,11 +400,11 @@ fn prepare_tracer_views(
                 size[1],
             ),
         };
-        let head = view_words(&layout, origin);
+        let head = view_words(&layout, origin, &curved.extras);
         let words: Vec<u32> = head.iter().chain(&curved.scene.words).copied().collect();
         let data: &[u8] = bytemuck::cast_slice(&words);
         match bindings {
-            Some(mut b) if b.bytes == data.len() => {
+            Some(mut b) if b.bytes == data.len() && Arc::ptr_eq(&b.scene, &curved.scene) => {
                 queue.write_buffer(&b.buffer, 0, data);
                 b.pipeline = pipeline;
                 b.reduced = reduced;
@@ -403,14 +415,23 @@ fn prepare_tracer_views(
                     contents: data,
                     usage: BufferUsages::UNIFORM | BufferUsages::COPY_DST,
                 });
+                let scene_data = device.create_buffer_with_data(&BufferInitDescriptor {
+                    label: Some("curved_space_scene_data"),
+                    contents: bytemuck::cast_slice(&curved.scene.data),
+                    usage: BufferUsages::STORAGE,
+                });
                 let bind_group = device.create_bind_group(
                     "curved_space_bind_group",
                     &cache.get_bind_group_layout(&tracer.layout),
-                    &BindGroupEntries::single(buffer.as_entire_binding()),
+                    &BindGroupEntries::sequential((
+                        buffer.as_entire_binding(),
+                        scene_data.as_entire_binding(),
+                    )),
                 );
                 commands.entity(entity).insert(TracerBindings {
                     buffer,
                     bytes: data.len(),
+                    scene: curved.scene.clone(),
                     bind_group,
                     pipeline,
                     reduced,

@@ -14,8 +14,9 @@ pub use render::{
     first_hit_traced, path_hash, render, render_view, render_with_progress, to_byte, trace_pixel,
 };
 pub use scene::{
-    Ball, DEFAULT_CUTOFF_WEIGHT, Hit, Light, MAX_IMAGES, Object, PlaceError, Scene, SceneParts,
-    Shading, Tube, palette,
+    Avatar, Ball, BallTexture, DEFAULT_CUTOFF_WEIGHT, Disc, Hit, Light, MAX_AVATAR_IMAGES,
+    MAX_IMAGES, Material, MeshInstance, Object, PlaceError, Scene, SceneParts, SegmentHit, Shading,
+    Tube, avatar_instances, palette,
 };
 
 use crate::geometry::{Geometry, Real, Vector4};

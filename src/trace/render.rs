@@ -78,7 +78,7 @@ pub struct RenderSettings {
 /// What a camera ray meets first.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SceneHit {
-    /// Index into [`Scene::objects`].
+    /// Index into [`Scene::objects`] (`objects.len() + k` for the avatar's `k`-th image).
     pub object: usize,
     pub hit: Hit,
     /// Geodesic distance from the camera.
@@ -165,15 +165,7 @@ pub fn first_hit_traced(
             };
         };
         let s_exit = exit.ratio();
-        let nearest = scene
-            .objects
-            .iter()
-            .enumerate()
-            .filter_map(|(i, o)| {
-                o.intersect(g, ray.point, ray.tangent, s_exit)
-                    .map(|h| (i, h))
-            })
-            .min_by(|a, b| a.1.s.total_cmp(&b.1.s));
+        let nearest = scene.intersect(g, ray.point, ray.tangent, s_exit, distance);
         if let Some((object, hit)) = nearest {
             let d = distance + g.distance_from_ratio(hit.s, 1.0);
             let end = if d >= cutoff {
@@ -230,7 +222,7 @@ pub fn colour_of(geometry: Geometry, scene: &Scene, end: &RayEnd) -> DVec3 {
     match end {
         RayEnd::Hit(h) => scene
             .shading
-            .shade(geometry, &scene.light, &h.hit, h.distance),
+            .shade(geometry, &scene.lights, &h.hit, h.distance),
         RayEnd::Fog(_) | RayEnd::Budget(_) => scene.shading.fog_colour,
     }
 }

@@ -5,8 +5,11 @@
 //! hit is a root of a quadratic in `s`.
 
 use crate::geometry::Geometry;
+use crate::scene::mesh::Mesh;
+use crate::scene::texture::Texture;
 use crate::space::Space;
-use glam::{DMat4, DVec3, DVec4};
+use glam::{DMat4, DVec2, DVec3, DVec4};
+use std::sync::Arc;
 
 /// A metric ball `d(X, centre) ≤ radius`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -14,8 +17,40 @@ pub struct Ball {
     pub centre: DVec4,
     pub radius: f64,
     pub colour: DVec3,
+    /// Light the surface gives off itself (added to the lit colour).
+    pub emission: DVec3,
+    /// A picture wrapped round the ball (a globe), if any.
+    pub texture: Option<BallTexture>,
     /// `C(radius)`.
     c_radius: f64,
+}
+
+/// An equirectangular picture on a ball: longitude across, latitude down, the north pole
+/// on the ball's own `+y` axis.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BallTexture {
+    /// Index into [`Scene::textures`].
+    pub texture: u32,
+    /// The ball's orientation: an isometry taking the origin to the centre, its `y` axis
+    /// the spin axis and its `z` axis longitude 0.
+    pub frame: DMat4,
+    /// Spin about the `y` axis, radians per second of [`Scene::time`].
+    pub spin: f64,
+}
+
+impl BallTexture {
+    /// Texture coordinates of the ball's point `x` at time `time`.
+    #[must_use]
+    pub fn uv(&self, geometry: Geometry, x: DVec4, time: f64) -> DVec2 {
+        let local = geometry.inverse(self.frame) * x;
+        let d = local.truncate().normalize_or_zero();
+        let turn = std::f64::consts::TAU;
+        let longitude = d.x.atan2(d.z) - self.spin * time;
+        DVec2::new(
+            (longitude / turn + 0.5).rem_euclid(1.0),
+            d.y.clamp(-1.0, 1.0).acos() / std::f64::consts::PI,
+        )
+    }
 }
 
 impl Ball {
@@ -25,7 +60,24 @@ impl Ball {
             centre,
             radius,
             colour,
+            emission: DVec3::ZERO,
+            texture: None,
             c_radius: geometry.cs(radius).0,
+        }
+    }
+
+    /// The ball giving off `emission`.
+    #[must_use]
+    pub fn with_emission(self, emission: DVec3) -> Self {
+        Self { emission, ..self }
+    }
+
+    /// The ball with a picture on it.
+    #[must_use]
+    pub fn with_texture(self, texture: BallTexture) -> Self {
+        Self {
+            texture: Some(texture),
+            ..self
         }
     }
 }
@@ -38,6 +90,7 @@ pub struct Tube {
     pub b: DVec4,
     pub radius: f64,
     pub colour: DVec3,
+    pub emission: DVec3,
     /// Unit tangent at `a` towards `b`: with `a` it spans the segment's line.
     towards_b: DVec4,
     /// `(C(L), S(L))` of the segment's length `L`.
@@ -54,10 +107,17 @@ impl Tube {
             b,
             radius,
             colour,
+            emission: DVec3::ZERO,
             towards_b: geometry.tangent_towards(a, b),
             cs_length: geometry.cs(geometry.distance(a, b)),
             c_radius_sq: geometry.cs(radius).0.powi(2),
         }
+    }
+
+    /// The tube giving off `emission`.
+    #[must_use]
+    pub fn with_emission(self, emission: DVec3) -> Self {
+        Self { emission, ..self }
     }
 
     /// Unit tangent at `a` towards `b`.
@@ -107,11 +167,114 @@ impl Tube {
     }
 }
 
+/// A flat round disc: the points of the totally geodesic plane through `centre` orthogonal
+/// to `normal` within `radius` of the centre (seen from both sides).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Disc {
+    pub centre: DVec4,
+    /// Unit tangent at the centre.
+    pub normal: DVec4,
+    pub radius: f64,
+    pub colour: DVec3,
+    pub emission: DVec3,
+}
+
+impl Disc {
+    /// A disc; `normal` is made a unit tangent at `centre`.
+    #[must_use]
+    pub fn new(
+        geometry: Geometry,
+        centre: DVec4,
+        normal: DVec4,
+        radius: f64,
+        colour: DVec3,
+    ) -> Self {
+        Self {
+            centre,
+            normal: geometry.unit_tangent(centre, normal),
+            radius,
+            colour,
+            emission: DVec3::ZERO,
+        }
+    }
+
+    /// The disc giving off `emission`.
+    #[must_use]
+    pub fn with_emission(self, emission: DVec3) -> Self {
+        Self { emission, ..self }
+    }
+
+    /// The plane's covector `P` for the Euclidean dot product: `P·X = 0` on the plane.
+    #[must_use]
+    pub fn covector(&self, geometry: Geometry) -> DVec4 {
+        let n = self.normal;
+        match geometry {
+            Geometry::Euclidean => {
+                let c = self.centre.truncate() / self.centre.w;
+                n.truncate().extend(-c.dot(n.truncate()))
+            }
+            _ => n.truncate().extend(geometry.kappa() * n.w),
+        }
+    }
+}
+
+/// A mesh placed in the cell: [`Scene::meshes`]`[mesh]` in the frame `frame` (an isometry
+/// taking the mesh's chart to the cell's).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MeshInstance {
+    /// Index into [`Scene::meshes`].
+    pub mesh: u32,
+    pub frame: DMat4,
+    /// `frame⁻¹`.
+    pub inverse: DMat4,
+    /// The mesh's radius (largest vertex distance from its origin).
+    pub radius: f64,
+    /// A material used instead of the mesh's own (index into [`Scene::materials`]).
+    pub material: Option<u32>,
+}
+
+impl MeshInstance {
+    /// Mesh `mesh` of radius `radius` placed by `frame`.
+    #[must_use]
+    pub fn new(geometry: Geometry, mesh: u32, frame: DMat4, radius: f64) -> Self {
+        Self {
+            mesh,
+            frame,
+            inverse: geometry.inverse(frame),
+            radius,
+            material: None,
+        }
+    }
+
+    /// The frame's origin.
+    #[must_use]
+    pub fn origin(&self, geometry: Geometry) -> DVec4 {
+        geometry.project_point(self.frame.w_axis)
+    }
+
+    /// The ray `X ∝ p + s v` in the mesh's chart: origin `o`, direction `d` (the chart point
+    /// at `s` is `o + t d` with `t = s / (p'.w + s v'.w)`, `p', v'` the local ray), and the
+    /// local `(p'.w, v'.w)` to convert back. `None` where the ray starts in the far
+    /// hemisphere of the mesh's frame (S³), which the mesh does not reach.
+    #[must_use]
+    pub fn local_ray(&self, p: DVec4, v: DVec4) -> Option<(DVec3, DVec3, f64, f64)> {
+        let lp = self.inverse * p;
+        let lv = self.inverse * v;
+        if !(lp.w > 0.0) {
+            return None;
+        }
+        let o = lp.truncate() / lp.w;
+        Some((o, lv.truncate() - o * lv.w, lp.w, lv.w))
+    }
+}
+
 /// Anything a ray can hit.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Object {
     Ball(Ball),
     Tube(Tube),
+    Disc(Disc),
+    Mesh(MeshInstance),
 }
 
 impl Object {
@@ -120,10 +283,29 @@ impl Object {
     pub fn transformed(&self, geometry: Geometry, m: DMat4) -> Object {
         let map = |p: DVec4| geometry.project_point(m * p);
         match self {
-            Object::Ball(b) => Object::Ball(Ball::new(geometry, map(b.centre), b.radius, b.colour)),
-            Object::Tube(t) => {
-                Object::Tube(Tube::new(geometry, map(t.a), map(t.b), t.radius, t.colour))
+            Object::Ball(b) => Object::Ball(Ball {
+                texture: b.texture.map(|t| BallTexture {
+                    frame: m * t.frame,
+                    ..t
+                }),
+                emission: b.emission,
+                ..Ball::new(geometry, map(b.centre), b.radius, b.colour)
+            }),
+            Object::Tube(t) => Object::Tube(
+                Tube::new(geometry, map(t.a), map(t.b), t.radius, t.colour)
+                    .with_emission(t.emission),
+            ),
+            Object::Disc(d) => {
+                let c = map(d.centre);
+                Object::Disc(
+                    Disc::new(geometry, c, m * d.normal, d.radius, d.colour)
+                        .with_emission(d.emission),
+                )
             }
+            Object::Mesh(i) => Object::Mesh(MeshInstance {
+                material: i.material,
+                ..MeshInstance::new(geometry, i.mesh, m * i.frame, i.radius)
+            }),
         }
     }
 
@@ -137,6 +319,8 @@ impl Object {
                 let (mid, _) = geometry.geodesic(t.a, t.towards_b, half);
                 (geometry.project_point(mid), half + t.radius)
             }
+            Object::Disc(d) => (d.centre, d.radius),
+            Object::Mesh(i) => (i.origin(geometry), i.radius),
         }
     }
 
@@ -150,11 +334,25 @@ impl Object {
                 near(a.centre, b.centre)
                     && (a.radius - b.radius).abs() <= tolerance
                     && a.colour == b.colour
+                    && a.texture.map(|t| t.texture) == b.texture.map(|t| t.texture)
             }
             (Object::Tube(a), Object::Tube(b)) => {
                 ((near(a.a, b.a) && near(a.b, b.b)) || (near(a.a, b.b) && near(a.b, b.a)))
                     && (a.radius - b.radius).abs() <= tolerance
                     && a.colour == b.colour
+            }
+            (Object::Disc(a), Object::Disc(b)) => {
+                near(a.centre, b.centre)
+                    && (a.radius - b.radius).abs() <= tolerance
+                    && ((a.normal - b.normal).length() <= tolerance
+                        || (a.normal + b.normal).length() <= tolerance)
+                    && a.colour == b.colour
+            }
+            (Object::Mesh(a), Object::Mesh(b)) => {
+                a.mesh == b.mesh
+                    && a.material == b.material
+                    && crate::geometry::max_abs_entry(&(a.frame - b.frame).to_cols_array())
+                        <= tolerance
             }
             _ => false,
         }
@@ -183,7 +381,9 @@ pub struct Hit {
     pub s: f64,
     pub point: DVec4,
     pub normal: DVec4,
+    /// Albedo at the hit (textures applied).
     pub colour: DVec3,
+    pub emission: DVec3,
 }
 
 /// The smallest root of `a s² + b s + c = 0` in `(lo, hi)` that passes `accept`, computed
@@ -210,7 +410,8 @@ fn first_root(
 
 impl Object {
     /// The first hit along `X(s) ∝ p + s v` with `0 < s < s_max` (`p` on the model, `v` a
-    /// unit tangent at `p`).
+    /// unit tangent at `p`) of a ball, tube or disc, with its own colour (untextured). A mesh
+    /// needs the scene's meshes: see [`Scene::intersect`].
     #[must_use]
     pub fn intersect(&self, geometry: Geometry, p: DVec4, v: DVec4, s_max: f64) -> Option<Hit> {
         let k = geometry.kappa();
@@ -267,11 +468,37 @@ impl Object {
                 })?;
                 (s, tube.colour)
             }
+            Object::Disc(disc) => {
+                let n = disc.covector(geometry);
+                let (np, nv) = (n.dot(p), n.dot(v));
+                let s = -np / nv;
+                if !(s > 0.0 && s < s_max) {
+                    return None;
+                }
+                let point = geometry.project_point(p + s * v);
+                if !(geometry.distance(point, disc.centre) <= disc.radius) {
+                    return None;
+                }
+                // The side facing the ray.
+                let mut normal = geometry.unit_tangent(point, disc.normal);
+                if geometry.form(normal, v) > 0.0 {
+                    normal = -normal;
+                }
+                return Some(Hit {
+                    s,
+                    point,
+                    normal,
+                    colour: disc.colour,
+                    emission: disc.emission,
+                });
+            }
+            Object::Mesh(_) => return None,
         };
         let point = geometry.project_point(p + s * v);
-        let foot = match self {
-            Object::Ball(ball) => ball.centre,
-            Object::Tube(tube) => tube.foot(geometry, point),
+        let (foot, emission) = match self {
+            Object::Ball(ball) => (ball.centre, ball.emission),
+            Object::Tube(tube) => (tube.foot(geometry, point), tube.emission),
+            Object::Disc(_) | Object::Mesh(_) => unreachable!("returned above"),
         };
         // Outward normal: the tangent at the hit pointing away from the nearest point of
         // the ball's centre or the tube's axis.
@@ -281,6 +508,7 @@ impl Object {
             point,
             normal,
             colour,
+            emission,
         })
     }
 }
@@ -288,25 +516,60 @@ impl Object {
 /// Half a colour step of an 8-bit image.
 pub const DEFAULT_CUTOFF_WEIGHT: f64 = 1.0 / 510.0;
 
-/// A point light.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// A point light, with its copies in the cells around the fundamental cell.
+#[derive(Clone, Debug, PartialEq)]
 pub struct Light {
     pub position: DVec4,
     pub colour: DVec3,
     /// Brightness at distance `d` is `power / S(d)²` (`sin²`, `d²`, `sinh²`).
     pub power: f64,
+    /// The light and its images under the face pairings, in the cell's coordinates: a
+    /// surface point is lit by the nearest of them.
+    pub images: Vec<DVec4>,
+}
+
+impl Light {
+    /// A light at `position` (inside the cell) with its images under the pairings.
+    #[must_use]
+    pub fn new(space: &Space, position: DVec4, colour: DVec3, power: f64) -> Self {
+        let g = space.geometry;
+        let mut images = vec![position];
+        for face in &space.faces {
+            let image = g.project_point(face.pairing * position);
+            if images.iter().all(|q| g.distance(*q, image) > 1e-9) {
+                images.push(image);
+            }
+        }
+        Self {
+            position,
+            colour,
+            power,
+            images,
+        }
+    }
+
+    /// The image nearest to `x` and its distance.
+    #[must_use]
+    pub fn nearest(&self, geometry: Geometry, x: DVec4) -> (DVec4, f64) {
+        self.images
+            .iter()
+            .map(|q| (*q, geometry.distance(x, *q)))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .unwrap_or((self.position, geometry.distance(x, self.position)))
+    }
 }
 
 /// The shading model, in one place (`DESIGN.md` §1, §3):
 ///
 /// ```text
-/// lit     = albedo · (ambient + (1 − ambient) · light · power · max(0, ⟨n, l⟩) / max(S(d_L)², S(r₀)²))
-/// surface = min(lit, 1)                                   per channel
+/// lit     = albedo · (ambient + (1 − ambient) · Σ_lights light · power · max(0, ⟨n, l⟩) / max(S(d_L)², S(r₀)²))
+/// surface = min(lit + emission, 1)                        per channel
 /// colour  = e^(−d/λ) · surface + (1 − e^(−d/λ)) · fog     d = distance along the ray
 /// ```
 ///
-/// `l` is the unit tangent at the hit towards the light (the light's copy in the same cell),
-/// `d_L` its distance, `r₀` a small radius that keeps the falloff finite. No shadows.
+/// `l` is the unit tangent at the hit towards the light's nearest copy (among the light and
+/// its images under the face pairings), `d_L` its distance, `r₀` a small radius that keeps
+/// the falloff finite. No shadows.
 /// A ray stops at the distance `λ ln(1/w)` where the fog weight `e^(−d/λ)` falls to
 /// `w = cutoff_weight`. Surface and fog colours lie in [0, 1], so whatever lies beyond
 /// changes the pixel by at most `w` per channel: with the default `w = 1/510` that is half a
@@ -320,6 +583,20 @@ pub struct Shading {
     pub near_light: f64,
     /// Fog weight at which a ray stops (the cut-off's error bound per channel).
     pub cutoff_weight: f64,
+}
+
+impl Default for Shading {
+    /// The default scene's shading with a fog distance of 1 (set it for the space:
+    /// [`Shading::default_fog_distance`]).
+    fn default() -> Self {
+        Self {
+            ambient: 0.3,
+            fog_colour: DVec3::new(0.04, 0.05, 0.08),
+            fog_distance: 1.0,
+            near_light: 0.05,
+            cutoff_weight: DEFAULT_CUTOFF_WEIGHT,
+        }
+    }
 }
 
 impl Shading {
@@ -338,27 +615,250 @@ impl Shading {
 
     /// The colour of a surface point seen at distance `d`.
     #[must_use]
-    pub fn shade(&self, geometry: Geometry, light: &Light, hit: &Hit, d: f64) -> DVec3 {
+    pub fn shade(&self, geometry: Geometry, lights: &[Light], hit: &Hit, d: f64) -> DVec3 {
         let mut lit = DVec3::splat(self.ambient);
-        let dl = geometry.distance(hit.point, light.position);
-        if dl > 0.0 {
-            let l = geometry.tangent_towards(hit.point, light.position);
-            let lambert = geometry.form(hit.normal, l).max(0.0);
-            let s = geometry.s(dl).abs().max(geometry.s(self.near_light));
-            lit += (1.0 - self.ambient) * light.colour * (light.power * lambert / (s * s));
+        for light in lights {
+            let (at, dl) = light.nearest(geometry, hit.point);
+            if dl > 0.0 {
+                let l = geometry.tangent_towards(hit.point, at);
+                let lambert = geometry.form(hit.normal, l).max(0.0);
+                let s = geometry.s(dl).abs().max(geometry.s(self.near_light));
+                lit += (1.0 - self.ambient) * light.colour * (light.power * lambert / (s * s));
+            }
         }
-        let surface = (hit.colour * lit).min(DVec3::ONE);
+        let surface = (hit.colour * lit + hit.emission).min(DVec3::ONE);
         let w = (-d / self.fog_distance).exp();
         w * surface + (1.0 - w) * self.fog_colour
     }
 }
 
-/// What the rays can see: objects in the cell, one light, the shading.
+/// A surface's look: albedo (times its texture, if any) and emission, linear RGB.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Material {
+    pub colour: DVec3,
+    /// Index into [`Scene::textures`].
+    pub texture: Option<u32>,
+    pub emission: DVec3,
+}
+
+impl Default for Material {
+    fn default() -> Self {
+        Self {
+            colour: DVec3::splat(0.8),
+            texture: None,
+            emission: DVec3::ZERO,
+        }
+    }
+}
+
+/// The player's own avatar: a mesh at the player's frame, seen only where rays come back
+/// round the space (hits closer than `skip` to the eye are the copy the eye sits in, and
+/// are passed through).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Avatar {
+    /// Index into [`Scene::meshes`].
+    pub mesh: u32,
+    /// The avatar at the player's frame and its images under the pairings that meet the
+    /// cell ([`Scene::set_avatar_frame`]).
+    pub instances: Vec<MeshInstance>,
+    /// Hits nearer than this to the eye are not drawn.
+    pub skip: f64,
+}
+
+/// The most images of the avatar drawn (its copy and those through nearby faces, edges and
+/// vertices).
+pub const MAX_AVATAR_IMAGES: usize = 8;
+
+/// The avatar (mesh `mesh` of radius `radius`) at the player's `frame` and its images under
+/// the pairings that meet the cell, nearest first, at most [`MAX_AVATAR_IMAGES`].
+#[must_use]
+pub fn avatar_instances(space: &Space, mesh: u32, radius: f64, frame: DMat4) -> Vec<MeshInstance> {
+    let g = space.geometry;
+    let instance = MeshInstance::new(g, mesh, frame, radius);
+    let mut scratch = Scene::new(Vec::new(), Vec::new(), Shading::default());
+    // The player is kept inside the cell, so placing cannot fail; keep the avatar itself
+    // if it somehow does.
+    if scratch.place(space, Object::Mesh(instance)).is_err() {
+        scratch.objects = vec![Object::Mesh(instance)];
+    }
+    let origin = instance.origin(g);
+    let mut instances: Vec<MeshInstance> = scratch
+        .objects
+        .into_iter()
+        .filter_map(|o| match o {
+            Object::Mesh(m) => Some(m),
+            _ => None,
+        })
+        .collect();
+    instances.sort_by(|a, b| {
+        g.distance(a.origin(g), origin)
+            .total_cmp(&g.distance(b.origin(g), origin))
+    });
+    instances.truncate(MAX_AVATAR_IMAGES);
+    instances
+}
+
+/// What the rays can see: objects in the cell, lights, meshes with their materials and
+/// textures, the player's avatar, the shading.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
     pub objects: Vec<Object>,
-    pub light: Light,
+    pub lights: Vec<Light>,
     pub shading: Shading,
+    pub meshes: Vec<Arc<Mesh>>,
+    pub materials: Vec<Material>,
+    pub textures: Vec<Arc<Texture>>,
+    /// Seconds since the start: turns the spinning globes.
+    pub time: f64,
+    pub avatar: Option<Avatar>,
+}
+
+/// What a ray segment meets first: the object's index (`objects.len() + k` for the avatar's
+/// `k`-th image) and the hit.
+pub type SegmentHit = (usize, Hit);
+
+impl Scene {
+    /// A scene with these objects and lights, nothing else.
+    #[must_use]
+    pub fn new(objects: Vec<Object>, lights: Vec<Light>, shading: Shading) -> Self {
+        Self {
+            objects,
+            lights,
+            shading,
+            meshes: Vec::new(),
+            materials: Vec::new(),
+            textures: Vec::new(),
+            time: 0.0,
+            avatar: None,
+        }
+    }
+
+    /// The first hit along the segment `X(s) ∝ p + s v`, `0 < s < s_max`, of a ray that has
+    /// come `travelled` from the eye.
+    #[must_use]
+    pub fn intersect(
+        &self,
+        g: Geometry,
+        p: DVec4,
+        v: DVec4,
+        s_max: f64,
+        travelled: f64,
+    ) -> Option<SegmentHit> {
+        let mut best: Option<SegmentHit> = None;
+        let mut limit = s_max;
+        for (i, o) in self.objects.iter().enumerate() {
+            let hit = match o {
+                Object::Mesh(m) => self.intersect_mesh(g, m, p, v, limit),
+                _ => o.intersect(g, p, v, limit).map(|mut h| {
+                    if let Object::Ball(Ball {
+                        texture: Some(t), ..
+                    }) = o
+                    {
+                        h.colour *= self.texture_colour(t.texture, t.uv(g, h.point, self.time));
+                    }
+                    h
+                }),
+            };
+            if let Some(h) = hit {
+                limit = h.s;
+                best = Some((i, h));
+            }
+        }
+        if let Some(avatar) = &self.avatar {
+            for (k, m) in avatar.instances.iter().enumerate() {
+                if let Some(h) = self.intersect_mesh(g, m, p, v, limit)
+                    && travelled + g.distance_from_ratio(h.s, 1.0) >= avatar.skip
+                {
+                    limit = h.s;
+                    best = Some((self.objects.len() + k, h));
+                }
+            }
+        }
+        best
+    }
+
+    fn texture_colour(&self, texture: u32, uv: DVec2) -> DVec3 {
+        self.textures
+            .get(texture as usize)
+            .map_or(DVec3::ONE, |t| t.sample(uv))
+    }
+
+    /// A mesh instance's first hit on the segment, with the material's colour and the
+    /// normal of the plane through the hit whose chart normal is the interpolated vertex
+    /// normal (facing the ray).
+    #[must_use]
+    pub fn intersect_mesh(
+        &self,
+        g: Geometry,
+        m: &MeshInstance,
+        p: DVec4,
+        v: DVec4,
+        s_max: f64,
+    ) -> Option<Hit> {
+        let mesh = self.meshes.get(m.mesh as usize)?;
+        let (o, d, pw, vw) = m.local_ray(p, v)?;
+        let den = pw + s_max * vw;
+        let t_max = if den > 0.0 {
+            s_max / den
+        } else {
+            f64::INFINITY
+        };
+        let h = mesh.intersect(o, d, t_max)?;
+        let s = h.t * pw / (1.0 - h.t * vw);
+        if !(s > 0.0 && s < s_max) {
+            return None;
+        }
+        let tri = &mesh.triangles[h.triangle];
+        let w = [1.0 - h.u - h.v, h.u, h.v];
+        let x = o + h.t * d;
+        let n = (tri.normals[0] * w[0] + tri.normals[1] * w[1] + tri.normals[2] * w[2])
+            .normalize_or_zero();
+        let k = g.kappa();
+        let local_normal = if k == 0.0 {
+            n.extend(0.0)
+        } else {
+            n.extend(-n.dot(x) / k)
+        };
+        let point = g.project_point(p + s * v);
+        let mut normal = g.unit_tangent(point, m.frame * local_normal);
+        if g.form(normal, v) > 0.0 {
+            normal = -normal;
+        }
+        let material = m
+            .material
+            .unwrap_or(tri.material)
+            .min(self.materials.len().saturating_sub(1) as u32);
+        let mat = self
+            .materials
+            .get(material as usize)
+            .copied()
+            .unwrap_or_default();
+        let uv = tri.uvs[0] * w[0] + tri.uvs[1] * w[1] + tri.uvs[2] * w[2];
+        let colour = match mat.texture {
+            Some(t) => mat.colour * self.texture_colour(t, uv),
+            None => mat.colour,
+        };
+        Some(Hit {
+            s,
+            point,
+            normal,
+            colour,
+            emission: mat.emission,
+        })
+    }
+
+    /// Puts the avatar at the player's `frame`, with its images under the pairings where it
+    /// sticks out of the cell ([`avatar_instances`]).
+    pub fn set_avatar_frame(&mut self, space: &Space, frame: DMat4) {
+        let Some(avatar) = self.avatar.as_mut() else {
+            return;
+        };
+        let radius = self
+            .meshes
+            .get(avatar.mesh as usize)
+            .map_or(0.0, |m| m.radius);
+        avatar.instances = avatar_instances(space, avatar.mesh, radius, frame);
+    }
 }
 
 /// Distinct colours for edge cycles (a golden-angle walk around the hue circle).
@@ -424,6 +924,8 @@ impl Scene {
         let cores = |o: &Object| -> (Vec<DVec4>, f64) {
             match o {
                 Object::Ball(b) => (vec![b.centre], b.radius),
+                Object::Disc(d) => (vec![d.centre], d.radius),
+                Object::Mesh(m) => (vec![m.origin(g)], m.radius),
                 Object::Tube(t) => {
                     let length = g.distance(t.a, t.b);
                     let steps = ((length / t.radius.max(1e-9)).ceil() as usize).clamp(1, 256);
@@ -523,20 +1025,17 @@ impl Scene {
             )));
         }
         let light_at = g.translation(DVec3::new(0.45, 0.8, 0.4), 0.65 * inradius) * space.centre();
-        Scene {
+        let light = Light::new(space, light_at, DVec3::ONE, g.s(0.7 * inradius).powi(2));
+        Scene::new(
             objects,
-            light: Light {
-                position: light_at,
-                colour: DVec3::ONE,
-                power: g.s(0.7 * inradius).powi(2),
-            },
-            shading: Shading {
+            vec![light],
+            Shading {
                 ambient: 0.3,
                 fog_colour: DVec3::new(0.04, 0.05, 0.08),
                 fog_distance,
                 near_light: 0.05 * inradius,
                 cutoff_weight: DEFAULT_CUTOFF_WEIGHT,
             },
-        }
+        )
     }
 }

@@ -1,0 +1,507 @@
+//! Scene files: a TOML file naming the space, the objects (balls, globes, tubes, discs, glTF
+//! meshes), the lights, the fog and the start view. `curved-spaces walk --scene FILE` and
+//! `render --scene FILE` load them; `assets/scenes/` has examples and `docs/scenes.md`
+//! describes every key.
+//!
+//! Lengths are in **inradii** of the space's cell (so a scene reads the same in a small
+//! spherical space and a large hyperbolic one) and positions are **geodesic coordinates**
+//! about the cell's centre: `[x, y, z]` is the point at distance `|(x, y, z)|` inradii in the
+//! chart direction `(x, y, z)`. `chart = [x, y, z]` gives a chart point instead. Colours are
+//! linear RGB in [0, 1]. Paths are relative to the scene file.
+//!
+//! An error names the file and the line: a TOML mistake or an unknown key, an unknown
+//! space, a mesh or texture that cannot be read, an object outside the cell.
+
+use super::gltf;
+use super::texture::Texture;
+use crate::geometry::Geometry;
+use crate::space::file::load_space_file;
+use crate::space::invariants::inradius;
+use crate::space::{SEED_SPACES, Space, seed_space};
+use crate::trace::{
+    Ball, BallTexture, Disc, Light, Material, MeshInstance, Object, Scene, SceneParts, Shading,
+    Tube,
+};
+use glam::{DMat4, DVec3, DVec4};
+use serde::Deserialize;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use toml::Spanned;
+
+/// A scene file could not be used: the file, the line (where one is to blame) and what is
+/// wrong.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{file}{}: {message}", line.map(|l| format!(":{l}")).unwrap_or_default())]
+pub struct SceneFileError {
+    pub file: String,
+    pub line: Option<usize>,
+    pub message: String,
+}
+
+/// A loaded scene file: the space, the scene (objects with their images, lights, shading,
+/// meshes) and the start view.
+#[derive(Clone, Debug)]
+pub struct SceneFile {
+    /// The space's seed id or file, as written.
+    pub space_id: String,
+    pub space: Space,
+    pub scene: Scene,
+    /// The player's start frame (`None`: the space's default view).
+    pub start: Option<DMat4>,
+    /// Whether the file asked for the player's avatar.
+    pub avatar: bool,
+}
+
+fn default_true() -> bool {
+    true
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileSpec {
+    space: Spanned<String>,
+    /// Fog distance in inradii.
+    fog: Option<Spanned<f64>>,
+    #[serde(default = "default_true")]
+    edges: bool,
+    #[serde(default)]
+    centre_ball: bool,
+    #[serde(default = "default_true")]
+    avatar: bool,
+    ambient: Option<Spanned<f64>>,
+    fog_colour: Option<[f64; 3]>,
+    start: Option<Spanned<StartSpec>>,
+    #[serde(default, rename = "object")]
+    objects: Vec<Spanned<ObjectSpec>>,
+    #[serde(default, rename = "light")]
+    lights: Vec<Spanned<LightSpec>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct StartSpec {
+    #[serde(flatten)]
+    at: Place,
+    look_at: Option<[f64; 3]>,
+}
+
+/// Where an object is: geodesic coordinates in inradii, or a chart point; its turn.
+#[derive(Deserialize, Default)]
+struct Place {
+    position: Option<[f64; 3]>,
+    chart: Option<[f64; 3]>,
+    /// Degrees about the object's own y, x and z axes, in that order.
+    #[serde(default)]
+    yaw: f64,
+    #[serde(default)]
+    pitch: f64,
+    #[serde(default)]
+    roll: f64,
+}
+
+fn white() -> [f64; 3] {
+    [1.0; 3]
+}
+
+#[derive(Deserialize)]
+#[serde(tag = "type", rename_all = "kebab-case", deny_unknown_fields)]
+enum ObjectSpec {
+    Ball {
+        #[serde(flatten)]
+        at: Place,
+        radius: f64,
+        #[serde(default = "white")]
+        colour: [f64; 3],
+        #[serde(default)]
+        emission: [f64; 3],
+    },
+    Globe {
+        #[serde(flatten)]
+        at: Place,
+        radius: f64,
+        texture: String,
+        /// Radians per second.
+        #[serde(default)]
+        spin: f64,
+        #[serde(default = "white")]
+        colour: [f64; 3],
+        #[serde(default)]
+        emission: [f64; 3],
+    },
+    Tube {
+        from: [f64; 3],
+        to: [f64; 3],
+        radius: f64,
+        #[serde(default = "white")]
+        colour: [f64; 3],
+        #[serde(default)]
+        emission: [f64; 3],
+    },
+    Disc {
+        #[serde(flatten)]
+        at: Place,
+        normal: [f64; 3],
+        radius: f64,
+        #[serde(default = "white")]
+        colour: [f64; 3],
+        #[serde(default)]
+        emission: [f64; 3],
+    },
+    Mesh {
+        #[serde(flatten)]
+        at: Place,
+        path: String,
+        /// The mesh's radius (farthest vertex from its origin) in inradii.
+        size: f64,
+        /// A colour for the whole mesh instead of its materials.
+        colour: Option<[f64; 3]>,
+        #[serde(default)]
+        emission: [f64; 3],
+    },
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LightSpec {
+    #[serde(flatten)]
+    at: Place,
+    #[serde(default = "white")]
+    colour: [f64; 3],
+    /// Brightness at one inradius.
+    #[serde(default = "one")]
+    intensity: f64,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+/// Reads a scene file.
+pub fn load_scene_file(path: &Path) -> Result<SceneFile, SceneFileError> {
+    let name = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|e| SceneFileError {
+        file: name.clone(),
+        line: None,
+        message: format!("cannot read the scene file: {e}"),
+    })?;
+    let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
+    parse_scene(&text, &base, &name)
+}
+
+/// Parses a scene file's text; paths in it are relative to `base`, errors name `file`.
+pub fn parse_scene(text: &str, base: &Path, file: &str) -> Result<SceneFile, SceneFileError> {
+    let line_of = |offset: usize| text[..offset.min(text.len())].matches('\n').count() + 1;
+    let fail = |span: Option<std::ops::Range<usize>>, message: String| SceneFileError {
+        file: file.to_string(),
+        line: span.map(|s| line_of(s.start)),
+        message,
+    };
+    let spec: FileSpec = toml::from_str(text).map_err(|e| {
+        // The TOML error's first line repeats the position; keep its message.
+        let message = e.message().to_string();
+        fail(e.span(), message)
+    })?;
+
+    let space_id = spec.space.get_ref().clone();
+    let space = resolve_space(&space_id, base).map_err(|m| fail(Some(spec.space.span()), m))?;
+    let g = space.geometry;
+    let r = inradius(&space);
+    let fog = match &spec.fog {
+        Some(f) if !(*f.get_ref() > 0.0 && f.get_ref().is_finite()) => {
+            return Err(fail(
+                Some(f.span()),
+                format!(
+                    "the fog distance must be a positive number of inradii, got {}",
+                    f.get_ref()
+                ),
+            ));
+        }
+        Some(f) => f.get_ref() * r,
+        None => Shading::default_fog_distance(&space),
+    };
+    let mut scene = Scene::with_parts(
+        &space,
+        fog,
+        SceneParts {
+            edges: spec.edges,
+            centre_ball: spec.centre_ball,
+        },
+    );
+    if let Some(a) = &spec.ambient {
+        if !(0.0..=1.0).contains(a.get_ref()) {
+            return Err(fail(
+                Some(a.span()),
+                format!("ambient must be between 0 and 1, got {}", a.get_ref()),
+            ));
+        }
+        scene.shading.ambient = *a.get_ref();
+    }
+    if let Some(c) = spec.fog_colour {
+        scene.shading.fog_colour = DVec3::from_array(c).clamp(DVec3::ZERO, DVec3::ONE);
+    }
+    if !spec.lights.is_empty() {
+        scene.lights.clear();
+    }
+    for light in &spec.lights {
+        let at = |m: String| fail(Some(light.span()), m);
+        let l = light.get_ref();
+        let frame = frame_of(&space, &l.at).map_err(at)?;
+        if !(l.intensity >= 0.0 && l.intensity.is_finite()) {
+            return Err(at(format!(
+                "the intensity must be 0 or more, got {}",
+                l.intensity
+            )));
+        }
+        let position = g.project_point(frame.w_axis);
+        scene.lights.push(Light::new(
+            &space,
+            position,
+            colour(l.colour),
+            l.intensity * g.s(r).powi(2),
+        ));
+    }
+    for object in &spec.objects {
+        let at = |m: String| fail(Some(object.span()), m);
+        let o = build_object(&space, &mut scene, object.get_ref(), base).map_err(at)?;
+        scene.place(&space, o).map_err(|e| at(format!("{e}")))?;
+    }
+    let start = match &spec.start {
+        Some(s) => Some(start_frame(&space, s.get_ref()).map_err(|m| fail(Some(s.span()), m))?),
+        None => None,
+    };
+    if spec.avatar {
+        scene
+            .add_avatar(g, crate::scene::avatar_size(r))
+            .map_err(|e| fail(None, format!("the avatar: {e}")))?;
+    }
+    Ok(SceneFile {
+        space_id,
+        space,
+        scene,
+        start,
+        avatar: spec.avatar,
+    })
+}
+
+/// A seed space by id, or a space file by path (relative to `base`).
+fn resolve_space(id: &str, base: &Path) -> Result<Space, String> {
+    if SEED_SPACES.iter().any(|s| s.id == id) {
+        return seed_space(id).map_err(|e| e.to_string());
+    }
+    let path = base.join(id);
+    if path.exists() {
+        return load_space_file(&path).map_err(|e| e.to_string());
+    }
+    let ids: Vec<&str> = SEED_SPACES.iter().map(|s| s.id).collect();
+    Err(format!(
+        "unknown space {id:?}: not a seed space ({}) nor a space file",
+        ids.join(", ")
+    ))
+}
+
+fn colour(c: [f64; 3]) -> DVec3 {
+    DVec3::from_array(c).max(DVec3::ZERO)
+}
+
+fn positive(name: &str, x: f64) -> Result<f64, String> {
+    if x > 0.0 && x.is_finite() {
+        Ok(x)
+    } else {
+        Err(format!("{name} must be a positive number, got {x}"))
+    }
+}
+
+/// The point of a place: geodesic coordinates in inradii, or a chart point.
+fn point_of(space: &Space, place: &Place) -> Result<DVec4, String> {
+    let g = space.geometry;
+    match (place.position, place.chart) {
+        (Some(_), Some(_)) => Err("give either position or chart, not both".into()),
+        (None, Some(c)) => g
+            .from_chart(DVec3::from_array(c))
+            .map_err(|e| format!("chart {c:?}: {e}")),
+        (p, None) => {
+            let p = DVec3::from_array(p.unwrap_or_default());
+            if !p.is_finite() {
+                return Err(format!("position {p} is not finite"));
+            }
+            let d = p.length() * inradius(space);
+            if g == Geometry::Spherical && d >= std::f64::consts::FRAC_PI_2 {
+                return Err(format!("position {p} is past the hemisphere of the cell"));
+            }
+            Ok(if d > 0.0 {
+                g.translation(p, d) * space.centre()
+            } else {
+                space.centre()
+            })
+        }
+    }
+}
+
+/// The frame of a place: the translation to its point, turned by yaw, pitch and roll.
+fn frame_of(space: &Space, place: &Place) -> Result<DMat4, String> {
+    let g = space.geometry;
+    let point = point_of(space, place)?;
+    let turn = g.rotation(DVec3::Y, place.yaw.to_radians())
+        * g.rotation(DVec3::X, place.pitch.to_radians())
+        * g.rotation(DVec3::Z, place.roll.to_radians());
+    Ok(g.translation_to(point) * turn)
+}
+
+fn start_frame(space: &Space, start: &StartSpec) -> Result<DMat4, String> {
+    let g = space.geometry;
+    let frame = frame_of(space, &start.at)?;
+    if space.outside_by(g.project_point(frame.w_axis)) > 0.0 {
+        return Err("the start is outside the cell".into());
+    }
+    match start.look_at {
+        None => Ok(frame),
+        Some(target) => {
+            let target = point_of(
+                space,
+                &Place {
+                    position: Some(target),
+                    ..Place::default()
+                },
+            )?;
+            g.look_at(g.to_chart(frame.w_axis), g.to_chart(target), DVec3::Y)
+                .map_err(|e| format!("look_at: {e}"))
+        }
+    }
+}
+
+fn build_object(
+    space: &Space,
+    scene: &mut Scene,
+    spec: &ObjectSpec,
+    base: &Path,
+) -> Result<Object, String> {
+    let g = space.geometry;
+    let r = inradius(space);
+    Ok(match spec {
+        ObjectSpec::Ball {
+            at,
+            radius,
+            colour: c,
+            emission,
+        } => {
+            let radius = positive("radius", *radius)? * r;
+            Object::Ball(
+                Ball::new(g, point_of(space, at)?, radius, colour(*c))
+                    .with_emission(colour(*emission)),
+            )
+        }
+        ObjectSpec::Globe {
+            at,
+            radius,
+            texture,
+            spin,
+            colour: c,
+            emission,
+        } => {
+            let radius = positive("radius", *radius)? * r;
+            let frame = frame_of(space, at)?;
+            let path = base.join(texture);
+            let t = Texture::load(&path).map_err(|e| e.to_string())?;
+            scene.textures.push(Arc::new(t));
+            let centre = g.project_point(frame.w_axis);
+            if !spin.is_finite() {
+                return Err(format!("spin must be finite, got {spin}"));
+            }
+            Object::Ball(
+                Ball::new(g, centre, radius, colour(*c))
+                    .with_emission(colour(*emission))
+                    .with_texture(BallTexture {
+                        texture: scene.textures.len() as u32 - 1,
+                        frame,
+                        spin: *spin,
+                    }),
+            )
+        }
+        ObjectSpec::Tube {
+            from,
+            to,
+            radius,
+            colour: c,
+            emission,
+        } => {
+            let radius = positive("radius", *radius)? * r;
+            let end = |p: [f64; 3]| {
+                point_of(
+                    space,
+                    &Place {
+                        position: Some(p),
+                        ..Place::default()
+                    },
+                )
+            };
+            let (a, b) = (end(*from)?, end(*to)?);
+            if g.distance(a, b) < 1e-9 {
+                return Err("the tube's ends are the same point".into());
+            }
+            Object::Tube(Tube::new(g, a, b, radius, colour(*c)).with_emission(colour(*emission)))
+        }
+        ObjectSpec::Disc {
+            at,
+            normal,
+            radius,
+            colour: c,
+            emission,
+        } => {
+            let radius = positive("radius", *radius)? * r;
+            let centre = point_of(space, at)?;
+            let n = g
+                .tangent_from_chart(centre, DVec3::from_array(*normal))
+                .map_err(|e| format!("normal: {e}"))?;
+            Object::Disc(
+                Disc::new(g, centre, n, radius, colour(*c)).with_emission(colour(*emission)),
+            )
+        }
+        ObjectSpec::Mesh {
+            at,
+            path,
+            size,
+            colour: c,
+            emission,
+        } => {
+            let size = positive("size", *size)? * r;
+            let frame = frame_of(space, at)?;
+            let file = base.join(path);
+            if !file.exists() {
+                return Err(format!("mesh not found: {}", file.display()));
+            }
+            let model = gltf::load(&file).map_err(|e| e.to_string())?;
+            let model_radius = model
+                .source
+                .positions
+                .iter()
+                .map(|p| p.length())
+                .fold(0.0, f64::max);
+            if !(model_radius > 0.0) {
+                return Err(format!(
+                    "the mesh {} has all its vertices at its origin",
+                    file.display()
+                ));
+            }
+            let mesh = scene
+                .add_model(g, &model, size / model_radius)
+                .map_err(|e| format!("{}: {e}", file.display()))?;
+            let radius = scene.meshes[mesh as usize].radius;
+            let mut instance = MeshInstance::new(g, mesh, frame, radius);
+            if c.is_some() || *emission != [0.0; 3] {
+                scene.materials.push(Material {
+                    colour: colour(c.unwrap_or([1.0; 3])),
+                    texture: None,
+                    emission: colour(*emission),
+                });
+                instance.material = Some(scene.materials.len() as u32 - 1);
+            }
+            Object::Mesh(instance)
+        }
+    })
+}
+
+/// Where a scene file's relative paths point from.
+#[must_use]
+pub fn base_dir(path: &Path) -> PathBuf {
+    path.parent().map(Path::to_path_buf).unwrap_or_default()
+}
