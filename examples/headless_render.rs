@@ -37,6 +37,8 @@ fn main() -> ExitCode {
         parts: SceneParts::default(),
         objects: Vec::new(),
         resolution_scale: 1.0,
+        base: Default::default(),
+        time: 0.0,
         stereo: Default::default(),
     }) {
         Ok(image) => image,

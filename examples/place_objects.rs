@@ -51,9 +51,12 @@ fn main() -> ExitCode {
         parts: SceneParts {
             edges: true,
             centre_ball: false,
+            avatar: false,
         },
         objects: vec![ball],
         resolution_scale: 1.0,
+        base: Default::default(),
+        time: 0.0,
         stereo: Default::default(),
     });
     match picture.map(|image| image.save("place-objects.png")) {

@@ -539,6 +539,9 @@ fn node_entry(n: u32, o: vec3<f32>, inv_d: vec3<f32>, hi: f32) -> f32 {
 
 const BVH_STACK: u32 = 32u;
 
+// The traversal stack of hit_mesh (one per invocation).
+var<private> bvh_stack: array<u32, BVH_STACK>;
+
 // The first hit of the mesh with root node `root` placed by `inverse` (cell → mesh chart)
 // on the segment p + s v, s in (0, hi) (Scene::intersect_mesh, Mesh::intersect).
 fn hit_mesh(root: u32, inverse: mat4x4<f32>, p: vec4<f32>, v: vec4<f32>, hi: f32) -> MeshHit {
@@ -553,13 +556,14 @@ fn hit_mesh(root: u32, inverse: mat4x4<f32>, p: vec4<f32>, v: vec4<f32>, hi: f32
     let den = lp.w + hi * lv.w;
     var t_best = select(NO_HIT, hi / den, den > 0.0);
     let inv_d = 1.0 / d;
-    var stack: array<u32, BVH_STACK>;
     var top = 0u;
     var node = root;
     var found = false;
     var hit_t = 0.0;
-    // Each node is visited at most once; the cap only guards against bad data.
-    for (var steps = 0u; steps < 1048576u; steps += 1u) {
+    // Depth first, each node at most once; a walk that needs more than 4096 steps gives up
+    // (Mesh::intersect does the same; no ray of our meshes comes near, and without this
+    // bound llvmpipe miscompiled the walk).
+    for (var steps = 0u; steps < 4096u; steps += 1u) {
         let info = scene_data[2u * node + 1u].w;
         let index = scene_data[2u * node].w;
         var descend = false;
@@ -602,7 +606,7 @@ fn hit_mesh(root: u32, inverse: mat4x4<f32>, p: vec4<f32>, v: vec4<f32>, hi: f32
             let tb = node_entry(b, o, inv_d, t_best);
             if ta < NO_HIT && tb < NO_HIT {
                 if top < BVH_STACK {
-                    stack[top] = select(a, b, ta <= tb);
+                    bvh_stack[top] = select(a, b, ta <= tb);
                     top += 1u;
                 }
                 node = select(b, a, ta <= tb);
@@ -622,7 +626,7 @@ fn hit_mesh(root: u32, inverse: mat4x4<f32>, p: vec4<f32>, v: vec4<f32>, hi: f32
         var next = false;
         while top > 0u {
             top -= 1u;
-            let candidate = stack[top];
+            let candidate = bvh_stack[top];
             if node_entry(candidate, o, inv_d, t_best) < NO_HIT {
                 node = candidate;
                 next = true;
@@ -837,26 +841,40 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
             }
         }
 #endif
+#ifdef MESHES
+        // The placed meshes, then the avatar's images, through one call of hit_mesh (two
+        // calls made llvmpipe miscompile the walk).
+        var mesh_slots = 0u;
 #ifdef INSTANCES
-        for (var i = 0u; i < #{INSTANCE_COUNT}u; i += 1u) {
-            let h = hit_mesh(space.instances[i].info.x, space.instances[i].inverse, p, v, s_hit);
-            if h.s < s_hit {
-                s_hit = h.s;
-                kind = 5u;
-                index = i;
-                mesh_hit = h;
+        mesh_slots += #{INSTANCE_COUNT}u;
+#endif
+        let instance_slots = mesh_slots;
+#ifdef AVATAR
+        mesh_slots += u32(space.view.avatar_info.x);
+#endif
+        for (var i = 0u; i < mesh_slots; i += 1u) {
+            let is_avatar = i >= instance_slots;
+            var root = 0u;
+            var inverse = mat4x4<f32>();
+#ifdef INSTANCES
+            if !is_avatar {
+                root = space.instances[i].info.x;
+                inverse = space.instances[i].inverse;
             }
-        }
 #endif
 #ifdef AVATAR
-        let avatar = space.view.avatar_info;
-        for (var i = 0u; i < u32(avatar.x); i += 1u) {
-            let h = hit_mesh(u32(avatar.z), space.view.avatar[2u * i + 1u], p, v, s_hit);
-            // The copy the eye sits in is passed through.
-            if h.s < s_hit && travelled + distance_from_ratio(h.s, 1.0) >= avatar.y {
+            if is_avatar {
+                root = u32(space.view.avatar_info.z);
+                inverse = space.view.avatar[2u * (i - instance_slots) + 1u];
+            }
+#endif
+            let h = hit_mesh(root, inverse, p, v, s_hit);
+            // The avatar's copy the eye sits in is passed through.
+            if h.s < s_hit
+                && (!is_avatar || travelled + distance_from_ratio(h.s, 1.0) >= space.view.avatar_info.y) {
                 s_hit = h.s;
-                kind = 6u;
-                index = i;
+                kind = select(5u, 6u, is_avatar);
+                index = select(i, i - instance_slots, is_avatar);
                 mesh_hit = h;
             }
         }

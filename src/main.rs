@@ -23,7 +23,10 @@ use bevy_curved_spaces::trace::auto_budget;
 use bevy_curved_spaces::trace::{
     Camera, CellWalker, Limit, RenderSettings, Scene, Shading, Trace, chart_ray, render_view,
 };
+use bevy_curved_spaces::plugin::BaseScene;
+use bevy_curved_spaces::scene::file::load_scene_file;
 use bevy_curved_spaces::{ActiveSpace, CurvedSpaceCamera, CurvedSpacesPlugin, Quality};
+use std::sync::Arc;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use glam::{DVec3, DVec4, Vec4};
 use serde_json::json;
@@ -160,6 +163,13 @@ struct RenderArgs {
     look_at: Option<DVec3>,
     #[command(flatten)]
     stereo: StereoArgs,
+    /// A scene file (TOML; see docs/scenes.md and assets/scenes/): its space, objects,
+    /// lights, fog and start view instead of the default scene.
+    #[arg(long, conflicts_with = "space")]
+    scene: Option<PathBuf>,
+    /// The scene's clock in seconds (turns spinning globes).
+    #[arg(long, default_value_t = 0.0, value_parser = parse_time)]
+    time: f64,
 }
 
 /// Stereo options shared by `walk` and `render`.
@@ -248,6 +258,14 @@ struct WalkArgs {
     /// `--features xr`). Without a runtime, falls back to desktop stereo.
     #[arg(long)]
     xr: bool,
+    /// A scene file (TOML; see docs/scenes.md and assets/scenes/): its space, objects,
+    /// lights, fog and start view instead of the default scene.
+    #[arg(long, conflicts_with = "space")]
+    scene: Option<PathBuf>,
+    /// Hide your ship (otherwise seen where rays come back round the space; the panel
+    /// toggles it too).
+    #[arg(long)]
+    no_avatar: bool,
 }
 
 /// `walk --screenshot`: where to save, and whether it was requested.
@@ -326,6 +344,14 @@ fn parse_vec3(s: &str) -> Result<DVec3, String> {
             .ok_or_else(|| format!("`{p}` is not a finite number"))?;
     }
     Ok(DVec3::from_array(v))
+}
+
+fn parse_time(s: &str) -> Result<f64, String> {
+    s.trim()
+        .parse::<f64>()
+        .ok()
+        .filter(|t| t.is_finite())
+        .ok_or_else(|| format!("expected a time in seconds, got {s:?}"))
 }
 
 fn parse_positive(s: &str) -> Result<f64, String> {
@@ -559,12 +585,51 @@ fn trace(args: &TraceArgs) -> Result<(), String> {
     Ok(())
 }
 
+/// A scene file's space, scene and start view, or the named space's default scene.
+struct Chosen {
+    id: String,
+    space: Space,
+    scene: Scene,
+    start: Option<glam::DMat4>,
+    file: bool,
+}
+
+fn choose_scene(space_arg: &str, scene: Option<&Path>, fog: Option<f64>) -> Result<Chosen, String> {
+    match scene {
+        Some(path) => {
+            let file = load_scene_file(path).map_err(|e| e.to_string())?;
+            let mut scene = file.scene;
+            if let Some(fog) = fog {
+                scene.shading.fog_distance = fog;
+            }
+            Ok(Chosen {
+                id: file.space_id,
+                space: file.space,
+                scene,
+                start: file.start,
+                file: true,
+            })
+        }
+        None => {
+            let space = resolve_space(space_arg)?;
+            let fog = fog.unwrap_or_else(|| Shading::default_fog_distance(&space));
+            Ok(Chosen {
+                id: space_arg.to_string(),
+                scene: Scene::default_for(&space, fog),
+                space,
+                start: None,
+                file: false,
+            })
+        }
+    }
+}
+
 fn render_command(args: &RenderArgs) -> Result<(), String> {
-    let space = resolve_space(&args.space)?;
-    let fog = args
-        .fog
-        .unwrap_or_else(|| Shading::default_fog_distance(&space));
-    let scene = Scene::default_for(&space, fog);
+    let chosen = choose_scene(&args.space, args.scene.as_deref(), args.fog)?;
+    let space = chosen.space.clone();
+    let mut scene = chosen.scene.clone();
+    scene.time = args.time;
+    let fog = scene.shading.fog_distance;
     let camera = match (args.eye, args.look_at) {
         (Some(eye), Some(target)) => {
             let probe = space.geometry.from_chart(eye).map_err(|e| e.to_string())?;
@@ -579,9 +644,12 @@ fn render_command(args: &RenderArgs) -> Result<(), String> {
         }
         _ => Camera {
             fov_y_degrees: args.fov,
-            ..Camera::default_for(&space)
+            frame: chosen
+                .start
+                .unwrap_or_else(|| Camera::default_for(&space).frame),
         },
     };
+    scene.set_avatar_frame(&space, camera.frame);
     let max_crossings = match args.crossings {
         Some(n) => n,
         None => {
@@ -675,16 +743,25 @@ fn render_command(args: &RenderArgs) -> Result<(), String> {
                 )
             })?;
         render_offscreen(&OffscreenRender {
-            space: ActiveSpace::new(&args.space, space.clone()),
+            space: ActiveSpace::new(&chosen.id, space.clone()),
             width: settings.width,
             height: settings.height,
             frame: camera.frame,
             fov_y_degrees: camera.fov_y_degrees,
             fog_distance: Some(fog),
             max_crossings,
-            parts: SceneParts::default(),
+            parts: SceneParts {
+                avatar: scene.avatar.is_some(),
+                ..SceneParts::default()
+            },
             objects: Vec::new(),
             resolution_scale: 1.0,
+            base: BaseScene {
+                space_id: chosen.id.clone(),
+                scene: chosen.file.then(|| Arc::new(chosen.scene.clone())),
+                start: chosen.start,
+            },
+            time: args.time,
             stereo,
         })
         .map_err(|e| e.to_string())?
@@ -736,12 +813,13 @@ fn xr_runtime() -> Result<(), String> {
 }
 
 fn walk(args: &WalkArgs) -> Result<(), String> {
-    let space = resolve_space(&args.space)?;
+    let chosen = choose_scene(&args.space, args.scene.as_deref(), args.fog)?;
+    let space = chosen.space.clone();
     let mut stereo_args = args.stereo;
     if args.xr {
         match xr_runtime() {
             #[cfg(feature = "xr")]
-            Ok(()) if display_available() => return walk_xr(args, space),
+            Ok(()) if display_available() => return walk_xr(args, &chosen),
             Ok(()) => {
                 eprintln!("an OpenXR runtime was found, but no display to open the app's window on")
             }
@@ -763,6 +841,7 @@ fn walk(args: &WalkArgs) -> Result<(), String> {
             unreachable!("`render SPACE` parses as the render command")
         };
         render.fog = args.fog;
+        render.scene = args.scene.clone();
         render.stereo = stereo_args;
         if !gpu_available() {
             eprintln!("no GPU adapter found: using the CPU reference renderer");
@@ -771,7 +850,7 @@ fn walk(args: &WalkArgs) -> Result<(), String> {
         return render_command(&render);
     }
     let stereo = stereo_args.settings(&space)?;
-    let active = ActiveSpace::new(&args.space, space);
+    let active = ActiveSpace::new(&chosen.id, space);
     eprintln!(
         "walking in {}: click to look around, WASD to move, Esc releases the mouse, F1 the panel",
         active.space.name
@@ -781,6 +860,7 @@ fn walk(args: &WalkArgs) -> Result<(), String> {
         "curved spaces: {}",
         active.space.name
     ))));
+    app.insert_resource(base_scene(&chosen));
     add_walk_plugins(&mut app, args, active, stereo).add_systems(
         Startup,
         |mut commands: Commands| {
@@ -795,6 +875,15 @@ fn walk(args: &WalkArgs) -> Result<(), String> {
         .add_systems(Update, screenshot_then_exit);
     }
     exit_result(app.run())
+}
+
+/// The scene file's scene as the plugin's base scene (none for the default scene).
+fn base_scene(chosen: &Chosen) -> BaseScene {
+    BaseScene {
+        space_id: chosen.id.clone(),
+        scene: chosen.file.then(|| Arc::new(chosen.scene.clone())),
+        start: chosen.start,
+    }
 }
 
 /// The window of `walk`.
@@ -819,6 +908,7 @@ fn add_walk_plugins<'a>(
             quality: args.quality.into(),
             ui: true,
             stereo,
+            avatar: !args.no_avatar,
             ..default()
         })
         .insert_resource(bevy_curved_spaces::ui::PanelVisible(!args.no_ui))
@@ -833,10 +923,10 @@ fn exit_result(exit: AppExit) -> Result<(), String> {
 
 /// `walk --xr` with a runtime: the headset's views are traced, the window mirrors the head.
 #[cfg(feature = "xr")]
-fn walk_xr(args: &WalkArgs, space: Space) -> Result<(), String> {
+fn walk_xr(args: &WalkArgs, chosen: &Chosen) -> Result<(), String> {
     use bevy_curved_spaces::xr::{CurvedSpacesXrPlugin, add_xr_plugins, xr_available};
-    let stereo = args.stereo.settings(&space)?;
-    let active = ActiveSpace::new(&args.space, space);
+    let stereo = args.stereo.settings(&chosen.space)?;
+    let active = ActiveSpace::new(&chosen.id, chosen.space.clone());
     eprintln!(
         "walking in {} with a headset: left thumbstick walks, right thumbstick turns; the window mirrors the head",
         active.space.name

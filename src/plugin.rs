@@ -24,6 +24,7 @@ use crate::trace::{
 };
 use bevy::core_pipeline::tonemapping::{DebandDither, Tonemapping};
 use bevy::prelude::*;
+use glam::DMat4;
 use std::sync::Arc;
 
 /// The seed space shown when nothing else is chosen.
@@ -91,6 +92,9 @@ pub struct CurvedSpacesPlugin {
     pub ui: bool,
     /// Stereo mode and eye distance at start ([`StereoSettings`], changeable at run time).
     pub stereo: StereoSettings,
+    /// Draw the player's ship where rays come back round the space (toggle it at run time
+    /// in [`TracerSettings::parts`]).
+    pub avatar: bool,
 }
 
 impl Default for CurvedSpacesPlugin {
@@ -103,6 +107,7 @@ impl Default for CurvedSpacesPlugin {
             controls: true,
             ui: false,
             stereo: StereoSettings::default(),
+            avatar: true,
         }
     }
 }
@@ -183,6 +188,9 @@ pub struct TracerSettings {
     /// Fraction of the view's resolution that is traced (then scaled up), in (0, 1].
     pub resolution_scale: f32,
     pub parts: SceneParts,
+    /// The scene's clock in seconds (spinning globes); `None` follows the app's [`Time`].
+    /// Fixed for still pictures that must match a CPU render.
+    pub time: Option<f64>,
 }
 
 impl TracerSettings {
@@ -201,6 +209,32 @@ impl TracerSettings {
 /// side. A misplaced object is reported in [`TracerStatus::error`] and left out.
 #[derive(Resource, Clone, Debug, Default, PartialEq)]
 pub struct SceneObjects(pub Vec<Object>);
+
+/// A whole scene to show instead of the default parts, such as a loaded scene file
+/// ([`crate::scene::file::load_scene_file`]): used while the active space's id is
+/// `space_id`; [`SceneObjects`] are added to it. Its start view is where players start.
+#[derive(Resource, Clone, Debug, Default)]
+pub struct BaseScene {
+    pub space_id: String,
+    pub scene: Option<Arc<Scene>>,
+    pub start: Option<DMat4>,
+}
+
+impl BaseScene {
+    /// The base scene for the active space, if it is the one the scene was made for.
+    #[must_use]
+    pub fn for_space(&self, active: &ActiveSpace) -> Option<&Scene> {
+        self.scene.as_deref().filter(|_| active.id == self.space_id)
+    }
+
+    /// Where players start in the active space.
+    #[must_use]
+    pub fn start_frame(&self, active: &ActiveSpace) -> DMat4 {
+        self.start
+            .filter(|_| active.id == self.space_id)
+            .unwrap_or_else(|| TraceCamera::default_for(&active.space).frame)
+    }
+}
 
 /// The last problem the tracer had with the scene (shown in the UI), if any.
 #[derive(Resource, Clone, Debug, Default, PartialEq)]
@@ -230,11 +264,16 @@ impl Plugin for CurvedSpacesPlugin {
             max_crossings: self.max_crossings.map(|b| b.max(1)),
             quality: self.quality,
             resolution_scale: self.quality.resolution_scale(),
-            parts: SceneParts::default(),
+            parts: SceneParts {
+                avatar: self.avatar,
+                ..SceneParts::default()
+            },
+            time: None,
         })
         .insert_resource(self.stereo)
         .init_resource::<TracerStatus>()
         .init_resource::<SceneObjects>()
+        .init_resource::<BaseScene>()
         .init_resource::<PlayerSettings>()
         .init_resource::<KeyBindings>()
         .init_resource::<MouseLook>()
@@ -280,6 +319,7 @@ impl Plugin for CurvedSpacesPlugin {
 fn start_camera(
     add: On<Add, CurvedSpaceCamera>,
     active: Res<ActiveSpace>,
+    base: Res<BaseScene>,
     mut commands: Commands,
     frames: Query<&PlayerFrame>,
 ) {
@@ -288,7 +328,7 @@ fn start_camera(
         .get(add.entity)
         .is_ok_and(|f| *f == PlayerFrame::default())
     {
-        entity.insert(PlayerFrame(TraceCamera::default_for(&active.space).frame));
+        entity.insert(PlayerFrame(base.start_frame(&active)));
     }
     // The tracer writes final colours: no anti-aliasing, tonemapping or dithering on top.
     entity.insert((Msaa::Off, Tonemapping::None, DebandDither::Disabled));
@@ -296,12 +336,13 @@ fn start_camera(
 
 fn reset_players_on_switch(
     active: Res<ActiveSpace>,
+    base: Res<BaseScene>,
     mut players: Query<(&mut PlayerFrame, &mut Holonomy)>,
 ) {
     if !active.is_changed() || active.is_added() {
         return;
     }
-    let start = TraceCamera::default_for(&active.space).frame;
+    let start = base.start_frame(&active);
     for (mut frame, mut holonomy) in &mut players {
         frame.0 = start;
         *holonomy = Holonomy::default();
@@ -327,15 +368,34 @@ fn check_stereo_settings(
     status.stereo_error = problem;
 }
 
-/// The scene the tracer shows: the default parts and the user's objects with their images.
-/// Objects that cannot be placed are left out and described in the returned message.
+/// The scene the tracer shows: the base scene (or the default parts) and the user's objects
+/// with their images; the avatar as [`SceneParts::avatar`] says. Objects that cannot be
+/// placed are left out and described in the returned message.
 #[must_use]
 pub fn build_scene(
     space: &Space,
     settings: &TracerSettings,
     objects: &[Object],
+    base: Option<&Scene>,
 ) -> (Scene, Option<String>) {
-    let mut scene = Scene::with_parts(space, settings.fog_for(space), settings.parts);
+    let mut scene = match base {
+        Some(b) => {
+            let mut scene = b.clone();
+            if let Some(fog) = settings.fog_distance {
+                scene.shading.fog_distance = fog;
+            }
+            if !settings.parts.avatar {
+                scene.avatar = None;
+            } else if scene.avatar.is_none() {
+                let size = crate::scene::avatar_size(invariants::inradius(space));
+                if let Err(e) = scene.add_avatar(space.geometry, size) {
+                    warn!("the avatar: {e}");
+                }
+            }
+            scene
+        }
+        None => Scene::with_parts(space, settings.fog_for(space), settings.parts),
+    };
     let problems: Vec<String> = objects
         .iter()
         .enumerate()
@@ -365,17 +425,22 @@ fn upload_scene(
     active: Res<ActiveSpace>,
     settings: Res<TracerSettings>,
     objects: Res<SceneObjects>,
+    base: Res<BaseScene>,
     mut status: ResMut<TracerStatus>,
     prepared: Option<Res<PreparedScene>>,
     mut last_choice: Local<Option<BudgetCache>>,
     mut commands: Commands,
 ) {
-    if prepared.is_some() && !active.is_changed() && !settings.is_changed() && !objects.is_changed()
+    if prepared.is_some()
+        && !active.is_changed()
+        && !settings.is_changed()
+        && !objects.is_changed()
+        && !base.is_changed()
     {
         return;
     }
     let space = &active.space;
-    let (scene, problems) = build_scene(space, &settings, &objects.0);
+    let (scene, problems) = build_scene(space, &settings, &objects.0, base.for_space(&active));
     // The automatic budget depends on the space, the scene and the quality only: a change
     // of the resolution scale or a fixed budget's toggling does not sample rays again.
     let auto = settings.max_crossings.is_none().then(|| {

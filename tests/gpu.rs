@@ -97,6 +97,8 @@ fn every_seed_space_renders_on_the_gpu_like_the_cpu_reference() {
                 parts: SceneParts::default(),
                 objects: Vec::new(),
                 resolution_scale: 1.0,
+                base: Default::default(),
+                time: 0.0,
                 stereo: Default::default(),
             })
             .unwrap_or_else(|e| panic!("{}: {e}", seed.id));
@@ -160,6 +162,8 @@ fn a_reduced_resolution_is_traced_and_scaled_up() {
         parts: SceneParts::default(),
         objects: Vec::new(),
         resolution_scale: 1.0,
+        base: Default::default(),
+        time: 0.0,
         stereo: Default::default(),
     };
     let full = renderer.render(&request).expect("full resolution");
@@ -203,6 +207,7 @@ fn placed_objects_straddling_faces_render_alike_on_gpu_and_cpu() {
         let parts = SceneParts {
             edges: true,
             centre_ball: false,
+            avatar: false,
         };
         let settings = TracerSettings {
             fog_distance: None,
@@ -210,8 +215,9 @@ fn placed_objects_straddling_faces_render_alike_on_gpu_and_cpu() {
             quality: bevy_curved_spaces::Quality::High,
             resolution_scale: 1.0,
             parts,
+            time: None,
         };
-        let (scene, problems) = build_scene(&space, &settings, &[ball]);
+        let (scene, problems) = build_scene(&space, &settings, &[ball], None);
         assert_eq!(problems, None, "{id}");
         let defaults = Scene::with_parts(&space, settings.fog_for(&space), parts);
         assert!(
@@ -240,6 +246,8 @@ fn placed_objects_straddling_faces_render_alike_on_gpu_and_cpu() {
             parts,
             objects: vec![ball],
             resolution_scale: 1.0,
+            base: Default::default(),
+            time: 0.0,
             stereo: Default::default(),
         };
         let gpu = renderer.render(&request).expect("renders");
@@ -271,9 +279,10 @@ fn placed_objects_straddling_faces_render_alike_on_gpu_and_cpu() {
         quality: bevy_curved_spaces::Quality::Medium,
         resolution_scale: 1.0,
         parts: SceneParts::default(),
+        time: None,
     };
     let outside = Object::Ball(Ball::new(space.geometry, far, 0.1, DVec3::ONE));
-    let (scene, problems) = build_scene(&space, &settings, &[outside]);
+    let (scene, problems) = build_scene(&space, &settings, &[outside], None);
     assert!(
         problems.is_some_and(|p| p.contains("scene object 0") && p.contains("not inside the cell")),
         "a misplaced object is named"
@@ -358,6 +367,8 @@ fn stereo_layouts_render_alike_on_gpu_and_cpu() {
                 parts: SceneParts::default(),
                 objects: Vec::new(),
                 resolution_scale: 1.0,
+                base: Default::default(),
+                time: 0.0,
                 stereo,
             })
             .unwrap_or_else(|e| panic!("{id}: {e}"));
@@ -417,9 +428,12 @@ fn gpu_disparity_in_the_torus_matches_the_geometry() {
             parts: SceneParts {
                 edges: false,
                 centre_ball: false,
+                avatar: false,
             },
             objects: vec![ball],
             resolution_scale: 1.0,
+            base: Default::default(),
+            time: 0.0,
             stereo: StereoSettings {
                 mode: StereoMode::SideBySide,
                 ipd: Some(ipd),
@@ -500,6 +514,8 @@ fn scaled_up_stereo_halves_do_not_mix_at_the_split() {
                 parts: SceneParts::default(),
                 objects: Vec::new(),
                 resolution_scale: 0.5,
+                base: Default::default(),
+                time: 0.0,
                 stereo: StereoSettings {
                     mode,
                     ..Default::default()

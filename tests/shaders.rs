@@ -185,10 +185,12 @@ fn every_seed_scene_packs_to_the_shader_layout() {
             SceneParts {
                 edges: false,
                 centre_ball: true,
+                avatar: false,
             },
             SceneParts {
                 edges: true,
                 centre_ball: false,
+                avatar: false,
             },
         ] {
             let scene = Scene::with_parts(&space, Shading::default_fog_distance(&space), parts);
@@ -220,6 +222,7 @@ fn a_scene_without_objects_and_a_zero_budget_are_refused_or_handled() {
         SceneParts {
             edges: false,
             centre_ball: false,
+            avatar: false,
         },
     );
     let gpu = GpuScene::new(&space, &scene, 8).expect("an empty scene shows fog");

@@ -24,6 +24,7 @@ fn placing_the_default_scene_changes_no_pixel() {
             SceneParts {
                 edges: false,
                 centre_ball: false,
+                avatar: false,
             },
         );
         for o in &default.objects {
@@ -71,6 +72,7 @@ fn ambient_scene(space: &bevy_curved_spaces::space::Space) -> Scene {
         SceneParts {
             edges: false,
             centre_ball: false,
+            avatar: false,
         },
     );
     scene.shading.ambient = 1.0;

@@ -155,7 +155,10 @@ fn extract_curved_views(
     time: Extract<Option<Res<Time>>>,
     views: Extract<CurvedCameras>,
 ) {
-    let seconds = time.as_ref().map_or(0.0, |t| t.elapsed_secs_f64());
+    let seconds = settings
+        .as_ref()
+        .and_then(|s| s.time)
+        .unwrap_or_else(|| time.as_ref().map_or(0.0, |t| t.elapsed_secs_f64()));
     let resolution_scale = settings
         .as_ref()
         .map_or(1.0, |s| s.resolution_scale)

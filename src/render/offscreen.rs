@@ -4,7 +4,7 @@
 
 use crate::player::PlayerFrame;
 use crate::plugin::{
-    ActiveSpace, CurvedSpaceCamera, CurvedSpacesPlugin, SceneObjects, TracerSettings,
+    ActiveSpace, BaseScene, CurvedSpaceCamera, CurvedSpacesPlugin, SceneObjects, TracerSettings,
 };
 use crate::render::FramesTraced;
 use crate::stereo::StereoSettings;
@@ -40,6 +40,10 @@ pub struct OffscreenRender {
     pub resolution_scale: f32,
     /// Stereo mode, eye distance and eye swap (the frame is the head's).
     pub stereo: StereoSettings,
+    /// A whole scene (a scene file's) instead of the default parts, for its space.
+    pub base: BaseScene,
+    /// The scene's clock in seconds (the globes' spin).
+    pub time: f64,
 }
 
 /// Why no picture came back.
@@ -134,7 +138,9 @@ impl OffscreenRenderer {
             quality: crate::plugin::Quality::High,
             resolution_scale: request.resolution_scale,
             parts: request.parts,
+            time: Some(request.time),
         });
+        world.insert_resource(request.base.clone());
         world.insert_resource(SceneObjects(request.objects.clone()));
         world.insert_resource(request.stereo);
         // A changed space puts every player back at its start view in the next update:

@@ -225,6 +225,7 @@ pub fn parse_scene(text: &str, base: &Path, file: &str) -> Result<SceneFile, Sce
         SceneParts {
             edges: spec.edges,
             centre_ball: spec.centre_ball,
+            avatar: spec.avatar,
         },
     );
     if let Some(a) = &spec.ambient {
@@ -269,11 +270,6 @@ pub fn parse_scene(text: &str, base: &Path, file: &str) -> Result<SceneFile, Sce
         Some(s) => Some(start_frame(&space, s.get_ref()).map_err(|m| fail(Some(s.span()), m))?),
         None => None,
     };
-    if spec.avatar {
-        scene
-            .add_avatar(g, crate::scene::avatar_size(r))
-            .map_err(|e| fail(None, format!("the avatar: {e}")))?;
-    }
     Ok(SceneFile {
         space_id,
         space,

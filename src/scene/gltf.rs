@@ -202,3 +202,113 @@ pub fn load(path: &Path) -> Result<Model, GltfError> {
         textures,
     })
 }
+
+/// What [`write_glb`] writes: one mesh of one primitive with one material.
+#[derive(Clone, Debug, Default)]
+pub struct GlbMesh<'a> {
+    pub positions: &'a [[f32; 3]],
+    pub normals: Option<&'a [[f32; 3]]>,
+    pub uvs: Option<&'a [[f32; 2]]>,
+    pub indices: &'a [u32],
+    /// Linear RGBA.
+    pub base_colour: [f32; 4],
+    pub emission: [f32; 3],
+    /// A PNG for the base-colour texture.
+    pub texture_png: Option<&'a [u8]>,
+    /// Leave the POSITION attribute out (to make a broken file for tests).
+    pub omit_positions: bool,
+}
+
+/// Writes a binary glTF (`.glb`) of one mesh: what the project's asset generator uses for
+/// the models under `assets/`, and tests for files of their own.
+pub fn write_glb(path: &Path, mesh: &GlbMesh) -> std::io::Result<()> {
+    use serde_json::json;
+    let mut bin: Vec<u8> = Vec::new();
+    let mut views = Vec::new();
+    let mut accessors = Vec::new();
+    let mut push = |bin: &mut Vec<u8>, bytes: &[u8], target: Option<u32>| {
+        while bin.len() % 4 != 0 {
+            bin.push(0);
+        }
+        let offset = bin.len();
+        bin.extend_from_slice(bytes);
+        let mut view = json!({"buffer": 0, "byteOffset": offset, "byteLength": bytes.len()});
+        if let Some(t) = target {
+            view["target"] = json!(t);
+        }
+        views.push(view);
+        views.len() - 1
+    };
+    let floats = |v: &[f32]| v.iter().flat_map(|x| x.to_le_bytes()).collect::<Vec<u8>>();
+    let mut attributes = serde_json::Map::new();
+    if !mesh.omit_positions {
+        let flat: Vec<f32> = mesh.positions.iter().flatten().copied().collect();
+        let view = push(&mut bin, &floats(&flat), Some(34962));
+        let (mut lo, mut hi) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
+        for p in mesh.positions {
+            for k in 0..3 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        accessors.push(json!({"bufferView": view, "componentType": 5126, "count": mesh.positions.len(), "type": "VEC3", "min": lo, "max": hi}));
+        attributes.insert("POSITION".into(), json!(accessors.len() - 1));
+    }
+    if let Some(n) = mesh.normals {
+        let flat: Vec<f32> = n.iter().flatten().copied().collect();
+        let view = push(&mut bin, &floats(&flat), Some(34962));
+        accessors.push(json!({"bufferView": view, "componentType": 5126, "count": n.len(), "type": "VEC3"}));
+        attributes.insert("NORMAL".into(), json!(accessors.len() - 1));
+    }
+    if let Some(t) = mesh.uvs {
+        let flat: Vec<f32> = t.iter().flatten().copied().collect();
+        let view = push(&mut bin, &floats(&flat), Some(34962));
+        accessors.push(json!({"bufferView": view, "componentType": 5126, "count": t.len(), "type": "VEC2"}));
+        attributes.insert("TEXCOORD_0".into(), json!(accessors.len() - 1));
+    }
+    let index_bytes: Vec<u8> = mesh.indices.iter().flat_map(|i| i.to_le_bytes()).collect();
+    let view = push(&mut bin, &index_bytes, Some(34963));
+    accessors.push(json!({"bufferView": view, "componentType": 5125, "count": mesh.indices.len(), "type": "SCALAR"}));
+    let indices = accessors.len() - 1;
+    let mut material = json!({
+        "pbrMetallicRoughness": {"baseColorFactor": mesh.base_colour, "metallicFactor": 0.0},
+        "emissiveFactor": mesh.emission,
+    });
+    let mut doc = json!({
+        "asset": {"version": "2.0", "generator": "bevy_curved_spaces"},
+        "scene": 0,
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": attributes, "indices": indices, "material": 0}]}],
+    });
+    if let Some(png) = mesh.texture_png {
+        let view = push(&mut bin, png, None);
+        doc["images"] = json!([{"bufferView": view, "mimeType": "image/png"}]);
+        doc["samplers"] = json!([{"magFilter": 9729, "minFilter": 9729}]);
+        doc["textures"] = json!([{"source": 0, "sampler": 0}]);
+        material["pbrMetallicRoughness"]["baseColorTexture"] = json!({"index": 0});
+    }
+    while bin.len() % 4 != 0 {
+        bin.push(0);
+    }
+    doc["materials"] = json!([material]);
+    doc["buffers"] = json!([{"byteLength": bin.len()}]);
+    doc["bufferViews"] = json!(views);
+    doc["accessors"] = json!(accessors);
+    let mut json_bytes = serde_json::to_vec(&doc).map_err(std::io::Error::other)?;
+    while json_bytes.len() % 4 != 0 {
+        json_bytes.push(b' ');
+    }
+    let total = 12 + 8 + json_bytes.len() + 8 + bin.len();
+    let mut out = Vec::with_capacity(total);
+    out.extend_from_slice(b"glTF");
+    out.extend_from_slice(&2u32.to_le_bytes());
+    out.extend_from_slice(&(total as u32).to_le_bytes());
+    out.extend_from_slice(&(json_bytes.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"JSON");
+    out.extend_from_slice(&json_bytes);
+    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"BIN\0");
+    out.extend_from_slice(&bin);
+    std::fs::write(path, out)
+}

@@ -21,6 +21,10 @@ use glam::{DVec2, DVec3};
 pub const MAX_LEAF_TRIANGLES: usize = 4;
 /// Depth of the traversal stack of both tracers: the builder keeps the tree within it.
 pub const MAX_BVH_DEPTH: usize = 32;
+/// Steps (nodes visited) after which a ray's walk of one mesh gives up, in both tracers:
+/// far more than any ray of a sensible mesh needs, and a bound the WGSL loop needs (without
+/// it llvmpipe miscompiled the walk).
+pub const MAX_BVH_STEPS: usize = 4096;
 /// The most triangles one mesh may have.
 pub const MAX_MESH_TRIANGLES: usize = 1 << 22;
 
@@ -314,7 +318,7 @@ impl Mesh {
         let mut stack = [0u32; MAX_BVH_DEPTH];
         let mut top = 0;
         let mut node = 0u32;
-        loop {
+        for _ in 0..MAX_BVH_STEPS {
             let n = &self.nodes[node as usize];
             if n.count > 0 {
                 for i in n.index..n.index + n.count {
@@ -368,6 +372,7 @@ impl Mesh {
                 }
             }
         }
+        best
     }
 
     /// Every triangle tested: the reference for the hierarchy.

@@ -2,6 +2,7 @@
 //! bounding-volume hierarchy ([`mesh`]), textures ([`texture`]), glTF models ([`gltf`]),
 //! the player's avatar ([`avatar`]) and scene files ([`file`]).
 
+pub mod assets;
 pub mod avatar;
 pub mod file;
 pub mod gltf;

@@ -884,13 +884,18 @@ pub struct SceneParts {
     pub edges: bool,
     /// A ball at the cell's centre.
     pub centre_ball: bool,
+    /// The player's ship ([`crate::scene::avatar`]), seen where rays come back round the
+    /// space; put it at the player with [`Scene::set_avatar_frame`].
+    pub avatar: bool,
 }
 
 impl Default for SceneParts {
+    /// Edges and the centre ball; no avatar (still pictures have no player).
     fn default() -> Self {
         Self {
             edges: true,
             centre_ball: true,
+            avatar: false,
         }
     }
 }
@@ -1026,7 +1031,7 @@ impl Scene {
         }
         let light_at = g.translation(DVec3::new(0.45, 0.8, 0.4), 0.65 * inradius) * space.centre();
         let light = Light::new(space, light_at, DVec3::ONE, g.s(0.7 * inradius).powi(2));
-        Scene::new(
+        let mut scene = Scene::new(
             objects,
             vec![light],
             Shading {
@@ -1036,6 +1041,11 @@ impl Scene {
                 near_light: 0.05 * inradius,
                 cutoff_weight: DEFAULT_CUTOFF_WEIGHT,
             },
-        )
+        );
+        if parts.avatar {
+            // The ship is a fixed small model: placing it cannot fail.
+            let _ = scene.add_avatar(g, crate::scene::avatar_size(inradius));
+        }
+        scene
     }
 }
