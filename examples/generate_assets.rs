@@ -24,7 +24,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     write_source_glb(&cube, &cube_source(1.0, 0), [1.0; 4], Some(&crate_png))?;
     println!("wrote {}", cube.display());
     let knot = root.join("models/torus_knot.glb");
-    write_source_glb(&knot, &torus_knot(3, 2, 192, 12), [0.9, 0.55, 0.2, 1.0], None)?;
+    write_source_glb(
+        &knot,
+        &torus_knot(3, 2, 192, 12),
+        [0.9, 0.55, 0.2, 1.0],
+        None,
+    )?;
     println!("wrote {}", knot.display());
     Ok(())
 }

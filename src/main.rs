@@ -8,9 +8,11 @@ use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
 use bevy_curved_spaces::bench::BenchConfig;
 use bevy_curved_spaces::geometry::Vector4;
 use bevy_curved_spaces::plugin::AUTO_BUDGET_SAMPLES;
+use bevy_curved_spaces::plugin::BaseScene;
 use bevy_curved_spaces::render::FramesTraced;
 use bevy_curved_spaces::render::gpu::MAX_GPU_BUDGET;
 use bevy_curved_spaces::render::offscreen::{OffscreenRender, gpu_available, render_offscreen};
+use bevy_curved_spaces::scene::file::load_scene_file;
 use bevy_curved_spaces::space::file::{SpaceRecord, load_space_file};
 use bevy_curved_spaces::space::invariants::Invariants;
 use bevy_curved_spaces::space::invariants::inradius;
@@ -23,16 +25,14 @@ use bevy_curved_spaces::trace::auto_budget;
 use bevy_curved_spaces::trace::{
     Camera, CellWalker, Limit, RenderSettings, Scene, Shading, Trace, chart_ray, render_view,
 };
-use bevy_curved_spaces::plugin::BaseScene;
-use bevy_curved_spaces::scene::file::load_scene_file;
 use bevy_curved_spaces::{ActiveSpace, CurvedSpaceCamera, CurvedSpacesPlugin, Quality};
-use std::sync::Arc;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use glam::{DVec3, DVec4, Vec4};
 use serde_json::json;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::sync::Arc;
 use std::time::Instant;
 
 /// Prints a line to standard output; a closed pipe (`curved-spaces list | head -3`) ends

@@ -553,3 +553,191 @@ fn scaled_up_stereo_halves_do_not_mix_at_the_split() {
         );
     }
 }
+
+/// Renders `scene` (a base scene for space `id`) on the GPU and the CPU with the same
+/// camera, budget and clock; returns the comparison, saving the pictures under `name` when
+/// more than `MAX_DIFFERING` of the pixels differ.
+fn compare_scene(
+    renderer: &mut OffscreenRenderer,
+    id: &str,
+    space: &bevy_curved_spaces::space::Space,
+    scene: &Scene,
+    frame: glam::DMat4,
+    time: f64,
+    name: &str,
+) -> Result<Comparison, String> {
+    use bevy_curved_spaces::plugin::BaseScene;
+    let crossings = 24;
+    let mut cpu_scene = scene.clone();
+    cpu_scene.time = time;
+    cpu_scene.set_avatar_frame(space, frame);
+    let camera = Camera {
+        frame,
+        fov_y_degrees: 70.0,
+    };
+    let cpu = render(
+        space,
+        &cpu_scene,
+        &camera,
+        &RenderSettings {
+            width: WIDTH,
+            height: HEIGHT,
+            max_crossings: crossings,
+        },
+    );
+    let gpu = renderer
+        .render(&OffscreenRender {
+            space: ActiveSpace::new(id, space.clone()),
+            width: WIDTH,
+            height: HEIGHT,
+            frame,
+            fov_y_degrees: 70.0,
+            fog_distance: Some(scene.shading.fog_distance),
+            max_crossings: crossings as u32,
+            parts: SceneParts {
+                avatar: scene.avatar.is_some(),
+                ..SceneParts::default()
+            },
+            objects: Vec::new(),
+            resolution_scale: 1.0,
+            base: BaseScene {
+                space_id: id.to_string(),
+                scene: Some(std::sync::Arc::new(scene.clone())),
+                start: None,
+            },
+            time,
+            stereo: Default::default(),
+        })
+        .map_err(|e| format!("{name}: {e}"))?;
+    let (c, diff) = compare(&gpu, &cpu);
+    println!(
+        "{name:<28} differing {:.3} %, mean error {:.3}/255, max {}",
+        100.0 * c.differing,
+        c.mean_error,
+        c.max_error
+    );
+    if c.differing > MAX_DIFFERING {
+        let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("gpu-vs-cpu");
+        std::fs::create_dir_all(&out).expect("create output folder");
+        for (kind, img) in [("gpu", &gpu), ("cpu", &cpu), ("diff", &diff)] {
+            img.save(out.join(format!("{name}-{kind}.png")))
+                .expect("write image");
+        }
+    }
+    Ok(c)
+}
+
+/// The textured cube of `assets/models/cube.glb`, loaded with the glTF reader and placed
+/// turned at the cell's centre with two lights, draws alike on the GPU and the CPU in a
+/// flat, a hyperbolic and a spherical space: same hierarchy, triangles, texture sampling
+/// and shading.
+#[test]
+fn a_gltf_from_assets_renders_alike_on_gpu_and_cpu_in_three_geometries() {
+    use bevy_curved_spaces::scene::gltf;
+    use bevy_curved_spaces::space::invariants::inradius;
+    use bevy_curved_spaces::trace::{Light, MeshInstance, Object};
+    use glam::DVec3;
+    let _gpu = gpu_lock();
+    let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
+    let model =
+        gltf::load(&PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/models/cube.glb"))
+            .expect("the asset loads");
+    assert!(!model.textures.is_empty(), "the cube carries its texture");
+    let mut failures = Vec::new();
+    for id in ["torus", "seifert-weber", "poincare"] {
+        let space = bevy_curved_spaces::space::seed_space(id).expect("seed");
+        let g = space.geometry;
+        let r = inradius(&space);
+        let mut scene = Scene::with_parts(
+            &space,
+            Shading::default_fog_distance(&space),
+            SceneParts {
+                edges: true,
+                centre_ball: false,
+                avatar: false,
+            },
+        );
+        let mesh = scene
+            .add_model(g, &model, 0.3 * r / 3f64.sqrt())
+            .expect("places");
+        let frame = g.rotation(DVec3::new(1.0, 2.0, 0.5), 0.7);
+        let radius = scene.meshes[mesh as usize].radius;
+        scene
+            .place(
+                &space,
+                Object::Mesh(MeshInstance::new(g, mesh, frame, radius)),
+            )
+            .expect("inside");
+        let at = |v: DVec3| g.translation(v, v.length() * r) * space.centre();
+        scene.lights.push(Light::new(
+            &space,
+            at(DVec3::new(-0.5, 0.4, 0.6)),
+            DVec3::new(0.4, 0.5, 1.0),
+            g.s(r).powi(2) * 0.5,
+        ));
+        let camera = Camera::default_for(&space);
+        let c = compare_scene(
+            &mut renderer,
+            id,
+            &space,
+            &scene,
+            camera.frame,
+            0.0,
+            &format!("cube-{id}"),
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
+        if c.differing > MAX_DIFFERING {
+            failures.push(format!(
+                "{id}: {:.2} % of pixels differ",
+                100.0 * c.differing
+            ));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// Every example scene in `assets/scenes/` (globes at a spun time, glTF meshes, discs,
+/// emission, several lights, the avatar) draws alike on the GPU and the CPU.
+#[test]
+fn the_example_scene_files_render_alike_on_gpu_and_cpu() {
+    use bevy_curved_spaces::scene::file::load_scene_file;
+    let _gpu = gpu_lock();
+    let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/scenes");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .expect("assets/scenes")
+        .map(|e| e.expect("entry").path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    files.sort();
+    assert!(files.len() >= 2, "the examples ship");
+    let mut failures = Vec::new();
+    for path in &files {
+        let file = load_scene_file(path).unwrap_or_else(|e| panic!("{e}"));
+        let frame = file
+            .start
+            .unwrap_or_else(|| Camera::default_for(&file.space).frame);
+        let name = path
+            .file_stem()
+            .expect("name")
+            .to_string_lossy()
+            .to_string();
+        let c = compare_scene(
+            &mut renderer,
+            &file.space_id,
+            &file.space,
+            &file.scene,
+            frame,
+            2.5,
+            &name,
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
+        if c.differing > MAX_DIFFERING {
+            failures.push(format!(
+                "{name}: {:.2} % of pixels differ",
+                100.0 * c.differing
+            ));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}

@@ -9,7 +9,9 @@ use image::{Rgba, RgbaImage};
 /// A smooth value noise on R³ (trilinear between hashed lattice values, smoothstepped).
 fn noise(p: DVec3) -> f64 {
     let hash = |x: i64, y: i64, z: i64| {
-        let mut h = (x.wrapping_mul(73_856_093) ^ y.wrapping_mul(19_349_663) ^ z.wrapping_mul(83_492_791)) as u64;
+        let mut h = (x.wrapping_mul(73_856_093)
+            ^ y.wrapping_mul(19_349_663)
+            ^ z.wrapping_mul(83_492_791)) as u64;
         h ^= h >> 33;
         h = h.wrapping_mul(0xff51_afd7_ed55_8ccd);
         h ^= h >> 33;
@@ -22,15 +24,25 @@ fn noise(p: DVec3) -> f64 {
     let lerp = |a: f64, b: f64, t: f64| a + (b - a) * t;
     let c = |dx, dy, dz| hash(x + dx, y + dy, z + dz);
     lerp(
-        lerp(lerp(c(0, 0, 0), c(1, 0, 0), s.x), lerp(c(0, 1, 0), c(1, 1, 0), s.x), s.y),
-        lerp(lerp(c(0, 0, 1), c(1, 0, 1), s.x), lerp(c(0, 1, 1), c(1, 1, 1), s.x), s.y),
+        lerp(
+            lerp(c(0, 0, 0), c(1, 0, 0), s.x),
+            lerp(c(0, 1, 0), c(1, 1, 0), s.x),
+            s.y,
+        ),
+        lerp(
+            lerp(c(0, 0, 1), c(1, 0, 1), s.x),
+            lerp(c(0, 1, 1), c(1, 1, 1), s.x),
+            s.y,
+        ),
         s.z,
     )
 }
 
 fn fractal(p: DVec3) -> f64 {
     (0..6)
-        .map(|o| noise(p * f64::from(1 << o) + DVec3::splat(17.0 * f64::from(o))) / f64::from(1 << o))
+        .map(|o| {
+            noise(p * f64::from(1 << o) + DVec3::splat(17.0 * f64::from(o))) / f64::from(1 << o)
+        })
         .sum::<f64>()
         / 1.96875
 }
@@ -41,10 +53,15 @@ fn fractal(p: DVec3) -> f64 {
 #[must_use]
 pub fn globe_texture(width: u32, height: u32) -> RgbaImage {
     RgbaImage::from_fn(width, height, |i, j| {
-        let lon = (f64::from(i) + 0.5) / f64::from(width) * std::f64::consts::TAU - std::f64::consts::PI;
+        let lon =
+            (f64::from(i) + 0.5) / f64::from(width) * std::f64::consts::TAU - std::f64::consts::PI;
         let colat = (f64::from(j) + 0.5) / f64::from(height) * std::f64::consts::PI;
         // The point on the unit sphere in the ball's frame (BallTexture::uv's convention).
-        let d = DVec3::new(colat.sin() * lon.sin(), colat.cos(), colat.sin() * lon.cos());
+        let d = DVec3::new(
+            colat.sin() * lon.sin(),
+            colat.cos(),
+            colat.sin() * lon.cos(),
+        );
         let h = fractal(d * 2.2 + DVec3::splat(5.0));
         let lat = 90.0 - colat.to_degrees();
         let mut c = if lat.abs() + 12.0 * h > 76.0 {
@@ -67,7 +84,9 @@ pub fn globe_texture(width: u32, height: u32) -> RgbaImage {
         } else if near(lon_deg, 30.0) < 0.6 * px || near(lat, 30.0) < 0.6 * px {
             c = c.lerp(DVec3::ONE, 0.35);
         }
-        let b = c.to_array().map(|x| (x.clamp(0.0, 1.0) * 255.0).round() as u8);
+        let b = c
+            .to_array()
+            .map(|x| (x.clamp(0.0, 1.0) * 255.0).round() as u8);
         Rgba([b[0], b[1], b[2], 255])
     })
 }
@@ -159,7 +178,8 @@ pub fn write_source_glb(
 ) -> std::io::Result<()> {
     let f3 = |v: &DVec3| v.as_vec3().to_array();
     let positions: Vec<[f32; 3]> = source.positions.iter().map(f3).collect();
-    let normals: Option<Vec<[f32; 3]>> = source.normals.as_ref().map(|n| n.iter().map(f3).collect());
+    let normals: Option<Vec<[f32; 3]>> =
+        source.normals.as_ref().map(|n| n.iter().map(f3).collect());
     let uvs: Option<Vec<[f32; 2]>> = source
         .uvs
         .as_ref()

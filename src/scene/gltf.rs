@@ -17,6 +17,8 @@ pub enum GltfError {
         #[source]
         source: gltf::Error,
     },
+    #[error("the glTF {path}: {at} has no positions")]
+    MissingPositions { path: String, at: String },
     #[error("the glTF {path} has no triangle meshes in its scene")]
     NoTriangles { path: String },
     #[error("the glTF {path}: mesh {mesh:?}, primitive {primitive} has no positions")]
@@ -64,9 +66,26 @@ pub struct Model {
 /// a model with no triangles at all is an error.
 pub fn load(path: &Path) -> Result<Model, GltfError> {
     let name = path.display().to_string();
-    let (document, buffers, images) = gltf::import(path).map_err(|source| GltfError::Read {
-        path: name.clone(),
-        source,
+    let (document, buffers, images) = gltf::import(path).map_err(|source| {
+        // The reader checks that every primitive has positions: name that plainly.
+        if let gltf::Error::Validation(errors) = &source
+            && let Some((at, _)) = errors
+                .iter()
+                .find(|(at, _)| at.as_str().ends_with("[\"POSITION\"]"))
+        {
+            let at = at.as_str();
+            return GltfError::MissingPositions {
+                path: name.clone(),
+                at: at
+                    .strip_suffix(".attributes[\"POSITION\"]")
+                    .unwrap_or(at)
+                    .to_string(),
+            };
+        }
+        GltfError::Read {
+            path: name.clone(),
+            source,
+        }
     })?;
     let textures = images
         .iter()
@@ -257,13 +276,17 @@ pub fn write_glb(path: &Path, mesh: &GlbMesh) -> std::io::Result<()> {
     if let Some(n) = mesh.normals {
         let flat: Vec<f32> = n.iter().flatten().copied().collect();
         let view = push(&mut bin, &floats(&flat), Some(34962));
-        accessors.push(json!({"bufferView": view, "componentType": 5126, "count": n.len(), "type": "VEC3"}));
+        accessors.push(
+            json!({"bufferView": view, "componentType": 5126, "count": n.len(), "type": "VEC3"}),
+        );
         attributes.insert("NORMAL".into(), json!(accessors.len() - 1));
     }
     if let Some(t) = mesh.uvs {
         let flat: Vec<f32> = t.iter().flatten().copied().collect();
         let view = push(&mut bin, &floats(&flat), Some(34962));
-        accessors.push(json!({"bufferView": view, "componentType": 5126, "count": t.len(), "type": "VEC2"}));
+        accessors.push(
+            json!({"bufferView": view, "componentType": 5126, "count": t.len(), "type": "VEC2"}),
+        );
         attributes.insert("TEXCOORD_0".into(), json!(accessors.len() - 1));
     }
     let index_bytes: Vec<u8> = mesh.indices.iter().flat_map(|i| i.to_le_bytes()).collect();
