@@ -12,7 +12,7 @@ use bevy_curved_spaces::plugin::BaseScene;
 use bevy_curved_spaces::render::FramesTraced;
 use bevy_curved_spaces::render::gpu::MAX_GPU_BUDGET;
 use bevy_curved_spaces::render::offscreen::{OffscreenRender, gpu_available, render_offscreen};
-use bevy_curved_spaces::scene::file::load_scene_file;
+use bevy_curved_spaces::scene::file::{SceneFile, load_scene_file};
 use bevy_curved_spaces::space::file::{SpaceRecord, load_space_file};
 use bevy_curved_spaces::space::invariants::Invariants;
 use bevy_curved_spaces::space::invariants::inradius;
@@ -32,7 +32,6 @@ use serde_json::json;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::sync::Arc;
 use std::time::Instant;
 
 /// Prints a line to standard output; a closed pipe (`curved-spaces list | head -3`) ends
@@ -591,23 +590,22 @@ struct Chosen {
     space: Space,
     scene: Scene,
     start: Option<glam::DMat4>,
-    file: bool,
+    file: Option<SceneFile>,
 }
 
 fn choose_scene(space_arg: &str, scene: Option<&Path>, fog: Option<f64>) -> Result<Chosen, String> {
     match scene {
         Some(path) => {
-            let file = load_scene_file(path).map_err(|e| e.to_string())?;
-            let mut scene = file.scene;
+            let mut file = load_scene_file(path).map_err(|e| e.to_string())?;
             if let Some(fog) = fog {
-                scene.shading.fog_distance = fog;
+                file.scene.shading.fog_distance = fog;
             }
             Ok(Chosen {
-                id: file.space_id,
-                space: file.space,
-                scene,
+                id: file.space_id.clone(),
+                space: file.space.clone(),
+                scene: file.scene.clone(),
                 start: file.start,
-                file: true,
+                file: Some(file),
             })
         }
         None => {
@@ -618,7 +616,7 @@ fn choose_scene(space_arg: &str, scene: Option<&Path>, fog: Option<f64>) -> Resu
                 scene: Scene::default_for(&space, fog),
                 space,
                 start: None,
-                file: false,
+                file: None,
             })
         }
     }
@@ -750,17 +748,13 @@ fn render_command(args: &RenderArgs) -> Result<(), String> {
             fov_y_degrees: camera.fov_y_degrees,
             fog_distance: Some(fog),
             max_crossings,
-            parts: SceneParts {
-                avatar: scene.avatar.is_some(),
-                ..SceneParts::default()
-            },
+            parts: chosen
+                .file
+                .as_ref()
+                .map_or_else(SceneParts::default, |f| f.parts),
             objects: Vec::new(),
             resolution_scale: 1.0,
-            base: BaseScene {
-                space_id: chosen.id.clone(),
-                scene: chosen.file.then(|| Arc::new(chosen.scene.clone())),
-                start: chosen.start,
-            },
+            base: base_scene(&chosen),
             time: args.time,
             stereo,
         })
@@ -879,11 +873,10 @@ fn walk(args: &WalkArgs) -> Result<(), String> {
 
 /// The scene file's scene as the plugin's base scene (none for the default scene).
 fn base_scene(chosen: &Chosen) -> BaseScene {
-    BaseScene {
-        space_id: chosen.id.clone(),
-        scene: chosen.file.then(|| Arc::new(chosen.scene.clone())),
-        start: chosen.start,
-    }
+    chosen
+        .file
+        .as_ref()
+        .map_or_else(BaseScene::default, BaseScene::from_file)
 }
 
 /// The window of `walk`.

@@ -210,14 +210,31 @@ impl TracerSettings {
 #[derive(Resource, Clone, Debug, Default, PartialEq)]
 pub struct SceneObjects(pub Vec<Object>);
 
-/// A whole scene to show instead of the default parts, such as a loaded scene file
-/// ([`crate::scene::file::load_scene_file`]): used while the active space's id is
-/// `space_id`; [`SceneObjects`] are added to it. Its start view is where players start.
+/// A scene to show instead of the default one, such as a loaded scene file
+/// ([`crate::scene::file::load_scene_file`], [`BaseScene::from_file`]): used while the
+/// active space's id is `space_id`, with the default parts of [`TracerSettings::parts`] and
+/// the [`SceneObjects`] added to it. Its start view is where players start, and `parts` is
+/// what the plugin starts [`TracerSettings::parts`] with.
 #[derive(Resource, Clone, Debug, Default)]
 pub struct BaseScene {
     pub space_id: String,
+    /// Its objects, lights and shading, without the default parts.
     pub scene: Option<Arc<Scene>>,
     pub start: Option<DMat4>,
+    pub parts: Option<SceneParts>,
+}
+
+impl BaseScene {
+    /// A loaded scene file as the base scene.
+    #[must_use]
+    pub fn from_file(file: &crate::scene::file::SceneFile) -> Self {
+        Self {
+            space_id: file.space_id.clone(),
+            scene: Some(Arc::new(file.without_parts())),
+            start: file.start,
+            parts: Some(file.parts),
+        }
+    }
 }
 
 impl BaseScene {
@@ -264,10 +281,20 @@ impl Plugin for CurvedSpacesPlugin {
             max_crossings: self.max_crossings.map(|b| b.max(1)),
             quality: self.quality,
             resolution_scale: self.quality.resolution_scale(),
-            parts: SceneParts {
-                avatar: self.avatar,
-                ..SceneParts::default()
-            },
+            parts: app
+                .world()
+                .get_resource::<BaseScene>()
+                .and_then(|b| b.parts)
+                .map_or(
+                    SceneParts {
+                        avatar: self.avatar,
+                        ..SceneParts::default()
+                    },
+                    |p| SceneParts {
+                        avatar: p.avatar && self.avatar,
+                        ..p
+                    },
+                ),
             time: None,
         })
         .insert_resource(self.stereo)
@@ -381,6 +408,8 @@ pub fn build_scene(
     let mut scene = match base {
         Some(b) => {
             let mut scene = b.clone();
+            let parts = Scene::part_objects(space, settings.parts);
+            scene.objects.splice(0..0, parts);
             if let Some(fog) = settings.fog_distance {
                 scene.shading.fog_distance = fog;
             }

@@ -25,6 +25,8 @@ pub struct UiKeys {
     pub screenshot: KeyCode,
     /// Steps through the stereo modes.
     pub next_stereo_mode: KeyCode,
+    /// Shows or hides your ship (the avatar).
+    pub toggle_avatar: KeyCode,
 }
 
 impl Default for UiKeys {
@@ -33,6 +35,7 @@ impl Default for UiKeys {
             toggle_panel: KeyCode::F1,
             screenshot: KeyCode::F12,
             next_stereo_mode: KeyCode::F3,
+            toggle_avatar: KeyCode::F4,
         }
     }
 }
@@ -51,7 +54,10 @@ impl Plugin for CurvedSpacesUiPlugin {
         app.init_resource::<PointerOverUi>()
             .init_resource::<UiKeys>()
             .insert_resource(PanelVisible(true))
-            .add_systems(Update, (toggle_panel, take_screenshot, next_stereo_mode))
+            .add_systems(
+                Update,
+                (toggle_panel, take_screenshot, next_stereo_mode, toggle_avatar),
+            )
             .add_systems(EguiPrimaryContextPass, panel);
     }
 }
@@ -59,6 +65,20 @@ impl Plugin for CurvedSpacesUiPlugin {
 fn toggle_panel(keys: Res<ButtonInput<KeyCode>>, ui: Res<UiKeys>, mut shown: ResMut<PanelVisible>) {
     if keys.just_pressed(ui.toggle_panel) {
         shown.0 = !shown.0;
+    }
+}
+
+fn toggle_avatar(
+    keys: Res<ButtonInput<KeyCode>>,
+    ui: Res<UiKeys>,
+    mut settings: ResMut<TracerSettings>,
+) {
+    if keys.just_pressed(ui.toggle_avatar) {
+        settings.parts.avatar = !settings.parts.avatar;
+        info!(
+            "your ship is {}",
+            if settings.parts.avatar { "shown" } else { "hidden" }
+        );
     }
 }
 
@@ -260,6 +280,7 @@ fn panel(
             let mut parts = settings.parts;
             ui.checkbox(&mut parts.edges, "cell edges");
             ui.checkbox(&mut parts.centre_ball, "centre ball");
+            ui.checkbox(&mut parts.avatar, "your ship (seen round the space)");
             if parts != settings.parts {
                 settings.parts = parts;
             }
@@ -303,7 +324,7 @@ fn panel(
             }
             ui.label(
                 egui::RichText::new(
-                    "click: mouse look · Esc: release · WASD, Space/Shift, Q/E · scroll: speed · F1: panel · F3: stereo mode · F12: screenshot",
+                    "click: mouse look · Esc: release · WASD, Space/Shift, Q/E · scroll: speed · F1: panel · F3: stereo mode · F4: your ship · F12: screenshot",
                 )
                 .small(),
             );

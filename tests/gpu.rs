@@ -594,9 +594,11 @@ fn compare_scene(
             fov_y_degrees: 70.0,
             fog_distance: Some(scene.shading.fog_distance),
             max_crossings: crossings as u32,
+            // The scene holds its edges already: add no parts but the avatar.
             parts: SceneParts {
+                edges: false,
+                centre_ball: false,
                 avatar: scene.avatar.is_some(),
-                ..SceneParts::default()
             },
             objects: Vec::new(),
             resolution_scale: 1.0,
@@ -604,6 +606,7 @@ fn compare_scene(
                 space_id: id.to_string(),
                 scene: Some(std::sync::Arc::new(scene.clone())),
                 start: None,
+                parts: None,
             },
             time,
             stereo: Default::default(),

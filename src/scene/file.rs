@@ -48,8 +48,22 @@ pub struct SceneFile {
     pub scene: Scene,
     /// The player's start frame (`None`: the space's default view).
     pub start: Option<DMat4>,
-    /// Whether the file asked for the player's avatar.
-    pub avatar: bool,
+    /// The default scene's parts the file asked for (the cell's edges, the centre ball,
+    /// the avatar), already in `scene`.
+    pub parts: SceneParts,
+}
+
+impl SceneFile {
+    /// The scene without the parts (its own objects, lights and shading): the base scene
+    /// the plugin adds [`crate::plugin::TracerSettings::parts`] to.
+    #[must_use]
+    pub fn without_parts(&self) -> Scene {
+        let mut scene = self.scene.clone();
+        let parts = Scene::part_objects(&self.space, self.parts);
+        scene.objects.drain(..parts.len().min(scene.objects.len()));
+        scene.avatar = None;
+        scene
+    }
 }
 
 fn default_true() -> bool {
@@ -275,7 +289,11 @@ pub fn parse_scene(text: &str, base: &Path, file: &str) -> Result<SceneFile, Sce
         space,
         scene,
         start,
-        avatar: spec.avatar,
+        parts: SceneParts {
+            edges: spec.edges,
+            centre_ball: spec.centre_ball,
+            avatar: spec.avatar,
+        },
     })
 }
 

@@ -994,6 +994,34 @@ impl Scene {
     pub fn with_parts(space: &Space, fog_distance: f64, parts: SceneParts) -> Self {
         let g = space.geometry;
         let inradius = crate::space::invariants::inradius(space);
+        let objects = Self::part_objects(space, parts);
+        let light_at = g.translation(DVec3::new(0.45, 0.8, 0.4), 0.65 * inradius) * space.centre();
+        let light = Light::new(space, light_at, DVec3::ONE, g.s(0.7 * inradius).powi(2));
+        let mut scene = Scene::new(
+            objects,
+            vec![light],
+            Shading {
+                ambient: 0.3,
+                fog_colour: DVec3::new(0.04, 0.05, 0.08),
+                fog_distance,
+                near_light: 0.05 * inradius,
+                cutoff_weight: DEFAULT_CUTOFF_WEIGHT,
+            },
+        );
+        if parts.avatar {
+            // The ship is a fixed small model: placing it cannot fail.
+            let _ = scene.add_avatar(g, crate::scene::avatar_size(inradius));
+        }
+        scene
+    }
+
+    /// The objects of the default scene's parts: the cell's edges as thin tubes coloured by
+    /// edge cycle with a small ball at each vertex, and the centre ball (the avatar is not
+    /// an object: see [`Scene::add_avatar`]).
+    #[must_use]
+    pub fn part_objects(space: &Space, parts: SceneParts) -> Vec<Object> {
+        let g = space.geometry;
+        let inradius = crate::space::invariants::inradius(space);
         let tube = 0.05 * inradius;
         let edges = if parts.edges {
             space.edges.as_slice()
@@ -1029,23 +1057,6 @@ impl Scene {
                 DVec3::new(1.0, 0.78, 0.45),
             )));
         }
-        let light_at = g.translation(DVec3::new(0.45, 0.8, 0.4), 0.65 * inradius) * space.centre();
-        let light = Light::new(space, light_at, DVec3::ONE, g.s(0.7 * inradius).powi(2));
-        let mut scene = Scene::new(
-            objects,
-            vec![light],
-            Shading {
-                ambient: 0.3,
-                fog_colour: DVec3::new(0.04, 0.05, 0.08),
-                fog_distance,
-                near_light: 0.05 * inradius,
-                cutoff_weight: DEFAULT_CUTOFF_WEIGHT,
-            },
-        );
-        if parts.avatar {
-            // The ship is a fixed small model: placing it cannot fail.
-            let _ = scene.add_avatar(g, crate::scene::avatar_size(inradius));
-        }
-        scene
+        objects
     }
 }
