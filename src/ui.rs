@@ -56,7 +56,12 @@ impl Plugin for CurvedSpacesUiPlugin {
             .insert_resource(PanelVisible(true))
             .add_systems(
                 Update,
-                (toggle_panel, take_screenshot, next_stereo_mode, toggle_avatar),
+                (
+                    toggle_panel,
+                    take_screenshot,
+                    next_stereo_mode,
+                    toggle_avatar,
+                ),
             )
             .add_systems(EguiPrimaryContextPass, panel);
     }
@@ -77,7 +82,11 @@ fn toggle_avatar(
         settings.parts.avatar = !settings.parts.avatar;
         info!(
             "your ship is {}",
-            if settings.parts.avatar { "shown" } else { "hidden" }
+            if settings.parts.avatar {
+                "shown"
+            } else {
+                "hidden"
+            }
         );
     }
 }

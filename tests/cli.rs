@@ -303,6 +303,8 @@ fn bench_quick_writes_results_that_respect_their_bounds() {
         "cutoff.csv",
         "auto_budgets.csv",
         "specialisation.csv",
+        "meshes.csv",
+        "mesh_triangles.png",
         "speed_vs_colour_error.png",
         "speed_vs_hit_error.svg",
         "drift.png",
@@ -361,6 +363,15 @@ fn bench_quick_writes_results_that_respect_their_bounds() {
     for s in rows("specialisation") {
         assert!(s["differing_pixels"].as_f64().unwrap() < 0.01, "{s}");
         assert!(s["general_uniform_bytes"].as_u64() > s["specialised_uniform_bytes"].as_u64());
+    }
+    // 2 spaces × the quick mesh sizes (a cube, a torus knot of about 960 triangles).
+    let meshes = rows("meshes");
+    assert_eq!(meshes.len(), 4);
+    for m in &meshes {
+        assert!(m["with_mesh_ms"].as_f64().unwrap() > 0.0, "{m}");
+        let t = m["triangles"].as_u64().unwrap();
+        assert!(t == 12 || (800..=1100).contains(&t), "{m}");
+        assert!(m["depth"].as_u64().unwrap() <= 32, "{m}");
     }
     fails_with(
         &["bench", "--quick", "--spaces", "nowhere"],
@@ -448,5 +459,65 @@ fn walk_xr_without_a_runtime_falls_back_to_desktop_stereo() {
     let left = image::imageops::crop_imm(&img, 0, 0, w / 2, h).to_image();
     let right = image::imageops::crop_imm(&img, w / 2, 0, w / 2, h).to_image();
     assert_ne!(left, right, "two eyes side by side");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// `render --scene` draws a scene file (a different picture from the plain space's), and a
+/// bad scene file, or a space named beside `--scene`, gets a clear error.
+#[test]
+fn render_scene_files_and_name_their_mistakes() {
+    let dir = temp_dir("scene");
+    let scene = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/scenes/torus_globe.toml"
+    );
+    let with_scene = dir.join("scene.png");
+    let plain = dir.join("plain.png");
+    for (args, out) in [
+        (vec!["render", "--scene", scene], &with_scene),
+        (vec!["render", "torus"], &plain),
+    ] {
+        let mut args = args.clone();
+        args.extend(["--cpu", "--size", "64x36", "--out", out.to_str().unwrap()]);
+        let o = run(&args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+    let (a, b) = (
+        image::open(&with_scene).unwrap().to_rgb8(),
+        image::open(&plain).unwrap().to_rgb8(),
+    );
+    let differing = a.pixels().zip(b.pixels()).filter(|(p, q)| p != q).count();
+    assert!(
+        differing > 64 * 36 / 4,
+        "the scene file changed only {differing} pixels"
+    );
+
+    fails_with(
+        &["render", "torus", "--scene", scene],
+        "cannot be used with",
+    );
+    let bad = dir.join("bad.toml");
+    std::fs::write(
+        &bad,
+        "space = \"torus\"\n\n[[object]]\ntype = \"mesh\"\npath = \"nowhere.glb\"\nsize = 0.2\n",
+    )
+    .unwrap();
+    fails_with(
+        &["render", "--cpu", "--scene", bad.to_str().unwrap()],
+        "bad.toml:3: mesh not found",
+    );
+    fails_with(
+        &[
+            "render",
+            "--cpu",
+            "--scene",
+            dir.join("missing.toml").to_str().unwrap(),
+        ],
+        "cannot read the scene file",
+    );
+    fails_with(
+        &["render", "--cpu", "--scene", scene, "--time", "soon"],
+        "time in seconds",
+    );
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -64,6 +64,9 @@ pub struct BenchConfig {
     pub budget_samples: usize,
     /// Skip the GPU part (CPU accuracy only).
     pub cpu_only: bool,
+    /// Triangle counts of the mesh scenes (a cube for 12, torus knots otherwise).
+    #[serde(default)]
+    pub mesh_triangles: Vec<usize>,
 }
 
 impl BenchConfig {
@@ -94,6 +97,7 @@ impl BenchConfig {
             drift_crossings: vec![10, 30, 100, 1000],
             budget_samples: 4096,
             cpu_only: false,
+            mesh_triangles: vec![12, 960, 4608, 19_200, 76_800, 307_200],
         }
     }
 
@@ -113,6 +117,7 @@ impl BenchConfig {
             drift_crossings: vec![10, 30, 100],
             budget_samples: 512,
             cpu_only: false,
+            mesh_triangles: vec![12, 960],
         }
     }
 }
@@ -297,6 +302,29 @@ pub struct BenchReport {
     /// Absent from reports written before stereo existed.
     #[serde(default)]
     pub stereo: Vec<StereoRow>,
+    /// Absent from reports written before meshes existed.
+    #[serde(default)]
+    pub meshes: Vec<MeshRow>,
+}
+
+/// A mesh at the cell's centre: frame time against triangle count, timed interleaved with
+/// the same scene without the mesh.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct MeshRow {
+    pub space: String,
+    pub geometry: String,
+    pub width: u32,
+    pub height: u32,
+    pub budget: u32,
+    pub triangles: usize,
+    pub nodes: usize,
+    pub depth: usize,
+    /// Building the hierarchy on the CPU.
+    pub build_ms: f64,
+    pub with_mesh_ms: f64,
+    pub without_mesh_ms: f64,
+    /// `with_mesh_ms / without_mesh_ms` (measured in the same loop).
+    pub ratio: f64,
 }
 
 /// One space with what the benchmark needs of it.
@@ -366,7 +394,9 @@ pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, 
         Some(Harness::new()?)
     };
     let gpu_steps = if harness.is_some() {
-        (config.budgets.len() + config.fog_factors.len()) * (config.sizes.len() + 1) + 2
+        (config.budgets.len() + config.fog_factors.len()) * (config.sizes.len() + 1)
+            + 2
+            + config.mesh_triangles.len()
     } else {
         0
     };
@@ -453,6 +483,20 @@ pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, 
             .stereo
             .push(stereo_cost(harness, subject, auto_default, config)?);
         progress.inc(1);
+        for &triangles in &config.mesh_triangles {
+            announce(
+                progress,
+                format!("{}: a mesh of {triangles} triangles", subject.id),
+            );
+            report.meshes.push(mesh_cost(
+                harness,
+                subject,
+                triangles,
+                auto_default,
+                config,
+            )?);
+            progress.inc(1);
+        }
         let mut exact_cache: Vec<(f64, Reference)> = Vec::new();
         for (budget, from, fog) in settings {
             let scene = subject.scene(fog);
@@ -708,6 +752,97 @@ fn stereo_cost(
         side_by_side_ratio: sbs / mono_a,
         anaglyph_ms: anaglyph,
         anaglyph_ratio: anaglyph / mono_b,
+    })
+}
+
+/// The mesh of about `triangles` triangles: the cube for 12, else a torus knot whose
+/// segments and sides give that count (`2·segments·sides`).
+#[must_use]
+pub fn bench_mesh(triangles: usize) -> crate::scene::mesh::MeshSource {
+    if triangles <= 12 {
+        return crate::scene::mesh::cube_source(1.0, 0);
+    }
+    let sides = ((triangles as f64 / 8.0).sqrt().round() as u32).max(3);
+    let segments = ((triangles as f64 / (2.0 * f64::from(sides))).round() as u32).max(3);
+    crate::scene::assets::torus_knot(3, 2, segments, sides)
+}
+
+/// Times the default scene (without its centre ball) with and without a mesh of about
+/// `triangles` triangles at the cell's centre, interleaved, at the middle timed resolution.
+fn mesh_cost(
+    harness: &mut Harness,
+    subject: &Subject,
+    triangles: usize,
+    budget: u32,
+    config: &BenchConfig,
+) -> Result<MeshRow, BenchError> {
+    use crate::trace::{Material, MeshInstance, Object};
+    let g = subject.space.geometry;
+    let mut without = Scene::with_parts(
+        &subject.space,
+        DEFAULT_FOG_FACTOR * subject.inradius,
+        crate::trace::SceneParts {
+            centre_ball: false,
+            ..Default::default()
+        },
+    );
+    without.materials.push(Material {
+        colour: glam::DVec3::new(0.9, 0.6, 0.3),
+        ..Material::default()
+    });
+    let source = bench_mesh(triangles);
+    let radius = source
+        .positions
+        .iter()
+        .map(|p| p.length())
+        .fold(0.0, f64::max);
+    let started = std::time::Instant::now();
+    let mesh = source
+        .place(g, 0.5 * subject.inradius / radius)
+        .map_err(|_| BenchError::Empty("the benchmark mesh could not be placed"))?;
+    let build_ms = 1e3 * started.elapsed().as_secs_f64();
+    let (nodes, depth, count) = (mesh.nodes.len(), mesh.depth(), mesh.triangles.len());
+    let mut with = without.clone();
+    let mesh_radius = mesh.radius;
+    with.meshes.push(std::sync::Arc::new(mesh));
+    with.objects.push(Object::Mesh(MeshInstance::new(
+        g,
+        0,
+        g.rotation(glam::DVec3::new(1.0, 0.3, 0.2), 0.6),
+        mesh_radius,
+    )));
+    let (w, h) = config.middle_size();
+    let layout = subject.camera.layout(w, h);
+    let frame_of = |harness: &mut Harness, scene: &Scene| -> Result<_, BenchError> {
+        let gpu = subject.pack(scene, budget)?;
+        let program = Program::Tracer(gpu.key, ViewKind::Mono, Output::Colour);
+        let frame = harness.frame(
+            w,
+            h,
+            Output::Colour,
+            &uniform_words(&layout, &gpu),
+            &gpu.data,
+        );
+        Ok((program, frame))
+    };
+    let a = frame_of(harness, &with)?;
+    let b = frame_of(harness, &without)?;
+    harness.draw(&a.0, &a.1)?;
+    harness.draw(&b.0, &b.1)?;
+    let (sa, sb) = time_interleaved(harness, (&a.0, &a.1), (&b.0, &b.1), config)?;
+    Ok(MeshRow {
+        space: subject.id.clone(),
+        geometry: subject.geometry(),
+        width: w,
+        height: h,
+        budget,
+        triangles: count,
+        nodes,
+        depth,
+        build_ms,
+        with_mesh_ms: sa.median,
+        without_mesh_ms: sb.median,
+        ratio: sa.median / sb.median,
     })
 }
 
@@ -980,7 +1115,7 @@ pub fn write_report(
     .map_err(|e| write_err(&json, &e))?;
     std::fs::write(&json, body).map_err(|e| write_err(&json, &e))?;
     written.push(json);
-    let tables: [(&str, Vec<serde_json::Value>); 7] = [
+    let tables: [(&str, Vec<serde_json::Value>); 8] = [
         ("timings", to_values(&report.timings)),
         ("errors", to_values(&report.errors)),
         ("drift", to_values(&report.drift)),
@@ -988,6 +1123,7 @@ pub fn write_report(
         ("auto_budgets", to_values(&report.auto_budgets)),
         ("specialisation", to_values(&report.specialisation)),
         ("stereo", to_values(&report.stereo)),
+        ("meshes", to_values(&report.meshes)),
     ];
     for (name, rows) in tables {
         let path = dir.join(format!("{name}.csv"));
@@ -1185,6 +1321,29 @@ pub fn summary_markdown(report: &BenchReport) -> String {
                 r.side_by_side_ratio,
                 r.anaglyph_ms,
                 r.anaglyph_ratio
+            );
+        }
+    }
+    if !report.meshes.is_empty() {
+        let _ = writeln!(
+            md,
+            "\n### A mesh at the cell's centre: frame time against triangle count (each timed interleaved with the same scene without the mesh)\n\n| space | size | budget | triangles | nodes | depth | build ms | with mesh ms | without ms | × without |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|"
+        );
+        for r in &report.meshes {
+            let _ = writeln!(
+                md,
+                "| {} | {}×{} | {} | {} | {} | {} | {:.1} | {:.2} | {:.2} | {:.2}× |",
+                r.space,
+                r.width,
+                r.height,
+                r.budget,
+                r.triangles,
+                r.nodes,
+                r.depth,
+                r.build_ms,
+                r.with_mesh_ms,
+                r.without_mesh_ms,
+                r.ratio
             );
         }
     }
@@ -1391,6 +1550,41 @@ pub fn charts(report: &BenchReport) -> Vec<(&'static str, Chart)> {
             legend: Corner::LowerRight,
         },
     ));
+    // Mesh scenes: frame time against triangle count.
+    if !report.meshes.is_empty() {
+        let mut mesh_spaces: Vec<&String> = report.meshes.iter().map(|m| &m.space).collect();
+        mesh_spaces.dedup();
+        let series = mesh_spaces
+            .into_iter()
+            .map(|space| Series {
+                name: space.to_string(),
+                points: report
+                    .meshes
+                    .iter()
+                    .filter(|m| &m.space == space)
+                    .map(|m| (m.triangles as f64, m.with_mesh_ms))
+                    .collect(),
+                dashed: false,
+            })
+            .collect();
+        let size = report
+            .meshes
+            .first()
+            .map(|m| format!("{}×{}", m.width, m.height))
+            .unwrap_or_default();
+        charts.push((
+            "mesh_triangles",
+            Chart {
+                title: format!("A mesh at the cell's centre: GPU frame time at {size}"),
+                x_label: "triangles".into(),
+                y_label: "frame time (ms)".into(),
+                log_x: true,
+                log_y: true,
+                series,
+                legend: Corner::UpperLeft,
+            },
+        ));
+    }
     charts
 }
 
