@@ -450,6 +450,8 @@ struct BudgetCache {
 }
 
 /// Packs the scene for the GPU when the space, the settings or the objects changed.
+// A Bevy system takes its resources as arguments.
+#[allow(clippy::too_many_arguments)]
 fn upload_scene(
     active: Res<ActiveSpace>,
     settings: Res<TracerSettings>,

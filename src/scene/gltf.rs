@@ -246,7 +246,7 @@ pub fn write_glb(path: &Path, mesh: &GlbMesh) -> std::io::Result<()> {
     let mut views = Vec::new();
     let mut accessors = Vec::new();
     let mut push = |bin: &mut Vec<u8>, bytes: &[u8], target: Option<u32>| {
-        while bin.len() % 4 != 0 {
+        while !bin.len().is_multiple_of(4) {
             bin.push(0);
         }
         let offset = bin.len();
@@ -311,7 +311,7 @@ pub fn write_glb(path: &Path, mesh: &GlbMesh) -> std::io::Result<()> {
         doc["textures"] = json!([{"source": 0, "sampler": 0}]);
         material["pbrMetallicRoughness"]["baseColorTexture"] = json!({"index": 0});
     }
-    while bin.len() % 4 != 0 {
+    while !bin.len().is_multiple_of(4) {
         bin.push(0);
     }
     doc["materials"] = json!([material]);
@@ -319,7 +319,7 @@ pub fn write_glb(path: &Path, mesh: &GlbMesh) -> std::io::Result<()> {
     doc["bufferViews"] = json!(views);
     doc["accessors"] = json!(accessors);
     let mut json_bytes = serde_json::to_vec(&doc).map_err(std::io::Error::other)?;
-    while json_bytes.len() % 4 != 0 {
+    while !json_bytes.len().is_multiple_of(4) {
         json_bytes.push(b' ');
     }
     let total = 12 + 8 + json_bytes.len() + 8 + bin.len();

@@ -59,5 +59,5 @@ impl Scene {
 /// the copy the eye sits in is far from every other copy.
 #[must_use]
 pub fn avatar_size(inradius: f64) -> f64 {
-    0.15 * inradius
+    0.3 * inradius
 }
