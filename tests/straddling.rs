@@ -220,3 +220,79 @@ fn misplaced_and_oversized_objects_are_refused() {
         "the message says what to do"
     );
 }
+
+/// A textured cube mesh straddling a corner of three torus faces looks whole: the same
+/// picture as the centred cube seen from the same relative place. Without its images
+/// (pushed as one object) the picture differs.
+#[test]
+fn a_mesh_straddling_torus_faces_looks_as_if_it_were_whole() {
+    use bevy_curved_spaces::scene::mesh::cube_source;
+    use bevy_curved_spaces::trace::{Material, MeshInstance};
+    let s = seed_space("torus").expect("builds");
+    let g = s.geometry;
+    let shift = DVec3::new(0.5, 0.5, 0.35);
+    let base = {
+        let mut scene = ambient_scene(&s);
+        scene.materials.push(Material {
+            colour: DVec3::new(0.3, 0.7, 0.9),
+            ..Material::default()
+        });
+        scene.meshes.push(std::sync::Arc::new(
+            cube_source(0.18, 0).place(g, 1.0).expect("cube"),
+        ));
+        scene
+    };
+    let radius = base.meshes[0].radius;
+    let turn = g.rotation(DVec3::new(0.3, 1.0, 0.2), 0.5);
+    let cube = |at: DVec3| {
+        let frame = g.translation_to(g.from_chart(at).expect("chart point")) * turn;
+        Object::Mesh(MeshInstance::new(g, 0, frame, radius))
+    };
+    let eye = DVec3::new(0.1, -0.2, 0.38);
+    let target = DVec3::ZERO;
+    let settings = RenderSettings {
+        width: 96,
+        height: 54,
+        max_crossings: 64,
+    };
+    let centred = {
+        let mut scene = base.clone();
+        scene.place(&s, cube(DVec3::ZERO)).expect("placed");
+        let camera = Camera::looking_at(g, eye, target, 70.0).expect("camera");
+        render(&s, &scene, &camera, &settings)
+    };
+    let wrap = |v: DVec3| (v + DVec3::splat(0.5)).rem_euclid(DVec3::ONE) - DVec3::splat(0.5);
+    let camera = Camera::looking_at(
+        g,
+        wrap(eye + shift),
+        wrap(eye + shift) + (target - eye),
+        70.0,
+    )
+    .expect("camera");
+    let mut straddling = base.clone();
+    let added = straddling.place(&s, cube(shift)).expect("placed");
+    assert!(added >= 4, "a cube over a corner needs images, got {added}");
+    let placed = render(&s, &straddling, &camera, &settings);
+    let mut naive = base.clone();
+    naive.objects.push(cube(shift));
+    let pushed = render(&s, &naive, &camera, &settings);
+    let differing = |a: &image::RgbImage, b: &image::RgbImage| {
+        a.pixels()
+            .zip(b.pixels())
+            .filter(|(p, q)| (0..3).any(|c| p[c].abs_diff(q[c]) > 2))
+            .count() as f64
+            / f64::from(a.width() * a.height())
+    };
+    let with_images = differing(&centred, &placed);
+    let without = differing(&centred, &pushed);
+    assert!(
+        with_images < 0.002,
+        "{:.2} % of pixels differ with the images",
+        100.0 * with_images
+    );
+    assert!(
+        without > 0.02,
+        "without images only {:.2} % differ: the test would not see a missing image",
+        100.0 * without
+    );
+}
