@@ -322,7 +322,7 @@ fn bad_scene_files_get_errors_naming_the_line_and_the_problem() {
         (
             "space = \"torus\"\n[[object]]\ntype = \"ball\"\nradius = 0.2\ncolor = [1, 0, 0]\n",
             2,
-            "unknown field `color`",
+            "unknown field `color` (did you mean `colour`?)",
         ),
         (
             "space = \"torus\"\n[[object]]\ntype = \"ball\"\nposition = [3.0, 0, 0]\nradius = 0.2\n",

@@ -212,7 +212,7 @@ pub fn parse_scene(text: &str, base: &Path, file: &str) -> Result<SceneFile, Sce
     };
     let spec: FileSpec = toml::from_str(text).map_err(|e| {
         // The TOML error's first line repeats the position; keep its message.
-        let message = e.message().to_string();
+        let message = with_suggestion(e.message());
         fail(e.span(), message)
     })?;
 
@@ -295,6 +295,74 @@ pub fn parse_scene(text: &str, base: &Path, file: &str) -> Result<SceneFile, Sce
             avatar: spec.avatar,
         },
     })
+}
+
+/// Every key a scene file knows, for suggestions.
+const KEYS: &[&str] = &[
+    "space",
+    "fog",
+    "edges",
+    "centre_ball",
+    "avatar",
+    "ambient",
+    "fog_colour",
+    "start",
+    "object",
+    "light",
+    "position",
+    "chart",
+    "yaw",
+    "pitch",
+    "roll",
+    "look_at",
+    "type",
+    "radius",
+    "colour",
+    "emission",
+    "texture",
+    "spin",
+    "from",
+    "to",
+    "normal",
+    "path",
+    "size",
+    "intensity",
+];
+
+/// An unknown-field message with the nearest known key, if one is close (`color` →
+/// `colour`).
+fn with_suggestion(message: &str) -> String {
+    let unknown = message
+        .strip_prefix("unknown field `")
+        .and_then(|rest| rest.split('`').next());
+    let Some(word) = unknown else {
+        return message.to_string();
+    };
+    let distance = |a: &str, b: &str| {
+        let b: Vec<char> = b.chars().collect();
+        let mut row: Vec<usize> = (0..=b.len()).collect();
+        for (i, ca) in a.chars().enumerate() {
+            let mut prev = row[0];
+            row[0] = i + 1;
+            for (j, cb) in b.iter().enumerate() {
+                let next = (prev + usize::from(ca != *cb))
+                    .min(row[j] + 1)
+                    .min(row[j + 1] + 1);
+                prev = row[j + 1];
+                row[j + 1] = next;
+            }
+        }
+        row[b.len()]
+    };
+    match KEYS
+        .iter()
+        .map(|k| (distance(word, k), *k))
+        .min()
+        .filter(|(d, _)| *d <= 2)
+    {
+        Some((_, key)) => format!("{message} (did you mean `{key}`?)"),
+        None => message.to_string(),
+    }
 }
 
 /// A seed space by id, or a space file by path (relative to `base`).
