@@ -239,6 +239,23 @@ fn a_scene_without_objects_and_a_zero_budget_are_refused_or_handled() {
             .is_err_and(|e| e.to_string().contains("more than the GPU tracer takes")),
         "{too_many:?}"
     );
+    // Scene data beyond what a GPU is guaranteed to bind is refused with its size named.
+    let mut heavy = scene.clone();
+    heavy.textures.push(std::sync::Arc::new(
+        bevy_curved_spaces::scene::texture::Texture {
+            width: 6000,
+            height: 6000,
+            texels: vec![0; 6000 * 6000],
+        },
+    ));
+    let refused = GpuScene::new(&space, &heavy, 8);
+    assert!(
+        refused
+            .as_ref()
+            .is_err_and(|e| e.to_string().contains("meshes and textures need")),
+        "{:?}",
+        refused.map(|g| g.key)
+    );
 }
 
 #[test]

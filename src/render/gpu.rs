@@ -21,6 +21,10 @@ pub const UPSCALE_WGSL: &str = include_str!("../../shaders/upscale.wgsl");
 /// wgpu's default `max_uniform_buffer_binding_size`: the tracer's data must fit in it.
 pub const MAX_UNIFORM_BYTES: usize = 64 << 10;
 
+/// wgpu's default `max_storage_buffer_binding_size`: the scene data (meshes, textures) must
+/// fit in it.
+pub const MAX_SCENE_DATA_BYTES: usize = 128 << 20;
+
 /// The largest crossing budget the GPU tracer takes: every loop of the shader is bounded by
 /// it (and by the face and object counts), so no frame can run away.
 pub const MAX_GPU_BUDGET: u32 = 4096;
@@ -202,6 +206,14 @@ pub enum GpuSceneError {
         faces: u32,
         objects: usize,
         lights: u32,
+    },
+    #[error(
+        "the scene's meshes and textures need {bytes} bytes ({triangles} triangles), more than the {limit} bytes a GPU is guaranteed to bind; use smaller meshes or textures"
+    )]
+    DataTooLarge {
+        bytes: usize,
+        limit: usize,
+        triangles: usize,
     },
     #[error("the crossing budget must be at least 1, got {0}")]
     NoCrossings(u32),
@@ -385,6 +397,21 @@ impl GpuScene {
             of_kind(GpuKind::Disc),
             of_kind(GpuKind::Instance),
         );
+        let triangles: usize = scene.meshes.iter().map(|m| m.triangles.len()).sum();
+        let estimate = 4 * scene
+            .meshes
+            .iter()
+            .map(|m| 8 * m.nodes.len())
+            .sum::<usize>()
+            + 128 * triangles
+            + 4 * scene.textures.iter().map(|t| t.texels.len()).sum::<usize>();
+        if estimate > MAX_SCENE_DATA_BYTES {
+            return Err(GpuSceneError::DataTooLarge {
+                bytes: estimate,
+                limit: MAX_SCENE_DATA_BYTES,
+                triangles,
+            });
+        }
         let (data, offsets, roots) = pack_scene_data(scene);
         let light_images = scene
             .lights
