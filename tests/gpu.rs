@@ -744,3 +744,48 @@ fn the_example_scene_files_render_alike_on_gpu_and_cpu() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// A scene the GPU cannot take (scene data past what a GPU is guaranteed to bind) is
+/// refused at once with the reason, not after waiting for a picture.
+#[test]
+fn an_offscreen_render_of_a_scene_too_large_for_the_gpu_says_why() {
+    use bevy_curved_spaces::plugin::BaseScene;
+    use bevy_curved_spaces::render::offscreen::OffscreenError;
+    let _gpu = gpu_lock();
+    let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
+    let space = bevy_curved_spaces::space::seed_space("torus").expect("seed");
+    let mut scene = Scene::default_for(&space, 1.5);
+    scene.textures.push(std::sync::Arc::new(
+        bevy_curved_spaces::scene::texture::Texture {
+            width: 6000,
+            height: 6000,
+            texels: vec![0; 6000 * 6000],
+        },
+    ));
+    let started = std::time::Instant::now();
+    let result = renderer.render(&OffscreenRender {
+        space: ActiveSpace::new("torus", space.clone()),
+        width: WIDTH,
+        height: HEIGHT,
+        frame: Camera::default_for(&space).frame,
+        fov_y_degrees: 70.0,
+        fog_distance: None,
+        max_crossings: 16,
+        parts: SceneParts::default(),
+        objects: Vec::new(),
+        resolution_scale: 1.0,
+        base: BaseScene {
+            space_id: "torus".into(),
+            scene: Some(std::sync::Arc::new(scene)),
+            start: None,
+            parts: None,
+        },
+        time: 0.0,
+        stereo: Default::default(),
+    });
+    match result {
+        Err(OffscreenError::Scene(why)) => assert!(why.contains("meshes and textures"), "{why}"),
+        other => panic!("{:?}", other.map(|i| i.dimensions())),
+    }
+    assert!(started.elapsed().as_secs() < 30);
+}

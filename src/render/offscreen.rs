@@ -59,6 +59,8 @@ pub enum OffscreenError {
         "the GPU tracer did not produce a picture within {0:?} (is the GPU busy or the scene too heavy?)"
     )]
     Timeout(Duration),
+    #[error("the scene cannot be drawn on the GPU: {0}")]
+    Scene(String),
     #[error("the captured picture has an unexpected format: {0}")]
     Format(String),
 }
@@ -130,16 +132,27 @@ impl OffscreenRenderer {
         if !(1..=8192).contains(&w) || !(1..=8192).contains(&h) {
             return Err(OffscreenError::BadSize(w, h));
         }
-        let world = self.app.world_mut();
-        world.insert_resource(request.space.clone());
-        world.insert_resource(TracerSettings {
+        let settings = TracerSettings {
             fog_distance: request.fog_distance,
             max_crossings: Some(request.max_crossings.max(1)),
             quality: crate::plugin::Quality::High,
             resolution_scale: request.resolution_scale,
             parts: request.parts,
             time: Some(request.time),
-        });
+        };
+        // A scene the GPU cannot take would only time out below: say why now.
+        let space = &request.space.space;
+        let (scene, _) = crate::plugin::build_scene(
+            space,
+            &settings,
+            &request.objects,
+            request.base.for_space(&request.space),
+        );
+        crate::render::gpu::GpuScene::new(space, &scene, settings.max_crossings.unwrap_or(1))
+            .map_err(|e| OffscreenError::Scene(e.to_string()))?;
+        let world = self.app.world_mut();
+        world.insert_resource(request.space.clone());
+        world.insert_resource(settings);
         world.insert_resource(request.base.clone());
         world.insert_resource(SceneObjects(request.objects.clone()));
         world.insert_resource(request.stereo);
