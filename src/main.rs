@@ -598,12 +598,12 @@ fn choose_scene(space_arg: &str, scene: Option<&Path>, fog: Option<f64>) -> Resu
         Some(path) => {
             let mut file = load_scene_file(path).map_err(|e| e.to_string())?;
             if let Some(fog) = fog {
-                file.scene.shading.fog_distance = fog;
+                file.base.shading.fog_distance = fog;
             }
             Ok(Chosen {
                 id: file.space_id.clone(),
                 space: file.space.clone(),
-                scene: file.scene.clone(),
+                scene: file.scene(),
                 start: file.start,
                 file: Some(file),
             })

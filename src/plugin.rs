@@ -230,7 +230,7 @@ impl BaseScene {
     pub fn from_file(file: &crate::scene::file::SceneFile) -> Self {
         Self {
             space_id: file.space_id.clone(),
-            scene: Some(Arc::new(file.without_parts())),
+            scene: Some(Arc::new(file.base.clone())),
             start: file.start,
             parts: Some(file.parts),
         }
@@ -407,19 +407,9 @@ pub fn build_scene(
 ) -> (Scene, Option<String>) {
     let mut scene = match base {
         Some(b) => {
-            let mut scene = b.clone();
-            let parts = Scene::part_objects(space, settings.parts);
-            scene.objects.splice(0..0, parts);
+            let mut scene = b.adding_parts(space, settings.parts);
             if let Some(fog) = settings.fog_distance {
                 scene.shading.fog_distance = fog;
-            }
-            if !settings.parts.avatar {
-                scene.avatar = None;
-            } else if scene.avatar.is_none() {
-                let size = crate::scene::avatar_size(invariants::inradius(space));
-                if let Err(e) = scene.add_avatar(space.geometry, size) {
-                    warn!("the avatar: {e}");
-                }
             }
             scene
         }

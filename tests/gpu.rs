@@ -729,7 +729,7 @@ fn the_example_scene_files_render_alike_on_gpu_and_cpu() {
             &mut renderer,
             &file.space_id,
             &file.space,
-            &file.scene,
+            &file.scene(),
             frame,
             2.5,
             &name,

@@ -288,7 +288,7 @@ fn every_example_scene_file_loads() {
         if path.extension().is_some_and(|x| x == "toml") {
             let file = load_scene_file(&path).unwrap_or_else(|e| panic!("{e}"));
             assert!(
-                !file.scene.objects.is_empty() && !file.scene.lights.is_empty(),
+                !file.base.objects.is_empty() && !file.base.lights.is_empty(),
                 "{}",
                 path.display()
             );

@@ -24,7 +24,7 @@ use crate::trace::{
 };
 use glam::{DMat4, DVec3, DVec4};
 use serde::Deserialize;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::Arc;
 use toml::Spanned;
 
@@ -38,31 +38,28 @@ pub struct SceneFileError {
     pub message: String,
 }
 
-/// A loaded scene file: the space, the scene (objects with their images, lights, shading,
-/// meshes) and the start view.
+/// A loaded scene file: the space, its own scene (objects with their images, lights,
+/// shading, meshes), the default parts it asks for and the start view.
 #[derive(Clone, Debug)]
 pub struct SceneFile {
     /// The space's seed id or file, as written.
     pub space_id: String,
     pub space: Space,
-    pub scene: Scene,
+    /// The file's own objects, lights and shading, without the parts: the base scene the
+    /// plugin adds [`crate::plugin::TracerSettings::parts`] to.
+    pub base: Scene,
     /// The player's start frame (`None`: the space's default view).
     pub start: Option<DMat4>,
-    /// The default scene's parts the file asked for (the cell's edges, the centre ball,
-    /// the avatar), already in `scene`.
+    /// The default scene's parts the file asks for (the cell's edges, the centre ball, the
+    /// avatar).
     pub parts: SceneParts,
 }
 
 impl SceneFile {
-    /// The scene without the parts (its own objects, lights and shading): the base scene
-    /// the plugin adds [`crate::plugin::TracerSettings::parts`] to.
+    /// The whole scene: the base with the parts the file asks for.
     #[must_use]
-    pub fn without_parts(&self) -> Scene {
-        let mut scene = self.scene.clone();
-        let parts = Scene::part_objects(&self.space, self.parts);
-        scene.objects.drain(..parts.len().min(scene.objects.len()));
-        scene.avatar = None;
-        scene
+    pub fn scene(&self) -> Scene {
+        self.base.adding_parts(&self.space, self.parts)
     }
 }
 
@@ -237,9 +234,9 @@ pub fn parse_scene(text: &str, base: &Path, file: &str) -> Result<SceneFile, Sce
         &space,
         fog,
         SceneParts {
-            edges: spec.edges,
-            centre_ball: spec.centre_ball,
-            avatar: spec.avatar,
+            edges: false,
+            centre_ball: false,
+            avatar: false,
         },
     );
     if let Some(a) = &spec.ambient {
@@ -287,7 +284,7 @@ pub fn parse_scene(text: &str, base: &Path, file: &str) -> Result<SceneFile, Sce
     Ok(SceneFile {
         space_id,
         space,
-        scene,
+        base: scene,
         start,
         parts: SceneParts {
             edges: spec.edges,
@@ -580,10 +577,4 @@ fn build_object(
             Object::Mesh(instance)
         }
     })
-}
-
-/// Where a scene file's relative paths point from.
-#[must_use]
-pub fn base_dir(path: &Path) -> PathBuf {
-    path.parent().map(Path::to_path_buf).unwrap_or_default()
 }

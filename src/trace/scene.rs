@@ -994,11 +994,10 @@ impl Scene {
     pub fn with_parts(space: &Space, fog_distance: f64, parts: SceneParts) -> Self {
         let g = space.geometry;
         let inradius = crate::space::invariants::inradius(space);
-        let objects = Self::part_objects(space, parts);
         let light_at = g.translation(DVec3::new(0.45, 0.8, 0.4), 0.65 * inradius) * space.centre();
         let light = Light::new(space, light_at, DVec3::ONE, g.s(0.7 * inradius).powi(2));
-        let mut scene = Scene::new(
-            objects,
+        Scene::new(
+            Vec::new(),
             vec![light],
             Shading {
                 ambient: 0.3,
@@ -1007,10 +1006,23 @@ impl Scene {
                 near_light: 0.05 * inradius,
                 cutoff_weight: DEFAULT_CUTOFF_WEIGHT,
             },
-        );
-        if parts.avatar {
+        )
+        .adding_parts(space, parts)
+    }
+
+    /// This scene with the default scene's parts added: the part objects before its own,
+    /// and the avatar given or taken away as `parts.avatar` says. A scene file's scene and
+    /// the plugin's base scene are made whole this way.
+    #[must_use]
+    pub fn adding_parts(&self, space: &Space, parts: SceneParts) -> Scene {
+        let mut scene = self.clone();
+        scene.objects.splice(0..0, Self::part_objects(space, parts));
+        if !parts.avatar {
+            scene.avatar = None;
+        } else if scene.avatar.is_none() {
+            let size = crate::scene::avatar_size(crate::space::invariants::inradius(space));
             // The ship is a fixed small model: placing it cannot fail.
-            let _ = scene.add_avatar(g, crate::scene::avatar_size(inradius));
+            let _ = scene.add_avatar(space.geometry, size);
         }
         scene
     }
