@@ -397,22 +397,14 @@ impl GpuScene {
             of_kind(GpuKind::Disc),
             of_kind(GpuKind::Instance),
         );
-        let triangles: usize = scene.meshes.iter().map(|m| m.triangles.len()).sum();
-        let estimate = 4 * scene
-            .meshes
-            .iter()
-            .map(|m| 8 * m.nodes.len())
-            .sum::<usize>()
-            + 128 * triangles
-            + 4 * scene.textures.iter().map(|t| t.texels.len()).sum::<usize>();
-        if estimate > MAX_SCENE_DATA_BYTES {
+        let (data, offsets, roots) = pack_scene_data(scene);
+        if 4 * data.len() > MAX_SCENE_DATA_BYTES {
             return Err(GpuSceneError::DataTooLarge {
-                bytes: estimate,
+                bytes: 4 * data.len(),
                 limit: MAX_SCENE_DATA_BYTES,
-                triangles,
+                triangles: scene.meshes.iter().map(|m| m.triangles.len()).sum(),
             });
         }
-        let (data, offsets, roots) = pack_scene_data(scene);
         let light_images = scene
             .lights
             .iter()
