@@ -15,6 +15,7 @@
 //   MESHES                               any mesh: the scene data buffer with the
 //                                        hierarchies, triangles and materials
 //   TEXTURES                             textures in the scene data buffer
+//   SCENE_DATA                           set with MESHES or TEXTURES: the buffer is bound
 //   LIGHTS + LIGHT_COUNT, LIGHT_IMAGES   point lights, each with up to LIGHT_IMAGES copies
 //   HIT_ID                               (benchmark) output what each ray met instead of a
 //                                        colour: object, crossings, face path, how it ended
@@ -148,14 +149,10 @@ struct SpaceUniform {
 
 @group(0) @binding(0) var<uniform> space: SpaceUniform;
 
-#ifdef MESHES
+#ifdef SCENE_DATA
 // Hierarchy nodes (2 vec4 each), triangles (8), materials (2), the texture table (1 each)
 // and texels (4 per vec4, RGBA8 sRGB), as written by src/render/gpu.rs.
 @group(0) @binding(1) var<storage, read> scene_data: array<vec4<u32>>;
-#else
-#ifdef TEXTURES
-@group(0) @binding(1) var<storage, read> scene_data: array<vec4<u32>>;
-#endif
 #endif
 
 const F32_EPSILON: f32 = 1.1920929e-7;
@@ -453,16 +450,10 @@ fn hit_tube(tube: Tube, p: vec4<f32>, v: vec4<f32>, hi: f32) -> f32 {
 }
 #endif
 
-#ifdef MESHES
+#ifdef SCENE_DATA
 fn fdata(i: u32) -> vec4<f32> {
     return bitcast<vec4<f32>>(scene_data[i]);
 }
-#else
-#ifdef TEXTURES
-fn fdata(i: u32) -> vec4<f32> {
-    return bitcast<vec4<f32>>(scene_data[i]);
-}
-#endif
 #endif
 
 #ifdef TEXTURES

@@ -125,6 +125,9 @@ impl ShaderKey {
         if self.textures {
             defs.push("TEXTURES".into());
         }
+        if self.avatar || self.instances > 0 || self.textures {
+            defs.push("SCENE_DATA".into());
+        }
         defs
     }
 
