@@ -175,15 +175,18 @@ fn a_cube_mesh_in_the_torus_shows_its_copies_where_the_lattice_puts_them() {
 fn the_avatar_is_seen_round_the_space_and_not_from_inside() {
     let space = seed_space("torus").expect("seed");
     let g = space.geometry;
-    let mut scene = Scene::with_parts(
-        &space,
-        2.0,
-        SceneParts {
-            edges: false,
-            centre_ball: false,
-            avatar: true,
-        },
-    );
+    let ship_only = || {
+        Scene::with_parts(
+            &space,
+            2.0,
+            SceneParts {
+                edges: false,
+                centre_ball: false,
+                avatar: true,
+            },
+        )
+    };
+    let mut scene = ship_only();
     let frame = DMat4::IDENTITY;
     scene.set_avatar_frame(&space, frame);
     let avatar = scene.avatar.clone().expect("asked for");
@@ -213,15 +216,7 @@ fn the_avatar_is_seen_round_the_space_and_not_from_inside() {
         RayEnd::Hit(_)
     ));
     // Moved next to a face, the ship gets an image through it.
-    let mut scene = Scene::with_parts(
-        &space,
-        2.0,
-        SceneParts {
-            edges: false,
-            centre_ball: false,
-            avatar: true,
-        },
-    );
+    let mut scene = ship_only();
     scene.set_avatar_frame(&space, g.translation(DVec3::X, 0.49));
     assert!(scene.avatar.expect("asked for").instances.len() >= 2);
 }

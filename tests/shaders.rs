@@ -99,16 +99,7 @@ fn scene_content_variants_validate_and_match_the_packed_layout() {
                 key.uniform_bytes(),
                 "{key:?}: naga's layout differs from the packer's size"
             );
-            let mut defs = key.shader_defs();
-            defs.push(ShaderDefVal::from("HIT_ID"));
-            let module = compose_wgsl(TRACER_WGSL, "curved_space.wgsl", &defs)
-                .unwrap_or_else(|e| panic!("{key:?} with HIT_ID: {e}"));
-            naga::valid::Validator::new(
-                naga::valid::ValidationFlags::all(),
-                naga::valid::Capabilities::default(),
-            )
-            .validate(&module)
-            .unwrap_or_else(|e| panic!("{key:?} with HIT_ID does not validate: {e:?}"));
+            hit_id_module(&key);
             checked += 1;
         }
     }
@@ -282,6 +273,21 @@ fn the_upscaling_and_benchmark_baseline_shaders_validate() {
     }
 }
 
+/// The `HIT_ID` variant of a key, composed and validated.
+fn hit_id_module(key: &ShaderKey) -> naga::Module {
+    let mut defs = key.shader_defs();
+    defs.push(ShaderDefVal::from("HIT_ID"));
+    let module = compose_wgsl(TRACER_WGSL, "curved_space.wgsl", &defs)
+        .unwrap_or_else(|e| panic!("{key:?} with HIT_ID: {e}"));
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::default(),
+    )
+    .validate(&module)
+    .unwrap_or_else(|e| panic!("{key:?} with HIT_ID does not validate: {e:?}"));
+    module
+}
+
 /// The benchmark's `HIT_ID` variant writes what each ray met as `vec4<u32>`.
 #[test]
 fn the_hit_id_variant_validates_and_writes_four_integers() {
@@ -294,16 +300,7 @@ fn the_hit_id_variant_validates_and_writes_four_integers() {
                 tubes,
                 ..ShaderKey::empty(geometry)
             };
-            let mut defs = key.shader_defs();
-            defs.push(ShaderDefVal::from("HIT_ID"));
-            let module = compose_wgsl(TRACER_WGSL, "curved_space.wgsl", &defs)
-                .unwrap_or_else(|e| panic!("{key:?} with HIT_ID: {e}"));
-            naga::valid::Validator::new(
-                naga::valid::ValidationFlags::all(),
-                naga::valid::Capabilities::default(),
-            )
-            .validate(&module)
-            .unwrap_or_else(|e| panic!("{key:?} with HIT_ID does not validate: {e:?}"));
+            let module = hit_id_module(&key);
             let fragment = module
                 .entry_points
                 .iter()

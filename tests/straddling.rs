@@ -83,19 +83,15 @@ fn ambient_scene(space: &bevy_curved_spaces::space::Space) -> Scene {
 /// 3-torus (its translations commute with the deck group): a ball at the centre and the same
 /// ball moved onto a face corner (straddling three faces) give the same picture when placed,
 /// and a visibly different one when the ball is just pushed into the scene.
-#[test]
-fn a_ball_straddling_torus_faces_looks_as_if_it_were_whole() {
+/// How a torus object over a corner of three faces looks against the same object at the
+/// centre seen from the same relative place: `object(at)` is the object centred at chart
+/// point `at`, added to `base`. Returns the images placing added, and the fractions of
+/// pixels that differ from the centred picture with the images and without them (the object
+/// pushed as one).
+fn straddling_in_the_torus(base: &Scene, object: impl Fn(DVec3) -> Object) -> (usize, f64, f64) {
     let s = seed_space("torus").expect("builds");
     let g = s.geometry;
     let shift = DVec3::new(0.5, 0.5, 0.35);
-    let ball = |at: DVec3| {
-        Object::Ball(Ball::new(
-            g,
-            g.from_chart(at).expect("chart point"),
-            0.3,
-            DVec3::new(0.9, 0.6, 0.3),
-        ))
-    };
     let eye = DVec3::new(0.1, -0.2, 0.38);
     let target = DVec3::new(0.0, 0.0, 0.0);
     let settings = RenderSettings {
@@ -104,8 +100,8 @@ fn a_ball_straddling_torus_faces_looks_as_if_it_were_whole() {
         max_crossings: 64,
     };
     let centred = {
-        let mut scene = ambient_scene(&s);
-        scene.place(&s, ball(DVec3::ZERO)).expect("placed");
+        let mut scene = base.clone();
+        scene.place(&s, object(DVec3::ZERO)).expect("placed");
         let camera = Camera::looking_at(g, eye, target, 70.0).expect("camera");
         render(&s, &scene, &camera, &settings)
     };
@@ -118,15 +114,11 @@ fn a_ball_straddling_torus_faces_looks_as_if_it_were_whole() {
         70.0,
     )
     .expect("camera");
-    let mut straddling = ambient_scene(&s);
-    let added = straddling.place(&s, ball(shift)).expect("placed");
-    assert!(
-        added >= 4,
-        "a ball over a corner of three faces needs images, got {added}"
-    );
+    let mut straddling = base.clone();
+    let added = straddling.place(&s, object(shift)).expect("placed");
     let placed = render(&s, &straddling, &camera, &settings);
-    let mut naive = ambient_scene(&s);
-    naive.objects.push(ball(shift));
+    let mut naive = base.clone();
+    naive.objects.push(object(shift));
     let pushed = render(&s, &naive, &camera, &settings);
 
     let differing = |a: &image::RgbImage, b: &image::RgbImage| {
@@ -136,8 +128,30 @@ fn a_ball_straddling_torus_faces_looks_as_if_it_were_whole() {
             .count() as f64
             / f64::from(a.width() * a.height())
     };
-    let with_images = differing(&centred, &placed);
-    let without = differing(&centred, &pushed);
+    (
+        added,
+        differing(&centred, &placed),
+        differing(&centred, &pushed),
+    )
+}
+
+#[test]
+fn a_ball_straddling_torus_faces_looks_as_if_it_were_whole() {
+    let s = seed_space("torus").expect("builds");
+    let g = s.geometry;
+    let ball = |at: DVec3| {
+        Object::Ball(Ball::new(
+            g,
+            g.from_chart(at).expect("chart point"),
+            0.3,
+            DVec3::new(0.9, 0.6, 0.3),
+        ))
+    };
+    let (added, with_images, without) = straddling_in_the_torus(&ambient_scene(&s), ball);
+    assert!(
+        added >= 4,
+        "a ball over a corner of three faces needs images, got {added}"
+    );
     assert!(
         with_images < 0.002,
         "{:.2} % of pixels differ with the images",
@@ -230,61 +244,22 @@ fn a_mesh_straddling_torus_faces_looks_as_if_it_were_whole() {
     use bevy_curved_spaces::trace::{Material, MeshInstance};
     let s = seed_space("torus").expect("builds");
     let g = s.geometry;
-    let shift = DVec3::new(0.5, 0.5, 0.35);
-    let base = {
-        let mut scene = ambient_scene(&s);
-        scene.materials.push(Material {
-            colour: DVec3::new(0.3, 0.7, 0.9),
-            ..Material::default()
-        });
-        scene.meshes.push(std::sync::Arc::new(
-            cube_source(0.18, 0).place(g, 1.0).expect("cube"),
-        ));
-        scene
-    };
+    let mut base = ambient_scene(&s);
+    base.materials.push(Material {
+        colour: DVec3::new(0.3, 0.7, 0.9),
+        ..Material::default()
+    });
+    base.meshes.push(std::sync::Arc::new(
+        cube_source(0.18, 0).place(g, 1.0).expect("cube"),
+    ));
     let radius = base.meshes[0].radius;
     let turn = g.rotation(DVec3::new(0.3, 1.0, 0.2), 0.5);
     let cube = |at: DVec3| {
         let frame = g.translation_to(g.from_chart(at).expect("chart point")) * turn;
         Object::Mesh(MeshInstance::new(g, 0, frame, radius))
     };
-    let eye = DVec3::new(0.1, -0.2, 0.38);
-    let target = DVec3::ZERO;
-    let settings = RenderSettings {
-        width: 96,
-        height: 54,
-        max_crossings: 64,
-    };
-    let centred = {
-        let mut scene = base.clone();
-        scene.place(&s, cube(DVec3::ZERO)).expect("placed");
-        let camera = Camera::looking_at(g, eye, target, 70.0).expect("camera");
-        render(&s, &scene, &camera, &settings)
-    };
-    let wrap = |v: DVec3| (v + DVec3::splat(0.5)).rem_euclid(DVec3::ONE) - DVec3::splat(0.5);
-    let camera = Camera::looking_at(
-        g,
-        wrap(eye + shift),
-        wrap(eye + shift) + (target - eye),
-        70.0,
-    )
-    .expect("camera");
-    let mut straddling = base.clone();
-    let added = straddling.place(&s, cube(shift)).expect("placed");
+    let (added, with_images, without) = straddling_in_the_torus(&base, cube);
     assert!(added >= 4, "a cube over a corner needs images, got {added}");
-    let placed = render(&s, &straddling, &camera, &settings);
-    let mut naive = base.clone();
-    naive.objects.push(cube(shift));
-    let pushed = render(&s, &naive, &camera, &settings);
-    let differing = |a: &image::RgbImage, b: &image::RgbImage| {
-        a.pixels()
-            .zip(b.pixels())
-            .filter(|(p, q)| (0..3).any(|c| p[c].abs_diff(q[c]) > 2))
-            .count() as f64
-            / f64::from(a.width() * a.height())
-    };
-    let with_images = differing(&centred, &placed);
-    let without = differing(&centred, &pushed);
     assert!(
         with_images < 0.002,
         "{:.2} % of pixels differ with the images",
