@@ -1524,20 +1524,11 @@ pub fn charts(report: &BenchReport) -> Vec<(&'static str, Chart)> {
         }
     }
     // f32 drift against crossings, with the conditioning bound.
-    let mut series = Vec::new();
-    let mut drift_spaces: Vec<&String> = report.drift.iter().map(|d| &d.space).collect();
-    drift_spaces.dedup();
-    for space in drift_spaces {
-        let rows: Vec<&DriftRow> = report.drift.iter().filter(|d| &d.space == space).collect();
-        series.push(Series {
-            name: space.to_string(),
-            points: rows
-                .iter()
-                .filter_map(|d| Some((d.crossings as f64, d.median_position_error?.max(1e-12))))
-                .collect(),
-            dashed: false,
-        });
-    }
+    let series = series_per_space(
+        &report.drift,
+        |d| &d.space,
+        |d| Some((d.crossings as f64, d.median_position_error?.max(1e-12))),
+    );
     charts.push((
         "drift",
         Chart {
@@ -1552,21 +1543,11 @@ pub fn charts(report: &BenchReport) -> Vec<(&'static str, Chart)> {
     ));
     // Mesh scenes: frame time against triangle count.
     if !report.meshes.is_empty() {
-        let mut mesh_spaces: Vec<&String> = report.meshes.iter().map(|m| &m.space).collect();
-        mesh_spaces.dedup();
-        let series = mesh_spaces
-            .into_iter()
-            .map(|space| Series {
-                name: space.to_string(),
-                points: report
-                    .meshes
-                    .iter()
-                    .filter(|m| &m.space == space)
-                    .map(|m| (m.triangles as f64, m.ratio))
-                    .collect(),
-                dashed: false,
-            })
-            .collect();
+        let series = series_per_space(
+            &report.meshes,
+            |m| &m.space,
+            |m| Some((m.triangles as f64, m.ratio)),
+        );
         let size = report
             .meshes
             .first()
@@ -1588,6 +1569,28 @@ pub fn charts(report: &BenchReport) -> Vec<(&'static str, Chart)> {
         ));
     }
     charts
+}
+
+/// One series per space (in the rows' order of spaces) of the points `point` gives.
+fn series_per_space<T>(
+    rows: &[T],
+    space: impl Fn(&T) -> &String,
+    point: impl Fn(&T) -> Option<(f64, f64)>,
+) -> Vec<Series> {
+    let mut spaces: Vec<&String> = rows.iter().map(&space).collect();
+    spaces.dedup();
+    spaces
+        .into_iter()
+        .map(|name| Series {
+            name: name.to_string(),
+            points: rows
+                .iter()
+                .filter(|r| space(r) == name)
+                .filter_map(&point)
+                .collect(),
+            dashed: false,
+        })
+        .collect()
 }
 
 fn budget_list(report: &BenchReport) -> String {
