@@ -12,7 +12,7 @@ use bevy_curved_spaces::plugin::BaseScene;
 use bevy_curved_spaces::render::FramesTraced;
 use bevy_curved_spaces::render::gpu::MAX_GPU_BUDGET;
 use bevy_curved_spaces::render::offscreen::{OffscreenRender, gpu_available, render_offscreen};
-use bevy_curved_spaces::scene::file::{SceneFile, load_scene_file};
+use bevy_curved_spaces::scene::file::load_scene_file;
 use bevy_curved_spaces::space::file::{SpaceRecord, load_space_file};
 use bevy_curved_spaces::space::invariants::Invariants;
 use bevy_curved_spaces::space::invariants::inradius;
@@ -588,9 +588,12 @@ fn trace(args: &TraceArgs) -> Result<(), String> {
 struct Chosen {
     id: String,
     space: Space,
+    /// The whole scene (the CPU renders it).
     scene: Scene,
-    start: Option<glam::DMat4>,
-    file: Option<SceneFile>,
+    /// What the plugin is given: a scene file's base scene, parts and start view (empty for
+    /// the default scene).
+    base: BaseScene,
+    parts: SceneParts,
 }
 
 fn choose_scene(space_arg: &str, scene: Option<&Path>, fog: Option<f64>) -> Result<Chosen, String> {
@@ -602,10 +605,10 @@ fn choose_scene(space_arg: &str, scene: Option<&Path>, fog: Option<f64>) -> Resu
             }
             Ok(Chosen {
                 id: file.space_id.clone(),
-                space: file.space.clone(),
                 scene: file.scene(),
-                start: file.start,
-                file: Some(file),
+                base: BaseScene::from_file(&file),
+                parts: file.parts,
+                space: file.space,
             })
         }
         None => {
@@ -615,8 +618,8 @@ fn choose_scene(space_arg: &str, scene: Option<&Path>, fog: Option<f64>) -> Resu
                 id: space_arg.to_string(),
                 scene: Scene::default_for(&space, fog),
                 space,
-                start: None,
-                file: None,
+                base: BaseScene::default(),
+                parts: SceneParts::default(),
             })
         }
     }
@@ -643,6 +646,7 @@ fn render_command(args: &RenderArgs) -> Result<(), String> {
         _ => Camera {
             fov_y_degrees: args.fov,
             frame: chosen
+                .base
                 .start
                 .unwrap_or_else(|| Camera::default_for(&space).frame),
         },
@@ -748,13 +752,10 @@ fn render_command(args: &RenderArgs) -> Result<(), String> {
             fov_y_degrees: camera.fov_y_degrees,
             fog_distance: Some(fog),
             max_crossings,
-            parts: chosen
-                .file
-                .as_ref()
-                .map_or_else(SceneParts::default, |f| f.parts),
+            parts: chosen.parts,
             objects: Vec::new(),
             resolution_scale: 1.0,
-            base: base_scene(&chosen),
+            base: chosen.base.clone(),
             time: args.time,
             stereo,
         })
@@ -854,7 +855,7 @@ fn walk(args: &WalkArgs) -> Result<(), String> {
         "curved spaces: {}",
         active.space.name
     ))));
-    app.insert_resource(base_scene(&chosen));
+    app.insert_resource(chosen.base.clone());
     add_walk_plugins(&mut app, args, active, stereo).add_systems(
         Startup,
         |mut commands: Commands| {
@@ -869,14 +870,6 @@ fn walk(args: &WalkArgs) -> Result<(), String> {
         .add_systems(Update, screenshot_then_exit);
     }
     exit_result(app.run())
-}
-
-/// The scene file's scene as the plugin's base scene (none for the default scene).
-fn base_scene(chosen: &Chosen) -> BaseScene {
-    chosen
-        .file
-        .as_ref()
-        .map_or_else(BaseScene::default, BaseScene::from_file)
 }
 
 /// The window of `walk`.
