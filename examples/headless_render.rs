@@ -8,10 +8,12 @@
 //! Writes `headless-gpu.png` and `headless-cpu.png` to the working directory. Without a GPU
 //! it runs on Mesa's lavapipe (`apt-get install mesa-vulkan-drivers libvulkan1`).
 
-use bevy_curved_spaces::ActiveSpace;
+use bevy_curved_spaces::components::ActiveSpace;
 use bevy_curved_spaces::render::offscreen::{OffscreenRender, render_offscreen};
+use bevy_curved_spaces::scene::{CurvedScene, Shading};
 use bevy_curved_spaces::space::seed_space;
-use bevy_curved_spaces::trace::{Camera, RenderSettings, Scene, SceneParts, Shading, render};
+use bevy_curved_spaces::trace::{RenderSettings, render};
+use bevy_curved_spaces::view::TraceCamera;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
@@ -25,21 +27,15 @@ fn main() -> ExitCode {
     };
     let (width, height, crossings) = (320, 180, 24);
     let fog = Shading::default_fog_distance(&space);
-    let camera = Camera::default_for(&space);
+    let camera = TraceCamera::default_for(&space);
     let gpu = match render_offscreen(&OffscreenRender {
-        space: ActiveSpace::new(&id, space.clone()),
-        width,
-        height,
-        frame: camera.frame,
-        fov_y_degrees: camera.fov_y_degrees,
         fog_distance: Some(fog),
-        max_crossings: crossings,
-        parts: SceneParts::default(),
-        objects: Vec::new(),
-        resolution_scale: 1.0,
-        base: Default::default(),
-        time: 0.0,
-        stereo: Default::default(),
+        ..OffscreenRender::new(
+            ActiveSpace::new(&id, space.clone()),
+            camera,
+            (width, height),
+            crossings,
+        )
     }) {
         Ok(image) => image,
         Err(e) => {
@@ -47,7 +43,7 @@ fn main() -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
-    let scene = Scene::default_for(&space, fog);
+    let scene = CurvedScene::default_for(&space, fog);
     let cpu = render(
         &space,
         &scene,

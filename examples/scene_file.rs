@@ -9,10 +9,10 @@
 //! panel.
 
 use bevy::prelude::*;
-use bevy_curved_spaces::plugin::BaseScene;
+use bevy_curved_spaces::components::BaseScene;
 use bevy_curved_spaces::prelude::*;
 use bevy_curved_spaces::scene::file::load_scene_file;
-use bevy_curved_spaces::trace::{Ball, Object};
+use bevy_curved_spaces::scene::{Ball, Object};
 use glam::DVec3;
 use std::process::ExitCode;
 
@@ -32,7 +32,7 @@ fn main() -> ExitCode {
         }
     };
     // One more object from code: a small red ball a third of the way to the +x face.
-    let g = file.space.geometry;
+    let g = file.space.geometry();
     let r = bevy_curved_spaces::space::invariants::inradius(&file.space);
     let ball = Ball::new(
         g,

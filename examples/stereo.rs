@@ -13,7 +13,7 @@
 
 use bevy::prelude::*;
 use bevy_curved_spaces::prelude::*;
-use bevy_curved_spaces::stereo::default_ipd;
+use bevy_curved_spaces::view::stereo::default_ipd;
 
 fn main() {
     let space = std::env::args()

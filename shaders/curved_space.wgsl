@@ -1,5 +1,5 @@
 // Ray tracing inside a closed 3-manifold: the GPU twin of the f64 reference in src/trace
-// (same algorithm, same shading, in f32). See DESIGN.md §1 and §3.
+// (same algorithm, same shading, in f32). See docs/design.md §3 and §5.
 //
 // Shader defs (set by src/render/gpu.rs, one pipeline per combination):
 //   SPHERICAL | EUCLIDEAN | HYPERBOLIC   the geometry: only its formulas are compiled
@@ -534,7 +534,7 @@ const BVH_STACK: u32 = 32u;
 var<private> bvh_stack: array<u32, BVH_STACK>;
 
 // The first hit of the mesh with root node `root` placed by `inverse` (cell → mesh chart)
-// on the segment p + s v, s in (0, hi) (Scene::intersect_mesh, Mesh::intersect).
+// on the segment p + s v, s in (0, hi) (CurvedScene::intersect_mesh, Mesh::intersect).
 fn hit_mesh(root: u32, inverse: mat4x4<f32>, p: vec4<f32>, v: vec4<f32>, hi: f32) -> MeshHit {
     var best = MeshHit(NO_HIT, 0u, vec2<f32>(0.0), vec3<f32>(0.0));
     let lp = inverse * p;
@@ -638,13 +638,7 @@ fn hit_mesh(root: u32, inverse: mat4x4<f32>, p: vec4<f32>, v: vec4<f32>, hi: f32
     return best;
 }
 
-// The normal and the material's colour and emission of a mesh hit (Scene::intersect_mesh).
-struct Surface {
-    normal: vec4<f32>,
-    albedo: vec3<f32>,
-    emission: vec3<f32>,
-}
-
+// The normal and the material's colour and emission of a mesh hit (CurvedScene::intersect_mesh).
 fn mesh_surface(hit: MeshHit, frame: mat4x4<f32>, material_override: u32, point: vec4<f32>, v: vec4<f32>) -> Surface {
     let b = space.data.x + 8u * hit.triangle;
     let w = vec3<f32>(1.0 - hit.uv.x - hit.uv.y, hit.uv.x, hit.uv.y);
@@ -748,13 +742,218 @@ fn object_number(kind: u32, index: u32) -> u32 {
 const FNV_PRIME: u32 = 16777619u;
 #endif
 
-// The colour seen along one camera ray (trace::first_hit and trace::trace_pixel).
+// A surface point's outward unit normal, albedo and emission.
+struct Surface {
+    normal: vec4<f32>,
+    albedo: vec3<f32>,
+    emission: vec3<f32>,
+}
+
+// A point of the model and a unit tangent there (Rust: `geometry::Ray`).
+struct Ray {
+    point: vec4<f32>,
+    tangent: vec4<f32>,
+}
+
+// Where a ray leaves the cell: the face and the chart ratio T = num/den of the exit point
+// (Rust: `space::walk::Exit`). face is 0xffffffff where no face is ahead.
+struct Exit {
+    face: u32,
+    num: f32,
+    den: f32,
+}
+
+// The exit face: the smallest T = −(N·p)/(N·v) among faces with N·v > 0, compared without
+// dividing; the face just entered (`skip`) is passed over (Rust: `CellWalker::exit`).
+fn exit_face(ray: Ray, skip: u32) -> Exit {
+    var exit = Exit(0xffffffffu, 0.0, 1.0);
+    for (var f = 0u; f < face_count(); f += 1u) {
+        let n = space.covectors[f];
+        let dn = dot(n, ray.tangent);
+        if f == skip || !(dn > 0.0) {
+            continue;
+        }
+        let nm = max(-dot(n, ray.point), 0.0);
+        if exit.face == 0xffffffffu || nm * exit.den < exit.num * dn {
+            exit = Exit(f, nm, dn);
+        }
+    }
+    return exit;
+}
+
+// Through the exit face: exit point (N·v) p − (N·p) v, tangent κ (N·p) p + (N·v) v, then the
+// face's pairing, both projected back onto the model (Rust: `CellWalker::cross`).
+fn cross(ray: Ray, exit: Exit) -> Ray {
+    let at_face = ray.point * exit.den + ray.tangent * exit.num;
+    let along = ray.point * (-kappa() * exit.num) + ray.tangent * exit.den;
+    let m = space.pairings[exit.face];
+    let point = project_point(m * at_face);
+    return Ray(point, unit_tangent(point, m * along));
+}
+
+// What a segment meets first (Rust: `CurvedScene::intersect`): its chart ratio s (s_max when
+// nothing), the kind (0 nothing, 1 ball, 2 tube, 3 globe, 4 disc, 5 mesh instance, 6 avatar
+// image) and index, and for meshes the triangle hit.
+struct SceneHit {
+    s: f32,
+    kind: u32,
+    index: u32,
+#ifdef MESHES
+    mesh: MeshHit,
+#endif
+}
+
+// The nearest object along the segment p + s v, s in (0, s_max); `travelled` is the distance
+// before the segment (the avatar's copy the eye sits in is passed through).
+fn intersect_scene(ray: Ray, s_max: f32, travelled: f32) -> SceneHit {
+    let p = ray.point;
+    let v = ray.tangent;
+    var hit: SceneHit;
+    hit.s = s_max;
+    hit.kind = 0u;
+    hit.index = 0u;
+#ifdef MESHES
+    hit.mesh = MeshHit(NO_HIT, 0u, vec2<f32>(0.0), vec3<f32>(0.0));
+#endif
+#ifdef BALLS
+    for (var i = 0u; i < ball_count(); i += 1u) {
+        let s = hit_ball_at(space.balls[i].centre, space.balls[i].colour.w, p, v, hit.s);
+        if s < hit.s {
+            hit.s = s;
+            hit.kind = 1u;
+            hit.index = i;
+        }
+    }
+#endif
+#ifdef TUBES
+    for (var i = 0u; i < tube_count(); i += 1u) {
+        let s = hit_tube(space.tubes[i], p, v, hit.s);
+        if s < hit.s {
+            hit.s = s;
+            hit.kind = 2u;
+            hit.index = i;
+        }
+    }
+#endif
+#ifdef GLOBES
+    for (var i = 0u; i < #{GLOBE_COUNT}u; i += 1u) {
+        let s = hit_ball_at(space.globes[i].centre, space.globes[i].colour.w, p, v, hit.s);
+        if s < hit.s {
+            hit.s = s;
+            hit.kind = 3u;
+            hit.index = i;
+        }
+    }
+#endif
+#ifdef DISCS
+    for (var i = 0u; i < #{DISC_COUNT}u; i += 1u) {
+        let s = hit_disc(space.discs[i], p, v, hit.s);
+        if s < hit.s {
+            hit.s = s;
+            hit.kind = 4u;
+            hit.index = i;
+        }
+    }
+#endif
+#ifdef MESHES
+    // The placed meshes, then the avatar's images, through one call of hit_mesh (two calls
+    // made llvmpipe miscompile the walk).
+    var mesh_slots = 0u;
+#ifdef INSTANCES
+    mesh_slots += #{INSTANCE_COUNT}u;
+#endif
+    let instance_slots = mesh_slots;
+#ifdef AVATAR
+    mesh_slots += u32(space.view.avatar_info.x);
+#endif
+    for (var i = 0u; i < mesh_slots; i += 1u) {
+        let is_avatar = i >= instance_slots;
+        var root = 0u;
+        var inverse = mat4x4<f32>();
+#ifdef INSTANCES
+        if !is_avatar {
+            root = space.instances[i].info.x;
+            inverse = space.instances[i].inverse;
+        }
+#endif
+#ifdef AVATAR
+        if is_avatar {
+            root = u32(space.view.avatar_info.z);
+            inverse = space.view.avatar[2u * (i - instance_slots) + 1u];
+        }
+#endif
+        let h = hit_mesh(root, inverse, p, v, hit.s);
+        // The avatar's copy the eye sits in is passed through.
+        if h.s < hit.s
+            && (!is_avatar || travelled + distance_from_ratio(h.s, 1.0) >= space.view.avatar_info.y) {
+            hit.s = h.s;
+            hit.kind = select(5u, 6u, is_avatar);
+            hit.index = select(i, i - instance_slots, is_avatar);
+            hit.mesh = h;
+        }
+    }
+#endif
+    return hit;
+}
+
+// The surface at a hit point: outward normal (towards the viewer for discs), albedo and
+// emission (Rust: `Hit`'s normal and material).
+fn surface_at(hit: SceneHit, point: vec4<f32>, v: vec4<f32>) -> Surface {
+    var surface = Surface(vec4<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0));
+#ifdef BALLS
+    if hit.kind == 1u {
+        let ball = space.balls[hit.index];
+        surface = Surface(unit_tangent(point, point - ball.centre), ball.colour.rgb, ball.emission.rgb);
+    }
+#endif
+#ifdef TUBES
+    if hit.kind == 2u {
+        let tube = space.tubes[hit.index];
+        surface = Surface(unit_tangent(point, point - tube_foot(tube, point)), tube.colour.rgb, tube.emission.rgb);
+    }
+#endif
+#ifdef GLOBES
+    if hit.kind == 3u {
+        let globe = space.globes[hit.index];
+        var albedo = globe.colour.rgb;
+#ifdef TEXTURES
+        albedo *= sample_texture(u32(globe.emission.w), globe_uv(globe, point));
+#endif
+        surface = Surface(unit_tangent(point, point - globe.centre), albedo, globe.emission.rgb);
+    }
+#endif
+#ifdef DISCS
+    if hit.kind == 4u {
+        let disc = space.discs[hit.index];
+        var normal = unit_tangent(point, disc.normal);
+        if form(normal, v) > 0.0 {
+            normal = -normal;
+        }
+        surface = Surface(normal, disc.colour.rgb, disc.emission.rgb);
+    }
+#endif
+#ifdef INSTANCES
+    if hit.kind == 5u {
+        let instance = space.instances[hit.index];
+        surface = mesh_surface(hit.mesh, instance.frame, instance.info.y, point, v);
+    }
+#endif
+#ifdef AVATAR
+    if hit.kind == 6u {
+        surface = mesh_surface(hit.mesh, space.view.avatar[2u * hit.index], 0xffffffffu, point, v);
+    }
+#endif
+    return surface;
+}
+
+// One camera ray's colour: walk the cell, nearest object hit against exit face, cross by
+// pairings until the fog cut-off or the crossing budget (Rust: `trace::first_hit` and
+// `colour_of`).
 fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
     let fog = space.shading.fog.rgb;
     let cutoff = space.shading.params.y;
     let budget = u32(space.shading.params.w);
-    var p = start_point;
-    var v = start_tangent;
+    var ray = Ray(start_point, start_tangent);
     var travelled = 0.0;
     var skip = 0xffffffffu;
 #ifdef HIT_ID
@@ -762,117 +961,14 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
     hit_id = vec4<u32>(0u, 0u, path, 3u);
 #endif
     for (var crossings = 0u; crossings <= budget; crossings += 1u) {
-        // The exit face: the smallest T = −(N·p)/(N·v) among faces with N·v > 0,
-        // compared without dividing; the face just entered is skipped.
-        var face = 0xffffffffu;
-        var num = 0.0;
-        var den = 1.0;
-        for (var f = 0u; f < face_count(); f += 1u) {
-            let n = space.covectors[f];
-            let dn = dot(n, v);
-            if f == skip || !(dn > 0.0) {
-                continue;
-            }
-            let nm = max(-dot(n, p), 0.0);
-            if face == 0xffffffffu || nm * den < num * dn {
-                face = f;
-                num = nm;
-                den = dn;
-            }
-        }
-        if face == 0xffffffffu {
+        let exit = exit_face(ray, skip);
+        if exit.face == 0xffffffffu {
             break;
         }
-        // The nearest object before the exit face.
-        var s_hit = num / den;
-        // What was hit: 0 nothing, 1 ball, 2 tube, 3 globe, 4 disc, 5 mesh instance,
-        // 6 avatar image; and its index.
-        var kind = 0u;
-        var index = 0u;
-#ifdef MESHES
-        var mesh_hit = MeshHit(NO_HIT, 0u, vec2<f32>(0.0), vec3<f32>(0.0));
-#endif
-#ifdef BALLS
-        for (var i = 0u; i < ball_count(); i += 1u) {
-            let s = hit_ball_at(space.balls[i].centre, space.balls[i].colour.w, p, v, s_hit);
-            if s < s_hit {
-                s_hit = s;
-                kind = 1u;
-                index = i;
-            }
-        }
-#endif
-#ifdef TUBES
-        for (var i = 0u; i < tube_count(); i += 1u) {
-            let s = hit_tube(space.tubes[i], p, v, s_hit);
-            if s < s_hit {
-                s_hit = s;
-                kind = 2u;
-                index = i;
-            }
-        }
-#endif
-#ifdef GLOBES
-        for (var i = 0u; i < #{GLOBE_COUNT}u; i += 1u) {
-            let s = hit_ball_at(space.globes[i].centre, space.globes[i].colour.w, p, v, s_hit);
-            if s < s_hit {
-                s_hit = s;
-                kind = 3u;
-                index = i;
-            }
-        }
-#endif
-#ifdef DISCS
-        for (var i = 0u; i < #{DISC_COUNT}u; i += 1u) {
-            let s = hit_disc(space.discs[i], p, v, s_hit);
-            if s < s_hit {
-                s_hit = s;
-                kind = 4u;
-                index = i;
-            }
-        }
-#endif
-#ifdef MESHES
-        // The placed meshes, then the avatar's images, through one call of hit_mesh (two
-        // calls made llvmpipe miscompile the walk).
-        var mesh_slots = 0u;
-#ifdef INSTANCES
-        mesh_slots += #{INSTANCE_COUNT}u;
-#endif
-        let instance_slots = mesh_slots;
-#ifdef AVATAR
-        mesh_slots += u32(space.view.avatar_info.x);
-#endif
-        for (var i = 0u; i < mesh_slots; i += 1u) {
-            let is_avatar = i >= instance_slots;
-            var root = 0u;
-            var inverse = mat4x4<f32>();
-#ifdef INSTANCES
-            if !is_avatar {
-                root = space.instances[i].info.x;
-                inverse = space.instances[i].inverse;
-            }
-#endif
-#ifdef AVATAR
-            if is_avatar {
-                root = u32(space.view.avatar_info.z);
-                inverse = space.view.avatar[2u * (i - instance_slots) + 1u];
-            }
-#endif
-            let h = hit_mesh(root, inverse, p, v, s_hit);
-            // The avatar's copy the eye sits in is passed through.
-            if h.s < s_hit
-                && (!is_avatar || travelled + distance_from_ratio(h.s, 1.0) >= space.view.avatar_info.y) {
-                s_hit = h.s;
-                kind = select(5u, 6u, is_avatar);
-                index = select(i, i - instance_slots, is_avatar);
-                mesh_hit = h;
-            }
-        }
-#endif
-        if kind != 0u {
-            let point = project_point(p + s_hit * v);
-            let d = travelled + distance_from_ratio(s_hit, 1.0);
+        let hit = intersect_scene(ray, exit.num / exit.den, travelled);
+        if hit.kind != 0u {
+            let point = project_point(ray.point + hit.s * ray.tangent);
+            let d = travelled + distance_from_ratio(hit.s, 1.0);
             if d >= cutoff {
 #ifdef HIT_ID
                 hit_id = vec4<u32>(0u, crossings, path, 2u);
@@ -880,67 +976,10 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
                 return fog;
             }
 #ifdef HIT_ID
-            hit_id = vec4<u32>(object_number(kind, index) + 1u, crossings, path, 1u);
+            hit_id = vec4<u32>(object_number(hit.kind, hit.index) + 1u, crossings, path, 1u);
 #endif
-            var normal = vec4<f32>(0.0);
-            var albedo = vec3<f32>(0.0);
-            var emission = vec3<f32>(0.0);
-#ifdef BALLS
-            if kind == 1u {
-                let ball = space.balls[index];
-                normal = unit_tangent(point, point - ball.centre);
-                albedo = ball.colour.rgb;
-                emission = ball.emission.rgb;
-            }
-#endif
-#ifdef TUBES
-            if kind == 2u {
-                let tube = space.tubes[index];
-                normal = unit_tangent(point, point - tube_foot(tube, point));
-                albedo = tube.colour.rgb;
-                emission = tube.emission.rgb;
-            }
-#endif
-#ifdef GLOBES
-            if kind == 3u {
-                let globe = space.globes[index];
-                normal = unit_tangent(point, point - globe.centre);
-                albedo = globe.colour.rgb;
-#ifdef TEXTURES
-                albedo *= sample_texture(u32(globe.emission.w), globe_uv(globe, point));
-#endif
-                emission = globe.emission.rgb;
-            }
-#endif
-#ifdef DISCS
-            if kind == 4u {
-                let disc = space.discs[index];
-                normal = unit_tangent(point, disc.normal);
-                if form(normal, v) > 0.0 {
-                    normal = -normal;
-                }
-                albedo = disc.colour.rgb;
-                emission = disc.emission.rgb;
-            }
-#endif
-#ifdef INSTANCES
-            if kind == 5u {
-                let instance = space.instances[index];
-                let surface = mesh_surface(mesh_hit, instance.frame, instance.info.y, point, v);
-                normal = surface.normal;
-                albedo = surface.albedo;
-                emission = surface.emission;
-            }
-#endif
-#ifdef AVATAR
-            if kind == 6u {
-                let surface = mesh_surface(mesh_hit, space.view.avatar[2u * index], 0xffffffffu, point, v);
-                normal = surface.normal;
-                albedo = surface.albedo;
-                emission = surface.emission;
-            }
-#endif
-            return shade(point, normal, albedo, emission, d);
+            let surface = surface_at(hit, point, ray.tangent);
+            return shade(point, surface.normal, surface.albedo, surface.emission, d);
         }
         if crossings == budget {
 #ifdef HIT_ID
@@ -948,15 +987,10 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
 #endif
             break;
         }
-        // Cross: exit point (N·v) p − (N·p) v, tangent κ (N·p) p + (N·v) v, then the pairing.
-        let at_face = p * den + v * num;
-        let along = p * (-kappa() * num) + v * den;
-        let m = space.pairings[face];
-        p = project_point(m * at_face);
-        v = unit_tangent(p, m * along);
-        travelled += distance_from_ratio(num, den);
+        travelled += distance_from_ratio(exit.num, exit.den);
+        ray = cross(ray, exit);
 #ifdef HIT_ID
-        path = (path ^ (face + 1u)) * FNV_PRIME;
+        path = (path ^ (exit.face + 1u)) * FNV_PRIME;
         hit_id = vec4<u32>(0u, crossings + 1u, path, 3u);
 #endif
         if travelled >= cutoff {
@@ -965,7 +999,7 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
 #endif
             return fog;
         }
-        skip = partner(face);
+        skip = partner(exit.face);
     }
     return fog;
 }

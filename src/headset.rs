@@ -11,12 +11,14 @@
 //!
 //! Each eye is the head's frame moved by the eye's own pose relative to the head
 //! (`P_head⁻¹ · P_eye`, which holds the IPD and any canting of the displays), scaled the
-//! same way, and wrapped into the cell with its own pairing ([`crate::stereo::wrap_eye`]).
+//! same way, and wrapped into the cell with its own pairing ([`crate::view::stereo::wrap_eye`]).
 
+use crate::components::Holonomy;
 use crate::geometry::Geometry;
-use crate::player::{Holonomy, translate_local, wrap_into_cell};
+use crate::geometry::translate_local;
 use crate::space::Space;
-use crate::stereo::{Eye, wrap_eye};
+use crate::space::wrap_into_cell;
+use crate::view::stereo::{Eye, wrap_eye};
 use glam::{DMat4, DQuat, DVec3};
 
 /// A rigid pose in the room: metres and a unit quaternion (OpenXR's `Posef`).

@@ -1,18 +1,16 @@
 //! The egui panel: space picker, tracer knobs and read-outs. F1 shows or hides it, F12 saves
 //! a screenshot (without the panel) to the working directory.
 
-use crate::player::{Holonomy, PlayerFrame, PlayerSettings};
-use crate::plugin::{ActiveSpace, CurvedSpaceCamera, Quality, TracerSettings, TracerStatus};
+use crate::components::{ActiveSpace, CurvedSpaceCamera, Quality, TracerSettings, TracerStatus};
+use crate::components::{Holonomy, PlayerFrame, PlayerSettings};
+use crate::components::{PointerOverUi, StereoSettings};
 use crate::space::SEED_SPACES;
-use crate::stereo::{HUMAN_IPD_METRES, StereoMode, StereoSettings, default_ipd};
+use crate::view::StereoMode;
+use crate::view::stereo::{HUMAN_IPD_METRES, default_ipd};
 use bevy::diagnostic::{DiagnosticsStore, FrameTimeDiagnosticsPlugin};
 use bevy::prelude::*;
 use bevy::render::view::screenshot::{Screenshot, save_to_disk};
 use bevy_egui::{EguiContexts, EguiPlugin, EguiPrimaryContextPass, egui};
-
-/// Whether the pointer is over the panel (then a click does not grab the cursor).
-#[derive(Resource, Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct PointerOverUi(pub bool);
 
 /// Whether the panel is shown.
 #[derive(Resource, Clone, Copy, Debug, PartialEq, Eq)]
@@ -219,8 +217,9 @@ fn panel(
                 }
             }
             ui.separator();
-            let default_fog = crate::trace::Shading::default_fog_distance(&active.space);
-            let mut fog = settings.fog_distance.unwrap_or(default_fog);
+            let default_fog = crate::scene::Shading::default_fog_distance(&active.space);
+            let in_use = if status.fog_distance > 0.0 { status.fog_distance } else { default_fog };
+            let mut fog = settings.fog_distance.unwrap_or(in_use);
             if ui
                 .add(
                     egui::Slider::new(&mut fog, 0.05 * default_fog..=4.0 * default_fog)

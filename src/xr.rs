@@ -21,12 +21,13 @@
 //!     .run();
 //! ```
 
+use crate::components::CurvedSpaceEye;
+use crate::components::StereoSettings;
+use crate::components::{ActiveSpace, CurvedSpaceCamera, CurvedSpacesSystems};
+use crate::components::{PlayerFrame, PlayerSettings};
 use crate::headset::{HeadTracker, RoomPose};
-use crate::player::{PlayerFrame, PlayerSettings};
-use crate::plugin::{ActiveSpace, CurvedSpaceCamera, CurvedSpacesSystems};
-use crate::render::CurvedSpaceEye;
-use crate::stereo::{Lens, StereoSettings};
-use crate::trace::Camera as TraceCamera;
+use crate::view::Lens;
+use crate::view::TraceCamera;
 use bevy::prelude::*;
 use bevy_mod_openxr::action_binding::{OxrSendActionBindings, OxrSuggestActionBinding};
 use bevy_mod_openxr::action_set_attaching::OxrAttachActionSet;
@@ -66,7 +67,7 @@ pub fn probe_runtime() -> Result<(), XrUnavailable> {
 }
 
 /// Drives curved-space cameras from an OpenXR headset. Add it after
-/// [`add_xr_plugins`]`(DefaultPlugins)` and [`CurvedSpacesPlugin`](crate::CurvedSpacesPlugin).
+/// [`add_xr_plugins`]`(DefaultPlugins)` and [`CurvedSpacesPlugin`](crate::plugin::CurvedSpacesPlugin).
 #[derive(Clone, Debug)]
 pub struct CurvedSpacesXrPlugin {
     /// Walking speed of the thumbstick in cell inradii per second.

@@ -4,7 +4,7 @@
 //! time from submission to completion) and its pixels can be read back.
 
 use crate::render::gpu::{ShaderKey, TRACER_WGSL, compose_wgsl, view_shader_defs};
-use crate::stereo::ViewKind;
+use crate::view::ViewKind;
 use bevy::shader::ShaderDefVal;
 use std::collections::HashMap;
 use std::time::Instant;

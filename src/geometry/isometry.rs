@@ -194,3 +194,15 @@ impl Geometry {
         Ok(self.orthonormalize_frame(DMat4::from_cols(right, up, back, p)))
     }
 }
+
+/// The frame moved by `t` in its own axes (right, up, back): along the geodesic in that
+/// direction by `|t|`. A zero or non-finite `t` leaves it where it is.
+#[must_use]
+pub fn translate_local(geometry: Geometry, frame: DMat4, t: DVec3) -> DMat4 {
+    let distance = t.length();
+    if distance > 0.0 && distance.is_finite() {
+        frame * geometry.translation(t / distance, distance)
+    } else {
+        frame
+    }
+}

@@ -1,4 +1,4 @@
-//! The exact model shared by the three geometries (see `DESIGN.md` §1).
+//! The exact model shared by the three geometries (see `docs/design.md` §1).
 //!
 //! Points and tangent vectors are 4-vectors `X = (x, y, z, w)` with the bilinear form
 //! `⟨u, v⟩ = u.x v.x + u.y v.y + u.z v.z + κ u.w v.w`:
@@ -6,9 +6,11 @@
 //! The chart `x = X.xyz / X.w` (gnomonic, Klein, affine) maps geodesics to straight lines.
 
 mod isometry;
+mod ray;
 mod real;
 
-pub use isometry::max_abs_entry;
+pub use isometry::{max_abs_entry, translate_local};
+pub use ray::{Ray, chart_ray};
 
 pub use real::{Real, Vector4};
 

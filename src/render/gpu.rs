@@ -5,10 +5,14 @@
 //! Every member of the WGSL struct is a `vec4` or a `mat4x4` (or an array of them), so the
 //! layout has no padding: the buffer is the members' components one after another.
 
+use super::layout::{
+    AVATAR_SLOTS, FACE_BYTES, GpuBall, GpuDisc, GpuGlobe, GpuInstance, GpuShading, GpuTube,
+    GpuView, Mat4F, UniformWriter, Vec4F, colour, mat4, vec4,
+};
 use crate::geometry::Geometry;
+use crate::scene::{CurvedScene, Object};
 use crate::space::Space;
-use crate::stereo::{ViewKind, ViewLayout};
-use crate::trace::{Object, Scene};
+use crate::view::{ViewKind, ViewLayout};
 use bevy::shader::ShaderDefVal;
 use glam::{DMat4, DVec4};
 
@@ -29,9 +33,8 @@ pub const MAX_SCENE_DATA_BYTES: usize = 128 << 20;
 /// it (and by the face and object counts), so no frame can run away.
 pub const MAX_GPU_BUDGET: u32 = 4096;
 
-/// Words of the per-view part at the start of the uniform (`View`: two eye frames, three
-/// vec4, the two anaglyph matrices, the avatar's frames and a vec4 about them).
-pub const VIEW_WORDS: usize = 76 + 16 * 16 + 4;
+/// Words of the per-view part at the start of the uniform ([`GpuView`]).
+pub const VIEW_WORDS: usize = size_of::<GpuView>() / 4;
 
 /// What the shader is specialised on: one compiled pipeline per key.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -141,35 +144,29 @@ impl ShaderKey {
         }
     }
 
-    /// Size in bytes of `SpaceUniform` for this key.
+    /// Size in bytes of `SpaceUniform` for this key, from the sizes of its typed parts.
     #[must_use]
     pub fn uniform_bytes(&self) -> usize {
-        let vec4 = 16;
+        let vec4 = size_of::<Vec4F>();
         let (faces, balls, tubes) = self.array_sizes();
-        let view = VIEW_WORDS * 4;
-        let shading_and_data = 3 * vec4;
-        let lights = self.lights as usize * (1 + self.light_images.max(1) as usize) * vec4;
-        let partners = faces.div_ceil(4) as usize * vec4;
-        let faces = faces as usize * (vec4 + 4 * vec4);
-        let balls = balls as usize * 3 * vec4;
-        let tubes = tubes as usize * 5 * vec4;
-        let globes = self.globes as usize * 8 * vec4;
-        let discs = self.discs as usize * 5 * vec4;
-        let instances = self.instances as usize * 9 * vec4;
-        let general = if self.general { vec4 } else { 0 };
-        view + shading_and_data
-            + lights
-            + faces
-            + partners
-            + balls
-            + tubes
-            + globes
-            + discs
-            + instances
-            + general
+        let (faces, balls, tubes) = (faces as usize, balls as usize, tubes as usize);
+        let count = |n: u32| n as usize;
+        size_of::<GpuView>()
+            + size_of::<GpuShading>()
+            + vec4 // scene data offsets
+            + count(self.lights) * (1 + count(self.light_images.max(1))) * vec4
+            + faces * FACE_BYTES
+            + faces.div_ceil(4) * vec4 // partners, four to a vec4
+            + balls * size_of::<GpuBall>()
+            + tubes * size_of::<GpuTube>()
+            + count(self.globes) * size_of::<GpuGlobe>()
+            + count(self.discs) * size_of::<GpuDisc>()
+            + count(self.instances) * size_of::<GpuInstance>()
+            + if self.general { vec4 } else { 0 }
     }
 }
 
+#[cfg(feature = "bench")]
 /// Composes WGSL with shader defs through naga_oil (as Bevy does) into a naga module; the
 /// error names the file and what went wrong.
 pub fn compose_wgsl(
@@ -251,7 +248,7 @@ fn gpu_kind(o: &Object) -> GpuKind {
 /// meshes, each in scene order (the `HIT_ID` output reports it). The avatar's images come
 /// after all of them, as in [`crate::trace::SceneHit::object`].
 #[must_use]
-pub fn gpu_object_indices(scene: &Scene) -> Vec<u32> {
+pub fn gpu_object_indices(scene: &CurvedScene) -> Vec<u32> {
     let kinds: Vec<GpuKind> = scene.objects.iter().map(gpu_kind).collect();
     kinds
         .iter()
@@ -287,16 +284,6 @@ pub struct GpuScene {
     pub avatar: Option<GpuAvatar>,
 }
 
-fn push_vec4(words: &mut Vec<u32>, v: DVec4) {
-    words.extend(v.to_array().map(|x| (x as f32).to_bits()));
-}
-
-fn push_mat4(words: &mut Vec<u32>, m: DMat4) {
-    for column in [m.x_axis, m.y_axis, m.z_axis, m.w_axis] {
-        push_vec4(words, column);
-    }
-}
-
 /// `x` rounded to an f32 no larger (`down`) or no smaller than it: node boxes stay
 /// conservative in f32.
 fn f32_rounded(x: f64, down: bool) -> f32 {
@@ -311,7 +298,7 @@ fn f32_rounded(x: f64, down: bool) -> f32 {
 /// Packs the meshes, materials and textures into the scene data buffer; returns it with
 /// the offsets of its parts (triangles, materials, texture table, texels, in vec4) and each
 /// mesh's root node.
-fn pack_scene_data(scene: &Scene) -> (Vec<u32>, [u32; 4], Vec<u32>) {
+fn pack_scene_data(scene: &CurvedScene) -> (Vec<u32>, [u32; 4], Vec<u32>) {
     let f = |x: f64| (x as f32).to_bits();
     let node_count: usize = scene.meshes.iter().map(|m| m.nodes.len()).sum();
     let tri_count: usize = scene.meshes.iter().map(|m| m.triangles.len()).sum();
@@ -382,7 +369,11 @@ fn pack_scene_data(scene: &Scene) -> (Vec<u32>, [u32; 4], Vec<u32>) {
 
 impl GpuScene {
     /// Packs a space and a scene with a crossing budget per ray.
-    pub fn new(space: &Space, scene: &Scene, max_crossings: u32) -> Result<Self, GpuSceneError> {
+    pub fn new(
+        space: &Space,
+        scene: &CurvedScene,
+        max_crossings: u32,
+    ) -> Result<Self, GpuSceneError> {
         if max_crossings == 0 {
             return Err(GpuSceneError::NoCrossings(max_crossings));
         }
@@ -443,84 +434,97 @@ impl GpuScene {
             _ => g.cs(r).0,
         };
         let shading = &scene.shading;
-        let mut words = Vec::with_capacity(bytes / 4);
-        push_vec4(&mut words, shading.fog_colour.extend(shading.ambient));
-        push_vec4(
-            &mut words,
-            DVec4::new(
+        let mut out = UniformWriter::with_capacity(bytes);
+        out.push(&GpuShading {
+            fog: colour(shading.fog_colour, shading.ambient),
+            params: vec4(DVec4::new(
                 shading.fog_distance,
                 shading.cutoff_distance(),
                 g.s(shading.near_light),
                 f64::from(max_crossings),
-            ),
-        );
-        words.extend(offsets);
+            )),
+        });
+        out.push(&offsets);
         for light in &scene.lights {
-            push_vec4(
-                &mut words,
-                (light.colour * light.power).extend(light.images.len() as f64),
-            );
+            out.push(&colour(
+                light.colour * light.power,
+                light.images.len() as f64,
+            ));
             for k in 0..light_images as usize {
-                push_vec4(
-                    &mut words,
+                out.push(&vec4(
                     light.images.get(k).copied().unwrap_or(light.position),
-                );
+                ));
             }
         }
         for face in &space.faces {
-            push_vec4(&mut words, face.covector);
+            out.push(&vec4(face.covector));
         }
         for face in &space.faces {
-            push_mat4(&mut words, face.pairing);
+            out.push(&mat4(face.pairing));
         }
         let mut partners: Vec<u32> = space.faces.iter().map(|f| f.partner as u32).collect();
         partners.resize(4 * space.faces.len().div_ceil(4), 0);
-        words.extend(partners);
+        out.words.extend(partners);
         for o in &balls {
             if let Object::Ball(ball) = o {
-                push_vec4(&mut words, ball.centre);
-                push_vec4(&mut words, ball.colour.extend(size(ball.radius)));
-                push_vec4(&mut words, ball.emission.extend(0.0));
+                out.push(&GpuBall {
+                    centre: vec4(ball.centre),
+                    colour: colour(ball.colour, size(ball.radius)),
+                    emission: colour(ball.emission, 0.0),
+                });
             }
         }
         for o in &tubes {
             if let Object::Tube(tube) = o {
-                push_vec4(&mut words, tube.a);
-                push_vec4(&mut words, tube.towards_b());
-                push_vec4(&mut words, tube.colour.extend(size(tube.radius).powi(2)));
                 let (c, s) = tube.cs_length();
-                push_vec4(&mut words, DVec4::new(c, s, 0.0, 0.0));
-                push_vec4(&mut words, tube.emission.extend(0.0));
+                out.push(&GpuTube {
+                    a: vec4(tube.a),
+                    towards_b: vec4(tube.towards_b()),
+                    colour: colour(tube.colour, size(tube.radius).powi(2)),
+                    length: vec4(DVec4::new(c, s, 0.0, 0.0)),
+                    emission: colour(tube.emission, 0.0),
+                });
             }
         }
         for o in &globes {
             if let Object::Ball(ball) = o
                 && let Some(t) = ball.texture
             {
-                push_vec4(&mut words, ball.centre);
-                push_vec4(&mut words, ball.colour.extend(size(ball.radius)));
-                push_vec4(&mut words, ball.emission.extend(f64::from(t.texture)));
-                push_vec4(&mut words, DVec4::new(t.spin, 0.0, 0.0, 0.0));
-                push_mat4(&mut words, g.inverse(t.frame));
+                out.push(&GpuGlobe {
+                    centre: vec4(ball.centre),
+                    colour: colour(ball.colour, size(ball.radius)),
+                    emission: colour(ball.emission, f64::from(t.texture)),
+                    spin: vec4(DVec4::new(t.spin, 0.0, 0.0, 0.0)),
+                    inverse: mat4(g.inverse(t.frame)),
+                });
             }
         }
         for o in &discs {
             if let Object::Disc(disc) = o {
-                push_vec4(&mut words, disc.centre);
-                push_vec4(&mut words, disc.normal);
-                push_vec4(&mut words, disc.covector(g));
-                push_vec4(&mut words, disc.colour.extend(disc.radius));
-                push_vec4(&mut words, disc.emission.extend(0.0));
+                out.push(&GpuDisc {
+                    centre: vec4(disc.centre),
+                    normal: vec4(disc.normal),
+                    covector: vec4(disc.covector(g)),
+                    colour: colour(disc.colour, disc.radius),
+                    emission: colour(disc.emission, 0.0),
+                });
             }
         }
         for o in &instances {
             if let Object::Mesh(m) = o {
-                push_mat4(&mut words, m.frame);
-                push_mat4(&mut words, m.inverse);
-                let root = roots.get(m.mesh as usize).copied().unwrap_or(0);
-                words.extend([root, m.material.unwrap_or(u32::MAX), 0, 0]);
+                out.push(&GpuInstance {
+                    frame: mat4(m.frame),
+                    inverse: mat4(m.inverse),
+                    info: [
+                        roots.get(m.mesh as usize).copied().unwrap_or(0),
+                        m.material.unwrap_or(u32::MAX),
+                        0,
+                        0,
+                    ],
+                });
             }
         }
+        let words = out.words;
         debug_assert_eq!(words.len() * 4 + VIEW_WORDS * 4, bytes);
         let avatar = scene.avatar.as_ref().map(|a| GpuAvatar {
             mesh: a.mesh,
@@ -557,15 +561,30 @@ impl GpuScene {
         }
         let faces = k.faces as usize;
         // (words per element, elements, capacity) of each array, in uniform order.
+        let words_of = |bytes: usize| bytes / 4;
+        let vec4_words = words_of(size_of::<Vec4F>());
         let arrays = [
-            (4, faces, cap_faces as usize),
-            (16, faces, cap_faces as usize),
-            (4, faces.div_ceil(4), (cap_faces as usize).div_ceil(4)),
-            (12, k.balls as usize, cap_balls as usize),
-            (20, k.tubes as usize, cap_tubes as usize),
+            (vec4_words, faces, cap_faces as usize),
+            (words_of(size_of::<Mat4F>()), faces, cap_faces as usize),
+            (
+                vec4_words,
+                faces.div_ceil(4),
+                (cap_faces as usize).div_ceil(4),
+            ),
+            (
+                words_of(size_of::<GpuBall>()),
+                k.balls as usize,
+                cap_balls as usize,
+            ),
+            (
+                words_of(size_of::<GpuTube>()),
+                k.tubes as usize,
+                cap_tubes as usize,
+            ),
         ];
         // Shading, data offsets and the lights.
-        let header = 12 + 4 * k.lights as usize * (1 + k.light_images.max(1) as usize);
+        let header = words_of(size_of::<GpuShading>())
+            + vec4_words * (1 + k.lights as usize * (1 + k.light_images.max(1) as usize));
         let mut words = self.words[..header].to_vec();
         let mut at = header;
         for (size, count, capacity) in arrays {
@@ -595,8 +614,8 @@ impl GpuScene {
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ViewExtras {
     pub time: f64,
-    /// At most [`crate::trace::MAX_AVATAR_IMAGES`] are drawn.
-    pub avatar: Vec<crate::trace::MeshInstance>,
+    /// At most [`crate::scene::MAX_AVATAR_IMAGES`] are drawn.
+    pub avatar: Vec<crate::scene::MeshInstance>,
     /// Avatar hits nearer than this to the eye are passed through.
     pub avatar_skip: f64,
     /// The root node of the avatar's mesh.
@@ -616,7 +635,7 @@ impl ViewExtras {
         };
         Self {
             time,
-            avatar: crate::trace::avatar_instances(space, a.mesh, a.radius, frame),
+            avatar: crate::scene::avatar_instances(space, a.mesh, a.radius, frame),
             avatar_skip: a.skip,
             avatar_root: a.root,
         }
@@ -628,56 +647,38 @@ impl ViewExtras {
 /// pixels), the stereo split, eye swap and time, the anaglyph matrices and the avatar.
 #[must_use]
 pub fn view_words(layout: &ViewLayout, origin: [u32; 2], extras: &ViewExtras) -> [u32; VIEW_WORDS] {
-    let mut words = Vec::with_capacity(VIEW_WORDS);
-    for frame in layout.frames {
-        push_mat4(&mut words, frame);
-    }
     let lens = layout.lens;
-    push_vec4(
-        &mut words,
-        DVec4::new(lens.left, lens.right, lens.bottom, lens.top),
-    );
-    push_vec4(
-        &mut words,
-        DVec4::new(
+    let images = extras.avatar.len().min(crate::scene::MAX_AVATAR_IMAGES);
+    let mut avatar = [mat4(DMat4::IDENTITY); 2 * AVATAR_SLOTS];
+    for (k, m) in extras.avatar.iter().take(images).enumerate() {
+        avatar[2 * k] = mat4(m.frame);
+        avatar[2 * k + 1] = mat4(m.inverse);
+    }
+    let view = GpuView {
+        frames: layout.frames.map(mat4),
+        lens: vec4(DVec4::new(lens.left, lens.right, lens.bottom, lens.top)),
+        viewport: vec4(DVec4::new(
             f64::from(origin[0]),
             f64::from(origin[1]),
             layout.size[0],
             layout.size[1],
-        ),
-    );
-    push_vec4(
-        &mut words,
-        DVec4::new(
+        )),
+        split: vec4(DVec4::new(
             layout.split[0],
             layout.split[1],
             f64::from(u8::from(layout.swap_eyes)),
             extras.time,
-        ),
-    );
-    for m in [layout.anaglyph.0, layout.anaglyph.1] {
-        push_mat4(&mut words, DMat4::from_mat3(m));
-    }
-    let images = extras.avatar.len().min(crate::trace::MAX_AVATAR_IMAGES);
-    for k in 0..crate::trace::MAX_AVATAR_IMAGES {
-        let (frame, inverse) = extras
-            .avatar
-            .get(k)
-            .filter(|_| k < images)
-            .map_or((DMat4::IDENTITY, DMat4::IDENTITY), |m| (m.frame, m.inverse));
-        push_mat4(&mut words, frame);
-        push_mat4(&mut words, inverse);
-    }
-    push_vec4(
-        &mut words,
-        DVec4::new(
+        )),
+        anaglyph: [layout.anaglyph.0, layout.anaglyph.1].map(|m| mat4(DMat4::from_mat3(m))),
+        avatar,
+        avatar_info: vec4(DVec4::new(
             images as f64,
             extras.avatar_skip,
             f64::from(extras.avatar_root),
             0.0,
-        ),
-    );
-    words.try_into().expect("the view is VIEW_WORDS words")
+        )),
+    };
+    bytemuck::cast(view)
 }
 
 /// The shader defs of a view kind (added to the scene's, [`ShaderKey::shader_defs`]).

@@ -6,11 +6,15 @@
 //! kinds present (shader defs, [`gpu::ShaderKey`]), and its uniform is sized to the scene.
 
 pub mod gpu;
+pub mod layout;
 pub mod offscreen;
+pub mod upload;
 
-use crate::player::PlayerFrame;
-use crate::plugin::CurvedSpaceCamera;
-use crate::stereo::{Lens, StereoMode, StereoSettings, ViewKind, ViewLayout, eye_frames};
+use crate::components::StereoSettings;
+use crate::components::{CurvedSpaceCamera, CurvedSpaceEye, PlayerFrame};
+use crate::view::StereoMode;
+use crate::view::stereo::eye_frames;
+use crate::view::{Lens, ViewKind, ViewLayout};
 use bevy::asset::{load_internal_asset, uuid_handle};
 use bevy::core_pipeline::{Core3d, Core3dSystems, tonemapping::tonemapping};
 use bevy::prelude::*;
@@ -81,14 +85,6 @@ pub struct ExtractedCurvedView {
     pub extras: ViewExtras,
 }
 
-/// Marks a curved-space camera that is one eye of a head-mounted display: it is drawn as
-/// one view with its own (asymmetric) frustum, and the [`StereoSettings`] do not apply to
-/// it. Its [`PlayerFrame`] is the eye's frame, kept inside the cell by its owner.
-#[derive(Component, Clone, Copy, Debug, PartialEq)]
-pub struct CurvedSpaceEye {
-    pub lens: Lens,
-}
-
 impl SyncComponent for CurvedSpaceCamera {
     type Target = ExtractedCurvedView;
 }
@@ -149,9 +145,9 @@ type CurvedCameras<'w, 's> = Query<
 fn extract_curved_views(
     mut commands: Commands,
     scene: Extract<Option<Res<PreparedScene>>>,
-    settings: Extract<Option<Res<crate::plugin::TracerSettings>>>,
+    settings: Extract<Option<Res<crate::components::TracerSettings>>>,
     stereo: Extract<Option<Res<StereoSettings>>>,
-    active: Extract<Option<Res<crate::plugin::ActiveSpace>>>,
+    active: Extract<Option<Res<crate::components::ActiveSpace>>>,
     time: Extract<Option<Res<Time>>>,
     views: Extract<CurvedCameras>,
 ) {

@@ -2,13 +2,13 @@
 //! curved-space camera draws into an image, captured once the tracer has drawn it.
 //! Used by the CLI's GPU `render`, the headless example and the GPU-vs-CPU tests.
 
-use crate::player::PlayerFrame;
-use crate::plugin::{
-    ActiveSpace, BaseScene, CurvedSpaceCamera, CurvedSpacesPlugin, SceneObjects, TracerSettings,
-};
+use crate::components::PlayerFrame;
+use crate::components::StereoSettings;
+use crate::components::{ActiveSpace, BaseScene, CurvedSpaceCamera, SceneObjects, TracerSettings};
+use crate::plugin::CurvedSpacesPlugin;
 use crate::render::FramesTraced;
-use crate::stereo::StereoSettings;
-use crate::trace::{Object, SceneParts};
+use crate::scene::{Object, SceneParts};
+use crate::view::TraceCamera;
 use bevy::app::{PluginsState, ScheduleRunnerPlugin};
 use bevy::camera::{ImageRenderTarget, RenderTarget};
 use bevy::prelude::*;
@@ -44,6 +44,35 @@ pub struct OffscreenRender {
     pub base: BaseScene,
     /// The scene's clock in seconds (the globes' spin).
     pub time: f64,
+}
+
+impl OffscreenRender {
+    /// A mono picture of the space's default scene parts from `camera` at `width × height`,
+    /// with the space's own fog, full resolution, no objects of your own and the clock at 0.
+    /// Change the other fields with struct update syntax.
+    #[must_use]
+    pub fn new(
+        space: ActiveSpace,
+        camera: TraceCamera,
+        (width, height): (u32, u32),
+        max_crossings: u32,
+    ) -> Self {
+        Self {
+            space,
+            width,
+            height,
+            frame: camera.frame,
+            fov_y_degrees: camera.fov_y_degrees,
+            fog_distance: None,
+            max_crossings,
+            parts: SceneParts::default(),
+            objects: Vec::new(),
+            resolution_scale: 1.0,
+            stereo: StereoSettings::default(),
+            base: BaseScene::default(),
+            time: 0.0,
+        }
+    }
 }
 
 /// Why no picture came back.
@@ -135,14 +164,14 @@ impl OffscreenRenderer {
         let settings = TracerSettings {
             fog_distance: request.fog_distance,
             max_crossings: Some(request.max_crossings.max(1)),
-            quality: crate::plugin::Quality::High,
+            quality: crate::components::Quality::High,
             resolution_scale: request.resolution_scale,
             parts: request.parts,
             time: Some(request.time),
         };
         // A scene the GPU cannot take would only time out below: say why now.
         let space = &request.space.space;
-        let (scene, _) = crate::plugin::build_scene(
+        let (scene, _) = crate::render::upload::build_scene(
             space,
             &settings,
             &request.objects,
@@ -221,4 +250,28 @@ fn to_rgb(image: &Image) -> Result<RgbImage, OffscreenError> {
         .try_into_dynamic()
         .map_err(|e| OffscreenError::Format(e.to_string()))?;
     Ok(dynamic.to_rgb8())
+}
+
+/// Gives the process a private runtime directory when `XDG_RUNTIME_DIR` is unset or not a
+/// folder, so that the Vulkan loader's Wayland client does not print
+/// `error: XDG_RUNTIME_DIR is invalid or not set` for every GPU render in a headless session.
+/// Genuine errors are unaffected. Does nothing where the variable names a folder already.
+///
+/// # Safety
+/// Changes the process environment: call it before any other thread is started (first thing
+/// in `main`), as [`std::env::set_var`] requires.
+pub unsafe fn quiet_runtime_dir() {
+    if std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|d| std::path::Path::new(&d).is_dir()) {
+        return;
+    }
+    let user = std::env::var("USER").unwrap_or_else(|_| "user".into());
+    let dir = std::env::temp_dir().join(format!("curved-spaces-runtime-{user}"));
+    let mut builder = std::fs::DirBuilder::new();
+    builder.recursive(true);
+    #[cfg(unix)]
+    std::os::unix::fs::DirBuilderExt::mode(&mut builder, 0o700);
+    if builder.create(&dir).is_ok() {
+        // SAFETY: the caller guarantees no other thread reads the environment now.
+        unsafe { std::env::set_var("XDG_RUNTIME_DIR", &dir) };
+    }
 }

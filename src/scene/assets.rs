@@ -170,6 +170,7 @@ pub fn png_bytes(image: &RgbaImage) -> Vec<u8> {
 }
 
 /// Writes a mesh source (one material) as a `.glb`.
+#[cfg(feature = "gltf")]
 pub fn write_source_glb(
     path: &std::path::Path,
     source: &MeshSource,

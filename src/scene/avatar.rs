@@ -2,9 +2,8 @@
 //! back round the space (a ray reaches the copy the eye sits in within [`SKIP_FACTOR`] times
 //! the ship's radius and passes through it).
 
-use super::gltf::Model;
-use super::mesh::MeshSource;
-use crate::trace::Material;
+use super::mesh::{MeshSource, Model};
+use super::shading::SurfaceMaterial;
 use glam::DVec3;
 
 /// The ship's length in model units (nose at `z = −1`, tail at `z = 0.5`).
@@ -43,12 +42,12 @@ pub fn ship() -> Model {
     Model {
         source,
         materials: vec![
-            Material {
+            SurfaceMaterial {
                 colour: DVec3::new(0.85, 0.86, 0.9),
                 texture: None,
                 emission: DVec3::ZERO,
             },
-            Material {
+            SurfaceMaterial {
                 colour: DVec3::new(0.3, 0.15, 0.05),
                 texture: None,
                 emission: DVec3::new(1.0, 0.45, 0.1),

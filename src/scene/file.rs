@@ -15,13 +15,13 @@
 use super::gltf;
 use super::texture::Texture;
 use crate::geometry::Geometry;
+use crate::scene::{
+    Ball, BallTexture, CurvedScene, Disc, Light, MeshInstance, Object, SceneParts, Shading,
+    SurfaceMaterial, Tube,
+};
 use crate::space::file::load_space_file;
 use crate::space::invariants::inradius;
 use crate::space::{SEED_SPACES, Space, seed_space};
-use crate::trace::{
-    Ball, BallTexture, Disc, Light, Material, MeshInstance, Object, Scene, SceneParts, Shading,
-    Tube,
-};
 use glam::{DMat4, DVec3, DVec4};
 use serde::Deserialize;
 use std::path::Path;
@@ -46,8 +46,8 @@ pub struct SceneFile {
     pub space_id: String,
     pub space: Space,
     /// The file's own objects, lights and shading, without the parts: the base scene the
-    /// plugin adds [`crate::plugin::TracerSettings::parts`] to.
-    pub base: Scene,
+    /// plugin adds [`crate::components::TracerSettings::parts`] to.
+    pub base: CurvedScene,
     /// The player's start frame (`None`: the space's default view).
     pub start: Option<DMat4>,
     /// The default scene's parts the file asks for (the cell's edges, the centre ball, the
@@ -58,7 +58,7 @@ pub struct SceneFile {
 impl SceneFile {
     /// The whole scene: the base with the parts the file asks for.
     #[must_use]
-    pub fn scene(&self) -> Scene {
+    pub fn scene(&self) -> CurvedScene {
         self.base.adding_parts(&self.space, self.parts)
     }
 }
@@ -230,7 +230,7 @@ pub fn parse_scene(text: &str, base: &Path, file: &str) -> Result<SceneFile, Sce
         Some(f) => f.get_ref() * r,
         None => Shading::default_fog_distance(&space),
     };
-    let mut scene = Scene::with_parts(
+    let mut scene = CurvedScene::with_parts(
         &space,
         fog,
         SceneParts {
@@ -450,7 +450,7 @@ fn start_frame(space: &Space, start: &StartSpec) -> Result<DMat4, String> {
 
 fn build_object(
     space: &Space,
-    scene: &mut Scene,
+    scene: &mut CurvedScene,
     spec: &ObjectSpec,
     base: &Path,
 ) -> Result<Object, String> {
@@ -567,7 +567,7 @@ fn build_object(
             let radius = scene.meshes[mesh as usize].radius;
             let mut instance = MeshInstance::new(g, mesh, frame, radius);
             if c.is_some() || *emission != [0.0; 3] {
-                scene.materials.push(Material {
+                scene.materials.push(SurfaceMaterial {
                     colour: colour(c.unwrap_or([1.0; 3])),
                     texture: None,
                     emission: colour(*emission),

@@ -2,9 +2,9 @@
 //! crate: positions, normals, texture coordinates, base colour (factor and texture) and
 //! emission of every triangle primitive of the default scene, node transforms applied.
 
-use super::mesh::MeshSource;
+use super::mesh::{MeshSource, Model};
+use super::shading::SurfaceMaterial;
 use super::texture::{Texture, TextureError};
-use crate::trace::Material;
 use glam::{DMat3, DMat4, DVec2, DVec3};
 use std::path::Path;
 
@@ -52,14 +52,6 @@ pub enum GltfError {
         #[source]
         source: TextureError,
     },
-}
-
-/// A model's triangles with its materials and textures (indices local to the model).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Model {
-    pub source: MeshSource,
-    pub materials: Vec<Material>,
-    pub textures: Vec<Texture>,
 }
 
 /// Reads a glTF model. Primitives that are not triangles (points, lines) are left out;
@@ -119,13 +111,13 @@ pub fn load(path: &Path) -> Result<Model, GltfError> {
         })
         .collect::<Result<Vec<_>, _>>()?;
     // glTF material i is ours i; primitives without a material use the last (the default).
-    let mut materials: Vec<Material> = document
+    let mut materials: Vec<SurfaceMaterial> = document
         .materials()
         .map(|m| {
             let pbr = m.pbr_metallic_roughness();
             let [r, g, b, _] = pbr.base_color_factor();
             let [er, eg, eb] = m.emissive_factor();
-            Material {
+            SurfaceMaterial {
                 colour: DVec3::new(r.into(), g.into(), b.into()),
                 texture: pbr
                     .base_color_texture()
@@ -135,7 +127,7 @@ pub fn load(path: &Path) -> Result<Model, GltfError> {
         })
         .collect();
     let default_material = materials.len() as u32;
-    materials.push(Material::default());
+    materials.push(SurfaceMaterial::default());
 
     let mut source = MeshSource::default();
     let roots: Vec<gltf::Node> = match document

@@ -1,7 +1,7 @@
 //! Triangle meshes in the curved space and the bounding-volume hierarchy both tracers walk.
 //!
 //! A mesh lives in its own frame (an isometry placing it in the cell). Its triangles are
-//! geodesic triangles, which are flat in the chart (`DESIGN.md` §1), so they are stored as
+//! geodesic triangles, which are flat in the chart (`docs/design.md` §1), so they are stored as
 //! chart triangles of the mesh's frame and a ray meets them exactly in all three geometries.
 //!
 //! **Scale rule.** A vertex at position `x` of the source model (glTF units) is put at the
@@ -14,6 +14,8 @@
 //! and flattened depth first; the WGSL tracer traverses the same nodes and triangles from
 //! a storage buffer.
 
+use super::shading::SurfaceMaterial;
+use super::texture::Texture;
 use crate::geometry::Geometry;
 use glam::{DVec2, DVec3};
 
@@ -181,6 +183,14 @@ pub struct MeshSource {
     pub indices: Vec<[u32; 3]>,
     /// One material per triangle (indices into the scene's materials).
     pub materials: Vec<u32>,
+}
+
+/// A model's triangles with its materials and textures (indices local to the model).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Model {
+    pub source: MeshSource,
+    pub materials: Vec<SurfaceMaterial>,
+    pub textures: Vec<Texture>,
 }
 
 impl MeshSource {

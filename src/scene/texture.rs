@@ -2,6 +2,7 @@
 //! tracer samples the same packed texels with the same formula (`sample_texture`), so CPU
 //! and GPU pictures agree.
 
+use crate::colour::srgb_channel_to_linear;
 use glam::{DVec2, DVec3};
 use std::path::Path;
 
@@ -31,16 +32,6 @@ pub struct Texture {
     pub width: u32,
     pub height: u32,
     pub texels: Vec<u32>,
-}
-
-/// The linear value of an sRGB-encoded channel in [0, 1] (the shader's `srgb_to_linear`).
-#[must_use]
-pub fn srgb_to_linear(c: f64) -> f64 {
-    if c <= 0.04045 {
-        c / 12.92
-    } else {
-        ((c + 0.055) / 1.055).powf(2.4)
-    }
 }
 
 impl Texture {
@@ -82,7 +73,7 @@ impl Texture {
     #[must_use]
     pub fn texel(&self, x: u32, y: u32) -> DVec3 {
         let t = self.texels[(y * self.width + x) as usize];
-        let channel = |shift: u32| srgb_to_linear(f64::from((t >> shift) & 0xff) / 255.0);
+        let channel = |shift: u32| srgb_channel_to_linear(f64::from((t >> shift) & 0xff) / 255.0);
         DVec3::new(channel(0), channel(8), channel(16))
     }
 

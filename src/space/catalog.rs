@@ -9,6 +9,9 @@ use crate::geometry::Geometry;
 use glam::{DMat3, DMat4, DVec3};
 use std::f64::consts::{FRAC_1_SQRT_2, PI};
 
+/// The seed space shown when nothing else is chosen.
+pub const DEFAULT_SPACE: &str = "seifert-weber";
+
 /// A named space of the catalog.
 #[derive(Clone, Copy, Debug)]
 pub struct SeedSpace {

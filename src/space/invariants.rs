@@ -2,8 +2,9 @@
 //! groups, closed geodesics, injectivity radius.
 
 use super::Space;
+use crate::geometry::Ray;
 use crate::geometry::{Geometry, ORIGIN, max_abs_entry};
-use crate::trace::{CellWalker, Limit, Ray};
+use crate::space::{CellWalker, Limit};
 use glam::{DMat3, DMat4, DVec3, DVec4};
 use std::collections::{BTreeMap, HashMap, VecDeque};
 

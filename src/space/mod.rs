@@ -1,13 +1,17 @@
 //! Spaces: a geometry, a convex fundamental polyhedron and one pairing per face, validated
-//! by Poincaré's polyhedron theorem when built (`DESIGN.md` §2).
+//! by Poincaré's polyhedron theorem when built (`docs/design.md` §2).
 
 pub mod catalog;
 mod error;
 pub mod file;
 pub mod invariants;
+pub mod walk;
+mod wrap;
 
-pub use catalog::{SEED_SPACES, SeedSpace, seed_space};
+pub use catalog::{DEFAULT_SPACE, SEED_SPACES, SeedSpace, seed_space};
 pub use error::SpaceError;
+pub use walk::{CellWalker, Crossing, Exit, Limit, Trace};
+pub use wrap::{MAX_WRAPS_PER_STEP, wrap_into_cell};
 
 use crate::geometry::{Geometry, ORIGIN, max_abs_entry};
 use glam::{DMat3, DMat4, DVec3, DVec4};
@@ -98,22 +102,88 @@ pub struct EdgeCycle {
 }
 
 /// A closed 3-manifold or orbifold of constant curvature, as a validated fundamental cell.
+///
+/// Only [`Space::new`] makes one (the seed spaces and space files go through it), so every
+/// `Space` has passed validation; its parts are read through the methods below.
 #[derive(Clone, Debug)]
 pub struct Space {
-    pub name: String,
-    pub description: String,
-    pub geometry: Geometry,
-    pub faces: Vec<Face>,
+    pub(crate) name: String,
+    pub(crate) description: String,
+    pub(crate) geometry: Geometry,
+    pub(crate) faces: Vec<Face>,
     /// Vertices in the chart.
-    pub vertices: Vec<DVec3>,
-    pub edges: Vec<Edge>,
-    pub edge_cycles: Vec<EdgeCycle>,
+    pub(crate) vertices: Vec<DVec3>,
+    pub(crate) edges: Vec<Edge>,
+    pub(crate) edge_cycles: Vec<EdgeCycle>,
     /// Classes of vertices glued together.
-    pub vertex_cycles: Vec<Vec<usize>>,
+    pub(crate) vertex_cycles: Vec<Vec<usize>>,
     /// Every pairing preserves orientation.
-    pub orientable: bool,
+    pub(crate) orientable: bool,
     /// No mirrors, every edge cycle of order 1 and spherical vertex links.
-    pub manifold: bool,
+    pub(crate) manifold: bool,
+}
+
+impl Space {
+    /// The space's name.
+    #[must_use]
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// A one-line description.
+    #[must_use]
+    pub fn description(&self) -> &str {
+        &self.description
+    }
+
+    /// Its geometry.
+    #[must_use]
+    pub fn geometry(&self) -> Geometry {
+        self.geometry
+    }
+
+    /// The cell's faces with their pairings.
+    #[must_use]
+    pub fn faces(&self) -> &[Face] {
+        &self.faces
+    }
+
+    /// The cell's vertices in the chart.
+    #[must_use]
+    pub fn vertices(&self) -> &[DVec3] {
+        &self.vertices
+    }
+
+    /// The cell's edges.
+    #[must_use]
+    pub fn edges(&self) -> &[Edge] {
+        &self.edges
+    }
+
+    /// The edge cycles: the cell's edges glued into one edge of the space.
+    #[must_use]
+    pub fn edge_cycles(&self) -> &[EdgeCycle] {
+        &self.edge_cycles
+    }
+
+    /// Classes of vertices glued together.
+    #[must_use]
+    pub fn vertex_cycles(&self) -> &[Vec<usize>] {
+        &self.vertex_cycles
+    }
+
+    /// Whether every pairing preserves orientation.
+    #[must_use]
+    pub fn orientable(&self) -> bool {
+        self.orientable
+    }
+
+    /// Whether the space is a manifold: no mirrors, every edge cycle of order 1 and
+    /// spherical vertex links.
+    #[must_use]
+    pub fn manifold(&self) -> bool {
+        self.manifold
+    }
 }
 
 fn union_find_root(parent: &mut [usize], mut i: usize) -> usize {

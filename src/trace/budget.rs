@@ -8,7 +8,10 @@
 //! `1 − miss_fraction`. A ray beyond the budget is then wrong by at most its fog weight
 //! `e^(−d/λ)`, and at most `miss_fraction` of the sampled rays are.
 
-use super::{CellWalker, Ray, RayEnd, Scene, first_hit};
+use super::{RayEnd, first_hit};
+use crate::geometry::Ray;
+use crate::scene::CurvedScene;
+use crate::space::CellWalker;
 use crate::space::{Space, invariants};
 use glam::{DVec3, DVec4};
 use rayon::prelude::*;
@@ -80,7 +83,7 @@ pub struct BudgetChoice {
 #[must_use]
 pub fn auto_budget(
     space: &Space,
-    scene: &Scene,
+    scene: &CurvedScene,
     miss_fraction: f64,
     samples: usize,
 ) -> BudgetChoice {

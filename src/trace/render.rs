@@ -2,69 +2,14 @@
 //! nearest object hit against exit face, crossing by pairings until the fog cut-off or the
 //! crossing budget.
 
-use super::{CellWalker, Ray, Scene, scene::Hit};
-use crate::geometry::{Geometry, GeometryError};
-use crate::space::Space;
-use crate::stereo::{PixelRays, StereoMode, ViewLayout};
-use glam::{DMat4, DVec3, DVec4};
+use crate::geometry::{Geometry, Ray};
+use crate::scene::{CurvedScene, Hit};
+use crate::space::{CellWalker, Space};
+use crate::view::{PixelRays, TraceCamera, ViewLayout};
+use glam::{DVec3, DVec4};
 use image::RgbImage;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU32, Ordering};
-
-/// A pinhole camera: a frame (columns right, up, back, position) and a vertical field of view.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Camera {
-    pub frame: DMat4,
-    pub fov_y_degrees: f64,
-}
-
-impl Camera {
-    /// A camera at chart point `eye` looking at chart point `target`, chart y up.
-    pub fn looking_at(
-        geometry: Geometry,
-        eye: DVec3,
-        target: DVec3,
-        fov_y_degrees: f64,
-    ) -> Result<Self, GeometryError> {
-        Ok(Self {
-            frame: geometry.look_at(eye, target, DVec3::Y)?,
-            fov_y_degrees,
-        })
-    }
-
-    /// The default view of a space: from 60 % of the inradius out, looking past the centre
-    /// ball so that its copies through the faces show.
-    #[must_use]
-    pub fn default_for(space: &Space) -> Self {
-        let g = space.geometry;
-        let r = crate::space::invariants::inradius(space);
-        let chart = |dir: DVec3, t: f64| g.to_chart(g.translation(dir, t) * space.centre());
-        let eye = chart(DVec3::new(0.3, 0.22, 1.0), 0.75 * r);
-        let target = chart(DVec3::new(-0.5, -0.1, -0.3), 0.5 * r);
-        Self::looking_at(g, eye, target, 70.0)
-            .expect("a point inside the cell is a valid chart point")
-    }
-
-    /// The unit tangent of the ray through pixel `(i, j)` of a `width × height` image:
-    /// `normalize(px·right + py·up − back)` (the mono case of [`ViewLayout`]).
-    #[must_use]
-    pub fn ray(&self, geometry: Geometry, i: u32, j: u32, width: u32, height: u32) -> Ray<DVec4> {
-        self.layout(width, height).ray_at(geometry, i, j)
-    }
-
-    /// The mono pixel mapping of a `width × height` image.
-    #[must_use]
-    pub fn layout(&self, width: u32, height: u32) -> ViewLayout {
-        ViewLayout::new(
-            StereoMode::Mono,
-            false,
-            [self.frame; 2],
-            self.fov_y_degrees,
-            width,
-            height,
-        )
-    }
-}
 
 /// Image size and the speed/error knobs.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -78,7 +23,7 @@ pub struct RenderSettings {
 /// What a camera ray meets first.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SceneHit {
-    /// Index into [`Scene::objects`] (`objects.len() + k` for the avatar's `k`-th image).
+    /// Index into [`CurvedScene::objects`] (`objects.len() + k` for the avatar's `k`-th image).
     pub object: usize,
     pub hit: Hit,
     /// Geodesic distance from the camera.
@@ -104,7 +49,7 @@ pub enum RayEnd {
 #[must_use]
 pub fn first_hit(
     walker: &CellWalker<DVec4>,
-    scene: &Scene,
+    scene: &CurvedScene,
     start: Ray<DVec4>,
     max_crossings: usize,
 ) -> RayEnd {
@@ -147,7 +92,7 @@ impl TracedRay {
 #[must_use]
 pub fn first_hit_traced(
     walker: &CellWalker<DVec4>,
-    scene: &Scene,
+    scene: &CurvedScene,
     start: Ray<DVec4>,
     max_crossings: usize,
 ) -> TracedRay {
@@ -205,7 +150,7 @@ pub fn first_hit_traced(
 #[must_use]
 pub fn trace_pixel(
     walker: &CellWalker<DVec4>,
-    scene: &Scene,
+    scene: &CurvedScene,
     start: Ray<DVec4>,
     max_crossings: usize,
 ) -> DVec3 {
@@ -218,7 +163,7 @@ pub fn trace_pixel(
 
 /// The colour of a ray that ended as `end` (fog where it met nothing).
 #[must_use]
-pub fn colour_of(geometry: Geometry, scene: &Scene, end: &RayEnd) -> DVec3 {
+pub fn colour_of(geometry: Geometry, scene: &CurvedScene, end: &RayEnd) -> DVec3 {
     match end {
         RayEnd::Hit(h) => scene
             .shading
@@ -238,8 +183,8 @@ pub fn to_byte(x: f64) -> u8 {
 #[must_use]
 pub fn render(
     space: &Space,
-    scene: &Scene,
-    camera: &Camera,
+    scene: &CurvedScene,
+    camera: &TraceCamera,
     settings: &RenderSettings,
 ) -> RgbImage {
     render_with_progress(space, scene, camera, settings, |_, _| {})
@@ -249,8 +194,8 @@ pub fn render(
 #[must_use]
 pub fn render_with_progress(
     space: &Space,
-    scene: &Scene,
-    camera: &Camera,
+    scene: &CurvedScene,
+    camera: &TraceCamera,
     settings: &RenderSettings,
     progress: impl Fn(u32, u32) + Sync,
 ) -> RgbImage {
@@ -264,7 +209,7 @@ pub fn render_with_progress(
 #[must_use]
 pub fn render_view(
     space: &Space,
-    scene: &Scene,
+    scene: &CurvedScene,
     layout: &ViewLayout,
     settings: &RenderSettings,
     progress: impl Fn(u32, u32) + Sync,

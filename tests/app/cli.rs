@@ -4,6 +4,11 @@ use serde_json::Value;
 use std::process::{Command, Output};
 
 fn run(args: &[&str]) -> Output {
+    // Commands that render on the GPU wait for the GPU tests (one GPU user at a time).
+    let _gpu = ["render", "walk", "bench"]
+        .iter()
+        .any(|c| args.first() == Some(c) && !args.contains(&"--cpu"))
+        .then(crate::common::gpu_lock);
     Command::new(env!("CARGO_BIN_EXE_curved-spaces"))
         .args(args)
         .output()
@@ -29,9 +34,7 @@ fn fails_with(args: &[&str], needle: &str) {
 }
 
 fn temp_dir(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("curved-spaces-cli-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    crate::common::scratch_dir(&format!("cli-{name}"))
 }
 
 #[test]

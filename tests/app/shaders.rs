@@ -8,8 +8,8 @@ use bevy_curved_spaces::geometry::Geometry;
 use bevy_curved_spaces::render::gpu::{
     GpuScene, MAX_GPU_BUDGET, ShaderKey, TRACER_WGSL, UPSCALE_WGSL, VIEW_WORDS, compose_wgsl,
 };
+use bevy_curved_spaces::scene::{CurvedScene, SceneParts, Shading};
 use bevy_curved_spaces::space::SEED_SPACES;
-use bevy_curved_spaces::trace::{Scene, SceneParts, Shading};
 
 fn compose(key: &ShaderKey) -> Result<naga::Module, String> {
     compose_wgsl(TRACER_WGSL, "shaders/curved_space.wgsl", &key.shader_defs())
@@ -35,6 +35,70 @@ fn validate(key: &ShaderKey) -> usize {
         .find(|(_, t)| t.name.as_deref() == Some("SpaceUniform"))
         .expect("the shader declares SpaceUniform");
     layouter[handle].size as usize
+}
+
+/// Each typed struct of the packer has the size and member offsets naga lays its WGSL twin
+/// out with, in a variant that declares them all.
+#[test]
+fn the_typed_gpu_structs_match_their_wgsl_twins() {
+    use bevy_curved_spaces::render::layout::{
+        GpuBall, GpuDisc, GpuGlobe, GpuInstance, GpuShading, GpuTube, GpuView,
+    };
+    let key = ShaderKey {
+        faces: 6,
+        balls: 1,
+        tubes: 1,
+        globes: 1,
+        discs: 1,
+        instances: 1,
+        lights: 1,
+        light_images: 2,
+        avatar: true,
+        textures: true,
+        ..ShaderKey::empty(Geometry::Hyperbolic)
+    };
+    let module = compose(&key).unwrap_or_else(|e| panic!("composing failed: {e}"));
+    let mut layouter = naga::proc::Layouter::default();
+    layouter.update(module.to_ctx()).expect("layout");
+    let wgsl = |name: &str| -> (usize, Vec<(String, u32)>) {
+        let (handle, ty) = module
+            .types
+            .iter()
+            .find(|(_, t)| t.name.as_deref() == Some(name))
+            .unwrap_or_else(|| panic!("the shader declares {name}"));
+        let naga::TypeInner::Struct { members, .. } = &ty.inner else {
+            panic!("{name} is a struct");
+        };
+        let offsets = members
+            .iter()
+            .map(|m| (m.name.clone().unwrap_or_default(), m.offset))
+            .collect();
+        (layouter[handle].size as usize, offsets)
+    };
+    macro_rules! check {
+        ($wgsl:literal, $rust:ty, [$($field:ident),+]) => {{
+            let (size, members) = wgsl($wgsl);
+            assert_eq!(size, size_of::<$rust>(), "{}: size", $wgsl);
+            let rust = [$((stringify!($field), std::mem::offset_of!($rust, $field) as u32)),+];
+            let names: Vec<(&str, u32)> = members.iter().map(|(n, o)| (n.as_str(), *o)).collect();
+            assert_eq!(names, rust, "{}: members and offsets", $wgsl);
+        }};
+    }
+    check!(
+        "View",
+        GpuView,
+        [frames, lens, viewport, split, anaglyph, avatar, avatar_info]
+    );
+    check!("Shading", GpuShading, [fog, params]);
+    check!("Ball", GpuBall, [centre, colour, emission]);
+    check!("Tube", GpuTube, [a, towards_b, colour, length, emission]);
+    check!("Globe", GpuGlobe, [centre, colour, emission, spin, inverse]);
+    check!(
+        "Disc",
+        GpuDisc,
+        [centre, normal, covector, colour, emission]
+    );
+    check!("Instance", GpuInstance, [frame, inverse, info]);
 }
 
 #[test]
@@ -184,10 +248,11 @@ fn every_seed_scene_packs_to_the_shader_layout() {
                 avatar: false,
             },
         ] {
-            let scene = Scene::with_parts(&space, Shading::default_fog_distance(&space), parts);
+            let scene =
+                CurvedScene::with_parts(&space, Shading::default_fog_distance(&space), parts);
             let gpu = GpuScene::new(&space, &scene, 24).expect("packs");
-            assert_eq!(gpu.key.geometry, space.geometry);
-            assert_eq!(gpu.key.faces as usize, space.faces.len());
+            assert_eq!(gpu.key.geometry, space.geometry());
+            assert_eq!(gpu.key.faces as usize, space.faces().len());
             assert_eq!(
                 (gpu.key.balls + gpu.key.tubes) as usize,
                 scene.objects.len(),
@@ -207,7 +272,7 @@ fn every_seed_scene_packs_to_the_shader_layout() {
 #[test]
 fn a_scene_without_objects_and_a_zero_budget_are_refused_or_handled() {
     let space = SEED_SPACES[0].build().expect("seed space builds");
-    let scene = Scene::with_parts(
+    let scene = CurvedScene::with_parts(
         &space,
         1.0,
         SceneParts {
@@ -325,7 +390,7 @@ fn the_hit_id_variant_validates_and_writes_four_integers() {
 fn the_general_variant_holds_every_geometry_and_packs_to_its_layout() {
     for seed in SEED_SPACES {
         let space = seed.build().expect("seed space builds");
-        let scene = Scene::default_for(&space, Shading::default_fog_distance(&space));
+        let scene = CurvedScene::default_for(&space, Shading::default_fog_distance(&space));
         let gpu = GpuScene::new(&space, &scene, 16).expect("packs");
         let general = gpu.generalised().expect("fits the general capacity");
         assert!(general.key.general);
@@ -339,7 +404,7 @@ fn the_general_variant_holds_every_geometry_and_packs_to_its_layout() {
     }
     let key = GpuScene::new(
         &SEED_SPACES[0].build().expect("builds"),
-        &Scene::default_for(&SEED_SPACES[0].build().expect("builds"), 1.0),
+        &CurvedScene::default_for(&SEED_SPACES[0].build().expect("builds"), 1.0),
         4,
     )
     .expect("packs")
@@ -360,7 +425,7 @@ fn the_general_variant_holds_every_geometry_and_packs_to_its_layout() {
 #[test]
 fn stereo_variants_validate_with_the_same_layout() {
     use bevy_curved_spaces::render::gpu::view_shader_defs;
-    use bevy_curved_spaces::stereo::ViewKind;
+    use bevy_curved_spaces::view::ViewKind;
     for geometry in Geometry::ALL {
         for kind in [ViewKind::Split, ViewKind::Anaglyph] {
             let key = ShaderKey {

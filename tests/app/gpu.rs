@@ -2,25 +2,19 @@
 //! (on lavapipe where there is no GPU: `scripts/setup-system.sh` installs it).
 //!
 //! Both images use the same camera, scene, fog and crossing budget. f32 and f64 differ where
-//! a ray grazes an object's silhouette or, in H³, after many crossings (DESIGN.md §3), so the
+//! a ray grazes an object's silhouette or, in H³, after many crossings (docs/design.md §3), so the
 //! assertion is on the fraction of pixels that differ visibly. On failure the GPU, CPU and
 //! difference images are written to `target/gpu-vs-cpu/`.
 
-use bevy_curved_spaces::ActiveSpace;
+use crate::common::{compare, gpu_lock};
+use bevy_curved_spaces::components::ActiveSpace;
 use bevy_curved_spaces::render::offscreen::{OffscreenRender, OffscreenRenderer};
+use bevy_curved_spaces::scene::{CurvedScene, SceneParts, Shading};
 use bevy_curved_spaces::space::SEED_SPACES;
-use bevy_curved_spaces::trace::{Camera, RenderSettings, Scene, SceneParts, Shading, render};
+use bevy_curved_spaces::trace::{RenderSettings, render};
+use bevy_curved_spaces::view::TraceCamera;
 use image::RgbImage;
 use std::path::PathBuf;
-
-/// One GPU test at a time: several headless apps rendering at once on lavapipe starve each
-/// other's frames (a capture then raced the tracer now and then).
-static GPU: std::sync::Mutex<()> = std::sync::Mutex::new(());
-
-fn gpu_lock() -> std::sync::MutexGuard<'static, ()> {
-    GPU.lock()
-        .unwrap_or_else(std::sync::PoisonError::into_inner)
-}
 
 const WIDTH: u32 = 160;
 const HEIGHT: u32 = 90;
@@ -28,38 +22,6 @@ const HEIGHT: u32 = 90;
 const TOLERANCE: u8 = 10;
 /// At most this fraction of the pixels may differ.
 const MAX_DIFFERING: f64 = 0.01;
-
-struct Comparison {
-    differing: f64,
-    mean_error: f64,
-    max_error: u8,
-}
-
-fn compare(gpu: &RgbImage, cpu: &RgbImage) -> (Comparison, RgbImage) {
-    let mut diff = RgbImage::new(gpu.width(), gpu.height());
-    let (mut differing, mut sum, mut max) = (0usize, 0u64, 0u8);
-    for ((g, c), d) in gpu.pixels().zip(cpu.pixels()).zip(diff.pixels_mut()) {
-        let e: [u8; 3] = std::array::from_fn(|k| g.0[k].abs_diff(c.0[k]));
-        let worst = *e.iter().max().expect("three channels");
-        sum += e.iter().map(|&x| u64::from(x)).sum::<u64>();
-        max = max.max(worst);
-        if worst > TOLERANCE {
-            differing += 1;
-            *d = image::Rgb([255, 0, 255]);
-        } else {
-            *d = image::Rgb(e.map(|x| x.saturating_mul(16)));
-        }
-    }
-    let n = (gpu.width() * gpu.height()) as f64;
-    (
-        Comparison {
-            differing: differing as f64 / n,
-            mean_error: sum as f64 / (3.0 * n),
-            max_error: max,
-        },
-        diff,
-    )
-}
 
 #[test]
 fn every_seed_space_renders_on_the_gpu_like_the_cpu_reference() {
@@ -73,8 +35,8 @@ fn every_seed_space_renders_on_the_gpu_like_the_cpu_reference() {
     for seed in SEED_SPACES {
         let space = seed.build().expect("seed space builds");
         let fog = Shading::default_fog_distance(&space);
-        let camera = Camera::default_for(&space);
-        let scene = Scene::with_parts(&space, fog, SceneParts::default());
+        let camera = TraceCamera::default_for(&space);
+        let scene = CurvedScene::with_parts(&space, fog, SceneParts::default());
         let cpu = render(
             &space,
             &scene,
@@ -87,22 +49,16 @@ fn every_seed_space_renders_on_the_gpu_like_the_cpu_reference() {
         );
         let gpu = renderer
             .render(&OffscreenRender {
-                space: ActiveSpace::new(seed.id, space.clone()),
-                width: WIDTH,
-                height: HEIGHT,
-                frame: camera.frame,
-                fov_y_degrees: camera.fov_y_degrees,
                 fog_distance: Some(fog),
-                max_crossings: crossings as u32,
-                parts: SceneParts::default(),
-                objects: Vec::new(),
-                resolution_scale: 1.0,
-                base: Default::default(),
-                time: 0.0,
-                stereo: Default::default(),
+                ..OffscreenRender::new(
+                    ActiveSpace::new(seed.id, space.clone()),
+                    camera,
+                    (WIDTH, HEIGHT),
+                    crossings as u32,
+                )
             })
             .unwrap_or_else(|e| panic!("{}: {e}", seed.id));
-        let (c, diff) = compare(&gpu, &cpu);
+        let (c, diff) = compare(&gpu, &cpu, TOLERANCE);
         println!(
             "{:<22} differing {:.3} %, mean error {:.3}/255, max {}",
             seed.id,
@@ -150,26 +106,17 @@ fn a_reduced_resolution_is_traced_and_scaled_up() {
     let _gpu = gpu_lock();
     let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
     let space = SEED_SPACES[0].build().expect("seed space builds");
-    let camera = Camera::default_for(&space);
-    let mut request = OffscreenRender {
-        space: ActiveSpace::new("torus", space.clone()),
-        width: WIDTH,
-        height: HEIGHT,
-        frame: camera.frame,
-        fov_y_degrees: camera.fov_y_degrees,
-        fog_distance: None,
-        max_crossings: 24,
-        parts: SceneParts::default(),
-        objects: Vec::new(),
-        resolution_scale: 1.0,
-        base: Default::default(),
-        time: 0.0,
-        stereo: Default::default(),
-    };
+    let camera = TraceCamera::default_for(&space);
+    let mut request = OffscreenRender::new(
+        ActiveSpace::new("torus", space.clone()),
+        camera,
+        (WIDTH, HEIGHT),
+        24,
+    );
     let full = renderer.render(&request).expect("full resolution");
     request.resolution_scale = 0.25;
     let reduced = renderer.render(&request).expect("quarter resolution");
-    let (c, _) = compare(&reduced, &full);
+    let (c, _) = compare(&reduced, &full, TOLERANCE);
     println!(
         "quarter resolution vs full: {:.1} % of pixels differ, mean error {:.2}/255",
         100.0 * c.differing,
@@ -192,8 +139,9 @@ fn a_reduced_resolution_is_traced_and_scaled_up() {
 #[test]
 fn placed_objects_straddling_faces_render_alike_on_gpu_and_cpu() {
     let _gpu = gpu_lock();
-    use bevy_curved_spaces::plugin::{TracerSettings, build_scene};
-    use bevy_curved_spaces::trace::{Ball, Object};
+    use bevy_curved_spaces::components::TracerSettings;
+    use bevy_curved_spaces::render::upload::build_scene;
+    use bevy_curved_spaces::scene::{Ball, Object};
     use glam::DVec3;
     let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
     for (id, at, radius) in [
@@ -201,7 +149,7 @@ fn placed_objects_straddling_faces_render_alike_on_gpu_and_cpu() {
         ("seifert-weber", DVec3::new(0.0, 0.3, 0.55), 0.35),
     ] {
         let space = bevy_curved_spaces::space::seed_space(id).expect("builds");
-        let g = space.geometry;
+        let g = space.geometry();
         let centre = g.from_chart(at).expect("chart point");
         let ball = Object::Ball(Ball::new(g, centre, radius, DVec3::new(0.3, 0.9, 0.5)));
         let parts = SceneParts {
@@ -212,19 +160,19 @@ fn placed_objects_straddling_faces_render_alike_on_gpu_and_cpu() {
         let settings = TracerSettings {
             fog_distance: None,
             max_crossings: Some(24),
-            quality: bevy_curved_spaces::Quality::High,
+            quality: bevy_curved_spaces::components::Quality::High,
             resolution_scale: 1.0,
             parts,
             time: None,
         };
         let (scene, problems) = build_scene(&space, &settings, &[ball], None);
         assert_eq!(problems, None, "{id}");
-        let defaults = Scene::with_parts(&space, settings.fog_for(&space), parts);
+        let defaults = CurvedScene::with_parts(&space, settings.fog_for(&space, None), parts);
         assert!(
             scene.objects.len() >= defaults.objects.len() + 2,
             "{id}: the ball needs at least one image"
         );
-        let camera = Camera::default_for(&space);
+        let camera = TraceCamera::default_for(&space);
         let cpu = render(
             &space,
             &scene,
@@ -236,22 +184,17 @@ fn placed_objects_straddling_faces_render_alike_on_gpu_and_cpu() {
             },
         );
         let request = OffscreenRender {
-            space: ActiveSpace::new(id, space.clone()),
-            width: WIDTH,
-            height: HEIGHT,
-            frame: camera.frame,
-            fov_y_degrees: camera.fov_y_degrees,
-            fog_distance: None,
-            max_crossings: 24,
             parts,
             objects: vec![ball],
-            resolution_scale: 1.0,
-            base: Default::default(),
-            time: 0.0,
-            stereo: Default::default(),
+            ..OffscreenRender::new(
+                ActiveSpace::new(id, space.clone()),
+                camera,
+                (WIDTH, HEIGHT),
+                24,
+            )
         };
         let gpu = renderer.render(&request).expect("renders");
-        let (c, _) = compare(&gpu, &cpu);
+        let (c, _) = compare(&gpu, &cpu, TOLERANCE);
         println!(
             "{id} with a straddling ball: differing {:.3} %, mean error {:.3}/255",
             100.0 * c.differing,
@@ -265,23 +208,23 @@ fn placed_objects_straddling_faces_render_alike_on_gpu_and_cpu() {
         // Without the ball the picture changes: the test sees the objects.
         let mut plain = request.clone();
         plain.objects.clear();
-        let (without, _) = compare(&renderer.render(&plain).expect("renders"), &gpu);
+        let (without, _) = compare(&renderer.render(&plain).expect("renders"), &gpu, TOLERANCE);
         assert!(without.differing > 0.02, "{id}: the ball is not visible");
     }
     let space = SEED_SPACES[0].build().expect("builds");
     let far = space
-        .geometry
+        .geometry()
         .from_chart(DVec3::new(2.0, 0.0, 0.0))
         .expect("chart point");
     let settings = TracerSettings {
         fog_distance: None,
         max_crossings: None,
-        quality: bevy_curved_spaces::Quality::Medium,
+        quality: bevy_curved_spaces::components::Quality::Medium,
         resolution_scale: 1.0,
         parts: SceneParts::default(),
         time: None,
     };
-    let outside = Object::Ball(Ball::new(space.geometry, far, 0.1, DVec3::ONE));
+    let outside = Object::Ball(Ball::new(space.geometry(), far, 0.1, DVec3::ONE));
     let (scene, problems) = build_scene(&space, &settings, &[outside], None);
     assert!(
         problems.is_some_and(|p| p.contains("scene object 0") && p.contains("not inside the cell")),
@@ -289,7 +232,7 @@ fn placed_objects_straddling_faces_render_alike_on_gpu_and_cpu() {
     );
     assert_eq!(
         scene.objects.len(),
-        Scene::with_parts(&space, settings.fog_for(&space), settings.parts)
+        CurvedScene::with_parts(&space, settings.fog_for(&space, None), settings.parts)
             .objects
             .len()
     );
@@ -301,15 +244,17 @@ fn placed_objects_straddling_faces_render_alike_on_gpu_and_cpu() {
 #[test]
 fn stereo_layouts_render_alike_on_gpu_and_cpu() {
     let _gpu = gpu_lock();
+    use bevy_curved_spaces::prelude::{StereoMode, StereoSettings};
     use bevy_curved_spaces::space::invariants::inradius;
-    use bevy_curved_spaces::stereo::{StereoMode, StereoSettings, ViewLayout, eye_frames};
     use bevy_curved_spaces::trace::render_view;
+    use bevy_curved_spaces::view::ViewLayout;
+    use bevy_curved_spaces::view::stereo::eye_frames;
     let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
     let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("gpu-vs-cpu");
     // The torus head 0.01 inside its +x face: the right eye is wrapped through it.
     let torus = bevy_curved_spaces::space::seed_space("torus").expect("builds");
-    let near_face = torus.geometry.translation(glam::DVec3::X, 0.49)
-        * torus.geometry.rotation(glam::DVec3::Y, 0.3);
+    let near_face = torus.geometry().translation(glam::DVec3::X, 0.49)
+        * torus.geometry().rotation(glam::DVec3::Y, 0.3);
     for (id, mode, head, wrapped) in [
         ("torus", StereoMode::SideBySide, None, false),
         ("torus", StereoMode::SideBySide, Some(near_face), true),
@@ -324,7 +269,7 @@ fn stereo_layouts_render_alike_on_gpu_and_cpu() {
         ("half-turn", StereoMode::SideBySideHalf, None, false),
     ] {
         let space = bevy_curved_spaces::space::seed_space(id).expect("builds");
-        let mut camera = Camera::default_for(&space);
+        let mut camera = TraceCamera::default_for(&space);
         if let Some(frame) = head {
             camera.frame = frame;
         }
@@ -348,7 +293,7 @@ fn stereo_layouts_render_alike_on_gpu_and_cpu() {
             HEIGHT,
         );
         let fog = Shading::default_fog_distance(&space);
-        let scene = Scene::with_parts(&space, fog, SceneParts::default());
+        let scene = CurvedScene::with_parts(&space, fog, SceneParts::default());
         let settings = RenderSettings {
             width: WIDTH,
             height: HEIGHT,
@@ -357,22 +302,17 @@ fn stereo_layouts_render_alike_on_gpu_and_cpu() {
         let cpu = render_view(&space, &scene, &layout, &settings, |_, _| {});
         let gpu = renderer
             .render(&OffscreenRender {
-                space: ActiveSpace::new(id, space.clone()),
-                width: WIDTH,
-                height: HEIGHT,
-                frame: camera.frame,
-                fov_y_degrees: camera.fov_y_degrees,
                 fog_distance: Some(fog),
-                max_crossings: 24,
-                parts: SceneParts::default(),
-                objects: Vec::new(),
-                resolution_scale: 1.0,
-                base: Default::default(),
-                time: 0.0,
                 stereo,
+                ..OffscreenRender::new(
+                    ActiveSpace::new(id, space.clone()),
+                    camera,
+                    (WIDTH, HEIGHT),
+                    24,
+                )
             })
             .unwrap_or_else(|e| panic!("{id}: {e}"));
-        let (c, diff) = compare(&gpu, &cpu);
+        let (c, diff) = compare(&gpu, &cpu, TOLERANCE);
         let id = if wrapped { "torus-eye-wrapped" } else { id };
         println!(
             "{id:<22} {mode:<18} differing {:.3} %, mean error {:.3}/255, max {}",
@@ -395,7 +335,10 @@ fn stereo_layouts_render_alike_on_gpu_and_cpu() {
         );
         // The stereo picture is not the mono one: the test sees the eyes.
         let mono = render(&space, &scene, &camera, &settings);
-        assert!(compare(&gpu, &mono).0.differing > 0.05, "{id} {mode}");
+        assert!(
+            compare(&gpu, &mono, TOLERANCE).0.differing > 0.05,
+            "{id} {mode}"
+        );
     }
 }
 
@@ -406,43 +349,42 @@ fn stereo_layouts_render_alike_on_gpu_and_cpu() {
 fn gpu_disparity_in_the_torus_matches_the_geometry() {
     let _gpu = gpu_lock();
     use bevy_curved_spaces::geometry::ORIGIN;
-    use bevy_curved_spaces::stereo::{StereoMode, StereoSettings};
-    use bevy_curved_spaces::trace::{Ball, Object};
+    use bevy_curved_spaces::prelude::{StereoMode, StereoSettings};
+    use bevy_curved_spaces::scene::{Ball, Object};
     use glam::DVec3;
     let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
     let space = bevy_curved_spaces::space::seed_space("torus").expect("builds");
-    let g = space.geometry;
+    let g = space.geometry();
     let (d, ipd, radius, fov) = (0.6, 0.06, 0.08, 40.0_f64);
     let head = g.translation(DVec3::Z, d / 2.0);
     let centre = g.translation(DVec3::Z, -d / 2.0) * ORIGIN;
     let ball = Object::Ball(Ball::new(g, centre, radius, DVec3::ONE));
     let picture = renderer
         .render(&OffscreenRender {
-            space: ActiveSpace::new("torus", space.clone()),
-            width: WIDTH,
-            height: HEIGHT,
-            frame: head,
-            fov_y_degrees: fov,
-            fog_distance: None,
-            max_crossings: 8,
             parts: SceneParts {
                 edges: false,
                 centre_ball: false,
                 avatar: false,
             },
             objects: vec![ball],
-            resolution_scale: 1.0,
-            base: Default::default(),
-            time: 0.0,
             stereo: StereoSettings {
                 mode: StereoMode::SideBySide,
                 ipd: Some(ipd),
                 swap_eyes: false,
             },
+            ..OffscreenRender::new(
+                ActiveSpace::new("torus", space.clone()),
+                TraceCamera {
+                    frame: head,
+                    fov_y_degrees: fov,
+                },
+                (WIDTH, HEIGHT),
+                8,
+            )
         })
         .expect("renders");
     let fog = Shading::default_fog_distance(&space);
-    let fog_colour = Scene::default_for(&space, fog).shading.fog_colour * 255.0;
+    let fog_colour = CurvedScene::default_for(&space, fog).shading.fog_colour * 255.0;
     // Pixels per unit of tan(angle), the same in x and y (square pixels).
     let f = f64::from(HEIGHT) / 2.0 / (fov.to_radians() / 2.0).tan();
     let eye_width = f64::from(WIDTH) / 2.0;
@@ -494,32 +436,27 @@ fn gpu_disparity_in_the_torus_matches_the_geometry() {
 #[test]
 fn scaled_up_stereo_halves_do_not_mix_at_the_split() {
     let _gpu = gpu_lock();
-    use bevy_curved_spaces::stereo::{StereoMode, StereoSettings};
+    use bevy_curved_spaces::prelude::{StereoMode, StereoSettings};
     let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
     let space = bevy_curved_spaces::space::seed_space("seifert-weber").expect("builds");
-    let camera = Camera::default_for(&space);
+    let camera = TraceCamera::default_for(&space);
     for (mode, vertical) in [
         (StereoMode::SideBySide, false),
         (StereoMode::TopBottom, true),
     ] {
         let picture = renderer
             .render(&OffscreenRender {
-                space: ActiveSpace::new("seifert-weber", space.clone()),
-                width: WIDTH,
-                height: HEIGHT,
-                frame: camera.frame,
-                fov_y_degrees: camera.fov_y_degrees,
-                fog_distance: None,
-                max_crossings: 24,
-                parts: SceneParts::default(),
-                objects: Vec::new(),
                 resolution_scale: 0.5,
-                base: Default::default(),
-                time: 0.0,
                 stereo: StereoSettings {
                     mode,
                     ..Default::default()
                 },
+                ..OffscreenRender::new(
+                    ActiveSpace::new("seifert-weber", space.clone()),
+                    camera,
+                    (WIDTH, HEIGHT),
+                    24,
+                )
             })
             .expect("renders");
         // Mean absolute difference between line k and line k + 1 (columns, or rows).
@@ -561,17 +498,17 @@ fn compare_scene(
     renderer: &mut OffscreenRenderer,
     id: &str,
     space: &bevy_curved_spaces::space::Space,
-    scene: &Scene,
+    scene: &CurvedScene,
     frame: glam::DMat4,
     time: f64,
     name: &str,
 ) -> Option<String> {
-    use bevy_curved_spaces::plugin::BaseScene;
+    use bevy_curved_spaces::components::BaseScene;
     let crossings = 24;
     let mut cpu_scene = scene.clone();
     cpu_scene.time = time;
     cpu_scene.set_avatar_frame(space, frame);
-    let camera = Camera {
+    let camera = TraceCamera {
         frame,
         fov_y_degrees: 70.0,
     };
@@ -587,21 +524,13 @@ fn compare_scene(
     );
     let gpu = renderer
         .render(&OffscreenRender {
-            space: ActiveSpace::new(id, space.clone()),
-            width: WIDTH,
-            height: HEIGHT,
-            frame,
-            fov_y_degrees: 70.0,
             fog_distance: Some(scene.shading.fog_distance),
-            max_crossings: crossings as u32,
             // The scene holds its edges already: add no parts but the avatar.
             parts: SceneParts {
                 edges: false,
                 centre_ball: false,
                 avatar: scene.avatar.is_some(),
             },
-            objects: Vec::new(),
-            resolution_scale: 1.0,
             base: BaseScene {
                 space_id: id.to_string(),
                 scene: Some(std::sync::Arc::new(scene.clone())),
@@ -609,10 +538,18 @@ fn compare_scene(
                 parts: None,
             },
             time,
-            stereo: Default::default(),
+            ..OffscreenRender::new(
+                ActiveSpace::new(id, space.clone()),
+                TraceCamera {
+                    frame: frame,
+                    fov_y_degrees: 70.0,
+                },
+                (WIDTH, HEIGHT),
+                crossings as u32,
+            )
         })
         .unwrap_or_else(|e| panic!("{name}: {e}"));
-    let (c, diff) = compare(&gpu, &cpu);
+    let (c, diff) = compare(&gpu, &cpu, TOLERANCE);
     println!(
         "{name:<28} differing {:.3} %, mean error {:.3}/255, max {}",
         100.0 * c.differing,
@@ -638,8 +575,8 @@ fn compare_scene(
 #[test]
 fn a_gltf_from_assets_renders_alike_on_gpu_and_cpu_in_three_geometries() {
     use bevy_curved_spaces::scene::gltf;
+    use bevy_curved_spaces::scene::{Light, MeshInstance, Object};
     use bevy_curved_spaces::space::invariants::inradius;
-    use bevy_curved_spaces::trace::{Light, MeshInstance, Object};
     use glam::DVec3;
     let _gpu = gpu_lock();
     let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
@@ -650,9 +587,9 @@ fn a_gltf_from_assets_renders_alike_on_gpu_and_cpu_in_three_geometries() {
     let mut failures = Vec::new();
     for id in ["torus", "seifert-weber", "poincare"] {
         let space = bevy_curved_spaces::space::seed_space(id).expect("seed");
-        let g = space.geometry;
+        let g = space.geometry();
         let r = inradius(&space);
-        let mut scene = Scene::with_parts(
+        let mut scene = CurvedScene::with_parts(
             &space,
             Shading::default_fog_distance(&space),
             SceneParts {
@@ -679,7 +616,7 @@ fn a_gltf_from_assets_renders_alike_on_gpu_and_cpu_in_three_geometries() {
             DVec3::new(0.4, 0.5, 1.0),
             g.s(r).powi(2) * 0.5,
         ));
-        let camera = Camera::default_for(&space);
+        let camera = TraceCamera::default_for(&space);
         failures.extend(compare_scene(
             &mut renderer,
             id,
@@ -713,7 +650,7 @@ fn the_example_scene_files_render_alike_on_gpu_and_cpu() {
         let file = load_scene_file(path).unwrap_or_else(|e| panic!("{e}"));
         let frame = file
             .start
-            .unwrap_or_else(|| Camera::default_for(&file.space).frame);
+            .unwrap_or_else(|| TraceCamera::default_for(&file.space).frame);
         let name = path
             .file_stem()
             .expect("name")
@@ -736,12 +673,12 @@ fn the_example_scene_files_render_alike_on_gpu_and_cpu() {
 /// refused at once with the reason, not after waiting for a picture.
 #[test]
 fn an_offscreen_render_of_a_scene_too_large_for_the_gpu_says_why() {
-    use bevy_curved_spaces::plugin::BaseScene;
+    use bevy_curved_spaces::components::BaseScene;
     use bevy_curved_spaces::render::offscreen::OffscreenError;
     let _gpu = gpu_lock();
     let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
     let space = bevy_curved_spaces::space::seed_space("torus").expect("seed");
-    let mut scene = Scene::default_for(&space, 1.5);
+    let mut scene = CurvedScene::default_for(&space, 1.5);
     scene.textures.push(std::sync::Arc::new(
         bevy_curved_spaces::scene::texture::Texture {
             width: 6000,
@@ -751,24 +688,21 @@ fn an_offscreen_render_of_a_scene_too_large_for_the_gpu_says_why() {
     ));
     let started = std::time::Instant::now();
     let result = renderer.render(&OffscreenRender {
-        space: ActiveSpace::new("torus", space.clone()),
-        width: WIDTH,
-        height: HEIGHT,
-        frame: Camera::default_for(&space).frame,
-        fov_y_degrees: 70.0,
-        fog_distance: None,
-        max_crossings: 16,
-        parts: SceneParts::default(),
-        objects: Vec::new(),
-        resolution_scale: 1.0,
         base: BaseScene {
             space_id: "torus".into(),
             scene: Some(std::sync::Arc::new(scene)),
             start: None,
             parts: None,
         },
-        time: 0.0,
-        stereo: Default::default(),
+        ..OffscreenRender::new(
+            ActiveSpace::new("torus", space.clone()),
+            TraceCamera {
+                frame: TraceCamera::default_for(&space).frame,
+                fov_y_degrees: 70.0,
+            },
+            (WIDTH, HEIGHT),
+            16,
+        )
     });
     match result {
         Err(OffscreenError::Scene(why)) => assert!(why.contains("meshes and textures"), "{why}"),

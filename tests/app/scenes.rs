@@ -8,11 +8,12 @@ use bevy_curved_spaces::scene::assets::torus_knot;
 use bevy_curved_spaces::scene::file::{load_scene_file, parse_scene};
 use bevy_curved_spaces::scene::gltf::{self, GlbMesh, write_glb};
 use bevy_curved_spaces::scene::mesh::{Mesh, MeshSource, Triangle, cube_source};
-use bevy_curved_spaces::space::seed_space;
-use bevy_curved_spaces::trace::{
-    BallTexture, CellWalker, Light, Material, MeshInstance, Object, RayEnd, Scene, SceneParts,
-    Shading, first_hit, first_hit_traced,
+use bevy_curved_spaces::scene::{
+    BallTexture, CurvedScene, Light, MeshInstance, Object, SceneParts, Shading, SurfaceMaterial,
 };
+use bevy_curved_spaces::space::CellWalker;
+use bevy_curved_spaces::space::seed_space;
+use bevy_curved_spaces::trace::{RayEnd, first_hit, first_hit_traced};
 use glam::{DMat4, DVec2, DVec3, DVec4};
 use proptest::prelude::*;
 use std::path::{Path, PathBuf};
@@ -91,9 +92,9 @@ fn the_hierarchy_of_a_smooth_mesh_agrees_with_brute_force_on_rays_that_hit() {
 #[test]
 fn a_cube_mesh_in_the_torus_shows_its_copies_where_the_lattice_puts_them() {
     let space = seed_space("torus").expect("seed");
-    let g = space.geometry;
+    let g = space.geometry();
     let h = 0.15;
-    let mut scene = Scene::new(
+    let mut scene = CurvedScene::new(
         Vec::new(),
         Vec::new(),
         Shading {
@@ -101,7 +102,7 @@ fn a_cube_mesh_in_the_torus_shows_its_copies_where_the_lattice_puts_them() {
             ..Shading::default()
         },
     );
-    scene.materials.push(Material::default());
+    scene.materials.push(SurfaceMaterial::default());
     scene.meshes.push(std::sync::Arc::new(
         cube_source(h, 0).place(g, 1.0).expect("cube"),
     ));
@@ -150,7 +151,7 @@ fn a_cube_mesh_in_the_torus_shows_its_copies_where_the_lattice_puts_them() {
         let crossed: f64 = (0..3)
             .map(|k| ((end[k] + 0.5).floor() - (eye[k] + 0.5).floor()).abs())
             .sum();
-        let ray = bevy_curved_spaces::trace::chart_ray(g, eye, dir).expect("ray");
+        let ray = bevy_curved_spaces::geometry::chart_ray(g, eye, dir).expect("ray");
         match first_hit(&walker, &scene, ray, 32) {
             RayEnd::Hit(hit) => {
                 assert_eq!(hit.object, 0, "towards {l}");
@@ -174,9 +175,9 @@ fn a_cube_mesh_in_the_torus_shows_its_copies_where_the_lattice_puts_them() {
 #[test]
 fn the_avatar_is_seen_round_the_space_and_not_from_inside() {
     let space = seed_space("torus").expect("seed");
-    let g = space.geometry;
+    let g = space.geometry();
     let ship_only = || {
-        Scene::with_parts(
+        CurvedScene::with_parts(
             &space,
             2.0,
             SceneParts {
@@ -196,7 +197,7 @@ fn the_avatar_is_seen_round_the_space_and_not_from_inside() {
         "the ship at the centre sticks out of no face"
     );
     let walker = CellWalker::<DVec4>::new(&space);
-    let forward = bevy_curved_spaces::trace::chart_ray(g, DVec3::ZERO, -DVec3::Z).expect("ray");
+    let forward = bevy_curved_spaces::geometry::chart_ray(g, DVec3::ZERO, -DVec3::Z).expect("ray");
     let traced = first_hit_traced(&walker, &scene, forward, 8);
     let RayEnd::Hit(hit) = traced.end else {
         panic!("the ray should come back to the ship: {:?}", traced.end)
@@ -251,16 +252,16 @@ fn globe_coordinates_put_the_prime_meridian_ahead_and_the_pole_up() {
 fn lights_shine_from_their_nearest_copy() {
     for id in ["torus", "seifert-weber", "poincare"] {
         let space = seed_space(id).expect("seed");
-        let g = space.geometry;
+        let g = space.geometry();
         let r = bevy_curved_spaces::space::invariants::inradius(&space);
-        let n = space.faces[0].covector.truncate().normalize();
+        let n = space.faces()[0].covector.truncate().normalize();
         let light_at = g.translation(n, 0.95 * r) * space.centre();
         let light = Light::new(&space, light_at, DVec3::ONE, 1.0);
         assert!(light.images.len() > 1);
         // A point a little beyond the face, mapped back into the cell by the pairing of the
         // face it is beyond: it is near the light's image, not the light.
         let beyond = g.translation(n, 1.05 * r) * space.centre();
-        let inside = g.project_point(space.faces[0].pairing * beyond);
+        let inside = g.project_point(space.faces()[0].pairing * beyond);
         assert!(space.outside_by(inside) < 1e-9, "{id}");
         let (_, d_near) = light.nearest(g, inside);
         assert!(
@@ -411,8 +412,5 @@ fn a_glb_written_by_the_generator_reads_back_with_its_texture() {
 }
 
 fn tempdir() -> PathBuf {
-    let dir =
-        PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("scenes-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
+    crate::common::scratch_dir("scenes")
 }

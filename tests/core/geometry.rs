@@ -133,7 +133,7 @@ fn distances_are_accurate_near_and_far() {
         }
     }
     // Far points in H³: coordinates of size e^d known to relative ε fix the point only to
-    // about ε·e^d (DESIGN §3), and the distance stays within that conditioning bound.
+    // about ε·e^d (docs/design.md §3), and the distance stays within that conditioning bound.
     let g = Geometry::Hyperbolic;
     for t in [1.0, 5.0, 15.0, 30.0] {
         let q = g.translation(DVec3::Y, t) * ORIGIN;

@@ -5,9 +5,11 @@ use bevy::input::InputPlugin;
 use bevy::input::mouse::MouseMotion;
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
-use bevy_curved_spaces::player::{PlayerSettings, step_frame, wrap_into_cell};
+use bevy_curved_spaces::components::PlayerSettings;
+use bevy_curved_spaces::player::step_frame;
 use bevy_curved_spaces::prelude::*;
 use bevy_curved_spaces::space::invariants::{circumradius, inradius};
+use bevy_curved_spaces::space::wrap_into_cell;
 use bevy_curved_spaces::trace::SplitMix64;
 use glam::{DMat4, DVec3};
 use std::time::Duration;
@@ -94,10 +96,10 @@ fn walking_one_unit_in_the_torus_returns_to_the_start() {
     assert_eq!(h.crossings, 1);
     let face = h.last_face.expect("a face was crossed");
     assert!(
-        space.faces[face].normal.dot(DVec3::NEG_Z) > 0.99,
+        space.faces()[face].normal.dot(DVec3::NEG_Z) > 0.99,
         "left through the −z face"
     );
-    assert_eq!(h.matrix, space.faces[face].pairing);
+    assert_eq!(h.matrix, space.faces()[face].pairing);
     // Holonomy · unwrapped frame = frame: the unwrapped walk went one unit along −z.
     let unwrapped = Geometry::Euclidean.translation(DVec3::NEG_Z, 1.0);
     assert!(max_diff(h.matrix * unwrapped, f) < 1e-9);
@@ -107,9 +109,9 @@ fn walking_one_unit_in_the_torus_returns_to_the_start() {
 fn crossing_a_seifert_weber_face_applies_exactly_its_pairing() {
     let (mut app, camera) = test_app("seifert-weber");
     let space = app.world().resource::<ActiveSpace>().space.clone();
-    let g = space.geometry;
+    let g = space.geometry();
     let target = 3;
-    let n = space.faces[target].normal;
+    let n = space.faces()[target].normal;
     // Face the centre of face 3 from the cell's centre, then walk straight through it.
     let start = g
         .look_at(DVec3::ZERO, n * 0.1, n.any_orthonormal_vector())
@@ -122,11 +124,11 @@ fn crossing_a_seifert_weber_face_applies_exactly_its_pairing() {
     let h = holonomy(&app, camera);
     assert_eq!(h.crossings, 1, "one face crossed");
     assert_eq!(h.last_face, Some(target));
-    assert_eq!(h.matrix, space.faces[target].pairing);
+    assert_eq!(h.matrix, space.faces()[target].pairing);
     let unwrapped = step_frame(
         g,
         start,
-        &bevy_curved_spaces::player::PlayerMotion {
+        &bevy_curved_spaces::components::PlayerMotion {
             translation: DVec3::new(0.0, 0.0, -(steps as f64) * step),
             rotation: DVec3::ZERO,
         },
@@ -149,9 +151,9 @@ fn walking_through_edges_and_vertices_lands_inside_the_cell() {
     ] {
         let (mut app, camera) = test_app(id);
         let space = app.world().resource::<ActiveSpace>().space.clone();
-        let g = space.geometry;
+        let g = space.geometry();
         let margin = app.world().resource::<PlayerSettings>().wrap_margin;
-        let edge = &space.edges[0];
+        let edge = &space.edges()[0];
         let midpoint =
             (space.vertex_point(edge.vertices[0]) + space.vertex_point(edge.vertices[1])) / 2.0;
         for target in [
@@ -197,7 +199,7 @@ fn handedness(f: DMat4) -> f64 {
 fn crossing_a_mirror_flips_handedness_and_the_controls_stay_natural() {
     let (mut app, camera) = test_app("mirrored-cube");
     let space = app.world().resource::<ActiveSpace>().space.clone();
-    let g = space.geometry;
+    let g = space.geometry();
     set_frame(&mut app, camera, DMat4::IDENTITY);
     assert_eq!(handedness(frame(&app, camera)), 1.0);
     let step = 0.01;
@@ -231,7 +233,7 @@ fn crossing_a_mirror_flips_handedness_and_the_controls_stay_natural() {
         unwrapped = step_frame(
             g,
             unwrapped,
-            &bevy_curved_spaces::player::PlayerMotion {
+            &bevy_curved_spaces::components::PlayerMotion {
                 translation: t,
                 rotation: DVec3::ZERO,
             },
@@ -240,7 +242,7 @@ fn crossing_a_mirror_flips_handedness_and_the_controls_stay_natural() {
     unwrapped = step_frame(
         g,
         unwrapped,
-        &bevy_curved_spaces::player::PlayerMotion {
+        &bevy_curved_spaces::components::PlayerMotion {
             translation: DVec3::ZERO,
             rotation: DVec3::new(0.0, -150.0 * sensitivity, 0.0),
         },
@@ -266,7 +268,7 @@ fn switching_space_at_run_time_resets_the_player() {
         .insert_resource(ActiveSpace::seed("poincare").expect("seed space"));
     app.update();
     let active = app.world().resource::<ActiveSpace>();
-    assert_eq!(active.space.geometry, Geometry::Spherical);
+    assert_eq!(active.space.geometry(), Geometry::Spherical);
     assert_eq!(holonomy(&app, camera).crossings, 0);
     let f = frame(&app, camera);
     assert!(active.space.outside_by(f.w_axis) < 0.0);
@@ -278,16 +280,16 @@ fn a_million_random_steps_keep_the_frame_orthonormal_and_inside() {
     let margin = PlayerSettings::default().wrap_margin;
     for seed in SEED_SPACES {
         let space = seed.build().expect("seed space builds");
-        let g = space.geometry;
+        let g = space.geometry();
         let r = inradius(&space);
         let mut rng = SplitMix64(0xC0FFEE);
         let mut next = || 2.0 * rng.unit() - 1.0;
-        let mut f = bevy_curved_spaces::trace::Camera::default_for(&space).frame;
+        let mut f = bevy_curved_spaces::view::TraceCamera::default_for(&space).frame;
         let mut worst_defect = 0.0f64;
         let mut worst_outside = f64::NEG_INFINITY;
         let mut crossings = 0;
         for _ in 0..1_000_000 {
-            let motion = bevy_curved_spaces::player::PlayerMotion {
+            let motion = bevy_curved_spaces::components::PlayerMotion {
                 translation: DVec3::new(next(), next(), next()) * 0.05 * r,
                 rotation: DVec3::new(next(), next(), next()) * 0.2,
             };
@@ -319,8 +321,8 @@ fn a_million_random_steps_keep_the_frame_orthonormal_and_inside() {
 /// `TracerStatus::stereo_error` and the default is used meanwhile.
 #[test]
 fn an_unusable_eye_distance_is_reported_and_replaced_by_the_default() {
-    use bevy_curved_spaces::plugin::TracerStatus;
-    use bevy_curved_spaces::stereo::default_ipd;
+    use bevy_curved_spaces::components::TracerStatus;
+    use bevy_curved_spaces::view::stereo::default_ipd;
     let (mut app, _) = test_app("torus");
     let inradius = app.world().resource::<ActiveSpace>().inradius;
     {

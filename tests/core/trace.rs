@@ -2,8 +2,9 @@
 //! torus, quaternions), on hard rays through edges and vertices, and f32 against f64.
 
 use bevy_curved_spaces::geometry::{Geometry, Vector4};
+use bevy_curved_spaces::geometry::{Ray, chart_ray};
+use bevy_curved_spaces::space::{CellWalker, Limit, Trace};
 use bevy_curved_spaces::space::{SEED_SPACES, Space, seed_space};
-use bevy_curved_spaces::trace::{CellWalker, Limit, Ray, Trace, chart_ray};
 use glam::{DMat4, DQuat, DVec3, DVec4, Vec4};
 use proptest::prelude::*;
 
@@ -12,7 +13,7 @@ fn space(id: &str) -> Space {
 }
 
 fn walk(s: &Space, from: DVec3, dir: DVec3, limit: Limit) -> (Ray<DVec4>, Trace<DVec4>) {
-    let start = chart_ray(s.geometry, from, dir).unwrap();
+    let start = chart_ray(s.geometry(), from, dir).unwrap();
     (start, CellWalker::<DVec4>::new(s).trace(start, limit))
 }
 
@@ -29,8 +30,8 @@ fn unit() -> impl Strategy<Value = DVec3> {
 /// A start point well inside the cell (a fifth of the inradius from the centre).
 fn start_point(s: &Space, u: DVec3, frac: f64) -> DVec3 {
     let r = bevy_curved_spaces::space::invariants::inradius(s);
-    s.geometry
-        .to_chart(s.geometry.translation(u, 0.2 * frac * r) * s.centre())
+    s.geometry()
+        .to_chart(s.geometry().translation(u, 0.2 * frac * r) * s.centre())
 }
 
 proptest! {
@@ -43,14 +44,14 @@ proptest! {
     #[test]
     fn tracing_follows_the_universal_cover(id in seed_ids(), u in unit(), dir in unit(), frac in 0.0..1.0f64) {
         let s = space(id);
-        let g = s.geometry;
-        // H³ amplifies rounding like e^d (DESIGN §3): fewer crossings keep d moderate.
+        let g = s.geometry();
+        // H³ amplifies rounding like e^d (docs/design.md §3): fewer crossings keep d moderate.
         let n = if g == Geometry::Hyperbolic { 8 } else { 30 };
         let (start, trace) = walk(&s, start_point(&s, u, frac), dir, Limit::Crossings(n));
         prop_assert_eq!(trace.crossings.len(), n);
         let mut h = DMat4::IDENTITY;
         for (i, c) in trace.crossings.iter().enumerate() {
-            h = s.faces[c.face].pairing * h;
+            h = s.faces()[c.face].pairing * h;
             let back = g.inverse(h) * c.ray.point;
             let (straight, _) = g.geodesic(start.point, start.tangent, c.distance);
             // `back` lies anywhere on S³ (the cover), so no projection into the chart's
@@ -65,7 +66,7 @@ proptest! {
     #[test]
     fn there_and_back_again(id in seed_ids(), u in unit(), dir in unit(), d in 0.5..4.0f64) {
         let s = space(id);
-        let g = s.geometry;
+        let g = s.geometry();
         let (start, there) = walk(&s, start_point(&s, u, 0.5), dir, Limit::Distance(d));
         let walker = CellWalker::<DVec4>::new(&s);
         let turned = Ray { point: there.end.point, tangent: -there.end.tangent };
@@ -75,7 +76,7 @@ proptest! {
         prop_assert!(err <= bound, "{id}: returned {err:e} from the start");
         prop_assert!((g.form(back.end.tangent, -start.tangent) - 1.0).abs() <= bound);
         let forward: Vec<usize> = there.crossings.iter().map(|c| c.face).collect();
-        let backward: Vec<usize> = back.crossings.iter().rev().map(|c| s.faces[c.face].partner).collect();
+        let backward: Vec<usize> = back.crossings.iter().rev().map(|c| s.faces()[c.face].partner).collect();
         prop_assert_eq!(forward, backward);
     }
 
@@ -103,7 +104,7 @@ proptest! {
             prop_assert_eq!(c.face, *face);
             let unfolded = x0 + *t * dir;
             let wrapped = unfolded - (unfolded + DVec3::splat(0.5) - DVec3::splat(1e-9)).floor();
-            let point = s.geometry.to_chart(c.ray.point);
+            let point = s.geometry().to_chart(c.ray.point);
             // On the crossed face the coordinate is ∓½; compare the others.
             for a in 0..3 {
                 if a != face / 2 {
@@ -179,7 +180,7 @@ fn poincare_matches_quaternion_arithmetic() {
     assert_eq!(group.len(), 120);
     let in_group = |q: DVec4| group.iter().any(|e| (*e - q).length() < 1e-12);
     let mut quats = Vec::new();
-    for f in &s.faces {
+    for f in s.faces() {
         let q = quaternion(f.pairing * DVec4::W);
         for basis in [DVec4::X, DVec4::Y, DVec4::Z, DVec4::W] {
             let by_matrix = f.pairing * basis;
@@ -208,7 +209,9 @@ fn poincare_matches_quaternion_arithmetic() {
         let mut product = DQuat::IDENTITY;
         for (i, c) in trace.crossings.iter().enumerate() {
             product *= quats[c.face];
-            let (straight, _) = s.geometry.geodesic(start.point, start.tangent, c.distance);
+            let (straight, _) = s
+                .geometry()
+                .geodesic(start.point, start.tangent, c.distance);
             let expected = DVec4::from(quaternion(straight) * product);
             let err = (expected - c.ray.point).length();
             assert!(err < 1e-12 * (i + 1) as f64, "crossing {i}: {err:e}");
@@ -222,11 +225,11 @@ fn poincare_matches_quaternion_arithmetic() {
 fn rays_through_edges_and_vertices_stay_in_the_cell() {
     for seed in SEED_SPACES {
         let s = seed.build().unwrap();
-        let mut targets: Vec<DVec3> = s.vertices.clone();
+        let mut targets: Vec<DVec3> = s.vertices().to_vec();
         targets.extend(
-            s.edges
+            s.edges()
                 .iter()
-                .map(|e| (s.vertices[e.vertices[0]] + s.vertices[e.vertices[1]]) / 2.0),
+                .map(|e| (s.vertices()[e.vertices[0]] + s.vertices()[e.vertices[1]]) / 2.0),
         );
         let nudges = [
             DVec3::ZERO,
@@ -267,7 +270,7 @@ fn f32_against_f64_drift() {
     );
     for seed in SEED_SPACES {
         let s = seed.build().unwrap();
-        let g = s.geometry;
+        let g = s.geometry();
         let start = chart_ray(
             g,
             DVec3::new(0.01, 0.02, -0.015),

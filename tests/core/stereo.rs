@@ -4,22 +4,21 @@
 //! each eye where it belongs. All measured on the f64 CPU reference (the GPU is compared
 //! against it in tests/gpu.rs).
 
+use crate::common::differing_fraction;
 use bevy_curved_spaces::geometry::{Geometry, ORIGIN};
+use bevy_curved_spaces::scene::{Ball, CurvedScene, Object, SceneParts, Shading};
+use bevy_curved_spaces::space::CellWalker;
 use bevy_curved_spaces::space::invariants::inradius;
 use bevy_curved_spaces::space::{Space, seed_space};
-use bevy_curved_spaces::stereo::{
-    Lens, PixelRays, StereoError, StereoMode, ViewKind, ViewLayout, check_ipd, eye_frames,
-    offset_eye,
-};
-use bevy_curved_spaces::trace::{
-    Ball, CellWalker, Object, RayEnd, RenderSettings, Scene, SceneParts, Shading, SplitMix64,
-    first_hit, render_view,
-};
+use bevy_curved_spaces::trace::{RayEnd, RenderSettings, SplitMix64, first_hit, render_view};
+use bevy_curved_spaces::view::StereoMode;
+use bevy_curved_spaces::view::stereo::{StereoError, check_ipd, eye_frames, offset_eye};
+use bevy_curved_spaces::view::{Lens, PixelRays, ViewKind, ViewLayout};
 use glam::{DMat4, DVec3, DVec4};
 
 /// A scene with one ball and nothing else (no edges, no centre ball).
-fn lone_ball(space: &Space, centre: DVec4, radius: f64) -> Scene {
-    let mut scene = Scene::with_parts(
+fn lone_ball(space: &Space, centre: DVec4, radius: f64) -> CurvedScene {
+    let mut scene = CurvedScene::with_parts(
         space,
         Shading::default_fog_distance(space),
         SceneParts {
@@ -28,7 +27,7 @@ fn lone_ball(space: &Space, centre: DVec4, radius: f64) -> Scene {
             avatar: false,
         },
     );
-    let ball = Ball::new(space.geometry, centre, radius, DVec3::ONE);
+    let ball = Ball::new(space.geometry(), centre, radius, DVec3::ONE);
     scene
         .place(space, Object::Ball(ball))
         .expect("inside the cell");
@@ -37,8 +36,8 @@ fn lone_ball(space: &Space, centre: DVec4, radius: f64) -> Scene {
 
 /// The head at distance `d/2` from the cell's centre on the +z axis looking along −z at a
 /// ball at distance `d/2` on the −z axis: the ball is `d` straight ahead.
-fn head_and_ball(space: &Space, d: f64, radius: f64) -> (DMat4, Scene) {
-    let g = space.geometry;
+fn head_and_ball(space: &Space, d: f64, radius: f64) -> (DMat4, CurvedScene) {
+    let g = space.geometry();
     let head = g.translation(DVec3::Z, d / 2.0);
     let centre = g.translation(DVec3::Z, -d / 2.0) * ORIGIN;
     (head, lone_ball(space, centre, radius))
@@ -47,12 +46,18 @@ fn head_and_ball(space: &Space, d: f64, radius: f64) -> (DMat4, Scene) {
 /// The centroid, in each eye's frustum coordinates `(x, y)` (tangent of the angle from the
 /// eye's view axis), of the pixels whose ray hits the ball before crossing any face. Index 0
 /// is the left eye; `z` is the pixel count.
-fn ball_centroids(space: &Space, scene: &Scene, layout: &ViewLayout, w: u32, h: u32) -> [DVec3; 2] {
+fn ball_centroids(
+    space: &Space,
+    scene: &CurvedScene,
+    layout: &ViewLayout,
+    w: u32,
+    h: u32,
+) -> [DVec3; 2] {
     let walker = CellWalker::<DVec4>::new(space);
     let mut sums = [DVec3::ZERO; 2];
     for j in 0..h {
         for i in 0..w {
-            let PixelRays::One(ray) = layout.rays_at(space.geometry, i, j) else {
+            let PixelRays::One(ray) = layout.rays_at(space.geometry(), i, j) else {
                 panic!("a split layout has one ray per pixel");
             };
             // The ball itself, not its copies seen through faces (they are farther and show
@@ -90,7 +95,7 @@ fn pixels_per_unit() -> f64 {
 /// `(tan(θ+α) + tan(θ−α)) / 2`, a little outside `tan θ`; `sin α = S(r)/S(D)` for a ball of
 /// radius r at distance D (S = sin, id, sinh).
 fn measured_disparity(space: &Space, d: f64, ipd: f64, predicted_tan: f64) -> f64 {
-    let g = space.geometry;
+    let g = space.geometry();
     let radius = 0.08;
     let (head, scene) = head_and_ball(space, d, radius);
     let centre = g.translation(DVec3::Z, -d / 2.0) * ORIGIN;
@@ -109,7 +114,7 @@ fn measured_disparity(space: &Space, d: f64, ipd: f64, predicted_tan: f64) -> f6
         assert!(
             (c.x - want).abs() * px < 0.2,
             "{}: the {name} eye sees the ball at x = {:.5}, the geometry predicts {want:.5} ({:.2} px off)",
-            space.name,
+            space.name(),
             c.x,
             (c.x - want).abs() * px
         );
@@ -167,7 +172,7 @@ fn disparity_in_spherical_space_follows_the_spherical_right_triangle() {
 #[test]
 fn rolling_the_head_by_90_degrees_turns_the_eye_axis_vertical() {
     let space = seed_space("torus").expect("seed");
-    let g = space.geometry;
+    let g = space.geometry();
     let (d, ipd) = (0.6, 0.06);
     let (head, scene) = head_and_ball(&space, d, 0.08);
     // Roll 90° about the view axis (back): the head's right now points along chart +y.
@@ -196,7 +201,7 @@ fn rolling_the_head_by_90_degrees_turns_the_eye_axis_vertical() {
 #[test]
 fn eyes_near_a_face_are_wrapped_with_their_own_pairings() {
     let space = seed_space("torus").expect("seed");
-    let g = space.geometry;
+    let g = space.geometry();
     let ipd = 0.06;
     // The head 0.01 inside the +x face: the right eye is 0.02 past it.
     let head = g.translation(DVec3::X, 0.49) * g.rotation(DVec3::Y, 0.3);
@@ -210,7 +215,7 @@ fn eyes_near_a_face_are_wrapped_with_their_own_pairings() {
         assert!(space.outside_by(eye.frame.w_axis) <= 0.0);
     }
     let face = eyes[1].crossed[0];
-    assert!(space.faces[face].covector.x > 0.5, "it is the +x face");
+    assert!(space.faces()[face].covector.x > 0.5, "it is the +x face");
 
     // The right eye's picture equals a mono picture from the same point computed without
     // the stereo code: the head's right tangent in the torus is a chart direction, and the
@@ -222,7 +227,7 @@ fn eyes_near_a_face_are_wrapped_with_their_own_pairings() {
         head.z_axis,
         (walker_start - DVec3::X).extend(1.0),
     );
-    let scene = Scene::default_for(&space, Shading::default_fog_distance(&space));
+    let scene = CurvedScene::default_for(&space, Shading::default_fog_distance(&space));
     let (w, h) = (160, 90);
     let settings = RenderSettings {
         width: w,
@@ -251,13 +256,7 @@ fn eyes_near_a_face_are_wrapped_with_their_own_pairings() {
         )
     };
     let right_half = image::imageops::crop_imm(&stereo, w / 2, 0, w / 2, h).to_image();
-    let differing = |a: &image::RgbImage, b: &image::RgbImage| {
-        a.pixels()
-            .zip(b.pixels())
-            .filter(|(p, q)| (0..3).any(|c| p[c].abs_diff(q[c]) > 2))
-            .count() as f64
-            / f64::from(a.width() * a.height())
-    };
+    let differing = |a: &image::RgbImage, b: &image::RgbImage| differing_fraction(a, b, 2);
     let same = differing(&right_half, &mono(independent));
     assert!(
         same < 0.002,
@@ -289,7 +288,7 @@ fn both_eyes_are_always_inside_the_cell_and_ipd_apart_in_the_cover() {
         "poincare",
     ] {
         let space = seed_space(id).expect("seed");
-        let g = space.geometry;
+        let g = space.geometry();
         let r = inradius(&space);
         let ipd = 0.3 * r;
         let mut wrapped = 0;
@@ -333,8 +332,8 @@ fn both_eyes_are_always_inside_the_cell_and_ipd_apart_in_the_cover() {
 #[test]
 fn swapping_the_eyes_swaps_the_halves() {
     let space = seed_space("seifert-weber").expect("seed");
-    let camera = bevy_curved_spaces::trace::Camera::default_for(&space);
-    let scene = Scene::default_for(&space, Shading::default_fog_distance(&space));
+    let camera = bevy_curved_spaces::view::TraceCamera::default_for(&space);
+    let scene = CurvedScene::default_for(&space, Shading::default_fog_distance(&space));
     let eyes = eye_frames(&space, camera.frame, 0.05).map(|e| e.frame);
     let settings = RenderSettings {
         width: 128,

@@ -1,11 +1,12 @@
 //! Objects that stick out of the cell through faces are drawn through their images under the
 //! pairings (only the images that meet the cell), so they look whole from everywhere.
 
+use crate::common::{compare, differing_fraction};
+use bevy_curved_spaces::scene::{Ball, CurvedScene, Object, PlaceError, SceneParts};
 use bevy_curved_spaces::space::invariants::inradius;
 use bevy_curved_spaces::space::{SEED_SPACES, seed_space};
-use bevy_curved_spaces::trace::{
-    Ball, Camera, Object, PlaceError, RenderSettings, Scene, SceneParts, render,
-};
+use bevy_curved_spaces::trace::{RenderSettings, render};
+use bevy_curved_spaces::view::TraceCamera;
 use glam::{DVec3, DVec4};
 
 /// The default scene's edges and vertex balls sit on the cell's boundary and already come in
@@ -16,9 +17,9 @@ use glam::{DVec3, DVec4};
 fn placing_the_default_scene_changes_no_pixel() {
     for seed in SEED_SPACES {
         let s = seed.build().expect("seed space builds");
-        let fog = bevy_curved_spaces::trace::Shading::default_fog_distance(&s);
-        let default = Scene::default_for(&s, fog);
-        let mut placed = Scene::with_parts(
+        let fog = bevy_curved_spaces::scene::Shading::default_fog_distance(&s);
+        let default = CurvedScene::default_for(&s, fog);
+        let mut placed = CurvedScene::with_parts(
             &s,
             fog,
             SceneParts {
@@ -30,7 +31,7 @@ fn placing_the_default_scene_changes_no_pixel() {
         for o in &default.objects {
             placed.place(&s, *o).expect("the object is in the cell");
         }
-        let balls = |scene: &Scene| {
+        let balls = |scene: &CurvedScene| {
             scene
                 .objects
                 .iter()
@@ -43,7 +44,7 @@ fn placing_the_default_scene_changes_no_pixel() {
             "{}: ball images added",
             seed.id
         );
-        let camera = Camera::default_for(&s);
+        let camera = TraceCamera::default_for(&s);
         let settings = RenderSettings {
             width: 64,
             height: 36,
@@ -51,11 +52,7 @@ fn placing_the_default_scene_changes_no_pixel() {
         };
         let a = render(&s, &default, &camera, &settings);
         let b = render(&s, &placed, &camera, &settings);
-        let differing = a
-            .pixels()
-            .zip(b.pixels())
-            .filter(|(p, q)| (0..3).any(|c| p[c].abs_diff(q[c]) > 1))
-            .count();
+        let differing = compare(&a, &b, 1).0.differing_pixels;
         assert!(
             differing <= 2,
             "{}: {differing} pixels changed by placing the default scene",
@@ -65,8 +62,8 @@ fn placing_the_default_scene_changes_no_pixel() {
 }
 
 /// An empty scene lit only by ambient light (so lighting does not depend on the cell).
-fn ambient_scene(space: &bevy_curved_spaces::space::Space) -> Scene {
-    let mut scene = Scene::with_parts(
+fn ambient_scene(space: &bevy_curved_spaces::space::Space) -> CurvedScene {
+    let mut scene = CurvedScene::with_parts(
         space,
         2.0,
         SceneParts {
@@ -88,9 +85,12 @@ fn ambient_scene(space: &bevy_curved_spaces::space::Space) -> Scene {
 /// point `at`, added to `base`. Returns the images placing added, and the fractions of
 /// pixels that differ from the centred picture with the images and without them (the object
 /// pushed as one).
-fn straddling_in_the_torus(base: &Scene, object: impl Fn(DVec3) -> Object) -> (usize, f64, f64) {
+fn straddling_in_the_torus(
+    base: &CurvedScene,
+    object: impl Fn(DVec3) -> Object,
+) -> (usize, f64, f64) {
     let s = seed_space("torus").expect("builds");
-    let g = s.geometry;
+    let g = s.geometry();
     let shift = DVec3::new(0.5, 0.5, 0.35);
     let eye = DVec3::new(0.1, -0.2, 0.38);
     let target = DVec3::new(0.0, 0.0, 0.0);
@@ -102,12 +102,12 @@ fn straddling_in_the_torus(base: &Scene, object: impl Fn(DVec3) -> Object) -> (u
     let centred = {
         let mut scene = base.clone();
         scene.place(&s, object(DVec3::ZERO)).expect("placed");
-        let camera = Camera::looking_at(g, eye, target, 70.0).expect("camera");
+        let camera = TraceCamera::looking_at(g, eye, target, 70.0).expect("camera");
         render(&s, &scene, &camera, &settings)
     };
     // The shifted camera, wrapped back into the cell [-0.5, 0.5]³.
     let wrap = |v: DVec3| (v + DVec3::splat(0.5)).rem_euclid(DVec3::ONE) - DVec3::splat(0.5);
-    let camera = Camera::looking_at(
+    let camera = TraceCamera::looking_at(
         g,
         wrap(eye + shift),
         wrap(eye + shift) + (target - eye),
@@ -121,13 +121,7 @@ fn straddling_in_the_torus(base: &Scene, object: impl Fn(DVec3) -> Object) -> (u
     naive.objects.push(object(shift));
     let pushed = render(&s, &naive, &camera, &settings);
 
-    let differing = |a: &image::RgbImage, b: &image::RgbImage| {
-        a.pixels()
-            .zip(b.pixels())
-            .filter(|(p, q)| (0..3).any(|c| p[c].abs_diff(q[c]) > 2))
-            .count() as f64
-            / f64::from(a.width() * a.height())
-    };
+    let differing = |a: &image::RgbImage, b: &image::RgbImage| differing_fraction(a, b, 2);
     (
         added,
         differing(&centred, &placed),
@@ -138,7 +132,7 @@ fn straddling_in_the_torus(base: &Scene, object: impl Fn(DVec3) -> Object) -> (u
 #[test]
 fn a_ball_straddling_torus_faces_looks_as_if_it_were_whole() {
     let s = seed_space("torus").expect("builds");
-    let g = s.geometry;
+    let g = s.geometry();
     let ball = |at: DVec3| {
         Object::Ball(Ball::new(
             g,
@@ -170,9 +164,9 @@ fn a_ball_straddling_torus_faces_looks_as_if_it_were_whole() {
 fn images_cover_the_part_outside_each_face() {
     for seed in SEED_SPACES {
         let s = seed.build().expect("seed space builds");
-        let g = s.geometry;
+        let g = s.geometry();
         let r = inradius(&s);
-        let face = &s.faces[0];
+        let face = &s.faces()[0];
         // A ball centred 0.1 r inside face 0 with radius 0.3 r.
         let centre = g
             .from_chart(face.normal * face.offset)
@@ -211,7 +205,7 @@ fn images_cover_the_part_outside_each_face() {
 #[test]
 fn misplaced_and_oversized_objects_are_refused() {
     let s = seed_space("poincare").expect("builds");
-    let g = s.geometry;
+    let g = s.geometry();
     let far = g
         .from_chart(DVec3::new(3.0, 0.0, 0.0))
         .expect("chart point");
@@ -224,7 +218,7 @@ fn misplaced_and_oversized_objects_are_refused() {
     let t = seed_space("torus").expect("builds");
     let huge = scene.place(
         &t,
-        Object::Ball(Ball::new(t.geometry, DVec4::W, 9.0, DVec3::ONE)),
+        Object::Ball(Ball::new(t.geometry(), DVec4::W, 9.0, DVec3::ONE)),
     );
     assert_eq!(huge, Err(PlaceError::TooLarge));
     assert!(
@@ -241,13 +235,13 @@ fn misplaced_and_oversized_objects_are_refused() {
 #[test]
 fn a_mesh_straddling_torus_faces_looks_as_if_it_were_whole() {
     use bevy_curved_spaces::scene::mesh::cube_source;
-    use bevy_curved_spaces::trace::{Material, MeshInstance};
+    use bevy_curved_spaces::scene::{MeshInstance, SurfaceMaterial};
     let s = seed_space("torus").expect("builds");
-    let g = s.geometry;
+    let g = s.geometry();
     let mut base = ambient_scene(&s);
-    base.materials.push(Material {
+    base.materials.push(SurfaceMaterial {
         colour: DVec3::new(0.3, 0.7, 0.9),
-        ..Material::default()
+        ..SurfaceMaterial::default()
     });
     base.meshes.push(std::sync::Arc::new(
         cube_source(0.18, 0).place(g, 1.0).expect("cube"),

@@ -24,10 +24,10 @@ fn every_seed_space_is_valid_and_of_the_right_kind() {
     for seed in SEED_SPACES {
         let s = seed.build().unwrap_or_else(|e| panic!("{}: {e}", seed.id));
         let mirrored = seed.id.starts_with("mirrored");
-        assert_eq!(s.manifold, !mirrored, "{}", seed.id);
-        assert_eq!(s.orientable, !mirrored, "{}", seed.id);
+        assert_eq!(s.manifold(), !mirrored, "{}", seed.id);
+        assert_eq!(s.orientable(), !mirrored, "{}", seed.id);
         assert_eq!(s.has_mirrors(), mirrored, "{}", seed.id);
-        for c in &s.edge_cycles {
+        for c in s.edge_cycles() {
             assert!(
                 close(c.angle_sum * c.order as f64, 2.0 * PI, 1e-12),
                 "{}",
@@ -35,9 +35,10 @@ fn every_seed_space_is_valid_and_of_the_right_kind() {
             );
         }
         // Euler characteristic of a closed 3-manifold is 0.
-        if s.manifold {
-            let pairs = s.faces.len() / 2;
-            let chi = s.vertex_cycles.len() as i64 - s.edge_cycles.len() as i64 + pairs as i64 - 1;
+        if s.manifold() {
+            let pairs = s.faces().len() / 2;
+            let chi =
+                s.vertex_cycles().len() as i64 - s.edge_cycles().len() as i64 + pairs as i64 - 1;
             assert_eq!(chi, 0, "{}", seed.id);
         }
     }
@@ -49,10 +50,10 @@ fn every_seed_space_is_valid_and_of_the_right_kind() {
 fn pairings_are_isometries_with_inverse_partners() {
     for seed in SEED_SPACES {
         let s = seed.build().unwrap();
-        let g = s.geometry;
-        for (i, f) in s.faces.iter().enumerate() {
+        let g = s.geometry();
+        for (i, f) in s.faces().iter().enumerate() {
             assert!(g.isometry_defect(f.pairing) < 1e-12, "{} face {i}", seed.id);
-            let back = s.faces[f.partner].pairing * f.pairing;
+            let back = s.faces()[f.partner].pairing * f.pairing;
             assert!(
                 (back - DMat4::IDENTITY)
                     .abs()
@@ -62,10 +63,10 @@ fn pairings_are_isometries_with_inverse_partners() {
             );
             for &v in &f.vertices {
                 let image = g.to_chart(f.pairing * s.vertex_point(v));
-                let on_partner = s.faces[f.partner]
+                let on_partner = s.faces()[f.partner]
                     .vertices
                     .iter()
-                    .any(|&w| (s.vertices[w] - image).length() < 1e-12);
+                    .any(|&w| (s.vertices()[w] - image).length() < 1e-12);
                 assert!(on_partner, "{} face {i} vertex {v}", seed.id);
             }
         }
@@ -156,15 +157,15 @@ fn dihedral_angles_and_cycles_match_the_construction() {
     ];
     for (id, degrees, cycles, per_cycle, vertex_cycles) in cases {
         let s = space(id);
-        for e in &s.edges {
+        for e in s.edges() {
             assert!(close(e.dihedral.to_degrees(), degrees, 1e-12), "{id}");
         }
-        assert_eq!(s.edge_cycles.len(), cycles, "{id}");
+        assert_eq!(s.edge_cycles().len(), cycles, "{id}");
         assert!(
-            s.edge_cycles.iter().all(|c| c.edges.len() == per_cycle),
+            s.edge_cycles().iter().all(|c| c.edges.len() == per_cycle),
             "{id}"
         );
-        assert_eq!(s.vertex_cycles.len(), vertex_cycles, "{id}");
+        assert_eq!(s.vertex_cycles().len(), vertex_cycles, "{id}");
     }
 }
 
@@ -258,7 +259,7 @@ fn seifert_weber_closed_geodesics() {
     assert!(close(spectrum[0].length, 2.0 * inj, 1e-9));
     // Brute force without the separation pruning: every element moving the centre by at
     // most 2R + systole (R the circumradius) has translation length ≥ the systole.
-    let g = s.geometry;
+    let g = s.geometry();
     let reach = 2.0 * circumradius(&s) + spectrum[0].length;
     let near = bfs_by_orbit_distance(&s, reach);
     let shortest = near
@@ -273,14 +274,14 @@ fn seifert_weber_closed_geodesics() {
 /// orbit-distance bound only (cells met by the segment from `o` to `h o` have orbit points
 /// within `reach + R`).
 fn bfs_by_orbit_distance(s: &Space, reach: f64) -> Vec<DMat4> {
-    let g = s.geometry;
+    let g = s.geometry();
     let slack = circumradius(s);
     let key = |m: DMat4| (m * ORIGIN).to_array().map(|x| (x * 1e5).round() as i64);
     let mut seen = std::collections::HashSet::from([key(DMat4::IDENTITY)]);
     let mut queue = std::collections::VecDeque::from([DMat4::IDENTITY]);
     let mut out = vec![DMat4::IDENTITY];
     while let Some(m) = queue.pop_front() {
-        for f in &s.faces {
+        for f in s.faces() {
             let next = m * f.pairing;
             let d = g.distance(ORIGIN, next * ORIGIN);
             if d > reach + slack || !seen.insert(key(next)) {
@@ -302,7 +303,7 @@ fn sw_like(dihedral: f64, twist: f64) -> Result<Space, SpaceError> {
 #[test]
 fn the_mirror_image_twist_is_also_a_manifold() {
     let left = sw_like(2.0 * PI / 5.0, -3.0 * PI / 5.0).expect("mirror image of Seifert–Weber");
-    assert!(left.manifold && left.orientable);
+    assert!(left.manifold() && left.orientable());
     assert!(close(volume(&left), volume(&space("seifert-weber")), 1e-12));
 }
 
@@ -492,7 +493,7 @@ fn space_files_round_trip_and_reject_mistakes() {
         )
         .unwrap();
         let back = load_space_file(&path).unwrap();
-        assert_eq!(back.edge_cycles.len(), s.edge_cycles.len());
+        assert_eq!(back.edge_cycles().len(), s.edge_cycles().len());
         assert!(close(volume(&back), volume(&s), 1e-12));
     }
     let bad = [

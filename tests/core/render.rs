@@ -2,19 +2,19 @@
 //! fog cut-off's error bound, and pictures of every seed space.
 
 use bevy_curved_spaces::geometry::ORIGIN;
+use bevy_curved_spaces::scene::{Ball, CurvedScene, Object, Shading};
+use bevy_curved_spaces::space::CellWalker;
 use bevy_curved_spaces::space::invariants::{elements_near, inradius};
 use bevy_curved_spaces::space::{SEED_SPACES, Space, seed_space};
-use bevy_curved_spaces::trace::{
-    Ball, Camera, CellWalker, Object, RayEnd, RenderSettings, Scene, Shading, first_hit, render,
-    trace_pixel,
-};
+use bevy_curved_spaces::trace::{RayEnd, RenderSettings, first_hit, render, trace_pixel};
+use bevy_curved_spaces::view::TraceCamera;
 use glam::{DVec3, DVec4};
 
 /// A scene holding only a ball at the centre.
-fn ball_scene(space: &Space, radius: f64, fog: f64) -> Scene {
-    let mut scene = Scene::default_for(space, fog);
+fn ball_scene(space: &Space, radius: f64, fog: f64) -> CurvedScene {
+    let mut scene = CurvedScene::default_for(space, fog);
     scene.objects = vec![Object::Ball(Ball::new(
-        space.geometry,
+        space.geometry(),
         space.centre(),
         radius,
         DVec3::ONE,
@@ -43,7 +43,7 @@ fn torus_hits_match_the_lattice_of_copies() {
     let eye = DVec3::new(0.21, -0.33, 0.4);
     let mut hits = 0;
     for dir in directions(400) {
-        let ray = bevy_curved_spaces::trace::chart_ray(s.geometry, eye, dir).unwrap();
+        let ray = bevy_curved_spaces::geometry::chart_ray(s.geometry(), eye, dir).unwrap();
         let mut brute = f64::INFINITY;
         // The cut-off (2 ln 510 ≈ 12.5) keeps every hit within 13 cells.
         for x in -14..=14 {
@@ -85,7 +85,7 @@ fn torus_hits_match_the_lattice_of_copies() {
 #[test]
 fn poincare_hits_match_the_120_copies() {
     let s = seed_space("poincare").unwrap();
-    let g = s.geometry;
+    let g = s.geometry();
     let radius = 0.08;
     let scene = ball_scene(&s, radius, 10.0);
     let walker = CellWalker::<DVec4>::new(&s);
@@ -93,7 +93,7 @@ fn poincare_hits_match_the_120_copies() {
     let eye = DVec3::new(0.05, 0.08, -0.1);
     let mut hits = 0;
     for dir in directions(300) {
-        let ray = bevy_curved_spaces::trace::chart_ray(g, eye, dir).unwrap();
+        let ray = bevy_curved_spaces::geometry::chart_ray(g, eye, dir).unwrap();
         let mut brute = f64::INFINITY;
         for h in &group {
             let c = *h * ORIGIN;
@@ -128,15 +128,15 @@ fn fog_cutoff_respects_its_bound() {
     for id in ["torus", "seifert-weber", "poincare", "mirrored-cube"] {
         let s = seed_space(id).unwrap();
         let fog = 1.5 * inradius(&s);
-        let scene = Scene::default_for(&s, fog);
+        let scene = CurvedScene::default_for(&s, fog);
         let mut far = scene.clone();
         far.shading.cutoff_weight = scene.shading.cutoff_weight / 1000.0;
         let walker = CellWalker::<DVec4>::new(&s);
-        let camera = Camera::default_for(&s);
+        let camera = TraceCamera::default_for(&s);
         let mut worst = 0.0f64;
         for j in 0..24 {
             for i in 0..40 {
-                let ray = camera.ray(s.geometry, i, j, 40, 24);
+                let ray = camera.ray(s.geometry(), i, j, 40, 24);
                 let near = trace_pixel(&walker, &scene, ray, 100_000);
                 let exact = trace_pixel(&walker, &far, ray, 100_000);
                 worst = worst.max((near - exact).abs().max_element());
@@ -155,8 +155,8 @@ fn fog_cutoff_respects_its_bound() {
 fn every_seed_space_renders() {
     for seed in SEED_SPACES {
         let s = seed.build().unwrap();
-        let scene = Scene::default_for(&s, Shading::default_fog_distance(&s));
-        let camera = Camera::default_for(&s);
+        let scene = CurvedScene::default_for(&s, Shading::default_fog_distance(&s));
+        let camera = TraceCamera::default_for(&s);
         let settings = RenderSettings {
             width: 96,
             height: 54,
@@ -181,7 +181,7 @@ fn every_seed_space_renders() {
         let centre_ball = scene.objects.len() - 1;
         let sees_ball = (0..54).any(|j| {
             (0..96).any(|i| {
-                matches!(first_hit(&walker, &scene, camera.ray(s.geometry, i, j, 96, 54), 64),
+                matches!(first_hit(&walker, &scene, camera.ray(s.geometry(), i, j, 96, 54), 64),
                     RayEnd::Hit(h) if h.object == centre_ball && h.crossings == 0)
             })
         });

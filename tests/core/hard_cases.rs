@@ -7,12 +7,16 @@
 //! ends (the budget bounds every loop). The tolerances are the precision's rounding scaled by
 //! the case's conditioning, stated next to each assertion.
 
+use bevy_curved_spaces::components::PlayerMotion;
+use bevy_curved_spaces::geometry::Ray;
 use bevy_curved_spaces::geometry::{Geometry, Vector4};
-use bevy_curved_spaces::player::{PlayerMotion, step_frame, wrap_into_cell};
+use bevy_curved_spaces::player::step_frame;
 use bevy_curved_spaces::space::catalog::{dodecahedron_normals, dodecahedron_offset};
 use bevy_curved_spaces::space::invariants::inradius;
+use bevy_curved_spaces::space::wrap_into_cell;
+use bevy_curved_spaces::space::{CellWalker, Limit, Trace};
 use bevy_curved_spaces::space::{SEED_SPACES, Space};
-use bevy_curved_spaces::trace::{CellWalker, Limit, Ray, SplitMix64, Trace, sample_rays};
+use bevy_curved_spaces::trace::{SplitMix64, sample_rays};
 use glam::{DVec3, DVec4, Vec4};
 
 /// How far outside the cell a walk's points may be: `N·X/X.w` over the faces (chart
@@ -131,9 +135,9 @@ fn mirrored_walkers(g: Geometry, covectors: &[DVec4]) -> (CellWalker<DVec4>, Cel
 #[test]
 fn grazing_rays_stay_in_the_cell() {
     for (id, s) in spaces() {
-        let g = s.geometry;
+        let g = s.geometry();
         let r = inradius(&s);
-        for face in &s.faces {
+        for face in s.faces() {
             let centre = face.normal * face.offset;
             // Any direction in the face's plane (chart), tilted by 1e-7 towards the face.
             let along = face.normal.any_orthonormal_vector();
@@ -151,12 +155,12 @@ fn grazing_rays_stay_in_the_cell() {
 #[test]
 fn rays_exactly_through_edges_and_vertices_in_both_precisions() {
     for (id, s) in spaces() {
-        let g = s.geometry;
-        let mut targets: Vec<DVec3> = s.vertices.clone();
+        let g = s.geometry();
+        let mut targets: Vec<DVec3> = s.vertices().to_vec();
         targets.extend(
-            s.edges
+            s.edges()
                 .iter()
-                .map(|e| (s.vertices[e.vertices[0]] + s.vertices[e.vertices[1]]) / 2.0),
+                .map(|e| (s.vertices()[e.vertices[0]] + s.vertices()[e.vertices[1]]) / 2.0),
         );
         for (i, target) in targets.iter().enumerate() {
             trace_both(
@@ -174,16 +178,16 @@ fn rays_exactly_through_edges_and_vertices_in_both_precisions() {
 #[test]
 fn rays_starting_on_faces_edges_and_vertices() {
     for (id, s) in spaces() {
-        let g = s.geometry;
+        let g = s.geometry();
         let mut starts: Vec<(String, DVec3)> = Vec::new();
-        for (f, face) in s.faces.iter().enumerate() {
+        for (f, face) in s.faces().iter().enumerate() {
             starts.push((format!("face {f}"), face.normal * face.offset));
         }
-        for (e, edge) in s.edges.iter().enumerate() {
-            let mid = (s.vertices[edge.vertices[0]] + s.vertices[edge.vertices[1]]) / 2.0;
+        for (e, edge) in s.edges().iter().enumerate() {
+            let mid = (s.vertices()[edge.vertices[0]] + s.vertices()[edge.vertices[1]]) / 2.0;
             starts.push((format!("edge {e}"), mid));
         }
-        for (v, vertex) in s.vertices.iter().enumerate() {
+        for (v, vertex) in s.vertices().iter().enumerate() {
             starts.push((format!("vertex {v}"), *vertex));
         }
         let mut rng = SplitMix64(7);
@@ -215,7 +219,7 @@ fn rays_of_ten_thousand_crossings() {
 #[test]
 fn directions_that_are_not_unit_walk_like_unit_ones() {
     for (id, s) in spaces() {
-        let g = s.geometry;
+        let g = s.geometry();
         let walker = CellWalker::<DVec4>::new(&s);
         for start in sample_rays(&s, 16, 3) {
             let reference = walker.trace(start, Limit::Crossings(20));
@@ -235,7 +239,7 @@ fn directions_that_are_not_unit_walk_like_unit_ones() {
                 for (a, b) in reference.crossings.iter().zip(&t.crossings) {
                     assert_eq!(a.face, b.face, "{id}: {what} tangent took another face");
                     // Same faces; points agree to rounding grown by the conditioning of
-                    // DESIGN.md §3: 1e-13 · G(d) (about 500 ε G(d)), G = e^d in H³,
+                    // docs/design.md §3: 1e-13 · G(d) (about 500 ε G(d)), G = e^d in H³,
                     // 1 + d in E³, 1 in S³.
                     let growth = match g {
                         Geometry::Hyperbolic => a.distance.exp(),
@@ -362,8 +366,8 @@ fn spherical_cells_reaching_the_chart_equator() {
 fn standing_on_a_face_and_wiggling_across_an_edge() {
     let margin = 1e-4;
     for (id, s) in spaces() {
-        let g = s.geometry;
-        let face = &s.faces[0];
+        let g = s.geometry();
+        let face = &s.faces()[0];
         let on_face = g.from_chart(face.normal * face.offset).unwrap();
         let mut frame = g.translation_to(on_face);
         let mut crossings = 0;
@@ -383,8 +387,8 @@ fn standing_on_a_face_and_wiggling_across_an_edge() {
         );
         assert!(g.frame_defect(frame) < 1e-9, "{id}: frame defect");
 
-        let edge = &s.edges[0];
-        let mid = (s.vertices[edge.vertices[0]] + s.vertices[edge.vertices[1]]) / 2.0;
+        let edge = &s.edges()[0];
+        let mid = (s.vertices()[edge.vertices[0]] + s.vertices()[edge.vertices[1]]) / 2.0;
         let mut frame = g.translation_to(g.from_chart(mid * (1.0 - 1e-6)).unwrap());
         let outward = mid.normalize();
         let mut worst = f64::NEG_INFINITY;

@@ -5,8 +5,8 @@ use bevy_curved_spaces::geometry::{Geometry, ORIGIN};
 use bevy_curved_spaces::headset::{HeadTracker, RoomPose, local_motion};
 use bevy_curved_spaces::space::invariants::inradius;
 use bevy_curved_spaces::space::{Space, seed_space};
-use bevy_curved_spaces::stereo::{HUMAN_IPD_METRES, default_ipd, eye_frames};
-use bevy_curved_spaces::trace::Camera;
+use bevy_curved_spaces::view::TraceCamera;
+use bevy_curved_spaces::view::stereo::{HUMAN_IPD_METRES, default_ipd, eye_frames};
 use glam::{DMat4, DQuat, DVec3};
 
 fn max_entry(m: DMat4) -> f64 {
@@ -17,13 +17,13 @@ fn max_entry(m: DMat4) -> f64 {
 
 /// The tracker's frame undone by its holonomy: where the head is in the universal cover.
 fn in_cover(space: &Space, head: &HeadTracker) -> DMat4 {
-    space.geometry.inverse(head.holonomy.matrix) * head.frame
+    space.geometry().inverse(head.holonomy.matrix) * head.frame
 }
 
 /// A tracker at the space's default view, at the default world scale.
 fn tracker(space: &Space) -> HeadTracker {
     let scale = default_ipd(inradius(space)) / HUMAN_IPD_METRES;
-    HeadTracker::new(Camera::default_for(space).frame, scale, 1e-4)
+    HeadTracker::new(TraceCamera::default_for(space).frame, scale, 1e-4)
 }
 
 #[test]
@@ -54,7 +54,7 @@ fn walking_straight_in_the_room_walks_one_geodesic_through_faces() {
             space.outside_by(head.frame.w_axis) <= 1e-4 + 1e-12,
             "{id}: inside"
         );
-        let g = space.geometry;
+        let g = space.geometry();
         let one_step = start * g.translation(-DVec3::Z, metres * head.units_per_metre);
         let gap = max_entry(in_cover(&space, &head) - one_step);
         assert!(gap < 1e-9, "{id}: {gap:e} from the single geodesic step");
@@ -106,7 +106,7 @@ fn room_square(space: &Space, side: f64, substeps: u32) -> f64 {
         (pose.orientation.dot(DQuat::IDENTITY).abs() - 1.0).abs() < 1e-12,
         "the head faces as at the start"
     );
-    let g = space.geometry;
+    let g = space.geometry();
     let m = g.inverse(start) * in_cover(space, &head);
     m.z_axis.x.atan2(m.z_axis.z)
 }
@@ -145,7 +145,7 @@ fn a_closed_walk_in_the_room_shows_the_curvature_as_holonomy() {
 #[test]
 fn crossing_a_twisted_face_turns_the_frame_and_records_the_pairing() {
     let space = seed_space("quarter-turn").expect("seed");
-    let g = space.geometry;
+    let g = space.geometry();
     // Start at the centre looking up the z axis (back = −z), walk 0.6 m... in space units
     // 0.6 along −back = +z: through the z face, glued with a quarter turn.
     let frame = g.rotation(DVec3::X, std::f64::consts::PI);
@@ -158,7 +158,7 @@ fn crossing_a_twisted_face_turns_the_frame_and_records_the_pairing() {
     assert_eq!(crossed.len(), 1);
     let face = crossed[0];
     assert_eq!(head.holonomy.last_face, Some(face));
-    let pairing = space.faces[face].pairing;
+    let pairing = space.faces()[face].pairing;
     let unwrapped = frame * g.translation(-DVec3::Z, 0.6);
     assert!(max_entry(head.frame - g.orthonormalize_frame(pairing * unwrapped)) < 1e-12);
     // The quarter turn shows in the frame: its right tangent is no longer the chart's ±x.

@@ -1,0 +1,112 @@
+//! `bench`: the speed-against-error benchmark, with a summary on standard output.
+
+use super::*;
+use bevy::prelude::*;
+use bevy_curved_spaces::bench::BenchConfig;
+use bevy_curved_spaces::render::offscreen::gpu_available;
+use bevy_curved_spaces::space::seed_space;
+use std::time::Instant;
+
+pub(super) fn bench(args: &BenchArgs) -> Result<(), String> {
+    if let Some(from) = &args.from {
+        let (config, report) =
+            bevy_curved_spaces::bench::read_report(from).map_err(|e| e.to_string())?;
+        let written = bevy_curved_spaces::bench::write_report(&report, &config, &args.out)
+            .map_err(|e| e.to_string())?;
+        say!("wrote {} files to {}", written.len(), args.out.display());
+        return Ok(());
+    }
+    let mut config = if args.quick {
+        BenchConfig::quick()
+    } else {
+        BenchConfig::full()
+    };
+    if let Some(spaces) = &args.spaces {
+        for id in spaces {
+            seed_space(id).map_err(|e| e.to_string())?;
+        }
+        config.spaces.clone_from(spaces);
+    }
+    if let Some(budgets) = &args.budgets {
+        config.budgets.clone_from(budgets);
+    }
+    if let Some(sizes) = &args.sizes {
+        config.sizes.clone_from(sizes);
+    }
+    config.cpu_only = args.cpu_only;
+    if !config.cpu_only && !gpu_available() {
+        return Err("no GPU adapter was found: install one (on Debian `apt-get install mesa-vulkan-drivers libvulkan1`) or pass --cpu-only".into());
+    }
+    if cfg!(debug_assertions) {
+        eprintln!(
+            "note: this is a debug build; for representative timings run `cargo run --release -- bench`"
+        );
+    }
+    eprintln!(
+        "benchmarking {} space(s) at {} size(s), budgets {:?}, fog {:?} inradii…",
+        config.spaces.len(),
+        config.sizes.len(),
+        config.budgets,
+        config.fog_factors
+    );
+    let started = Instant::now();
+    let progress = indicatif::ProgressBar::new(0);
+    let report = bevy_curved_spaces::bench::run(&config, &progress).map_err(|e| e.to_string())?;
+    if let Some(device) = &report.device {
+        say!(
+            "device: {} ({}, {}, {}); frame times from {}",
+            device.name,
+            device.device_type,
+            device.backend,
+            device.driver,
+            if device.timestamps {
+                "GPU timestamps"
+            } else {
+                "wall time around each submission"
+            }
+        );
+    }
+    for t in report
+        .timings
+        .iter()
+        .filter(|t| t.budget_from == "auto-high")
+    {
+        if t.fog_factor != bevy_curved_spaces::bench::DEFAULT_FOG_FACTOR
+            || Some((t.width, t.height)) != config.sizes.iter().copied().max()
+        {
+            continue;
+        }
+        let error = report.errors.iter().find(|e| {
+            e.space == t.space && e.budget_from == t.budget_from && e.fog_factor == t.fog_factor
+        });
+        say!(
+            "{:<22} {:>4}×{:<4} budget {:>4}: {:>9.3} ms ({:>6.1}× the trivial material), hits differing from f64 {:.3} %",
+            t.space,
+            t.width,
+            t.height,
+            t.budget,
+            t.median_ms,
+            t.ratio,
+            error.map_or(f64::NAN, |e| 100.0 * e.hit_differs)
+        );
+    }
+    for c in &report.cutoff {
+        if !c.within_bound {
+            eprintln!(
+                "warning: {} fog {} inradii: cut-off error {:.2e} exceeds its bound {:.2e}",
+                c.space, c.fog_factor, c.max_error, c.bound
+            );
+        }
+    }
+    let written = bevy_curved_spaces::bench::write_report(&report, &config, &args.out)
+        .map_err(|e| e.to_string())?;
+    say!(
+        "wrote {} files to {} in {:.1} s",
+        written.len(),
+        std::fs::canonicalize(&args.out)
+            .unwrap_or_else(|_| args.out.clone())
+            .display(),
+        started.elapsed().as_secs_f64()
+    );
+    Ok(())
+}

@@ -1,0 +1,91 @@
+//! `list`, `info` and `export`: the seed spaces, a space's invariants, a space as a file.
+
+use bevy::prelude::*;
+use bevy_curved_spaces::space::file::SpaceRecord;
+use bevy_curved_spaces::space::invariants::Invariants;
+use bevy_curved_spaces::space::{SEED_SPACES, Space};
+use std::path::Path;
+
+pub(super) fn list() {
+    say!(
+        "{:<22} {:<11} {:>5} {:>14}  description",
+        "id",
+        "geometry",
+        "faces",
+        "volume"
+    );
+    for seed in SEED_SPACES {
+        match seed.build() {
+            Ok(space) => say!(
+                "{:<22} {:<11} {:>5} {:>14.10}  {}",
+                seed.id,
+                space.geometry().name(),
+                space.faces().len(),
+                bevy_curved_spaces::space::invariants::volume(&space),
+                seed.summary
+            ),
+            Err(e) => say!("{:<22} invalid: {e}", seed.id),
+        }
+    }
+}
+
+pub(super) fn info(space: &Space, as_json: bool) -> Result<(), String> {
+    let inv = Invariants::compute(space);
+    if as_json {
+        say!(
+            "{}",
+            serde_json::to_string_pretty(&inv).map_err(|e| e.to_string())?
+        );
+        return Ok(());
+    }
+    let opt = |x: Option<f64>| x.map_or("–".to_string(), |x| format!("{x:.10}"));
+    let opt_n = |x: Option<usize>| x.map_or("–".to_string(), |x| x.to_string());
+    say!("{} ({})", inv.name, inv.geometry.name());
+    say!("  {}", space.description());
+    say!("  faces               {}", inv.faces.len());
+    say!("  volume              {:.12}", inv.volume);
+    say!("  inradius            {:.10}", inv.inradius);
+    say!("  circumradius        {:.10}", inv.circumradius);
+    say!("  edge length         {}", opt(inv.edge_length));
+    let cycles: Vec<String> = inv
+        .edge_cycles
+        .iter()
+        .map(|c| format!("{}×{:.1}°", c.edges, c.angle_sum.to_degrees()))
+        .collect();
+    say!(
+        "  edge cycles         {} ({})",
+        cycles.len(),
+        cycles.join(", ")
+    );
+    say!("  vertex cycles       {}", inv.vertex_cycles);
+    say!("  orientable          {}", inv.orientable);
+    say!("  manifold            {}", inv.manifold);
+    say!("  holonomy order      {}", opt_n(inv.holonomy_order));
+    say!("  group order         {}", opt_n(inv.group_order));
+    say!("  injectivity radius  {}", opt(inv.injectivity_radius));
+    match &inv.closed_geodesics {
+        None => say!("  closed geodesics    too many group elements to enumerate"),
+        Some(list) if !list.is_empty() => {
+            say!("  closed geodesics    length × count");
+            for g in list {
+                say!("                      {:.10} × {}", g.length, g.count);
+            }
+        }
+        Some(_) => {}
+    }
+    Ok(())
+}
+
+pub(super) fn export(space: &Space, out: Option<&Path>) -> Result<(), String> {
+    let text =
+        serde_json::to_string_pretty(&SpaceRecord::from_space(space)).map_err(|e| e.to_string())?;
+    match out {
+        Some(path) => {
+            std::fs::write(path, text + "\n")
+                .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+            say!("wrote {}", path.display());
+        }
+        None => say!("{text}"),
+    }
+    Ok(())
+}

@@ -1,0 +1,326 @@
+//! The `curved-spaces` command line: its arguments and one module per command, each a thin
+//! layer over library calls.
+
+mod bench;
+mod info;
+mod parse;
+mod render;
+mod trace;
+mod walk;
+
+use bevy::prelude::*;
+use bevy_curved_spaces::Quality;
+use bevy_curved_spaces::prelude::{StereoMode, StereoSettings};
+use bevy_curved_spaces::space::DEFAULT_SPACE;
+use bevy_curved_spaces::space::file::load_space_file;
+use bevy_curved_spaces::space::invariants::inradius;
+use bevy_curved_spaces::space::{SEED_SPACES, Space, SpaceError, seed_space};
+use bevy_curved_spaces::view::stereo::check_ipd;
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use glam::DVec3;
+use parse::*;
+use std::path::{Path, PathBuf};
+
+#[derive(Parser)]
+#[command(
+    name = "curved-spaces",
+    version,
+    about = "Ray tracing inside closed 3-manifolds and orbifolds of constant curvature",
+    long_about = "Ray tracing inside closed 3-manifolds and orbifolds of constant curvature.\n\n\
+                  With no command, walks the default space (seifert-weber) in a window; with no \
+                  display, renders it to curved-spaces.png instead.\n\
+                  SPACE is a seed space id (see `curved-spaces list`) or a path to a space file \
+                  (JSON; `curved-spaces export` writes examples)."
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Walk inside a space in a window (first-person controls, F1 panel).
+    Walk(WalkArgs),
+    /// List the seed spaces.
+    List,
+    /// Show a space's invariants.
+    Info {
+        /// Seed space id or space file.
+        space: String,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Trace one geodesic through the cell and list its face crossings.
+    Trace(TraceArgs),
+    /// Render a picture of a space's default scene.
+    Render(RenderArgs),
+    /// Measure speed against error: GPU frame times against a trivial material, accuracy
+    /// against the f64 reference, f32 drift, the fog cut-off; writes JSON, CSV and charts.
+    Bench(BenchArgs),
+    /// Write a space as a space file (JSON), a template for your own spaces.
+    Export {
+        /// Seed space id or space file.
+        space: String,
+        /// Output file (standard output if omitted).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum Precision {
+    F64,
+    F32,
+}
+
+#[derive(Args)]
+#[command(group = clap::ArgGroup::new("limit").required(true).args(["crossings", "distance"]))]
+struct TraceArgs {
+    /// Seed space id or space file.
+    space: String,
+    /// Chart direction of the ray (normalized to a unit tangent).
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    dir: DVec3,
+    /// Chart start point (inside the cell).
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true, default_value = "0,0,0")]
+    from: DVec3,
+    /// Stop after this many face crossings (at most 10⁶).
+    #[arg(long, value_parser = parse_crossings)]
+    crossings: Option<usize>,
+    /// Stop at this geodesic distance (at most 10⁶).
+    #[arg(long, value_parser = parse_distance, allow_hyphen_values = true)]
+    distance: Option<f64>,
+    /// Arithmetic of the walk (f32 is what the GPU uses).
+    #[arg(long, value_enum, default_value = "f64")]
+    precision: Precision,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Args)]
+struct RenderArgs {
+    /// Seed space id or space file.
+    #[arg(default_value = DEFAULT_SPACE)]
+    space: String,
+    /// Use the f64 CPU reference renderer instead of the GPU tracer.
+    #[arg(long)]
+    cpu: bool,
+    /// Image size, WIDTHxHEIGHT.
+    #[arg(long, value_parser = parse_size, default_value = DEFAULT_SIZE)]
+    size: (u32, u32),
+    /// Output PNG file.
+    #[arg(long, default_value = DEFAULT_OUT)]
+    out: PathBuf,
+    /// Fog distance scale λ (default: three times the inradius). Rays stop at λ·ln 510.
+    #[arg(long, value_parser = parse_positive, allow_hyphen_values = true)]
+    fog: Option<f64>,
+    /// Crossing budget per ray (at most 10⁶; default: the smallest that reaches the fog
+    /// cut-off for every sampled ray, chosen automatically).
+    #[arg(long, value_parser = parse_crossings)]
+    crossings: Option<usize>,
+    /// Vertical field of view in degrees.
+    #[arg(long, default_value_t = DEFAULT_FOV, value_parser = parse_fov)]
+    fov: f64,
+    /// Camera position in the chart (default: a view past the centre ball).
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true, requires = "look_at")]
+    eye: Option<DVec3>,
+    /// Chart point the camera looks at.
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true, requires = "eye")]
+    look_at: Option<DVec3>,
+    #[command(flatten)]
+    stereo: StereoArgs,
+    /// A scene file (TOML; see docs/scenes.md and assets/scenes/): its space, objects,
+    /// lights, fog and start view instead of the default scene.
+    #[arg(long, conflicts_with = "space")]
+    scene: Option<PathBuf>,
+    /// The scene's clock in seconds (turns spinning globes).
+    #[arg(long, default_value_t = 0.0, value_parser = parse_time)]
+    time: f64,
+}
+
+/// Stereo options shared by `walk` and `render`.
+#[derive(Args, Clone, Copy, Default)]
+struct StereoArgs {
+    /// Stereo mode: mono, side-by-side, side-by-side-half, top-bottom, top-bottom-half,
+    /// anaglyph (red–cyan, Dubois), anaglyph-optimized, anaglyph-red-cyan.
+    #[arg(long, default_value = "mono", value_parser = parse_stereo)]
+    stereo: StereoMode,
+    /// Distance between the eyes in the space's units (default: 0.043 × the cell's
+    /// inradius, so that the inradius feels like 1.5 m).
+    #[arg(long, value_parser = parse_positive, allow_hyphen_values = true)]
+    ipd: Option<f64>,
+    /// Put the right eye's picture where the left one's goes (cross-eyed viewing).
+    #[arg(long)]
+    swap_eyes: bool,
+}
+
+impl StereoArgs {
+    /// The settings, with the eye distance checked against the cell.
+    fn settings(&self, space: &Space) -> Result<StereoSettings, String> {
+        if let Some(ipd) = self.ipd {
+            check_ipd(ipd, inradius(space)).map_err(|e| e.to_string())?;
+        }
+        Ok(StereoSettings {
+            mode: self.stereo,
+            ipd: self.ipd,
+            swap_eyes: self.swap_eyes,
+        })
+    }
+}
+
+#[derive(Args)]
+struct BenchArgs {
+    /// A smoke run of every part, in seconds (one space per geometry, 160×90).
+    #[arg(long)]
+    quick: bool,
+    /// Folder for bench.json, the CSV tables and the charts (PNG and SVG).
+    #[arg(long, default_value = "results")]
+    out: PathBuf,
+    /// Only these seed spaces (comma-separated ids; default: all).
+    #[arg(long, value_delimiter = ',')]
+    spaces: Option<Vec<String>>,
+    /// Crossing budgets of the sweep (comma-separated; default 2,4,8,16,32,64).
+    #[arg(long, value_delimiter = ',', value_parser = clap::value_parser!(u32).range(1..=4096))]
+    budgets: Option<Vec<u32>>,
+    /// Timed resolutions (comma-separated WIDTHxHEIGHT; default 320x180,640x360,1280x720).
+    #[arg(long, value_delimiter = ',', value_parser = parse_size)]
+    sizes: Option<Vec<(u32, u32)>>,
+    /// Skip the GPU: only the CPU measurements (f32 drift, fog cut-off, automatic budgets).
+    #[arg(long)]
+    cpu_only: bool,
+    /// Measure nothing: redraw the tables, charts and summary of an earlier bench.json.
+    #[arg(long, conflicts_with_all = ["quick", "spaces", "budgets", "sizes", "cpu_only"])]
+    from: Option<PathBuf>,
+}
+
+#[derive(Args)]
+struct WalkArgs {
+    /// Seed space id or space file.
+    #[arg(default_value = DEFAULT_SPACE)]
+    space: String,
+    /// Speed against accuracy: the automatic crossing budget's target and the traced
+    /// resolution.
+    #[arg(long, value_enum, default_value_t = QualityArg::Medium)]
+    quality: QualityArg,
+    /// Fog distance scale λ (default: three times the inradius).
+    #[arg(long, value_parser = parse_positive, allow_hyphen_values = true)]
+    fog: Option<f64>,
+    /// Crossing budget per ray, 1 to 1024 (default: automatic, from the fog and the quality).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    crossings: Option<u32>,
+    /// Start without the panel (F1 shows it).
+    #[arg(long)]
+    no_ui: bool,
+    /// Save a screenshot of the window to this PNG once the view has settled, then quit.
+    #[arg(long)]
+    screenshot: Option<PathBuf>,
+    #[command(flatten)]
+    stereo: StereoArgs,
+    /// Walk with an OpenXR headset (SteamVR, Monado, a Meta runtime; needs a build with
+    /// `--features xr`). Without a runtime, falls back to desktop stereo.
+    #[arg(long)]
+    xr: bool,
+    /// A scene file (TOML; see docs/scenes.md and assets/scenes/): its space, objects,
+    /// lights, fog and start view instead of the default scene.
+    #[arg(long, conflicts_with = "space")]
+    scene: Option<PathBuf>,
+    /// Hide your ship (otherwise seen where rays come back round the space; the panel
+    /// toggles it too).
+    #[arg(long)]
+    no_avatar: bool,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum QualityArg {
+    Low,
+    Medium,
+    High,
+}
+
+impl From<QualityArg> for Quality {
+    fn from(q: QualityArg) -> Self {
+        match q {
+            QualityArg::Low => Quality::Low,
+            QualityArg::Medium => Quality::Medium,
+            QualityArg::High => Quality::High,
+        }
+    }
+}
+
+/// A seed space by id, or a space file by path.
+fn resolve_space(arg: &str) -> Result<Space, String> {
+    if SEED_SPACES.iter().any(|s| s.id == arg) {
+        return seed_space(arg).map_err(|e| e.to_string());
+    }
+    let path = Path::new(arg);
+    if path.exists() || arg.ends_with(".json") {
+        return load_space_file(path).map_err(|e| e.to_string());
+    }
+    Err(SpaceError::UnknownSpace(arg.to_string()).to_string())
+}
+
+/// `render`'s picture size when none is given.
+const DEFAULT_SIZE: &str = "640x360";
+/// `render`'s output file when none is given (also where `walk` renders without a display).
+const DEFAULT_OUT: &str = "curved-spaces.png";
+/// The vertical field of view in degrees when none is given.
+const DEFAULT_FOV: f64 = 70.0;
+
+impl RenderArgs {
+    /// `render SPACE` with every other option at its default.
+    fn of(space: &str) -> Self {
+        Self {
+            space: space.to_string(),
+            cpu: false,
+            size: parse_size(DEFAULT_SIZE).expect("the default size parses"),
+            out: DEFAULT_OUT.into(),
+            fog: None,
+            crossings: None,
+            fov: DEFAULT_FOV,
+            eye: None,
+            look_at: None,
+            stereo: StereoArgs::default(),
+            scene: None,
+            time: 0.0,
+        }
+    }
+}
+
+impl Default for WalkArgs {
+    /// `walk` with no options: the default space at medium quality.
+    fn default() -> Self {
+        Self {
+            space: DEFAULT_SPACE.to_string(),
+            quality: QualityArg::Medium,
+            fog: None,
+            crossings: None,
+            no_ui: false,
+            screenshot: None,
+            stereo: StereoArgs::default(),
+            xr: false,
+            scene: None,
+            no_avatar: false,
+        }
+    }
+}
+
+/// Runs a parsed command line.
+pub fn run(cli: Cli) -> Result<(), String> {
+    match cli.command {
+        None => walk::walk(&WalkArgs::default()),
+        Some(Command::Walk(args)) => walk::walk(&args),
+        Some(Command::List) => {
+            info::list();
+            Ok(())
+        }
+        Some(Command::Info { space, json }) => info::info(&resolve_space(&space)?, json),
+        Some(Command::Trace(args)) => trace::trace(&args),
+        Some(Command::Render(args)) => render::render_command(&args),
+        Some(Command::Bench(args)) => bench::bench(&args),
+        Some(Command::Export { space, out }) => {
+            info::export(&resolve_space(&space)?, out.as_deref())
+        }
+    }
+}

@@ -1,0 +1,211 @@
+//! `walk`: the app in a window (or a headset), or an offscreen picture where there is no
+//! display.
+
+use super::render::{choose_scene, render_command};
+use super::*;
+use bevy::prelude::*;
+use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
+use bevy_curved_spaces::prelude::{StereoMode, StereoSettings};
+use bevy_curved_spaces::render::FramesTraced;
+use bevy_curved_spaces::render::offscreen::gpu_available;
+use bevy_curved_spaces::{ActiveSpace, CurvedSpaceCamera, CurvedSpacesPlugin};
+use std::path::PathBuf;
+
+/// `walk --screenshot`: where to save, and whether it was requested.
+#[derive(Resource)]
+pub(super) struct ScreenshotThenExit {
+    path: PathBuf,
+    requested: bool,
+}
+
+/// Frames the tracer draws before `--screenshot` captures (the window has settled).
+pub(super) const SCREENSHOT_AFTER_FRAMES: u64 = 10;
+
+pub(super) fn screenshot_then_exit(
+    frames: Res<FramesTraced>,
+    mut shot: ResMut<ScreenshotThenExit>,
+    mut commands: Commands,
+) {
+    if shot.requested || frames.get() < SCREENSHOT_AFTER_FRAMES {
+        return;
+    }
+    shot.requested = true;
+    let path = shot.path.clone();
+    commands.spawn(Screenshot::primary_window()).observe(
+        move |captured: On<ScreenshotCaptured>, mut exit: MessageWriter<AppExit>| {
+            let saved = captured
+                .image
+                .clone()
+                .try_into_dynamic()
+                .map_err(|e| e.to_string())
+                .and_then(|img| img.to_rgb8().save(&path).map_err(|e| e.to_string()));
+            match saved {
+                Ok(()) => {
+                    let shown = std::fs::canonicalize(&path).unwrap_or_else(|_| path.clone());
+                    say!("wrote {}", shown.display());
+                    exit.write(AppExit::Success);
+                }
+                Err(e) => {
+                    eprintln!("error: cannot write {}: {e}", path.display());
+                    exit.write(AppExit::error());
+                }
+            }
+        },
+    );
+}
+
+/// Whether a window can be opened (an X11 or Wayland display is named).
+pub(super) fn display_available() -> bool {
+    ["DISPLAY", "WAYLAND_DISPLAY"]
+        .iter()
+        .any(|v| std::env::var_os(v).is_some_and(|x| !x.is_empty()))
+}
+
+/// The stereo mode shown instead of a headset: the one asked for, side by side if none.
+pub(super) fn desktop_stereo(asked: StereoMode) -> StereoMode {
+    if asked.is_stereo() {
+        asked
+    } else {
+        StereoMode::SideBySide
+    }
+}
+
+/// Whether a headset can be used: an OpenXR loader and runtime, in a build with `xr`.
+pub(super) fn xr_runtime() -> Result<(), String> {
+    #[cfg(feature = "xr")]
+    {
+        bevy_curved_spaces::xr::probe_runtime().map_err(|e| e.to_string())
+    }
+    #[cfg(not(feature = "xr"))]
+    {
+        Err("this build has no OpenXR support (build it with `cargo build --release --features xr`)".into())
+    }
+}
+
+pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
+    let chosen = choose_scene(&args.space, args.scene.as_deref(), args.fog)?;
+    let space = chosen.space.clone();
+    let mut stereo_args = args.stereo;
+    if args.xr {
+        match xr_runtime() {
+            #[cfg(feature = "xr")]
+            Ok(()) if display_available() => return walk_xr(args, &chosen),
+            Ok(()) => {
+                eprintln!("an OpenXR runtime was found, but no display to open the app's window on")
+            }
+            Err(e) => eprintln!("{e}"),
+        }
+        stereo_args.stereo = desktop_stereo(stereo_args.stereo);
+        eprintln!(
+            "falling back to desktop stereo: {} (choose another with --stereo)",
+            stereo_args.stereo.label()
+        );
+    }
+    if !display_available() {
+        eprintln!(
+            "no display found (DISPLAY and WAYLAND_DISPLAY are unset): rendering {} offscreen to curved-spaces.png instead",
+            args.space
+        );
+        let mut render = RenderArgs::of(&args.space);
+        render.fog = args.fog;
+        render.scene = args.scene.clone();
+        render.stereo = stereo_args;
+        if !gpu_available() {
+            eprintln!("no GPU adapter found: using the CPU reference renderer");
+            render.cpu = true;
+        }
+        return render_command(&render);
+    }
+    let stereo = stereo_args.settings(&space)?;
+    let active = ActiveSpace::new(&chosen.id, space);
+    eprintln!(
+        "walking in {}: click to look around, WASD to move, Esc releases the mouse, F1 the panel",
+        active.space.name()
+    );
+    let mut app = App::new();
+    app.add_plugins(DefaultPlugins.set(window_titled(format!(
+        "curved spaces: {}",
+        active.space.name()
+    ))));
+    app.insert_resource(chosen.base.clone());
+    add_walk_plugins(&mut app, args, active, stereo).add_systems(
+        Startup,
+        |mut commands: Commands| {
+            commands.spawn((Camera3d::default(), CurvedSpaceCamera::default()));
+        },
+    );
+    if let Some(path) = &args.screenshot {
+        app.insert_resource(ScreenshotThenExit {
+            path: path.clone(),
+            requested: false,
+        })
+        .add_systems(Update, screenshot_then_exit);
+    }
+    exit_result(app.run())
+}
+
+/// The window of `walk`.
+pub(super) fn window_titled(title: String) -> WindowPlugin {
+    WindowPlugin {
+        primary_window: Some(Window { title, ..default() }),
+        ..default()
+    }
+}
+
+/// The space, the plugin with `walk`'s options and the panel's visibility.
+pub(super) fn add_walk_plugins<'a>(
+    app: &'a mut App,
+    args: &WalkArgs,
+    active: ActiveSpace,
+    stereo: StereoSettings,
+) -> &'a mut App {
+    app.insert_resource(active)
+        .add_plugins(CurvedSpacesPlugin {
+            fog_distance: args.fog,
+            max_crossings: args.crossings,
+            quality: args.quality.into(),
+            ui: true,
+            stereo,
+            avatar: !args.no_avatar,
+            ..default()
+        })
+        .insert_resource(bevy_curved_spaces::ui::PanelVisible(!args.no_ui))
+}
+
+pub(super) fn exit_result(exit: AppExit) -> Result<(), String> {
+    match exit {
+        AppExit::Success => Ok(()),
+        AppExit::Error(code) => Err(format!("the app stopped with error code {code}")),
+    }
+}
+
+/// `walk --xr` with a runtime: the headset's views are traced, the window mirrors the head.
+#[cfg(feature = "xr")]
+pub(super) fn walk_xr(args: &WalkArgs, chosen: &Chosen) -> Result<(), String> {
+    use bevy_curved_spaces::xr::{CurvedSpacesXrPlugin, add_xr_plugins, xr_available};
+    let stereo = args.stereo.settings(&chosen.space)?;
+    let active = ActiveSpace::new(&chosen.id, chosen.space.clone());
+    eprintln!(
+        "walking in {} with a headset: left thumbstick walks, right thumbstick turns; the window mirrors the head",
+        active.space.name()
+    );
+    let mut app = App::new();
+    app.add_plugins(add_xr_plugins(DefaultPlugins).set(window_titled(format!(
+        "curved spaces (XR mirror): {}",
+        active.space.name()
+    ))));
+    add_walk_plugins(&mut app, args, active, stereo);
+    if xr_available(app.world()) {
+        app.add_plugins(CurvedSpacesXrPlugin::default());
+    } else {
+        eprintln!(
+            "the OpenXR runtime did not start a session: falling back to desktop stereo in the window"
+        );
+        let mut settings = app.world_mut().resource_mut::<StereoSettings>();
+        settings.mode = desktop_stereo(settings.mode);
+        app.add_systems(Startup, |mut commands: Commands| {
+            commands.spawn((Camera3d::default(), CurvedSpaceCamera::default()));
+        });
+    }
+    exit_result(app.run())
+}

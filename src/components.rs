@@ -1,0 +1,376 @@
+//! The ECS state the plugin shares: the components on curved-space cameras and the
+//! resources that configure and report on the tracer. Everything Bevy-facing that more than
+//! one of the player, render and UI systems reads lives here, so those modules depend on this
+//! one and not on each other.
+
+use crate::scene::{CurvedScene, Object, SceneParts, Shading};
+use crate::space::{Space, SpaceError, invariants, seed_space};
+use crate::trace::BudgetChoice;
+use crate::view::stereo::{HUMAN_IPD_METRES, StereoMode, check_ipd, default_ipd};
+use crate::view::{Lens, TraceCamera};
+use bevy::prelude::*;
+use glam::{DMat4, DVec3};
+use std::sync::Arc;
+
+/// Speed against accuracy presets: how many rays the automatic crossing budget may leave
+/// short (shown as fog instead of a far object) and the fraction of the window's resolution
+/// that is traced.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Quality {
+    /// Budget short for at most 2 % of rays, half resolution.
+    Low,
+    /// Budget short for at most 0.5 % of rays, three quarters of the resolution.
+    #[default]
+    Medium,
+    /// Budget enough for every sampled ray, full resolution.
+    High,
+}
+
+impl Quality {
+    /// The fraction of sampled rays the automatic budget may leave short. Such a ray shows
+    /// the fog colour instead of an object seen at distance `d`, an error of at most its fog
+    /// weight `e^(−d/λ)`.
+    #[must_use]
+    pub fn miss_fraction(self) -> f64 {
+        match self {
+            Quality::Low => 0.02,
+            Quality::Medium => 0.005,
+            Quality::High => 0.0,
+        }
+    }
+
+    /// The fraction of the view's resolution that is traced.
+    #[must_use]
+    pub fn resolution_scale(self) -> f32 {
+        match self {
+            Quality::Low => 0.5,
+            Quality::Medium => 0.75,
+            Quality::High => 1.0,
+        }
+    }
+
+    pub const ALL: [Quality; 3] = [Quality::Low, Quality::Medium, Quality::High];
+}
+
+/// Rays sampled to choose the automatic crossing budget (a few ms to 0.1 s of CPU time when
+/// the space, the fog or the scene changes).
+pub const AUTO_BUDGET_SAMPLES: usize = 2048;
+
+/// Our systems, in the order they run in `Update`; order your own around them.
+#[derive(SystemSet, Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum CurvedSpacesSystems {
+    /// Keys, mouse and scroll become each player's [`PlayerMotion`].
+    Input,
+    /// Motions are applied to the frames (and a space switch resets them).
+    Move,
+    /// Frames that left the cell are wrapped through faces ([`Holonomy`]).
+    Wrap,
+    /// The space and scene are packed for the GPU when they changed.
+    Upload,
+}
+
+/// A camera that shows the curved space: add it to an ordinary `Camera3d`.
+///
+/// Its position and orientation in the space are its [`PlayerFrame`]; the camera's
+/// `Transform` is not used.
+#[derive(Component, Clone, Copy, Debug, PartialEq)]
+#[require(PlayerFrame, Holonomy, PlayerMotion)]
+pub struct CurvedSpaceCamera {
+    /// Vertical field of view in degrees.
+    pub fov_y_degrees: f64,
+}
+
+impl Default for CurvedSpaceCamera {
+    fn default() -> Self {
+        Self {
+            fov_y_degrees: 70.0,
+        }
+    }
+}
+
+/// The space every curved-space camera shows. Replace it (or use [`ActiveSpace::seed`]) to
+/// switch spaces at run time: the players are put back at the space's start view.
+#[derive(Resource, Clone, Debug)]
+pub struct ActiveSpace {
+    /// The seed id or the file the space came from.
+    pub id: String,
+    pub space: Arc<Space>,
+    pub volume: f64,
+    pub inradius: f64,
+    /// `None` where the group was too large to enumerate.
+    pub injectivity_radius: Option<f64>,
+}
+
+impl ActiveSpace {
+    /// A space with its read-outs computed.
+    #[must_use]
+    pub fn new(id: impl Into<String>, space: Space) -> Self {
+        Self {
+            id: id.into(),
+            volume: invariants::volume(&space),
+            inradius: invariants::inradius(&space),
+            injectivity_radius: invariants::injectivity_radius(&space),
+            space: Arc::new(space),
+        }
+    }
+
+    /// One of the seed spaces by id.
+    pub fn seed(id: &str) -> Result<Self, SpaceError> {
+        Ok(Self::new(id, seed_space(id)?))
+    }
+}
+
+/// The tracer's knobs, changeable at run time.
+#[derive(Resource, Clone, Copy, Debug, PartialEq)]
+pub struct TracerSettings {
+    /// Fog distance scale λ; `None` for the space's default.
+    pub fog_distance: Option<f64>,
+    /// Crossing budget per ray; `None` for the automatic budget of `quality`.
+    pub max_crossings: Option<u32>,
+    /// What the automatic budget aims for.
+    pub quality: Quality,
+    /// Fraction of the view's resolution that is traced (then scaled up), in (0, 1].
+    pub resolution_scale: f32,
+    pub parts: SceneParts,
+    /// The scene's clock in seconds (spinning globes); `None` follows the app's [`Time`].
+    /// Fixed for still pictures that must match a CPU render.
+    pub time: Option<f64>,
+}
+
+impl TracerSettings {
+    /// The fog distance in use: the one set here, else the base scene's own (a scene file's
+    /// `fog`), else the space's default ([`Shading::default_fog_distance`]). The one rule for
+    /// it: the tracer, the panel and offscreen renders all ask here.
+    #[must_use]
+    pub fn fog_for(&self, space: &Space, base: Option<&CurvedScene>) -> f64 {
+        self.fog_distance
+            .or(base.map(|b| b.shading.fog_distance))
+            .unwrap_or_else(|| Shading::default_fog_distance(space))
+    }
+}
+
+/// Your own objects in the curved space, added to the default scene parts: metric balls and
+/// geodesic tubes with their centres inside the cell (`trace::Ball::new`, `trace::Tube::new`
+/// in model coordinates). One that sticks out through faces is drawn through its images
+/// under the pairings that meet the cell ([`CurvedScene::place`]), so it looks whole from every
+/// side. A misplaced object is reported in [`TracerStatus::error`] and left out.
+#[derive(Resource, Clone, Debug, Default, PartialEq)]
+pub struct SceneObjects(pub Vec<Object>);
+
+/// A scene to show instead of the default one, such as a loaded scene file
+/// ([`crate::scene::file::load_scene_file`], [`BaseScene::from_file`]): used while the
+/// active space's id is `space_id`, with the default parts of [`TracerSettings::parts`] and
+/// the [`SceneObjects`] added to it. Its start view is where players start, and `parts` is
+/// what the plugin starts [`TracerSettings::parts`] with.
+#[derive(Resource, Clone, Debug, Default)]
+pub struct BaseScene {
+    pub space_id: String,
+    /// Its objects, lights and shading, without the default parts.
+    pub scene: Option<Arc<CurvedScene>>,
+    pub start: Option<DMat4>,
+    pub parts: Option<SceneParts>,
+}
+
+impl BaseScene {
+    /// A loaded scene file as the base scene.
+    #[cfg(feature = "scene-files")]
+    #[must_use]
+    pub fn from_file(file: &crate::scene::file::SceneFile) -> Self {
+        Self {
+            space_id: file.space_id.clone(),
+            scene: Some(Arc::new(file.base.clone())),
+            start: file.start,
+            parts: Some(file.parts),
+        }
+    }
+}
+
+impl BaseScene {
+    /// The base scene for the active space, if it is the one the scene was made for.
+    #[must_use]
+    pub fn for_space(&self, active: &ActiveSpace) -> Option<&CurvedScene> {
+        self.scene.as_deref().filter(|_| active.id == self.space_id)
+    }
+
+    /// Where players start in the active space.
+    #[must_use]
+    pub fn start_frame(&self, active: &ActiveSpace) -> DMat4 {
+        self.start
+            .filter(|_| active.id == self.space_id)
+            .unwrap_or_else(|| TraceCamera::default_for(&active.space).frame)
+    }
+}
+
+/// The last problem the tracer had with the scene (shown in the UI), if any.
+#[derive(Resource, Clone, Debug, Default, PartialEq)]
+pub struct TracerStatus {
+    pub error: Option<String>,
+    /// The crossing budget in use.
+    pub budget: u32,
+    /// The fog distance λ in use ([`TracerSettings::fog_for`]).
+    pub fog_distance: f64,
+    /// How the automatic budget was chosen (`None` when the budget is fixed).
+    pub auto_budget: Option<BudgetChoice>,
+    /// What is wrong with the [`StereoSettings`], if anything (the default eye distance is
+    /// used meanwhile).
+    pub stereo_error: Option<String>,
+}
+
+/// The player's frame: an isometry of the model whose columns are the right, up and back
+/// unit tangents and the position (the camera looks along `−back`).
+#[derive(Component, Clone, Copy, Debug, PartialEq)]
+pub struct PlayerFrame(pub DMat4);
+
+impl Default for PlayerFrame {
+    fn default() -> Self {
+        Self(DMat4::IDENTITY)
+    }
+}
+
+/// The face crossings of a player since the space was entered.
+#[derive(Component, Clone, Copy, Debug, PartialEq)]
+pub struct Holonomy {
+    /// Faces crossed so far.
+    pub crossings: u64,
+    /// The product of the pairings applied, latest on the left: `F_now = matrix · F_unwrapped`.
+    pub matrix: DMat4,
+    /// The face crossed last.
+    pub last_face: Option<usize>,
+}
+
+impl Default for Holonomy {
+    fn default() -> Self {
+        Self {
+            crossings: 0,
+            matrix: DMat4::IDENTITY,
+            last_face: None,
+        }
+    }
+}
+
+impl Holonomy {
+    /// Records a crossing through `face` with pairing `g`.
+    pub fn record(&mut self, face: usize, g: DMat4) {
+        self.crossings += 1;
+        self.matrix = g * self.matrix;
+        self.last_face = Some(face);
+    }
+}
+
+/// What the controls ask for this frame, in the player's own axes.
+#[derive(Component, Clone, Copy, Debug, Default, PartialEq)]
+pub struct PlayerMotion {
+    /// Distance to move along right, up, back (geodesic units).
+    pub translation: DVec3,
+    /// Angles (radians) to turn about right (pitch), up (yaw) and back (roll).
+    pub rotation: DVec3,
+}
+
+/// Rebindable keys of the first-person controls.
+#[derive(Resource, Clone, Debug, PartialEq)]
+pub struct KeyBindings {
+    pub forward: KeyCode,
+    pub backward: KeyCode,
+    pub left: KeyCode,
+    pub right: KeyCode,
+    pub up: KeyCode,
+    pub down: KeyCode,
+    pub roll_left: KeyCode,
+    pub roll_right: KeyCode,
+    pub faster: KeyCode,
+    pub slower: KeyCode,
+    pub release_mouse: KeyCode,
+}
+
+impl Default for KeyBindings {
+    fn default() -> Self {
+        Self {
+            forward: KeyCode::KeyW,
+            backward: KeyCode::KeyS,
+            left: KeyCode::KeyA,
+            right: KeyCode::KeyD,
+            up: KeyCode::Space,
+            down: KeyCode::ShiftLeft,
+            roll_left: KeyCode::KeyQ,
+            roll_right: KeyCode::KeyE,
+            faster: KeyCode::Equal,
+            slower: KeyCode::Minus,
+            release_mouse: KeyCode::Escape,
+        }
+    }
+}
+
+/// How the controls feel.
+#[derive(Resource, Clone, Debug, PartialEq)]
+pub struct PlayerSettings {
+    /// Walking speed in cell inradii per second.
+    pub speed: f64,
+    /// Radians per pixel of mouse motion.
+    pub mouse_sensitivity: f64,
+    /// Roll speed in radians per second.
+    pub roll_speed: f64,
+    /// How far past a face (in `N·X/X.w`, chart units) the position may go before it wraps:
+    /// the hysteresis that keeps a player standing on a face from flickering between sides.
+    pub wrap_margin: f64,
+    /// Whether mouse motion turns the view without a grabbed cursor (tests, touchpads).
+    pub look_without_grab: bool,
+}
+
+impl Default for PlayerSettings {
+    fn default() -> Self {
+        Self {
+            speed: 0.6,
+            mouse_sensitivity: 0.003,
+            roll_speed: 1.2,
+            wrap_margin: 1e-4,
+            look_without_grab: false,
+        }
+    }
+}
+
+/// Whether the primary window's cursor is grabbed for mouse look.
+#[derive(Resource, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct MouseLook {
+    pub grabbed: bool,
+}
+
+/// Whether the pointer is over the panel (then a click does not grab the cursor).
+#[derive(Resource, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PointerOverUi(pub bool);
+
+/// The stereo options of the curved-space cameras (a resource; changeable at run time).
+#[derive(Resource, Clone, Copy, Debug, Default, PartialEq)]
+pub struct StereoSettings {
+    pub mode: StereoMode,
+    /// Distance between the eyes in the space's units (geodesic); `None` for
+    /// [`default_ipd`] of the cell. It sets the world scale: how big the cell feels.
+    pub ipd: Option<f64>,
+    /// Show the right eye where the left one belongs and vice versa (cross-eyed viewing of
+    /// side-by-side pictures).
+    pub swap_eyes: bool,
+}
+
+impl StereoSettings {
+    /// The eye distance in use for a cell of this inradius: the chosen one, or the default
+    /// where none is chosen or the chosen one fails [`check_ipd`].
+    #[must_use]
+    pub fn ipd_for(&self, inradius: f64) -> f64 {
+        self.ipd
+            .filter(|&ipd| check_ipd(ipd, inradius).is_ok())
+            .unwrap_or_else(|| default_ipd(inradius))
+    }
+
+    /// Space units per metre at this eye distance (the "world scale").
+    #[must_use]
+    pub fn units_per_metre(&self, inradius: f64) -> f64 {
+        self.ipd_for(inradius) / HUMAN_IPD_METRES
+    }
+}
+
+/// Marks a curved-space camera that is one eye of a head-mounted display: it is drawn as
+/// one view with its own (asymmetric) frustum, and the [`StereoSettings`] do not apply to
+/// it. Its [`PlayerFrame`] is the eye's frame, kept inside the cell by its owner.
+#[derive(Component, Clone, Copy, Debug, PartialEq)]
+pub struct CurvedSpaceEye {
+    pub lens: Lens,
+}

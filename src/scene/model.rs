@@ -1,0 +1,497 @@
+//! The scene: what the rays can see in the cell, and how objects are placed so that they
+//! look whole through the faces.
+
+use super::mesh::{self, Mesh, Model};
+use super::object::{Ball, Hit, MeshInstance, Object, Tube};
+use super::shading::{DEFAULT_CUTOFF_WEIGHT, Light, Shading, SurfaceMaterial};
+use super::{avatar, texture::Texture};
+use crate::geometry::Geometry;
+use crate::space::Space;
+use glam::{DMat4, DVec2, DVec3, DVec4};
+use std::sync::Arc;
+
+/// The most images of one object [`CurvedScene::place`] adds (an object far larger than the cell
+/// would need more, and is refused).
+pub const MAX_IMAGES: usize = 512;
+
+/// An object could not be placed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum PlaceError {
+    #[error("the object is not inside the cell: its centre is {0:.3} outside face {1}")]
+    Outside(f64, usize),
+    #[error(
+        "the object meets more than {MAX_IMAGES} copies of the cell; make it smaller than the cell"
+    )]
+    TooLarge,
+}
+
+/// The player's own avatar: a mesh at the player's frame, seen only where rays come back
+/// round the space (hits closer than `skip` to the eye are the copy the eye sits in, and
+/// are passed through).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Avatar {
+    /// Index into [`CurvedScene::meshes`].
+    pub mesh: u32,
+    /// The avatar at the player's frame and its images under the pairings that meet the
+    /// cell ([`CurvedScene::set_avatar_frame`]).
+    pub instances: Vec<MeshInstance>,
+    /// Hits nearer than this to the eye are not drawn.
+    pub skip: f64,
+}
+
+/// The most images of the avatar drawn (its copy and those through nearby faces, edges and
+/// vertices).
+pub const MAX_AVATAR_IMAGES: usize = 8;
+
+/// The avatar (mesh `mesh` of radius `radius`) at the player's `frame` and its images under
+/// the pairings that meet the cell, nearest first, at most [`MAX_AVATAR_IMAGES`].
+#[must_use]
+pub fn avatar_instances(space: &Space, mesh: u32, radius: f64, frame: DMat4) -> Vec<MeshInstance> {
+    let g = space.geometry;
+    let instance = MeshInstance::new(g, mesh, frame, radius);
+    let mut scratch = CurvedScene::new(Vec::new(), Vec::new(), Shading::default());
+    // The player is kept inside the cell, so placing cannot fail; keep the avatar itself
+    // if it somehow does.
+    if scratch.place(space, Object::Mesh(instance)).is_err() {
+        scratch.objects = vec![Object::Mesh(instance)];
+    }
+    let origin = instance.origin(g);
+    let mut instances: Vec<MeshInstance> = scratch
+        .objects
+        .into_iter()
+        .filter_map(|o| match o {
+            Object::Mesh(m) => Some(m),
+            _ => None,
+        })
+        .collect();
+    instances.sort_by(|a, b| {
+        g.distance(a.origin(g), origin)
+            .total_cmp(&g.distance(b.origin(g), origin))
+    });
+    instances.truncate(MAX_AVATAR_IMAGES);
+    instances
+}
+
+/// What the rays can see: objects in the cell, lights, meshes with their materials and
+/// textures, the player's avatar, the shading.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CurvedScene {
+    pub objects: Vec<Object>,
+    pub lights: Vec<Light>,
+    pub shading: Shading,
+    pub meshes: Vec<Arc<Mesh>>,
+    pub materials: Vec<SurfaceMaterial>,
+    pub textures: Vec<Arc<Texture>>,
+    /// Seconds since the start: turns the spinning globes.
+    pub time: f64,
+    pub avatar: Option<Avatar>,
+}
+
+/// What a ray segment meets first: the object's index (`objects.len() + k` for the avatar's
+/// `k`-th image) and the hit.
+pub type SegmentHit = (usize, Hit);
+
+impl CurvedScene {
+    /// A scene with these objects and lights, nothing else.
+    #[must_use]
+    pub fn new(objects: Vec<Object>, lights: Vec<Light>, shading: Shading) -> Self {
+        Self {
+            objects,
+            lights,
+            shading,
+            meshes: Vec::new(),
+            materials: Vec::new(),
+            textures: Vec::new(),
+            time: 0.0,
+            avatar: None,
+        }
+    }
+
+    /// The first hit along the segment `X(s) ∝ p + s v`, `0 < s < s_max`, of a ray that has
+    /// come `travelled` from the eye.
+    #[must_use]
+    pub fn intersect(
+        &self,
+        g: Geometry,
+        p: DVec4,
+        v: DVec4,
+        s_max: f64,
+        travelled: f64,
+    ) -> Option<SegmentHit> {
+        let mut best: Option<SegmentHit> = None;
+        let mut limit = s_max;
+        for (i, o) in self.objects.iter().enumerate() {
+            let hit = match o {
+                Object::Mesh(m) => self.intersect_mesh(g, m, p, v, limit),
+                _ => o.intersect(g, p, v, limit).map(|mut h| {
+                    if let Object::Ball(Ball {
+                        texture: Some(t), ..
+                    }) = o
+                    {
+                        h.colour *= self.texture_colour(t.texture, t.uv(g, h.point, self.time));
+                    }
+                    h
+                }),
+            };
+            if let Some(h) = hit {
+                limit = h.s;
+                best = Some((i, h));
+            }
+        }
+        if let Some(avatar) = &self.avatar {
+            for (k, m) in avatar.instances.iter().enumerate() {
+                if let Some(h) = self.intersect_mesh(g, m, p, v, limit)
+                    && travelled + g.distance_from_ratio(h.s, 1.0) >= avatar.skip
+                {
+                    limit = h.s;
+                    best = Some((self.objects.len() + k, h));
+                }
+            }
+        }
+        best
+    }
+
+    fn texture_colour(&self, texture: u32, uv: DVec2) -> DVec3 {
+        self.textures
+            .get(texture as usize)
+            .map_or(DVec3::ONE, |t| t.sample(uv))
+    }
+
+    /// A mesh instance's first hit on the segment, with the material's colour and the
+    /// normal of the plane through the hit whose chart normal is the interpolated vertex
+    /// normal (facing the ray).
+    #[must_use]
+    pub fn intersect_mesh(
+        &self,
+        g: Geometry,
+        m: &MeshInstance,
+        p: DVec4,
+        v: DVec4,
+        s_max: f64,
+    ) -> Option<Hit> {
+        let mesh = self.meshes.get(m.mesh as usize)?;
+        let (o, d, pw, vw) = m.local_ray(p, v)?;
+        let den = pw + s_max * vw;
+        let t_max = if den > 0.0 {
+            s_max / den
+        } else {
+            f64::INFINITY
+        };
+        let h = mesh.intersect(o, d, t_max)?;
+        let s = h.t * pw / (1.0 - h.t * vw);
+        if !(s > 0.0 && s < s_max) {
+            return None;
+        }
+        let tri = &mesh.triangles[h.triangle];
+        let w = [1.0 - h.u - h.v, h.u, h.v];
+        let x = o + h.t * d;
+        let n = (tri.normals[0] * w[0] + tri.normals[1] * w[1] + tri.normals[2] * w[2])
+            .normalize_or_zero();
+        let k = g.kappa();
+        let local_normal = if k == 0.0 {
+            n.extend(0.0)
+        } else {
+            n.extend(-n.dot(x) / k)
+        };
+        let point = g.project_point(p + s * v);
+        let mut normal = g.unit_tangent(point, m.frame * local_normal);
+        if g.form(normal, v) > 0.0 {
+            normal = -normal;
+        }
+        let material = m
+            .material
+            .unwrap_or(tri.material)
+            .min(self.materials.len().saturating_sub(1) as u32);
+        let mat = self
+            .materials
+            .get(material as usize)
+            .copied()
+            .unwrap_or_default();
+        let uv = tri.uvs[0] * w[0] + tri.uvs[1] * w[1] + tri.uvs[2] * w[2];
+        let colour = match mat.texture {
+            Some(t) => mat.colour * self.texture_colour(t, uv),
+            None => mat.colour,
+        };
+        Some(Hit {
+            s,
+            point,
+            normal,
+            colour,
+            emission: mat.emission,
+        })
+    }
+
+    /// Puts the avatar at the player's `frame`, with its images under the pairings where it
+    /// sticks out of the cell ([`avatar_instances`]).
+    pub fn set_avatar_frame(&mut self, space: &Space, frame: DMat4) {
+        let Some(avatar) = self.avatar.as_mut() else {
+            return;
+        };
+        let radius = self
+            .meshes
+            .get(avatar.mesh as usize)
+            .map_or(0.0, |m| m.radius);
+        avatar.instances = avatar_instances(space, avatar.mesh, radius, frame);
+    }
+}
+
+/// Distinct colours for edge cycles (a golden-angle walk around the hue circle).
+#[must_use]
+pub fn palette(i: usize) -> DVec3 {
+    let h = (i as f64 * 0.618_033_988_75 + 0.08).fract() * 6.0;
+    let x = 1.0 - (h % 2.0 - 1.0).abs();
+    let (r, g, b) = match h as u32 {
+        0 => (1.0, x, 0.0),
+        1 => (x, 1.0, 0.0),
+        2 => (0.0, 1.0, x),
+        3 => (0.0, x, 1.0),
+        4 => (x, 0.0, 1.0),
+        _ => (1.0, 0.0, x),
+    };
+    DVec3::new(r, g, b) * 0.75 + DVec3::splat(0.2)
+}
+
+/// Which parts of the default scene to show.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct SceneParts {
+    /// The cell's edges (tubes coloured by edge cycle) and a small ball at each vertex.
+    pub edges: bool,
+    /// A ball at the cell's centre.
+    pub centre_ball: bool,
+    /// The player's ship ([`crate::scene::avatar`]), seen where rays come back round the
+    /// space; put it at the player with [`CurvedScene::set_avatar_frame`].
+    pub avatar: bool,
+}
+
+impl Default for SceneParts {
+    /// Edges and the centre ball; no avatar (still pictures have no player).
+    fn default() -> Self {
+        Self {
+            edges: true,
+            centre_ball: true,
+            avatar: false,
+        }
+    }
+}
+
+impl CurvedScene {
+    /// Adds `object` (its centre inside the cell) and, where it sticks out through faces,
+    /// its images under the pairings that meet the cell, so that it is seen whole from
+    /// every side and in every copy of the cell. Images equal to an object already in the
+    /// scene are not added twice. Returns how many objects were added.
+    ///
+    /// A ray that leaves through face `f` continues from `g_f` of its exit point, so the
+    /// part of an object outside `f` is seen inside the cell as `g_f(object)`: that image
+    /// is added when the object reaches past `f` and the image comes within reach of the
+    /// cell (tested at points along a tube's axis); images of images are followed the same way (edges, vertices).
+    /// The test is conservative: a tube whose flat end only touches the cell at a vertex
+    /// (an edge of a neighbouring cell) is kept too; it costs time, never a wrong pixel.
+    pub fn place(&mut self, space: &Space, object: Object) -> Result<usize, PlaceError> {
+        let g = space.geometry;
+        let (centre, _) = object.bounding_ball(g);
+        let faces = space.faces.len();
+        if let Some((f, d)) = (0..faces)
+            .map(|f| (f, space.face_distance(f, centre)))
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .filter(|(_, d)| *d > 1e-9)
+        {
+            return Err(PlaceError::Outside(d, f));
+        }
+        const SAME: f64 = 1e-9;
+        // Points along the object's core (a ball's centre, a tube's axis at spacing ≤ its
+        // radius) and the slack they need: every point of the object is within `reach` of one.
+        let cores = |o: &Object| -> (Vec<DVec4>, f64) {
+            match o {
+                Object::Ball(b) => (vec![b.centre], b.radius),
+                Object::Disc(d) => (vec![d.centre], d.radius),
+                Object::Mesh(m) => (vec![m.origin(g)], m.radius),
+                Object::Tube(t) => {
+                    let length = g.distance(t.a, t.b);
+                    let steps = ((length / t.radius.max(1e-9)).ceil() as usize).clamp(1, 256);
+                    let step = length / steps as f64;
+                    let points = (0..=steps)
+                        .map(|i| g.project_point(g.geodesic(t.a, t.towards_b, i as f64 * step).0))
+                        .collect();
+                    (points, t.radius + 0.5 * step)
+                }
+            }
+        };
+        // Conservative: a point whose largest face distance is under `reach` may be within
+        // `reach` of the cell (the face distances underestimate near edges and vertices).
+        let meets_cell = |o: &Object| {
+            let (points, reach) = cores(o);
+            points.iter().any(|p| {
+                (0..faces)
+                    .map(|f| space.face_distance(f, *p))
+                    .fold(f64::NEG_INFINITY, f64::max)
+                    < reach
+            })
+        };
+        let mut found: Vec<Object> = Vec::new();
+        let mut queue = vec![object];
+        while let Some(o) = queue.pop() {
+            if found.iter().any(|x| x.same_as(&o, g, SAME)) {
+                continue;
+            }
+            if found.len() >= MAX_IMAGES {
+                return Err(PlaceError::TooLarge);
+            }
+            let (points, reach) = cores(&o);
+            for (f, face) in space.faces.iter().enumerate() {
+                if points.iter().any(|p| space.face_distance(f, *p) > -reach) {
+                    let image = o.transformed(g, face.pairing);
+                    if meets_cell(&image) && !found.iter().any(|x| x.same_as(&image, g, SAME)) {
+                        queue.push(image);
+                    }
+                }
+            }
+            found.push(o);
+        }
+        let before = self.objects.len();
+        for o in found {
+            if !self.objects.iter().any(|x| x.same_as(&o, g, SAME)) {
+                self.objects.push(o);
+            }
+        }
+        Ok(self.objects.len() - before)
+    }
+
+    /// The default scene of a space: the cell's edges as thin tubes coloured by edge cycle,
+    /// a small ball at each vertex, a ball at the centre and one light, with fog at `fog`.
+    #[must_use]
+    pub fn default_for(space: &Space, fog_distance: f64) -> Self {
+        Self::with_parts(space, fog_distance, SceneParts::default())
+    }
+
+    /// The default scene with only the chosen parts (the light and shading are the same).
+    #[must_use]
+    pub fn with_parts(space: &Space, fog_distance: f64, parts: SceneParts) -> Self {
+        let g = space.geometry;
+        let inradius = crate::space::invariants::inradius(space);
+        let light_at = g.translation(DVec3::new(0.45, 0.8, 0.4), 0.65 * inradius) * space.centre();
+        let light = Light::new(space, light_at, DVec3::ONE, g.s(0.7 * inradius).powi(2));
+        CurvedScene::new(
+            Vec::new(),
+            vec![light],
+            Shading {
+                ambient: 0.3,
+                fog_colour: DVec3::new(0.04, 0.05, 0.08),
+                fog_distance,
+                near_light: 0.05 * inradius,
+                cutoff_weight: DEFAULT_CUTOFF_WEIGHT,
+            },
+        )
+        .adding_parts(space, parts)
+    }
+
+    /// This scene with the default scene's parts added: the part objects before its own,
+    /// and the avatar given or taken away as `parts.avatar` says. A scene file's scene and
+    /// the plugin's base scene are made whole this way.
+    #[must_use]
+    pub fn adding_parts(&self, space: &Space, parts: SceneParts) -> CurvedScene {
+        let mut scene = self.clone();
+        scene.objects.splice(0..0, Self::part_objects(space, parts));
+        if !parts.avatar {
+            scene.avatar = None;
+        } else if scene.avatar.is_none() {
+            let size = crate::scene::avatar_size(crate::space::invariants::inradius(space));
+            // The ship is a fixed small model: placing it cannot fail.
+            let _ = scene.add_avatar(space.geometry, size);
+        }
+        scene
+    }
+
+    /// The objects of the default scene's parts: the cell's edges as thin tubes coloured by
+    /// edge cycle with a small ball at each vertex, and the centre ball (the avatar is not
+    /// an object: see [`CurvedScene::add_avatar`]).
+    #[must_use]
+    pub fn part_objects(space: &Space, parts: SceneParts) -> Vec<Object> {
+        let g = space.geometry;
+        let inradius = crate::space::invariants::inradius(space);
+        let tube = 0.05 * inradius;
+        let edges = if parts.edges {
+            space.edges.as_slice()
+        } else {
+            &[]
+        };
+        let vertices = if parts.edges { space.vertices.len() } else { 0 };
+        let mut objects: Vec<Object> = edges
+            .iter()
+            .map(|e| {
+                Object::Tube(Tube::new(
+                    g,
+                    space.vertex_point(e.vertices[0]),
+                    space.vertex_point(e.vertices[1]),
+                    tube,
+                    palette(e.cycle),
+                ))
+            })
+            .collect();
+        objects.extend((0..vertices).map(|v| {
+            Object::Ball(Ball::new(
+                g,
+                space.vertex_point(v),
+                1.6 * tube,
+                DVec3::splat(0.9),
+            ))
+        }));
+        if parts.centre_ball {
+            objects.push(Object::Ball(Ball::new(
+                g,
+                space.centre(),
+                0.25 * inradius,
+                DVec3::new(1.0, 0.78, 0.45),
+            )));
+        }
+        objects
+    }
+}
+
+impl CurvedScene {
+    /// Adds a model's triangles as a mesh placed by the scale rule of [`mesh`] (its
+    /// materials and textures are appended to the scene's); returns the mesh's index for
+    /// [`crate::scene::MeshInstance`]s.
+    pub fn add_model(
+        &mut self,
+        geometry: Geometry,
+        model: &Model,
+        scale: f64,
+    ) -> Result<u32, mesh::MeshError> {
+        let (materials, textures) = (self.materials.len() as u32, self.textures.len() as u32);
+        let mut source = model.source.clone();
+        for m in &mut source.materials {
+            *m += materials;
+        }
+        let mesh = source.place(geometry, scale)?;
+        self.materials
+            .extend(model.materials.iter().map(|m| SurfaceMaterial {
+                texture: m.texture.map(|t| t + textures),
+                ..*m
+            }));
+        self.textures
+            .extend(model.textures.iter().cloned().map(Arc::new));
+        self.meshes.push(Arc::new(mesh));
+        Ok(self.meshes.len() as u32 - 1)
+    }
+
+    /// Gives the scene the player's avatar ([`avatar::ship`]) of length `size`; place it
+    /// with [`CurvedScene::set_avatar_frame`] (the plugin does, every frame).
+    pub fn add_avatar(&mut self, geometry: Geometry, size: f64) -> Result<(), mesh::MeshError> {
+        let model = avatar::ship();
+        let mesh = self.add_model(geometry, &model, size / avatar::SHIP_LENGTH)?;
+        let radius = self.meshes[mesh as usize].radius;
+        self.avatar = Some(Avatar {
+            mesh,
+            instances: Vec::new(),
+            skip: avatar::SKIP_FACTOR * radius,
+        });
+        Ok(())
+    }
+}
+
+/// The avatar's length in a space of inradius `inradius`: small beside the cell, so that
+/// the copy the eye sits in is far from every other copy.
+#[must_use]
+pub fn avatar_size(inradius: f64) -> f64 {
+    0.3 * inradius
+}

@@ -1,0 +1,220 @@
+//! Walking geodesics through the cell, face to face (`docs/design.md` §3).
+//!
+//! The walk is generic over precision ([`Vector4`]): `f64` is the reference, `f32` is what the
+//! GPU computes, and running both measures what f32 costs.
+
+use super::Space;
+use crate::geometry::{Geometry, Ray, Real, Vector4};
+
+/// Where a ray leaves the cell through a face: the ratio `T = num/den = S(t)/C(t)` of the
+/// exit point along the ray (`X ∝ p + T v`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Exit<R> {
+    pub face: usize,
+    /// `−N·p`, clamped to ≥ 0 (the point is inside or on the face).
+    pub num: R,
+    /// `N·v > 0`.
+    pub den: R,
+}
+
+impl<R: Real> Exit<R> {
+    /// The chart ratio `T` of the exit point.
+    #[must_use]
+    pub fn ratio(&self) -> R {
+        self.num / self.den
+    }
+}
+
+/// The cell's faces and pairings in one precision, ready to walk rays.
+#[derive(Clone, Debug)]
+pub struct CellWalker<V: Vector4> {
+    pub geometry: Geometry,
+    pub covectors: Vec<V>,
+    pub pairings: Vec<V::Matrix>,
+    pub partners: Vec<usize>,
+}
+
+/// One face crossing of a traced ray.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Crossing<V> {
+    /// The face the ray left through.
+    pub face: usize,
+    /// Cumulative geodesic distance from the start to the crossing.
+    pub distance: f64,
+    /// The ray after the pairing, on the partner face.
+    pub ray: Ray<V>,
+}
+
+/// How far to trace.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Limit {
+    /// Stop after this many face crossings.
+    Crossings(usize),
+    /// Stop at this geodesic distance.
+    Distance(f64),
+}
+
+/// A traced ray: its crossings and where it stopped.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Trace<V> {
+    pub crossings: Vec<Crossing<V>>,
+    /// The ray where tracing stopped (inside the cell).
+    pub end: Ray<V>,
+    /// Cumulative distance at the end.
+    pub distance: f64,
+}
+
+impl<V: Vector4> CellWalker<V> {
+    /// The walker of a space in the precision `V`.
+    #[must_use]
+    pub fn new(space: &Space) -> Self {
+        Self {
+            geometry: space.geometry,
+            covectors: space
+                .faces
+                .iter()
+                .map(|f| V::from_f64(f.covector))
+                .collect(),
+            pairings: space
+                .faces
+                .iter()
+                .map(|f| V::matrix_from_f64(f.pairing))
+                .collect(),
+            partners: space.faces.iter().map(|f| f.partner).collect(),
+        }
+    }
+
+    /// The exit face: the smallest positive `T = −(N·p)/(N·v)` among faces with `N·v > 0`.
+    ///
+    /// `skip` is the face the ray just entered through: a geodesic meets a plane at most once
+    /// (within a hemisphere in S³), so it cannot leave through it, and skipping it makes a
+    /// ray that starts exactly on that face robust against rounding. Returns `None` only for
+    /// a degenerate ray (zero or non-finite tangent).
+    #[must_use]
+    pub fn exit(&self, ray: &Ray<V>, skip: Option<usize>) -> Option<Exit<V::Real>> {
+        let zero = V::Real::ZERO;
+        let mut best: Option<Exit<V::Real>> = None;
+        for (f, n) in self.covectors.iter().enumerate() {
+            if Some(f) == skip {
+                continue;
+            }
+            let den = n.dot(ray.tangent);
+            if !(den > zero) {
+                continue;
+            }
+            let num = (-n.dot(ray.point)).max(zero);
+            // num/den < best.num/best.den without dividing.
+            let better = best.is_none_or(|b| num * b.den < b.num * den);
+            if better {
+                best = Some(Exit { face: f, num, den });
+            }
+        }
+        best
+    }
+
+    /// Moves the ray to its exit point and applies the face's pairing; returns the new ray
+    /// (re-normalized onto the model) and the geodesic length of the segment.
+    ///
+    /// Exit point `X ∝ (N·v) p − (N·p) v`, tangent `γ' ∝ κ (N·p) p + (N·v) v`.
+    #[must_use]
+    pub fn cross(&self, ray: &Ray<V>, exit: &Exit<V::Real>) -> (Ray<V>, V::Real) {
+        let g = self.geometry;
+        let k = V::Real::from_f64(g.kappa());
+        let (num, den) = (exit.num, exit.den);
+        let at_face = ray.point.scale(den) + ray.tangent.scale(num);
+        let tangent = ray.point.scale(-k * num) + ray.tangent.scale(den);
+        let m = self.pairings[exit.face];
+        let point = g.project_point(m * at_face);
+        let tangent = g.unit_tangent(point, m * tangent);
+        (Ray { point, tangent }, g.distance_from_ratio(num, den))
+    }
+
+    /// The ray moved by `t` along its geodesic (within the cell), re-normalized.
+    #[must_use]
+    pub fn advance(&self, ray: &Ray<V>, t: f64) -> Ray<V> {
+        let g = self.geometry;
+        let (point, tangent) = g.geodesic(ray.point, ray.tangent, t);
+        let point = g.project_point(point);
+        let tangent = g.unit_tangent(point, tangent);
+        Ray { point, tangent }
+    }
+
+    /// The ray put back onto the model if it is off it: the point projected, the tangent
+    /// made tangent there and of unit length. The crossing formulas assume a unit tangent
+    /// (in S³ and H³ the exit tangent `κ (N·p) p + (N·v) v` is wrong for any other length),
+    /// so every walk starts with this. A ray already on the model to rounding is kept bit
+    /// for bit.
+    #[must_use]
+    pub fn normalized(&self, ray: Ray<V>) -> Ray<V> {
+        let g = self.geometry;
+        let tolerance = V::Real::from_f64(64.0) * V::Real::EPSILON;
+        let one = V::Real::ONE;
+        // Forms of vectors with entries of size w are known to ε·w² only.
+        let w = ray.point.w().abs().max(one);
+        let scaled = tolerance * w * w;
+        let v = ray.tangent;
+        let (off_model, off_tangent) = match g {
+            Geometry::Euclidean => (
+                (ray.point.w() - one).abs() > tolerance,
+                v.w().abs() > tolerance,
+            ),
+            _ => (
+                (g.form(ray.point, ray.point) - V::Real::from_f64(g.kappa())).abs() > scaled,
+                g.form(ray.point, v).abs() > scaled,
+            ),
+        };
+        let off_unit = off_tangent || !((g.form(v, v) - one).abs() <= scaled);
+        if !off_model && !off_unit {
+            return ray;
+        }
+        let point = g.project_point(ray.point);
+        Ray {
+            point,
+            tangent: g.unit_tangent(point, ray.tangent),
+        }
+    }
+
+    /// Traces a ray through the cell until the limit, recording each crossing.
+    #[must_use]
+    pub fn trace(&self, start: Ray<V>, limit: Limit) -> Trace<V> {
+        let mut ray = self.normalized(start);
+        let mut crossings = Vec::new();
+        let mut distance = 0.0;
+        let mut skip = None;
+        let max_crossings = match limit {
+            Limit::Crossings(n) => n,
+            Limit::Distance(_) => usize::MAX,
+        };
+        while crossings.len() < max_crossings {
+            let Some(exit) = self.exit(&ray, skip) else {
+                break;
+            };
+            let (next, length) = self.cross(&ray, &exit);
+            let length = length.to_f64();
+            if let Limit::Distance(d) = limit
+                && distance + length >= d
+            {
+                ray = self.advance(&ray, d - distance);
+                distance = d;
+                return Trace {
+                    crossings,
+                    end: ray,
+                    distance,
+                };
+            }
+            distance += length;
+            ray = next;
+            skip = Some(self.partners[exit.face]);
+            crossings.push(Crossing {
+                face: exit.face,
+                distance,
+                ray,
+            });
+        }
+        Trace {
+            crossings,
+            end: ray,
+            distance,
+        }
+    }
+}

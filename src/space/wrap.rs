@@ -1,0 +1,33 @@
+//! Bringing a frame that left the cell back in through the faces it is past: the rule the
+//! player, the stereo eyes and the headset share (`docs/design.md` §3).
+
+use super::Space;
+use glam::DMat4;
+
+/// Most faces a single wrap may cross (through an edge or a vertex a few are needed).
+pub const MAX_WRAPS_PER_STEP: usize = 32;
+
+/// Brings a frame back into the cell: while its position is past a face by more than
+/// `margin`, applies the pairing of the face it is farthest past. Returns the new frame
+/// (re-orthonormalized) and the faces crossed, in order.
+#[must_use]
+pub fn wrap_into_cell(space: &Space, frame: DMat4, margin: f64) -> (DMat4, Vec<usize>) {
+    let g = space.geometry;
+    let mut f = frame;
+    let mut crossed = Vec::new();
+    for _ in 0..MAX_WRAPS_PER_STEP {
+        let p = f.w_axis / f.w_axis.w;
+        let (face, outside) = space
+            .faces
+            .iter()
+            .enumerate()
+            .map(|(i, face)| (i, face.covector.dot(p)))
+            .fold((0, f64::NEG_INFINITY), |a, b| if b.1 > a.1 { b } else { a });
+        if !(outside > margin) {
+            break;
+        }
+        f = space.faces[face].pairing * f;
+        crossed.push(face);
+    }
+    (g.orthonormalize_frame(f), crossed)
+}

@@ -1,0 +1,17 @@
+//! The library's tests that need no optional feature: geometry, spaces, the walk and its hard
+//! cases, the CPU reference renderer, placing objects, stereo and headset maths, and the
+//! player's ECS systems. One test binary, so Bevy is linked once.
+
+#[allow(dead_code)]
+#[path = "../common/mod.rs"]
+mod common;
+
+mod geometry;
+mod hard_cases;
+mod headset;
+mod player;
+mod render;
+mod spaces;
+mod stereo;
+mod straddling;
+mod trace;
