@@ -783,7 +783,7 @@ fn exit_face(ray: Ray, skip: u32) -> Exit {
 
 // Through the exit face: exit point (N·v) p − (N·p) v, tangent κ (N·p) p + (N·v) v, then the
 // face's pairing, both projected back onto the model (Rust: `CellWalker::cross`).
-fn cross(ray: Ray, exit: Exit) -> Ray {
+fn cross_face(ray: Ray, exit: Exit) -> Ray {
     let at_face = ray.point * exit.den + ray.tangent * exit.num;
     let along = ray.point * (-kappa() * exit.num) + ray.tangent * exit.den;
     let m = space.pairings[exit.face];
@@ -988,7 +988,7 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
             break;
         }
         travelled += distance_from_ratio(exit.num, exit.den);
-        ray = cross(ray, exit);
+        ray = cross_face(ray, exit);
 #ifdef HIT_ID
         path = (path ^ (exit.face + 1u)) * FNV_PRIME;
         hit_id = vec4<u32>(0u, crossings + 1u, path, 3u);

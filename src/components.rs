@@ -49,6 +49,7 @@ impl Quality {
         }
     }
 
+    /// Every preset, lowest first.
     pub const ALL: [Quality; 3] = [Quality::Low, Quality::Medium, Quality::High];
 }
 
@@ -94,8 +95,11 @@ impl Default for CurvedSpaceCamera {
 pub struct ActiveSpace {
     /// The seed id or the file the space came from.
     pub id: String,
+    /// The validated space.
     pub space: Arc<Space>,
+    /// Its volume.
     pub volume: f64,
+    /// Its cell's inradius (the default fog and eye distance scale with it).
     pub inradius: f64,
     /// `None` where the group was too large to enumerate.
     pub injectivity_radius: Option<f64>,
@@ -131,6 +135,7 @@ pub struct TracerSettings {
     pub quality: Quality,
     /// Fraction of the view's resolution that is traced (then scaled up), in (0, 1].
     pub resolution_scale: f32,
+    /// Which parts of the default scene show (edges, centre ball, your ship).
     pub parts: SceneParts,
     /// The scene's clock in seconds (spinning globes); `None` follows the app's [`Time`].
     /// Fixed for still pictures that must match a CPU render.
@@ -164,10 +169,13 @@ pub struct SceneObjects(pub Vec<Object>);
 /// what the plugin starts [`TracerSettings::parts`] with.
 #[derive(Resource, Clone, Debug, Default)]
 pub struct BaseScene {
+    /// The id of the space the scene was made for.
     pub space_id: String,
     /// Its objects, lights and shading, without the default parts.
     pub scene: Option<Arc<CurvedScene>>,
+    /// Where players start (a frame), if the scene says.
     pub start: Option<DMat4>,
+    /// The parts the plugin starts [`TracerSettings::parts`] with, if the scene says.
     pub parts: Option<SceneParts>,
 }
 
@@ -204,6 +212,7 @@ impl BaseScene {
 /// The last problem the tracer had with the scene (shown in the UI), if any.
 #[derive(Resource, Clone, Debug, Default, PartialEq)]
 pub struct TracerStatus {
+    /// What is wrong with the scene or its objects, if anything.
     pub error: Option<String>,
     /// The crossing budget in use.
     pub budget: u32,
@@ -269,16 +278,27 @@ pub struct PlayerMotion {
 /// Rebindable keys of the first-person controls.
 #[derive(Resource, Clone, Debug, PartialEq)]
 pub struct KeyBindings {
+    /// Move forward.
     pub forward: KeyCode,
+    /// Move backward.
     pub backward: KeyCode,
+    /// Move left.
     pub left: KeyCode,
+    /// Move right.
     pub right: KeyCode,
+    /// Move up.
     pub up: KeyCode,
+    /// Move down.
     pub down: KeyCode,
+    /// Roll to the left.
     pub roll_left: KeyCode,
+    /// Roll to the right.
     pub roll_right: KeyCode,
+    /// Speed up.
     pub faster: KeyCode,
+    /// Slow down.
     pub slower: KeyCode,
+    /// Release the grabbed mouse.
     pub release_mouse: KeyCode,
 }
 
@@ -331,6 +351,7 @@ impl Default for PlayerSettings {
 /// Whether the primary window's cursor is grabbed for mouse look.
 #[derive(Resource, Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct MouseLook {
+    /// Whether the cursor is grabbed now.
     pub grabbed: bool,
 }
 
@@ -341,6 +362,7 @@ pub struct PointerOverUi(pub bool);
 /// The stereo options of the curved-space cameras (a resource; changeable at run time).
 #[derive(Resource, Clone, Copy, Debug, Default, PartialEq)]
 pub struct StereoSettings {
+    /// How the two eyes share the picture.
     pub mode: StereoMode,
     /// Distance between the eyes in the space's units (geodesic); `None` for
     /// [`default_ipd`] of the cell. It sets the world scale: how big the cell feels.
@@ -372,5 +394,6 @@ impl StereoSettings {
 /// it. Its [`PlayerFrame`] is the eye's frame, kept inside the cell by its owner.
 #[derive(Component, Clone, Copy, Debug, PartialEq)]
 pub struct CurvedSpaceEye {
+    /// The eye's frustum.
     pub lens: Lens,
 }

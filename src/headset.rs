@@ -24,7 +24,9 @@ use glam::{DMat4, DQuat, DVec3};
 /// A rigid pose in the room: metres and a unit quaternion (OpenXR's `Posef`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RoomPose {
+    /// Position in the room, metres.
     pub position: DVec3,
+    /// Orientation in the room.
     pub orientation: DQuat,
 }
 
@@ -35,11 +37,13 @@ impl Default for RoomPose {
 }
 
 impl RoomPose {
+    /// The room's origin, looking along −z.
     pub const IDENTITY: RoomPose = RoomPose {
         position: DVec3::ZERO,
         orientation: DQuat::IDENTITY,
     };
 
+    /// A pose from its position and orientation.
     #[must_use]
     pub fn new(position: DVec3, orientation: DQuat) -> Self {
         Self {
@@ -84,6 +88,7 @@ pub fn local_motion(geometry: Geometry, frame: DMat4, t: DVec3, rotation: DQuat)
 pub struct HeadTracker {
     /// The head's frame (columns right, up, back, position), inside the cell.
     pub frame: DMat4,
+    /// The face crossings of the head since it entered the space.
     pub holonomy: Holonomy,
     /// Space units per metre of the room.
     pub units_per_metre: f64,

@@ -63,6 +63,7 @@
 
 // `!(x < tol)` is how this crate rejects NaN along with large values: keep it.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
+#![warn(missing_docs)]
 
 #[cfg(feature = "bench")]
 pub mod bench;

@@ -37,6 +37,7 @@ pub struct CurvedSpacesPlugin {
     /// Crossing budget per ray; `None` to choose it from the fog distance and the scene
     /// (see [`Quality::miss_fraction`]).
     pub max_crossings: Option<u32>,
+    /// What the automatic budget and the traced resolution aim for.
     pub quality: Quality,
     /// Built-in first-person controls (WASD, mouse look, Q/E roll, Space/Shift, scroll).
     pub controls: bool,

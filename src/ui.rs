@@ -19,7 +19,9 @@ pub struct PanelVisible(pub bool);
 /// Keys of the panel.
 #[derive(Resource, Clone, Copy, Debug, PartialEq, Eq)]
 pub struct UiKeys {
+    /// Shows or hides the panel.
     pub toggle_panel: KeyCode,
+    /// Saves a screenshot without the panel.
     pub screenshot: KeyCode,
     /// Steps through the stereo modes.
     pub next_stereo_mode: KeyCode,

@@ -42,12 +42,16 @@ use glam::{DQuat, DVec3};
 pub use bevy_mod_openxr::add_xr_plugins;
 
 /// Why no headset can be used.
+// The fields of a variant are the values its message names.
+#[allow(missing_docs)]
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum XrUnavailable {
+    /// No OpenXR loader was found (`0`).
     #[error(
         "no OpenXR loader was found ({0}); install one (Debian: `apt-get install libopenxr-dev`, which provides libopenxr_loader.so) and a runtime (SteamVR, Monado or your headset's)"
     )]
     NoLoader(String),
+    /// No OpenXR runtime was found (`0`): start SteamVR, Monado or your headset's runtime (or point XR_RUNTIME_JSON at its manifest).
     #[error(
         "no OpenXR runtime was found ({0}): start SteamVR, Monado or your headset's runtime (or point XR_RUNTIME_JSON at its manifest)"
     )]

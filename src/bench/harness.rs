@@ -15,16 +15,22 @@ use wgpu::util::DeviceExt;
 pub const BASELINE_WGSL: &str = include_str!("../../shaders/bench_baseline.wgsl");
 
 /// The GPU harness could not start or run.
+// The fields of a variant are the values its message names.
+#[allow(missing_docs)]
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum HarnessError {
+    /// No GPU adapter was found (no GPU and no software Vulkan driver).
     #[error(
         "no GPU adapter was found (no GPU and no software Vulkan driver): on Debian install one with `apt-get install mesa-vulkan-drivers libvulkan1`"
     )]
     NoAdapter,
+    /// The GPU device could not be opened: `0`.
     #[error("the GPU device could not be opened: {0}")]
     Device(String),
+    /// The shader did not compile: `0`.
     #[error("the shader did not compile: {0}")]
     Shader(String),
+    /// The GPU failed while rendering: `0`.
     #[error("the GPU failed while rendering: {0}")]
     Gpu(String),
 }
@@ -32,9 +38,13 @@ pub enum HarnessError {
 /// What the results were measured on.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct DeviceInfo {
+    /// The adapter's name.
     pub name: String,
+    /// The graphics API (Vulkan, Metal, …).
     pub backend: String,
+    /// Discrete, integrated, CPU, …
     pub device_type: String,
+    /// The driver and its version.
     pub driver: String,
     /// Whether frame times come from GPU timestamps (else wall time around a synchronised
     /// submission).
@@ -161,6 +171,7 @@ impl Harness {
         })
     }
 
+    /// The device the harness runs on.
     #[must_use]
     pub fn info(&self) -> &DeviceInfo {
         &self.info

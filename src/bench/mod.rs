@@ -59,6 +59,7 @@ pub struct BenchConfig {
     pub min_frames: usize,
     /// …and until this many seconds were spent on it (at most `max_frames`).
     pub min_seconds: f64,
+    /// Most frames timed per setting.
     pub max_frames: usize,
     /// Random rays per space for the f32 drift.
     pub drift_rays: usize,
@@ -127,21 +128,29 @@ impl BenchConfig {
 }
 
 /// Why the benchmark stopped.
+// The fields of a variant are the values its message names.
+#[allow(missing_docs)]
 #[derive(Debug, thiserror::Error)]
 pub enum BenchError {
+    /// An error from below, passed on as it is.
     #[error(transparent)]
     Space(#[from] crate::space::SpaceError),
+    /// An error from below, passed on as it is.
     #[error(transparent)]
     Gpu(#[from] HarnessError),
+    /// The scene of `space` cannot be packed for the GPU: `error`.
     #[error("the scene of {space} cannot be packed for the GPU: {error}")]
     Scene {
         space: String,
         error: crate::render::gpu::GpuSceneError,
     },
+    /// An error from below, passed on as it is.
     #[error(transparent)]
     Plot(#[from] PlotError),
+    /// Writing `path` failed: `error`.
     #[error("writing {path} failed: {error}")]
     Write { path: String, error: String },
+    /// Nothing to measure: `0`.
     #[error("nothing to measure: {0}")]
     Empty(&'static str),
 }
@@ -149,17 +158,27 @@ pub enum BenchError {
 /// GPU frame time of one setting.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct TimingRow {
+    /// Seed space id.
     pub space: String,
+    /// Its geometry.
     pub geometry: String,
+    /// Picture width in pixels.
     pub width: u32,
+    /// Picture height in pixels.
     pub height: u32,
+    /// Crossing budget per ray.
     pub budget: u32,
     /// How the budget was chosen: "fixed", or the quality preset of the automatic budget.
     pub budget_from: String,
+    /// Fog distance in inradii.
     pub fog_factor: f64,
+    /// Frames timed.
     pub frames: usize,
+    /// Median frame time, ms.
     pub median_ms: f64,
+    /// 10th percentile frame time, ms.
     pub p10_ms: f64,
+    /// 90th percentile frame time, ms.
     pub p90_ms: f64,
     /// Median frame time of the trivial material, measured interleaved with the tracer.
     pub baseline_ms: f64,
@@ -170,12 +189,19 @@ pub struct TimingRow {
 /// Accuracy of one setting against the f64 reference at the same camera.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ErrorRow {
+    /// Seed space id.
     pub space: String,
+    /// Its geometry.
     pub geometry: String,
+    /// Crossing budget per ray.
     pub budget: u32,
+    /// How the budget was chosen (`fixed`, `auto-low`, `auto-medium`, `auto-high`).
     pub budget_from: String,
+    /// Fog distance in inradii.
     pub fog_factor: f64,
+    /// Picture width in pixels.
     pub width: u32,
+    /// Picture height in pixels.
     pub height: u32,
     /// Pixels whose hit (object and exit-face sequence) differs from the exact reference
     /// (f64, budget [`EXACT_BUDGET`]): the budget's error and f32's together.
@@ -188,20 +214,26 @@ pub struct ErrorRow {
     pub hit_floor_f32: f64,
     /// Colour error against the exact reference, in 8-bit levels.
     pub mean_levels: f64,
+    /// Largest colour error, in levels of 255.
     pub max_levels: u32,
     /// GPU rays that used up the whole budget (shown as fog).
     pub budget_exhausted: f64,
     /// Pixels more than 2 and more than 10 levels off the exact reference.
     pub over_2_levels: f64,
+    /// Fraction of pixels off by more than 10 levels.
     pub over_10_levels: f64,
 }
 
 /// f32 against f64 along long rays.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct DriftRow {
+    /// Seed space id.
     pub space: String,
+    /// Its geometry.
     pub geometry: String,
+    /// Crossings walked.
     pub crossings: usize,
+    /// Rays walked.
     pub rays: usize,
     /// Rays whose f32 face sequence still equals the f64 one.
     pub same_faces: f64,
@@ -210,6 +242,7 @@ pub struct DriftRow {
     /// Geodesic distance between the f32 and the f64 point (median and max over the rays
     /// that still agree; `None` when none does).
     pub median_position_error: Option<f64>,
+    /// Largest chart distance between the f32 and f64 walks (`None` where they left through different faces).
     pub max_position_error: Option<f64>,
     /// Angle between the f32 and the f64 direction (radians), median over agreeing rays.
     pub median_direction_error: Option<f64>,
@@ -226,15 +259,23 @@ pub struct DriftRow {
 /// The fog cut-off's error against tracing without it.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CutoffRow {
+    /// Seed space id.
     pub space: String,
+    /// Its geometry.
     pub geometry: String,
+    /// Fog distance in inradii.
     pub fog_factor: f64,
+    /// Fog distance λ.
     pub fog_distance: f64,
+    /// Where rays stop, λ ln 510.
     pub cutoff_distance: f64,
     /// The stated bound: the fog weight at the cut-off, per channel in [0, 1].
     pub bound: f64,
+    /// Largest colour error of the cut-off against a far longer ray.
     pub max_error: f64,
+    /// Mean colour error of the cut-off.
     pub mean_error: f64,
+    /// Whether the largest error is within the stated bound.
     pub within_bound: bool,
     /// Reference rays (no cut-off) that used up [`EXACT_BUDGET`].
     pub reference_budget_exhausted: f64,
@@ -243,11 +284,17 @@ pub struct CutoffRow {
 /// The automatic budget of a quality preset and what it costs and buys.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct AutoBudgetRow {
+    /// Seed space id.
     pub space: String,
+    /// Its geometry.
     pub geometry: String,
+    /// The quality preset.
     pub quality: String,
+    /// Fog distance in inradii.
     pub fog_factor: f64,
+    /// Share of sampled rays the budget may leave short.
     pub miss_fraction_allowed: f64,
+    /// The budget chosen and how.
     #[serde(flatten)]
     pub choice: BudgetChoice,
 }
@@ -255,16 +302,25 @@ pub struct AutoBudgetRow {
 /// The specialised shader against the unspecialised one (same view, same scene).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SpecialisationRow {
+    /// Seed space id.
     pub space: String,
+    /// Its geometry.
     pub geometry: String,
+    /// Picture width in pixels.
     pub width: u32,
+    /// Picture height in pixels.
     pub height: u32,
+    /// Crossing budget per ray.
     pub budget: u32,
+    /// Median frame time of the specialised shader, ms.
     pub specialised_ms: f64,
+    /// Median frame time of the unspecialised shader, ms.
     pub general_ms: f64,
     /// `general_ms / specialised_ms`: how much faster specialising makes the frame.
     pub gain: f64,
+    /// Uniform size of the specialised variant.
     pub specialised_uniform_bytes: usize,
+    /// Uniform size of the unspecialised variant.
     pub general_uniform_bytes: usize,
     /// Pixels that differ between the two pictures (they compute the same formulas).
     pub differing_pixels: f64,
@@ -274,11 +330,17 @@ pub struct SpecialisationRow {
 /// same shader (each timed interleaved with mono).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct StereoRow {
+    /// Seed space id.
     pub space: String,
+    /// Its geometry.
     pub geometry: String,
+    /// Picture width in pixels.
     pub width: u32,
+    /// Picture height in pixels.
     pub height: u32,
+    /// Crossing budget per ray.
     pub budget: u32,
+    /// Median frame time in mono, ms.
     pub mono_ms: f64,
     /// Side by side: one ray per pixel, each half its own eye.
     pub side_by_side_ms: f64,
@@ -293,15 +355,23 @@ pub struct StereoRow {
 /// Everything one run measured.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct BenchReport {
+    /// The GPU measured (`None` for CPU-only runs).
     pub device: Option<DeviceInfo>,
     /// "release" or "debug".
     pub build: String,
+    /// CPU threads of the reference renderer.
     pub cpu_threads: usize,
+    /// Frame times.
     pub timings: Vec<TimingRow>,
+    /// Errors against the reference.
     pub errors: Vec<ErrorRow>,
+    /// f32 drift of long rays.
     pub drift: Vec<DriftRow>,
+    /// Errors of the fog cut-off.
     pub cutoff: Vec<CutoffRow>,
+    /// Automatic budgets.
     pub auto_budgets: Vec<AutoBudgetRow>,
+    /// The specialised shader against the general one.
     pub specialisation: Vec<SpecialisationRow>,
     /// Absent from reports written before stereo existed.
     #[serde(default)]
@@ -315,17 +385,27 @@ pub struct BenchReport {
 /// the same scene without the mesh.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct MeshRow {
+    /// Seed space id.
     pub space: String,
+    /// Its geometry.
     pub geometry: String,
+    /// Picture width in pixels.
     pub width: u32,
+    /// Picture height in pixels.
     pub height: u32,
+    /// Crossing budget per ray.
     pub budget: u32,
+    /// Triangles of the mesh.
     pub triangles: usize,
+    /// Nodes of its hierarchy.
     pub nodes: usize,
+    /// Depth of its hierarchy.
     pub depth: usize,
     /// Building the hierarchy on the CPU.
     pub build_ms: f64,
+    /// Median frame time with the mesh, ms.
     pub with_mesh_ms: f64,
+    /// Median frame time of the same view without it, ms.
     pub without_mesh_ms: f64,
     /// `with_mesh_ms / without_mesh_ms` (measured in the same loop).
     pub ratio: f64,

@@ -10,7 +10,9 @@ use std::sync::Once;
 /// One named line of a chart.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Series {
+    /// Legend entry.
     pub name: String,
+    /// The points, in order.
     pub points: Vec<(f64, f64)>,
     /// Drawn dashed and without markers (a bound, not a measurement).
     pub dashed: bool,
@@ -19,11 +21,17 @@ pub struct Series {
 /// A chart: title, axis labels, log axes and its lines.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Chart {
+    /// The chart's title.
     pub title: String,
+    /// Label of the x axis.
     pub x_label: String,
+    /// Label of the y axis.
     pub y_label: String,
+    /// Logarithmic x axis.
     pub log_x: bool,
+    /// Logarithmic y axis.
     pub log_y: bool,
+    /// The lines.
     pub series: Vec<Series>,
     /// Where the legend goes (a corner the lines leave free).
     pub legend: Corner,
@@ -32,9 +40,13 @@ pub struct Chart {
 /// A corner of the plotting area.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Corner {
+    /// Top left.
     UpperLeft,
+    /// Top right.
     UpperRight,
+    /// Bottom left.
     LowerLeft,
+    /// Bottom right.
     LowerRight,
 }
 
@@ -59,10 +71,14 @@ fn tick(v: f64) -> String {
 }
 
 /// The chart could not be drawn or written.
+// The fields of a variant are the values its message names.
+#[allow(missing_docs)]
 #[derive(Debug, thiserror::Error)]
 pub enum PlotError {
+    /// Drawing the chart `0` failed: `1`.
     #[error("drawing the chart {0} failed: {1}")]
     Draw(String, String),
+    /// Writing `0` failed: `1`.
     #[error("writing {0} failed: {1}")]
     Write(String, String),
 }

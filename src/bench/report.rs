@@ -110,19 +110,37 @@ pub fn summary_markdown(report: &BenchReport) -> String {
     let mut sizes: Vec<(u32, u32)> = report.timings.iter().map(|t| (t.width, t.height)).collect();
     sizes.sort_unstable();
     sizes.dedup();
+    timings_section(&mut md, report, &spaces, &sizes);
+    specialisation_section(&mut md, report);
+    stereo_section(&mut md, report);
+    mesh_section(&mut md, report);
+    drift_section(&mut md, report);
+    cutoff_section(&mut md, report);
+    auto_budget_section(&mut md, report);
+    md
+}
+
+/// Frame times at the automatic budget, and speed against error.
+fn timings_section(
+    md: &mut String,
+    report: &BenchReport,
+    spaces: &[&String],
+    sizes: &[(u32, u32)],
+) {
+    use std::fmt::Write as _;
     if !spaces.is_empty() {
         let _ = writeln!(
-            md,
+            *md,
             "### Frame time at the automatic budget (quality High, fog {DEFAULT_FOG_FACTOR} inradii)\n"
         );
         let mut header = "| space | budget |".to_string();
         let mut rule = "|---|---:|".to_string();
-        for (w, h) in &sizes {
+        for (w, h) in sizes {
             let _ = write!(header, " {w}×{h} ms (× trivial) |");
             rule.push_str("---:|");
         }
-        let _ = writeln!(md, "{header}\n{rule}");
-        for space in &spaces {
+        let _ = writeln!(*md, "{header}\n{rule}");
+        for space in spaces {
             let rows: Vec<&TimingRow> = report
                 .timings
                 .iter()
@@ -134,7 +152,7 @@ pub fn summary_markdown(report: &BenchReport) -> String {
                 .collect();
             let Some(first) = rows.first() else { continue };
             let mut line = format!("| {space} | {} |", first.budget);
-            for size in &sizes {
+            for size in sizes {
                 match rows.iter().find(|t| (t.width, t.height) == *size) {
                     Some(t) => {
                         let _ = write!(line, " {:.2} ({:.0}×) |", t.median_ms, t.ratio);
@@ -142,11 +160,11 @@ pub fn summary_markdown(report: &BenchReport) -> String {
                     None => line.push_str(" – |"),
                 }
             }
-            let _ = writeln!(md, "{line}");
+            let _ = writeln!(*md, "{line}");
         }
         let mid = sizes[sizes.len() / 2];
         let _ = writeln!(
-            md,
+            *md,
             "\n### Speed against error ({}×{} timings; errors at {}×{} against the f64 reference)\n",
             mid.0,
             mid.1,
@@ -154,7 +172,7 @@ pub fn summary_markdown(report: &BenchReport) -> String {
             report.errors.first().map_or(0, |e| e.height)
         );
         let _ = writeln!(
-            md,
+            *md,
             "| space | budget | fog (inradii) | ms | rays out of budget % | hit differs % | f32 share % | f32 floor % | mean levels | max levels | > 10 levels % |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
         );
         for e in &report.errors {
@@ -170,7 +188,7 @@ pub fn summary_markdown(report: &BenchReport) -> String {
                 })
                 .map_or(f64::NAN, |t| t.median_ms);
             let _ = writeln!(
-                md,
+                *md,
                 "| {} | {}{} | {} | {:.2} | {} | {} | {} | {} | {:.2} | {} | {} |",
                 e.space,
                 e.budget,
@@ -191,14 +209,19 @@ pub fn summary_markdown(report: &BenchReport) -> String {
             );
         }
     }
+}
+
+/// The specialised shader against the general one.
+fn specialisation_section(md: &mut String, report: &BenchReport) {
+    use std::fmt::Write as _;
     if !report.specialisation.is_empty() {
         let _ = writeln!(
-            md,
+            *md,
             "\n### Specialised shader against the unspecialised one\n\n| space | size | budget | specialised ms | general ms | gain | uniform bytes (spec. / general) | pixels differing % |\n|---|---|---:|---:|---:|---:|---:|---:|"
         );
         for r in &report.specialisation {
             let _ = writeln!(
-                md,
+                *md,
                 "| {} | {}×{} | {} | {:.2} | {:.2} | {:.2}× | {} / {} | {} |",
                 r.space,
                 r.width,
@@ -213,14 +236,19 @@ pub fn summary_markdown(report: &BenchReport) -> String {
             );
         }
     }
+}
+
+/// Stereo layouts against mono.
+fn stereo_section(md: &mut String, report: &BenchReport) {
+    use std::fmt::Write as _;
     if !report.stereo.is_empty() {
         let _ = writeln!(
-            md,
+            *md,
             "\n### Stereo against mono (same head and scene, each timed interleaved with mono)\n\n| space | size | budget | mono ms | side by side ms | × mono | anaglyph ms | × mono |\n|---|---|---:|---:|---:|---:|---:|---:|"
         );
         for r in &report.stereo {
             let _ = writeln!(
-                md,
+                *md,
                 "| {} | {}×{} | {} | {:.2} | {:.2} | {:.2}× | {:.2} | {:.2}× |",
                 r.space,
                 r.width,
@@ -234,14 +262,19 @@ pub fn summary_markdown(report: &BenchReport) -> String {
             );
         }
     }
+}
+
+/// Frame time against triangle count.
+fn mesh_section(md: &mut String, report: &BenchReport) {
+    use std::fmt::Write as _;
     if !report.meshes.is_empty() {
         let _ = writeln!(
-            md,
+            *md,
             "\n### A mesh at the cell's centre: frame time against triangle count (each timed interleaved with the same scene without the mesh)\n\n| space | size | budget | triangles | nodes | depth | build ms | with mesh ms | without ms | × without |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|"
         );
         for r in &report.meshes {
             let _ = writeln!(
-                md,
+                *md,
                 "| {} | {}×{} | {} | {} | {} | {} | {:.1} | {:.2} | {:.2} | {:.2}× |",
                 r.space,
                 r.width,
@@ -257,14 +290,19 @@ pub fn summary_markdown(report: &BenchReport) -> String {
             );
         }
     }
+}
+
+/// The f32 drift of long rays against its bound.
+fn drift_section(md: &mut String, report: &BenchReport) {
+    use std::fmt::Write as _;
     let _ = writeln!(
-        md,
+        *md,
         "\n### f32 against f64 along long rays (median over rays that keep the f64 faces)\n\n| space | crossings | same faces % | median distance | median position error | max position error | median direction error (rad) | bound 4ε·n·G(d) at the median distance | worst error / own bound |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|"
     );
     for d in &report.drift {
         let e = |x: Option<f64>| x.map_or_else(|| "–".to_string(), |x| format!("{x:.1e}"));
         let _ = writeln!(
-            md,
+            *md,
             "| {} | {} | {:.0} | {:.1} | {} | {} | {} | {} | {} |",
             d.space,
             d.crossings,
@@ -278,13 +316,18 @@ pub fn summary_markdown(report: &BenchReport) -> String {
                 .map_or_else(|| "–".to_string(), |r| format!("{r:.2}"))
         );
     }
+}
+
+/// The fog cut-off's error against its bound.
+fn cutoff_section(md: &mut String, report: &BenchReport) {
+    use std::fmt::Write as _;
     let _ = writeln!(
-        md,
+        *md,
         "\n### The fog cut-off against its bound (f64, no cut-off as reference)\n\n| space | fog (inradii) | λ | cut-off distance | bound | max error | mean error | within |\n|---|---:|---:|---:|---:|---:|---:|---|"
     );
     for c in &report.cutoff {
         let _ = writeln!(
-            md,
+            *md,
             "| {} | {} | {:.3} | {:.2} | {:.2e} | {:.2e} | {:.1e} | {} |",
             c.space,
             c.fog_factor,
@@ -296,8 +339,13 @@ pub fn summary_markdown(report: &BenchReport) -> String {
             if c.within_bound { "yes" } else { "**no**" }
         );
     }
+}
+
+/// The automatic budgets.
+fn auto_budget_section(md: &mut String, report: &BenchReport) {
+    use std::fmt::Write as _;
     let _ = writeln!(
-        md,
+        *md,
         "\n### Automatic budgets (crossings) by quality and fog\n\n| space | fog (inradii) | low | medium | high | most needed |\n|---|---:|---:|---:|---:|---:|"
     );
     let mut keys: Vec<(&String, f64)> = report
@@ -320,14 +368,13 @@ pub fn summary_markdown(report: &BenchReport) -> String {
             .find(|b| &b.space == space && b.fog_factor == fog)
             .map_or(0, |b| b.choice.most_needed);
         let _ = writeln!(
-            md,
+            *md,
             "| {space} | {fog} | {} | {} | {} | {most} |",
             of("low"),
             of("medium"),
             of("high")
         );
     }
-    md
 }
 
 pub(super) fn to_values<T: Serialize>(rows: &[T]) -> Vec<serde_json::Value> {

@@ -21,8 +21,11 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Geometry {
+    /// The 3-sphere S³, κ = +1.
     Spherical,
+    /// Euclidean space E³, κ = 0.
     Euclidean,
+    /// Hyperbolic space H³, κ = −1.
     Hyperbolic,
 }
 
@@ -30,14 +33,19 @@ pub enum Geometry {
 pub const ORIGIN: DVec4 = DVec4::new(0.0, 0.0, 0.0, 1.0);
 
 /// Errors of the geometry core: inputs that name no point or direction of the model.
+// The fields of a variant are the values its message names.
+#[allow(missing_docs)]
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum GeometryError {
+    /// Chart point (`0`, `1`, `2`) is not in hyperbolic space: the Klein model needs |x| < 1.
     #[error(
         "chart point ({0}, {1}, {2}) is not in hyperbolic space: the Klein model needs |x| < 1"
     )]
     OutsideKleinBall(f64, f64, f64),
+    /// Chart point (`0`, `1`, `2`) is not finite.
     #[error("chart point ({0}, {1}, {2}) is not finite")]
     NotFinite(f64, f64, f64),
+    /// Direction (`0`, `1`, `2`) has zero length or is not finite.
     #[error("direction ({0}, {1}, {2}) has zero length or is not finite")]
     ZeroDirection(f64, f64, f64),
 }

@@ -6,7 +6,9 @@ use glam::{DVec3, DVec4};
 /// A point of the model and a unit tangent there.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ray<V> {
+    /// A point of the model.
     pub point: V,
+    /// A unit tangent at the point.
     pub tangent: V,
 }
 

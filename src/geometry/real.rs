@@ -19,26 +19,37 @@ pub trait Real:
     + Div<Output = Self>
     + Neg<Output = Self>
 {
+    /// Zero.
     const ZERO: Self;
+    /// One.
     const ONE: Self;
     /// Machine epsilon of the type.
     const EPSILON: Self;
+    /// The nearest value to an `f64`.
     #[must_use]
     fn from_f64(x: f64) -> Self;
+    /// The value as an `f64` (exact).
     #[must_use]
     fn to_f64(self) -> f64;
+    /// Square root.
     #[must_use]
     fn sqrt(self) -> Self;
+    /// Absolute value.
     #[must_use]
     fn abs(self) -> Self;
+    /// The larger of the two.
     #[must_use]
     fn max(self, other: Self) -> Self;
+    /// The smaller of the two.
     #[must_use]
     fn min(self, other: Self) -> Self;
+    /// The angle of the point `(x, self)`.
     #[must_use]
     fn atan2(self, x: Self) -> Self;
+    /// Natural logarithm.
     #[must_use]
     fn ln(self) -> Self;
+    /// Neither infinite nor NaN.
     #[must_use]
     fn is_finite(self) -> bool;
 }
@@ -95,12 +106,17 @@ impl_real!(f64);
 pub trait Vector4:
     Copy + Debug + Send + Sync + 'static + Add<Output = Self> + Sub<Output = Self> + Neg<Output = Self>
 {
+    /// Its scalar.
     type Real: Real;
+    /// Its 4×4 matrix.
     type Matrix: Copy + Debug + Send + Sync + 'static + Mul<Self, Output = Self>;
+    /// A vector from its components.
     #[must_use]
     fn new(x: Self::Real, y: Self::Real, z: Self::Real, w: Self::Real) -> Self;
+    /// Component `i` (x, y, z, w).
     #[must_use]
     fn component(self, i: usize) -> Self::Real;
+    /// The w component.
     #[must_use]
     fn w(self) -> Self::Real {
         self.component(3)
@@ -108,12 +124,16 @@ pub trait Vector4:
     /// The plain Euclidean dot product of R⁴ (a covector applied to a vector).
     #[must_use]
     fn dot(self, other: Self) -> Self::Real;
+    /// The vector times a scalar.
     #[must_use]
     fn scale(self, s: Self::Real) -> Self;
+    /// The vector in `f64`.
     #[must_use]
     fn to_f64(self) -> DVec4;
+    /// The nearest vector to an `f64` one.
     #[must_use]
     fn from_f64(v: DVec4) -> Self;
+    /// The nearest matrix to an `f64` one.
     #[must_use]
     fn matrix_from_f64(m: DMat4) -> Self::Matrix;
 }

@@ -39,15 +39,21 @@ pub const VIEW_WORDS: usize = size_of::<GpuView>() / 4;
 /// What the shader is specialised on: one compiled pipeline per key.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct ShaderKey {
+    /// The geometry (only its formulas are compiled).
     pub geometry: Geometry,
+    /// Faces of the cell.
     pub faces: u32,
+    /// Plain balls.
     pub balls: u32,
+    /// Geodesic tubes.
     pub tubes: u32,
     /// Textured balls.
     pub globes: u32,
+    /// Discs.
     pub discs: u32,
     /// Placed meshes.
     pub instances: u32,
+    /// Point lights.
     pub lights: u32,
     /// Images per light (the light and its copies through the faces).
     pub light_images: u32,
@@ -195,8 +201,11 @@ pub fn compose_wgsl(
 }
 
 /// The scene cannot be given to the GPU tracer.
+// The fields of a variant are the values its message names.
+#[allow(missing_docs)]
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum GpuSceneError {
+    /// The scene needs `bytes` bytes of uniform data (`faces` faces, `objects` objects with their images, `lights` lights), more than the `limit` bytes a GPU is guaranteed to bind.
     #[error(
         "the scene needs {bytes} bytes of uniform data ({faces} faces, {objects} objects with their images, {lights} lights), more than the {limit} bytes a GPU is guaranteed to bind; show fewer objects"
     )]
@@ -207,6 +216,7 @@ pub enum GpuSceneError {
         objects: usize,
         lights: u32,
     },
+    /// The scene's meshes and textures need `bytes` bytes (`triangles` triangles), more than the `limit` bytes a GPU is guaranteed to bind.
     #[error(
         "the scene's meshes and textures need {bytes} bytes ({triangles} triangles), more than the {limit} bytes a GPU is guaranteed to bind; use smaller meshes or textures"
     )]
@@ -215,8 +225,10 @@ pub enum GpuSceneError {
         limit: usize,
         triangles: usize,
     },
+    /// The crossing budget must be at least 1, got `0`.
     #[error("the crossing budget must be at least 1, got {0}")]
     NoCrossings(u32),
+    /// A crossing budget of `0` is more than the GPU tracer takes ({MAX_GPU_BUDGET}): a frame could run for seconds.
     #[error(
         "a crossing budget of {0} is more than the GPU tracer takes ({MAX_GPU_BUDGET}): a frame could run for seconds; the fog ends rays long before"
     )]
@@ -267,20 +279,25 @@ pub fn gpu_object_indices(scene: &CurvedScene) -> Vec<u32> {
 pub struct GpuAvatar {
     /// Index into the scene's meshes.
     pub mesh: u32,
+    /// The root node of its mesh in the scene data.
     pub root: u32,
+    /// Its bounding radius.
     pub radius: f64,
+    /// Hits nearer than this to the eye are passed through.
     pub skip: f64,
 }
 
 /// A space and its scene, packed for the GPU (everything but the per-view camera part).
 #[derive(Clone, Debug, PartialEq)]
 pub struct GpuScene {
+    /// The shader variant it needs.
     pub key: ShaderKey,
     /// The words of `SpaceUniform` after `view`.
     pub words: Vec<u32>,
     /// The scene data buffer (`scene_data`): hierarchy nodes, triangles, materials, the
     /// texture table and texels. At least one vec4, so it can always be bound.
     pub data: Vec<u32>,
+    /// The player's ship, if the scene draws it.
     pub avatar: Option<GpuAvatar>,
 }
 
@@ -613,6 +630,7 @@ impl GpuScene {
 /// the avatar's images at the player's frame.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ViewExtras {
+    /// The scene's clock in seconds.
     pub time: f64,
     /// At most [`crate::scene::MAX_AVATAR_IMAGES`] are drawn.
     pub avatar: Vec<crate::scene::MeshInstance>,

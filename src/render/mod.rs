@@ -44,10 +44,12 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 /// The tracer's shader, loaded once as an internal asset.
-pub const TRACER_SHADER: Handle<Shader> = uuid_handle!("4c2f8a7e-1d53-4b0e-9e61-2a7c3f9d8b15");
+pub(crate) const TRACER_SHADER: Handle<Shader> =
+    uuid_handle!("4c2f8a7e-1d53-4b0e-9e61-2a7c3f9d8b15");
 
 /// The shader that scales a reduced-resolution trace up to the view.
-pub const UPSCALE_SHADER: Handle<Shader> = uuid_handle!("9a1e3b52-7c0d-4f86-b2a4-5d3e6f708192");
+pub(crate) const UPSCALE_SHADER: Handle<Shader> =
+    uuid_handle!("9a1e3b52-7c0d-4f86-b2a4-5d3e6f708192");
 
 /// The scene the GPU draws, shared by all curved-space cameras (rebuilt when the space or
 /// the tracer settings change).
@@ -72,14 +74,18 @@ impl FramesTraced {
 pub struct ExtractedCurvedView {
     /// The eyes' frames `[left, right]`, each inside the cell (both the head's in mono).
     pub eyes: [glam::DMat4; 2],
+    /// How the eyes share the picture.
     pub stereo: StereoMode,
+    /// Whether the eyes' pictures are swapped.
     pub swap_eyes: bool,
+    /// Vertical field of view in degrees.
     pub fov_y_degrees: f64,
     /// The frustum of a [`CurvedSpaceEye`] (an XR view); `None` for the symmetric one of
     /// `fov_y_degrees` and the view's aspect.
     pub lens: Option<Lens>,
     /// Fraction of the view's resolution that is traced, in (0, 1].
     pub resolution_scale: f32,
+    /// The packed scene.
     pub scene: Arc<GpuScene>,
     /// The scene's time and the avatar at the head's frame.
     pub extras: ViewExtras,
@@ -191,7 +197,7 @@ fn extract_curved_views(
 
 /// The tracer's layout and shader.
 #[derive(Resource)]
-pub struct TracerPipeline {
+pub(crate) struct TracerPipeline {
     layout: BindGroupLayoutDescriptor,
     upscale_layout: BindGroupLayoutDescriptor,
     sampler: Sampler,
@@ -199,7 +205,7 @@ pub struct TracerPipeline {
 
 /// One pipeline per shader key, view kind and target format.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct TracerPipelineKey {
+pub(crate) struct TracerPipelineKey {
     /// `None` for the upscaling pass.
     pub shader: Option<ShaderKey>,
     pub view: ViewKind,
@@ -291,7 +297,7 @@ fn init_tracer_pipeline(mut commands: Commands, device: Res<RenderDevice>) {
 
 /// The uniform buffer, its bind group and the pipeline of one view.
 #[derive(Component)]
-pub struct TracerBindings {
+pub(crate) struct TracerBindings {
     buffer: Buffer,
     bytes: usize,
     /// The scene whose data buffer the bind group holds.

@@ -24,15 +24,21 @@ use std::time::{Duration, Instant};
 /// What to render.
 #[derive(Clone, Debug)]
 pub struct OffscreenRender {
+    /// The space.
     pub space: ActiveSpace,
+    /// Picture width in pixels.
     pub width: u32,
+    /// Picture height in pixels.
     pub height: u32,
     /// The camera frame (columns right, up, back, position).
     pub frame: DMat4,
+    /// Vertical field of view in degrees.
     pub fov_y_degrees: f64,
     /// Fog distance scale λ; `None` for the space's default.
     pub fog_distance: Option<f64>,
+    /// Crossing budget per ray.
     pub max_crossings: u32,
+    /// Which default scene parts show.
     pub parts: SceneParts,
     /// Objects added to the scene (see [`SceneObjects`]).
     pub objects: Vec<Object>,
@@ -76,20 +82,27 @@ impl OffscreenRender {
 }
 
 /// Why no picture came back.
+// The fields of a variant are the values its message names.
+#[allow(missing_docs)]
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum OffscreenError {
+    /// No GPU adapter was found (no GPU and no software Vulkan driver).
     #[error(
         "no GPU adapter was found (no GPU and no software Vulkan driver): on Debian install one with `apt-get install mesa-vulkan-drivers libvulkan1`, or use --cpu"
     )]
     NoAdapter,
+    /// Image size `0`×`1` is not supported: width and height must be 1 to 8192.
     #[error("image size {0}×{1} is not supported: width and height must be 1 to 8192")]
     BadSize(u32, u32),
+    /// The GPU tracer did not produce a picture within `0` (is the GPU busy or the scene too heavy?).
     #[error(
         "the GPU tracer did not produce a picture within {0:?} (is the GPU busy or the scene too heavy?)"
     )]
     Timeout(Duration),
+    /// The scene cannot be drawn on the GPU: `0`.
     #[error("the scene cannot be drawn on the GPU: {0}")]
     Scene(String),
+    /// The captured picture has an unexpected format: `0`.
     #[error("the captured picture has an unexpected format: {0}")]
     Format(String),
 }

@@ -33,8 +33,11 @@ use toml::Spanned;
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("{file}{}: {message}", line.map(|l| format!(":{l}")).unwrap_or_default())]
 pub struct SceneFileError {
+    /// The file.
     pub file: String,
+    /// The line at fault, where known.
     pub line: Option<usize>,
+    /// What is wrong.
     pub message: String,
 }
 
@@ -44,6 +47,7 @@ pub struct SceneFileError {
 pub struct SceneFile {
     /// The space's seed id or file, as written.
     pub space_id: String,
+    /// The space the scene is in.
     pub space: Space,
     /// The file's own objects, lights and shading, without the parts: the base scene the
     /// plugin adds [`crate::components::TracerSettings::parts`] to.

@@ -9,24 +9,31 @@ use glam::{DMat3, DMat4, DVec2, DVec3};
 use std::path::Path;
 
 /// A model could not be read.
+// The fields of a variant are the values its message names.
+#[allow(missing_docs)]
 #[derive(Debug, thiserror::Error)]
 pub enum GltfError {
+    /// Cannot read the glTF `path`: `source`.
     #[error("cannot read the glTF {path}: {source}")]
     Read {
         path: String,
         #[source]
         source: gltf::Error,
     },
+    /// The glTF `path`: `at` has no positions.
     #[error("the glTF {path}: {at} has no positions")]
     MissingPositions { path: String, at: String },
+    /// The glTF `path` has no triangle meshes in its scene.
     #[error("the glTF {path} has no triangle meshes in its scene")]
     NoTriangles { path: String },
+    /// The glTF `path`: mesh `mesh`, primitive `primitive` has no positions.
     #[error("the glTF {path}: mesh {mesh:?}, primitive {primitive} has no positions")]
     NoPositions {
         path: String,
         mesh: String,
         primitive: usize,
     },
+    /// The glTF `path`: mesh `mesh`, primitive `primitive` indexes vertex `index`, past its `count` vertices.
     #[error(
         "the glTF {path}: mesh {mesh:?}, primitive {primitive} indexes vertex {index}, past its {count} vertices"
     )]
@@ -37,6 +44,7 @@ pub enum GltfError {
         index: u32,
         count: usize,
     },
+    /// The glTF `path`: image `image` is in `format`, which is not supported (use 8-bit RGB or RGBA).
     #[error(
         "the glTF {path}: image {image} is in {format}, which is not supported (use 8-bit RGB or RGBA)"
     )]
@@ -45,6 +53,7 @@ pub enum GltfError {
         image: usize,
         format: String,
     },
+    /// The glTF `path`: image `image`: `source`.
     #[error("the glTF {path}: image {image}: {source}")]
     Texture {
         path: String,
@@ -217,12 +226,17 @@ pub fn load(path: &Path) -> Result<Model, GltfError> {
 /// What [`write_glb`] writes: one mesh of one primitive with one material.
 #[derive(Clone, Debug, Default)]
 pub struct GlbMesh<'a> {
+    /// Vertex positions.
     pub positions: &'a [[f32; 3]],
+    /// Vertex normals, if any.
     pub normals: Option<&'a [[f32; 3]]>,
+    /// Texture coordinates, if any.
     pub uvs: Option<&'a [[f32; 2]]>,
+    /// Triangle corners, three per triangle.
     pub indices: &'a [u32],
     /// Linear RGBA.
     pub base_colour: [f32; 4],
+    /// Emitted colour (linear RGB).
     pub emission: [f32; 3],
     /// A PNG for the base-colour texture.
     pub texture_png: Option<&'a [u8]>,

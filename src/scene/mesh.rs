@@ -33,14 +33,20 @@ pub const MAX_MESH_TRIANGLES: usize = 1 << 22;
 const BINS: usize = 12;
 
 /// A mesh could not be made.
+// The fields of a variant are the values its message names.
+#[allow(missing_docs)]
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum MeshError {
+    /// The mesh has no triangles.
     #[error("the mesh has no triangles")]
     Empty,
+    /// The mesh has `0` triangles.
     #[error("the mesh has {0} triangles; at most {MAX_MESH_TRIANGLES} are taken")]
     TooMany(usize),
+    /// Vertex `0` is not a finite position.
     #[error("vertex {0} is not a finite position")]
     NotFinite(usize),
+    /// Vertex `index` is `distance` from the mesh's origin after scaling.
     #[error(
         "vertex {index} is {distance:.3} from the mesh's origin after scaling; in S³ every vertex must be closer than {limit:.3} (a quarter of the way round the sphere)"
     )]
@@ -49,6 +55,7 @@ pub enum MeshError {
         distance: f64,
         limit: f64,
     },
+    /// The scale must be a positive number, got `0`.
     #[error("the scale must be a positive number, got {0}")]
     Scale(f64),
 }
@@ -57,9 +64,13 @@ pub enum MeshError {
 /// shading), texture coordinates and the index of its material in the scene.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Triangle {
+    /// Corners in the mesh's chart.
     pub corners: [DVec3; 3],
+    /// Unit normals at the corners.
     pub normals: [DVec3; 3],
+    /// Texture coordinates at the corners.
     pub uvs: [DVec2; 3],
+    /// Index into the scene's materials.
     pub material: u32,
 }
 
@@ -107,7 +118,9 @@ impl Triangle {
 /// An axis-aligned box of the chart.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Aabb {
+    /// The lowest corner.
     pub min: DVec3,
+    /// The highest corner.
     pub max: DVec3,
 }
 
@@ -148,15 +161,20 @@ impl Aabb {
 /// inner node (`count == 0`) has its first child right after it and its second at `index`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BvhNode {
+    /// The box around the node's triangles.
     pub bounds: Aabb,
+    /// First triangle (a leaf) or first child node (an inner node).
     pub index: u32,
+    /// Triangles in a leaf; 0 for an inner node.
     pub count: u32,
 }
 
 /// A mesh ready to trace: triangles in hierarchy order and the hierarchy's nodes.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Mesh {
+    /// The triangles, in hierarchy order.
     pub triangles: Vec<Triangle>,
+    /// The hierarchy, root first.
     pub nodes: Vec<BvhNode>,
     /// The largest geodesic distance of a vertex from the mesh's origin.
     pub radius: f64,
@@ -166,9 +184,13 @@ pub struct Mesh {
 /// corners 1 and 2.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MeshHit {
+    /// Index of the triangle hit.
     pub triangle: usize,
+    /// Chart ratio along the ray.
     pub t: f64,
+    /// Barycentric coordinate of the second corner.
     pub u: f64,
+    /// Barycentric coordinate of the third corner.
     pub v: f64,
 }
 
@@ -176,8 +198,11 @@ pub struct MeshHit {
 /// coordinates, a material index per triangle.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct MeshSource {
+    /// Vertex positions in the model's frame.
     pub positions: Vec<DVec3>,
+    /// Vertex normals, if the model has them.
     pub normals: Option<Vec<DVec3>>,
+    /// Texture coordinates, if the model has them.
     pub uvs: Option<Vec<DVec2>>,
     /// Three vertex indices per triangle.
     pub indices: Vec<[u32; 3]>,
@@ -188,8 +213,11 @@ pub struct MeshSource {
 /// A model's triangles with its materials and textures (indices local to the model).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Model {
+    /// Its triangles.
     pub source: MeshSource,
+    /// Its materials (indices local to the model).
     pub materials: Vec<SurfaceMaterial>,
+    /// Its textures (indices local to the model).
     pub textures: Vec<Texture>,
 }
 

@@ -15,10 +15,14 @@ use std::sync::Arc;
 pub const MAX_IMAGES: usize = 512;
 
 /// An object could not be placed.
+// The fields of a variant are the values its message names.
+#[allow(missing_docs)]
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum PlaceError {
+    /// The object is not inside the cell: its centre is `0` outside face `1`.
     #[error("the object is not inside the cell: its centre is {0:.3} outside face {1}")]
     Outside(f64, usize),
+    /// The object meets more than {MAX_IMAGES} copies of the cell.
     #[error(
         "the object meets more than {MAX_IMAGES} copies of the cell; make it smaller than the cell"
     )]
@@ -76,14 +80,21 @@ pub fn avatar_instances(space: &Space, mesh: u32, radius: f64, frame: DMat4) -> 
 /// textures, the player's avatar, the shading.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CurvedScene {
+    /// Objects, images included.
     pub objects: Vec<Object>,
+    /// Point lights.
     pub lights: Vec<Light>,
+    /// The shading model: fog, ambient light, cut-off.
     pub shading: Shading,
+    /// Meshes that [`MeshInstance`]s place.
     pub meshes: Vec<Arc<Mesh>>,
+    /// Materials of the meshes' triangles.
     pub materials: Vec<SurfaceMaterial>,
+    /// Textures of materials and globes.
     pub textures: Vec<Arc<Texture>>,
     /// Seconds since the start: turns the spinning globes.
     pub time: f64,
+    /// The player's ship, if drawn.
     pub avatar: Option<Avatar>,
 }
 

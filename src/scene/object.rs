@@ -10,8 +10,11 @@ use glam::{DMat4, DVec2, DVec3, DVec4};
 /// A metric ball `d(X, centre) ≤ radius`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ball {
+    /// The centre, a point of the model.
     pub centre: DVec4,
+    /// The radius (geodesic).
     pub radius: f64,
+    /// Albedo, linear RGB.
     pub colour: DVec3,
     /// Light the surface gives off itself (added to the lit colour).
     pub emission: DVec3,
@@ -50,6 +53,7 @@ impl BallTexture {
 }
 
 impl Ball {
+    /// A ball of radius `radius` around `centre` (projected onto the model).
     #[must_use]
     pub fn new(geometry: Geometry, centre: DVec4, radius: f64, colour: DVec3) -> Self {
         Self {
@@ -82,10 +86,15 @@ impl Ball {
 /// put balls at the ends to close it).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Tube {
+    /// One end of the axis.
     pub a: DVec4,
+    /// The other end.
     pub b: DVec4,
+    /// The radius (geodesic).
     pub radius: f64,
+    /// Albedo, linear RGB.
     pub colour: DVec3,
+    /// Emitted colour, linear RGB.
     pub emission: DVec3,
     /// Unit tangent at `a` towards `b`: with `a` it spans the segment's line.
     pub(crate) towards_b: DVec4,
@@ -96,6 +105,7 @@ pub struct Tube {
 }
 
 impl Tube {
+    /// A tube of radius `radius` around the geodesic segment from `a` to `b`.
     #[must_use]
     pub fn new(geometry: Geometry, a: DVec4, b: DVec4, radius: f64, colour: DVec3) -> Self {
         Self {
@@ -167,11 +177,15 @@ impl Tube {
 /// to `normal` within `radius` of the centre (seen from both sides).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Disc {
+    /// The centre, a point of the model.
     pub centre: DVec4,
     /// Unit tangent at the centre.
     pub normal: DVec4,
+    /// The radius (geodesic).
     pub radius: f64,
+    /// Albedo, linear RGB.
     pub colour: DVec3,
+    /// Emitted colour, linear RGB.
     pub emission: DVec3,
 }
 
@@ -220,6 +234,7 @@ impl Disc {
 pub struct MeshInstance {
     /// Index into [`CurvedScene::meshes`].
     pub mesh: u32,
+    /// Where the mesh is: its frame (an isometry).
     pub frame: DMat4,
     /// `frame⁻¹`.
     pub inverse: DMat4,
@@ -267,9 +282,13 @@ impl MeshInstance {
 /// Anything a ray can hit.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Object {
+    /// A metric ball (a globe if textured).
     Ball(Ball),
+    /// A tube around a geodesic segment.
     Tube(Tube),
+    /// A flat disc.
     Disc(Disc),
+    /// A placed triangle mesh.
     Mesh(MeshInstance),
 }
 
@@ -359,11 +378,15 @@ impl Object {
 /// outward unit normal there.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hit {
+    /// Chart ratio along the segment.
     pub s: f64,
+    /// The hit point.
     pub point: DVec4,
+    /// Outward unit normal tangent there.
     pub normal: DVec4,
     /// Albedo at the hit (textures applied).
     pub colour: DVec3,
+    /// Emitted colour, linear RGB.
     pub emission: DVec3,
 }
 

@@ -12,7 +12,9 @@ pub const DEFAULT_CUTOFF_WEIGHT: f64 = 1.0 / 510.0;
 /// A point light, with its copies in the cells around the fundamental cell.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Light {
+    /// Where the light is, inside the cell.
     pub position: DVec4,
+    /// Colour, linear RGB.
     pub colour: DVec3,
     /// Brightness at distance `d` is `power / S(d)²` (`sin²`, `d²`, `sinh²`).
     pub power: f64,
@@ -69,10 +71,13 @@ impl Light {
 /// colour step of an 8-bit image, the cut-off's error bound.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Shading {
+    /// Fraction of the albedo seen without light.
     pub ambient: f64,
+    /// The fog's colour, linear RGB.
     pub fog_colour: DVec3,
     /// Fog distance scale λ.
     pub fog_distance: f64,
+    /// The radius within which the falloff stops growing (keeps it finite).
     pub near_light: f64,
     /// Fog weight at which a ray stops (the cut-off's error bound per channel).
     pub cutoff_weight: f64,
@@ -130,9 +135,11 @@ impl Shading {
 /// A surface's look: albedo (times its texture, if any) and emission, linear RGB.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SurfaceMaterial {
+    /// Colour, linear RGB.
     pub colour: DVec3,
     /// Index into [`CurvedScene::textures`].
     pub texture: Option<u32>,
+    /// Emitted colour, linear RGB.
     pub emission: DVec3,
 }
 

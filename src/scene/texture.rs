@@ -11,16 +11,21 @@ use std::path::Path;
 pub const MAX_TEXTURE_SIDE: u32 = 8192;
 
 /// A texture could not be made.
+// The fields of a variant are the values its message names.
+#[allow(missing_docs)]
 #[derive(Debug, thiserror::Error)]
 pub enum TextureError {
+    /// Cannot read the image `path`: `source`.
     #[error("cannot read the image {path}: {source}")]
     Read {
         path: String,
         #[source]
         source: image::ImageError,
     },
+    /// The texture is `0`×`1` texels.
     #[error("the texture is {0}×{1} texels; it must be 1 to {MAX_TEXTURE_SIDE} on each side")]
     Size(u32, u32),
+    /// `0` bytes of texels do not make a `1`×`2` RGBA8 texture.
     #[error("{0} bytes of texels do not make a {1}×{2} RGBA8 texture")]
     Length(usize, u32, u32),
 }
@@ -29,8 +34,11 @@ pub enum TextureError {
 /// row by row from the top.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Texture {
+    /// Width in texels.
     pub width: u32,
+    /// Height in texels.
     pub height: u32,
+    /// Texels row by row, RGBA8 packed little-endian, sRGB-encoded.
     pub texels: Vec<u32>,
 }
 

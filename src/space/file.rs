@@ -28,13 +28,17 @@ use std::path::Path;
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FaceRecord {
+    /// Outward normal in the chart.
     pub normal: [f64; 3],
+    /// Chart distance of the face plane from the origin.
     pub offset: f64,
+    /// The face this one is glued to.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub partner: Option<usize>,
     /// Row-major 4×4 matrix.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub pairing: Option<[[f64; 4]; 4]>,
+    /// Whether the face is a mirror.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub mirror: bool,
 }
@@ -43,32 +47,42 @@ pub struct FaceRecord {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SpaceRecord {
+    /// The space's name.
     pub name: String,
+    /// A one-line description.
     #[serde(default)]
     pub description: String,
+    /// Its geometry.
     pub geometry: Geometry,
+    /// Its faces.
     pub faces: Vec<FaceRecord>,
 }
 
 /// Why a space file could not be used.
+// The fields of a variant are the values its message names.
+#[allow(missing_docs)]
 #[derive(Debug, thiserror::Error)]
 pub enum SpaceFileError {
+    /// Cannot read space file `path`: `source`.
     #[error("cannot read space file {path}: {source}")]
     Io {
         path: String,
         source: std::io::Error,
     },
+    /// Space file `path` is not valid: `source`.
     #[error("space file {path} is not valid: {source}")]
     Json {
         path: String,
         source: serde_json::Error,
     },
+    /// Space file `path`, face `face`: `reason`.
     #[error("space file {path}, face {face}: {reason}")]
     Face {
         path: String,
         face: usize,
         reason: String,
     },
+    /// Space file `path`: `source`.
     #[error("space file {path}: {source}")]
     Invalid { path: String, source: SpaceError },
 }

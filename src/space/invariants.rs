@@ -314,7 +314,9 @@ pub fn injectivity_radius(space: &Space) -> Option<f64> {
 /// geodesics of that length.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct GeodesicLength {
+    /// The length.
     pub length: f64,
+    /// Distinct unoriented primitive closed geodesics of this length.
     pub count: usize,
 }
 
@@ -438,7 +440,9 @@ pub const GEODESIC_SPECTRUM_LENGTH: f64 = 3.5;
 /// A face as `curved-spaces info` reports it.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct FaceSummary {
+    /// Outward unit normal in the chart.
     pub normal: [f64; 3],
+    /// Chart distance of the face plane from the origin.
     pub offset: f64,
 }
 
@@ -454,21 +458,35 @@ pub struct EdgeCycleSummary {
 /// Everything `curved-spaces info` reports, computed from the space.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Invariants {
+    /// The space's name.
     pub name: String,
+    /// Its geometry.
     pub geometry: Geometry,
+    /// Its faces.
     pub faces: Vec<FaceSummary>,
+    /// Its volume.
     pub volume: f64,
+    /// Radius of the largest ball around the cell's centre inside the cell.
     pub inradius: f64,
+    /// Distance from the centre to the farthest vertex.
     pub circumradius: f64,
+    /// The edges' length, if they all have one.
     pub edge_length: Option<f64>,
+    /// The edge cycles.
     pub edge_cycles: Vec<EdgeCycleSummary>,
+    /// Number of vertex classes.
     pub vertex_cycles: usize,
+    /// Whether every pairing preserves orientation.
     pub orientable: bool,
+    /// Whether it is a manifold (not only an orbifold).
     pub manifold: bool,
+    /// Order of the holonomy group (flat spaces).
     pub holonomy_order: Option<usize>,
+    /// Order of the fundamental group (spherical spaces).
     pub group_order: Option<usize>,
     /// `null` when the enumeration would be too large.
     pub closed_geodesics: Option<Vec<GeodesicLength>>,
+    /// Half the shortest closed geodesic (manifolds).
     pub injectivity_radius: Option<f64>,
 }
 

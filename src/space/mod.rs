@@ -27,7 +27,9 @@ pub const VALIDATION_TOLERANCE: f64 = 1e-9;
 /// partner with the cell on the far side (crossing this face applies it to the ray).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Pairing {
+    /// The partner face.
     pub partner: usize,
+    /// The isometry.
     pub matrix: DMat4,
 }
 
@@ -35,8 +37,11 @@ pub struct Pairing {
 /// its pairing (`None` is an error, reported as [`SpaceError::MissingPairing`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FaceSpec {
+    /// Outward normal in the chart.
     pub normal: DVec3,
+    /// Chart distance of the face plane from the origin.
     pub offset: f64,
+    /// Its pairing.
     pub pairing: Option<Pairing>,
 }
 
@@ -80,7 +85,9 @@ impl Face {
 /// An edge of the cell, where two faces meet.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Edge {
+    /// Its end vertices.
     pub vertices: [usize; 2],
+    /// The two faces that meet in it.
     pub faces: [usize; 2],
     /// Interior dihedral angle (radians).
     pub dihedral: f64,

@@ -10,6 +10,7 @@ use crate::geometry::{Geometry, Ray, Real, Vector4};
 /// exit point along the ray (`X ∝ p + T v`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Exit<R> {
+    /// The face left through.
     pub face: usize,
     /// `−N·p`, clamped to ≥ 0 (the point is inside or on the face).
     pub num: R,
@@ -28,9 +29,13 @@ impl<R: Real> Exit<R> {
 /// The cell's faces and pairings in one precision, ready to walk rays.
 #[derive(Clone, Debug)]
 pub struct CellWalker<V: Vector4> {
+    /// The geometry.
     pub geometry: Geometry,
+    /// Face covectors `N_f`: the cell is `N_f·X ≤ 0`.
     pub covectors: Vec<V>,
+    /// Face pairings.
     pub pairings: Vec<V::Matrix>,
+    /// Each face's partner.
     pub partners: Vec<usize>,
 }
 
@@ -57,6 +62,7 @@ pub enum Limit {
 /// A traced ray: its crossings and where it stopped.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Trace<V> {
+    /// Its face crossings, in order.
     pub crossings: Vec<Crossing<V>>,
     /// The ray where tracing stopped (inside the cell).
     pub end: Ray<V>,

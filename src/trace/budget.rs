@@ -25,6 +25,7 @@ pub const MAX_AUTO_BUDGET: u32 = 1024;
 pub struct SplitMix64(pub u64);
 
 impl SplitMix64 {
+    /// The next 64 random bits.
     pub fn next_u64(&mut self) -> u64 {
         self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
         let mut z = self.0;
@@ -75,6 +76,7 @@ pub struct BudgetChoice {
     pub missed_fraction: f64,
     /// The most crossings any sampled hit needed (capped at [`MAX_AUTO_BUDGET`]).
     pub most_needed: u32,
+    /// Rays sampled.
     pub samples: usize,
 }
 

@@ -14,7 +14,9 @@ use std::sync::atomic::{AtomicU32, Ordering};
 /// Image size and the speed/error knobs.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RenderSettings {
+    /// Picture width in pixels.
     pub width: u32,
+    /// Picture height in pixels.
     pub height: u32,
     /// Crossing budget per ray; a ray that uses it up shows the fog colour.
     pub max_crossings: usize,
@@ -25,6 +27,7 @@ pub struct RenderSettings {
 pub struct SceneHit {
     /// Index into [`CurvedScene::objects`] (`objects.len() + k` for the avatar's `k`-th image).
     pub object: usize,
+    /// Where and what it hit.
     pub hit: Hit,
     /// Geodesic distance from the camera.
     pub distance: f64,
@@ -59,6 +62,7 @@ pub fn first_hit(
 /// How a camera ray ended and the faces it crossed on the way (as a hash).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TracedRay {
+    /// How the ray ended.
     pub end: RayEnd,
     /// FNV-1a-style hash of the crossed faces' indices + 1, in order (see [`path_hash`]).
     pub path: u32,

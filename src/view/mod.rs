@@ -16,7 +16,9 @@ use glam::{DMat3, DMat4, DVec3, DVec4};
 /// A pinhole camera: a frame (columns right, up, back, position) and a vertical field of view.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TraceCamera {
+    /// Columns right, up, back, position.
     pub frame: DMat4,
+    /// Vertical field of view in degrees.
     pub fov_y_degrees: f64,
 }
 
@@ -72,9 +74,12 @@ impl TraceCamera {
 /// image, or two eyes traced per pixel and mixed.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum ViewKind {
+    /// One eye.
     #[default]
     Mono,
+    /// Two eyes in two parts of the picture.
     Split,
+    /// Two eyes per pixel, mixed.
     Anaglyph,
 }
 
@@ -84,9 +89,13 @@ pub enum ViewKind {
 /// negative for a frustum around the view axis; XR views are asymmetric.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Lens {
+    /// Tangent of the left half-angle (negative left of the axis).
     pub left: f64,
+    /// Tangent of the right half-angle.
     pub right: f64,
+    /// Tangent of the lower half-angle (negative below the axis).
     pub bottom: f64,
+    /// Tangent of the upper half-angle.
     pub top: f64,
 }
 
@@ -140,6 +149,7 @@ pub struct ViewLayout {
     pub split: [f64; 2],
     /// Whether the left half shows the right eye.
     pub swap_eyes: bool,
+    /// What the shader is specialised on.
     pub kind: ViewKind,
     /// The anaglyph's matrices (identity and zero otherwise).
     pub anaglyph: (DMat3, DMat3),
@@ -148,7 +158,9 @@ pub struct ViewLayout {
 /// The camera rays of one pixel: one, or two for an anaglyph (left eye first).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum PixelRays {
+    /// One eye's ray.
     One(Ray<DVec4>),
+    /// The left and the right eye's rays.
     Two(Ray<DVec4>, Ray<DVec4>),
 }
 

@@ -192,10 +192,14 @@ pub fn default_ipd(inradius: f64) -> f64 {
 }
 
 /// A bad stereo setting.
+// The fields of a variant are the values its message names.
+#[allow(missing_docs)]
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum StereoError {
+    /// The eye distance (IPD) must be a positive finite number of space units, got `0`.
     #[error("the eye distance (IPD) must be a positive finite number of space units, got {0}")]
     BadIpd(f64),
+    /// An eye distance of `ipd` is more than the cell's inradius `inradius`: the eyes would see different cells' worth of space.
     #[error(
         "an eye distance of {ipd} is more than the cell's inradius {inradius}: the eyes would see different cells' worth of space; use a smaller IPD"
     )]
