@@ -10,7 +10,7 @@
 //! `SceneObjects` resource instead; the plugin places them the same way.
 
 use bevy_curved_spaces::components::ActiveSpace;
-use bevy_curved_spaces::render::offscreen::{OffscreenRender, render_offscreen};
+use bevy_curved_spaces::offscreen::{OffscreenRender, render_offscreen};
 use bevy_curved_spaces::scene::{Ball, Object, SceneParts};
 use bevy_curved_spaces::space::invariants::inradius;
 use bevy_curved_spaces::space::seed_space;

@@ -4,10 +4,11 @@
 //! one and not on each other.
 
 use crate::scene::{CurvedScene, Object, SceneParts, Shading};
-use crate::space::{Space, SpaceError, invariants, seed_space};
+use crate::space::{Holonomy, Space, SpaceError, invariants, seed_space};
 use crate::trace::BudgetChoice;
 use crate::view::stereo::{HUMAN_IPD_METRES, StereoMode, check_ipd, default_ipd};
 use crate::view::{Lens, TraceCamera};
+use bevy::ecs::component::{Mutable, StorageType};
 use bevy::prelude::*;
 use glam::{DMat4, DVec3};
 use std::sync::Arc;
@@ -236,34 +237,11 @@ impl Default for PlayerFrame {
     }
 }
 
-/// The face crossings of a player since the space was entered.
-#[derive(Component, Clone, Copy, Debug, PartialEq)]
-pub struct Holonomy {
-    /// Faces crossed so far.
-    pub crossings: u64,
-    /// The product of the pairings applied, latest on the left: `F_now = matrix · F_unwrapped`.
-    pub matrix: DMat4,
-    /// The face crossed last.
-    pub last_face: Option<usize>,
-}
-
-impl Default for Holonomy {
-    fn default() -> Self {
-        Self {
-            crossings: 0,
-            matrix: DMat4::IDENTITY,
-            last_face: None,
-        }
-    }
-}
-
-impl Holonomy {
-    /// Records a crossing through `face` with pairing `g`.
-    pub fn record(&mut self, face: usize, g: DMat4) {
-        self.crossings += 1;
-        self.matrix = g * self.matrix;
-        self.last_face = Some(face);
-    }
+// `Holonomy` is plain data of the space layer (the headset tracks it without Bevy); as a
+// component it lives in the table storage like the others.
+impl Component for Holonomy {
+    const STORAGE_TYPE: StorageType = StorageType::Table;
+    type Mutability = Mutable;
 }
 
 /// What the controls ask for this frame, in the player's own axes.

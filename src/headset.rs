@@ -13,11 +13,10 @@
 //! (`P_head⁻¹ · P_eye`, which holds the IPD and any canting of the displays), scaled the
 //! same way, and wrapped into the cell with its own pairing ([`crate::view::stereo::wrap_eye`]).
 
-use crate::components::Holonomy;
 use crate::geometry::Geometry;
 use crate::geometry::translate_local;
-use crate::space::Space;
 use crate::space::wrap_into_cell;
+use crate::space::{Holonomy, Space};
 use crate::view::stereo::{Eye, wrap_eye};
 use glam::{DMat4, DQuat, DVec3};
 

@@ -71,6 +71,7 @@ pub mod colour;
 pub mod components;
 pub mod geometry;
 pub mod headset;
+pub mod offscreen;
 pub mod player;
 pub mod plugin;
 pub mod render;
@@ -92,7 +93,7 @@ pub use plugin::CurvedSpacesPlugin;
 /// The types most programs need.
 pub mod prelude {
     pub use crate::components::{
-        ActiveSpace, BaseScene, CurvedSpaceCamera, CurvedSpaceEye, CurvedSpacesSystems, Holonomy,
+        ActiveSpace, BaseScene, CurvedSpaceCamera, CurvedSpaceEye, CurvedSpacesSystems,
         KeyBindings, PlayerFrame, PlayerSettings, Quality, SceneObjects, StereoSettings,
         TracerSettings, TracerStatus,
     };
@@ -104,6 +105,8 @@ pub mod prelude {
         Ball, CurvedScene, Disc, Light, MeshInstance, Object, SceneParts, Shading, SurfaceMaterial,
         Tube,
     };
-    pub use crate::space::{CellWalker, Limit, SEED_SPACES, Space, SpaceError, seed_space};
+    pub use crate::space::{
+        CellWalker, Holonomy, Limit, SEED_SPACES, Space, SpaceError, seed_space,
+    };
     pub use crate::view::{StereoMode, TraceCamera};
 }

@@ -27,7 +27,7 @@ fn main() -> ExitCode {
     let cli = cli::Cli::parse();
     // SAFETY: nothing else runs yet: no thread has been started that could read the
     // environment while it changes.
-    unsafe { bevy_curved_spaces::render::offscreen::quiet_runtime_dir() };
+    unsafe { bevy_curved_spaces::offscreen::quiet_runtime_dir() };
     match cli::run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

@@ -14,15 +14,17 @@
 //! ```
 
 use crate::components::{
-    ActiveSpace, BaseScene, CurvedSpaceCamera, CurvedSpacesSystems, Holonomy, KeyBindings,
-    MouseLook, PlayerFrame, PlayerSettings, Quality, SceneObjects, StereoSettings, TracerSettings,
+    ActiveSpace, BaseScene, CurvedSpaceCamera, CurvedSpacesSystems, KeyBindings, MouseLook,
+    PlayerFrame, PlayerSettings, Quality, SceneObjects, StereoSettings, TracerSettings,
     TracerStatus,
 };
+
 use crate::player;
 use crate::render::TracerRenderPlugin;
 use crate::render::upload::upload_scene;
 use crate::scene::SceneParts;
 use crate::space::DEFAULT_SPACE;
+use crate::space::Holonomy;
 use bevy::core_pipeline::tonemapping::{DebandDither, Tonemapping};
 use bevy::prelude::*;
 

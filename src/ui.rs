@@ -2,8 +2,9 @@
 //! a screenshot (without the panel) to the working directory.
 
 use crate::components::{ActiveSpace, CurvedSpaceCamera, Quality, TracerSettings, TracerStatus};
-use crate::components::{Holonomy, PlayerFrame, PlayerSettings};
+use crate::components::{PlayerFrame, PlayerSettings};
 use crate::components::{PointerOverUi, StereoSettings};
+use crate::space::Holonomy;
 use crate::space::SEED_SPACES;
 use crate::view::StereoMode;
 use crate::view::stereo::{HUMAN_IPD_METRES, default_ipd};

@@ -3,7 +3,7 @@
 use super::*;
 use bevy::prelude::*;
 use bevy_curved_spaces::bench::BenchConfig;
-use bevy_curved_spaces::render::offscreen::gpu_available;
+use bevy_curved_spaces::offscreen::gpu_available;
 use bevy_curved_spaces::space::seed_space;
 use std::time::Instant;
 

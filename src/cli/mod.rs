@@ -9,12 +9,13 @@ mod trace;
 mod walk;
 
 use bevy::prelude::*;
-use bevy_curved_spaces::Quality;
-use bevy_curved_spaces::prelude::{StereoMode, StereoSettings};
+use bevy_curved_spaces::components::Quality;
+use bevy_curved_spaces::components::StereoSettings;
 use bevy_curved_spaces::space::DEFAULT_SPACE;
 use bevy_curved_spaces::space::file::load_space_file;
 use bevy_curved_spaces::space::invariants::inradius;
 use bevy_curved_spaces::space::{SEED_SPACES, Space, SpaceError, seed_space};
+use bevy_curved_spaces::view::StereoMode;
 use bevy_curved_spaces::view::stereo::check_ipd;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use glam::DVec3;

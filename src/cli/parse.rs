@@ -1,7 +1,7 @@
 //! Parsers of the command line's values: each checks the value and names what is wrong.
 
 use bevy::prelude::*;
-use bevy_curved_spaces::prelude::StereoMode;
+use bevy_curved_spaces::view::StereoMode;
 use bevy_curved_spaces::view::stereo::UnknownStereoMode;
 use glam::DVec3;
 

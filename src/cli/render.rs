@@ -3,10 +3,10 @@
 //! stereo eyes and scene are decided once here, then handed to the one asked for.
 
 use super::{RenderArgs, resolve_space};
+use bevy_curved_spaces::components::StereoSettings;
 use bevy_curved_spaces::components::{AUTO_BUDGET_SAMPLES, ActiveSpace, BaseScene, Quality};
-use bevy_curved_spaces::prelude::StereoSettings;
+use bevy_curved_spaces::offscreen::{OffscreenRender, render_offscreen};
 use bevy_curved_spaces::render::gpu::MAX_GPU_BUDGET;
-use bevy_curved_spaces::render::offscreen::{OffscreenRender, render_offscreen};
 use bevy_curved_spaces::scene::file::load_scene_file;
 use bevy_curved_spaces::scene::{CurvedScene, SceneParts, Shading};
 use bevy_curved_spaces::space::Space;

@@ -5,9 +5,10 @@ use super::render::{choose_scene, render_command};
 use super::*;
 use bevy::prelude::*;
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
-use bevy_curved_spaces::prelude::{StereoMode, StereoSettings};
+use bevy_curved_spaces::components::StereoSettings;
+use bevy_curved_spaces::offscreen::gpu_available;
 use bevy_curved_spaces::render::FramesTraced;
-use bevy_curved_spaces::render::offscreen::gpu_available;
+use bevy_curved_spaces::view::StereoMode;
 use bevy_curved_spaces::{ActiveSpace, CurvedSpaceCamera, CurvedSpacesPlugin};
 use std::path::PathBuf;
 

@@ -7,9 +7,11 @@
 //! as they would have without the wrap.
 
 use crate::components::{
-    ActiveSpace, Holonomy, KeyBindings, MouseLook, PlayerFrame, PlayerMotion, PlayerSettings,
+    ActiveSpace, KeyBindings, MouseLook, PlayerFrame, PlayerMotion, PlayerSettings,
 };
+
 use crate::geometry::{Geometry, translate_local};
+use crate::space::Holonomy;
 use crate::space::wrap_into_cell;
 use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll, MouseScrollUnit};
 use bevy::prelude::*;

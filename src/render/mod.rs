@@ -7,7 +7,6 @@
 
 pub mod gpu;
 pub mod layout;
-pub mod offscreen;
 pub mod upload;
 
 use crate::components::StereoSettings;

@@ -11,7 +11,7 @@ mod wrap;
 pub use catalog::{DEFAULT_SPACE, SEED_SPACES, SeedSpace, seed_space};
 pub use error::SpaceError;
 pub use walk::{CellWalker, Crossing, Exit, Limit, Trace};
-pub use wrap::{MAX_WRAPS_PER_STEP, wrap_into_cell};
+pub use wrap::{Holonomy, MAX_WRAPS_PER_STEP, wrap_into_cell};
 
 use crate::geometry::{Geometry, ORIGIN, max_abs_entry};
 use glam::{DMat3, DMat4, DVec3, DVec4};

@@ -31,3 +31,33 @@ pub fn wrap_into_cell(space: &Space, frame: DMat4, margin: f64) -> (DMat4, Vec<u
     }
     (g.orthonormalize_frame(f), crossed)
 }
+
+/// The face crossings of a frame since it entered the space (a player's is a component).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Holonomy {
+    /// Faces crossed so far.
+    pub crossings: u64,
+    /// The product of the pairings applied, latest on the left: `F_now = matrix · F_unwrapped`.
+    pub matrix: DMat4,
+    /// The face crossed last.
+    pub last_face: Option<usize>,
+}
+
+impl Default for Holonomy {
+    fn default() -> Self {
+        Self {
+            crossings: 0,
+            matrix: DMat4::IDENTITY,
+            last_face: None,
+        }
+    }
+}
+
+impl Holonomy {
+    /// Records a crossing through `face` with pairing `g`.
+    pub fn record(&mut self, face: usize, g: DMat4) {
+        self.crossings += 1;
+        self.matrix = g * self.matrix;
+        self.last_face = Some(face);
+    }
+}

@@ -8,7 +8,7 @@
 
 use crate::common::{compare, gpu_lock};
 use bevy_curved_spaces::components::ActiveSpace;
-use bevy_curved_spaces::render::offscreen::{OffscreenRender, OffscreenRenderer};
+use bevy_curved_spaces::offscreen::{OffscreenRender, OffscreenRenderer};
 use bevy_curved_spaces::scene::{CurvedScene, SceneParts, Shading};
 use bevy_curved_spaces::space::SEED_SPACES;
 use bevy_curved_spaces::trace::{RenderSettings, render};
@@ -244,9 +244,10 @@ fn placed_objects_straddling_faces_render_alike_on_gpu_and_cpu() {
 #[test]
 fn stereo_layouts_render_alike_on_gpu_and_cpu() {
     let _gpu = gpu_lock();
-    use bevy_curved_spaces::prelude::{StereoMode, StereoSettings};
+    use bevy_curved_spaces::components::StereoSettings;
     use bevy_curved_spaces::space::invariants::inradius;
     use bevy_curved_spaces::trace::render_view;
+    use bevy_curved_spaces::view::StereoMode;
     use bevy_curved_spaces::view::ViewLayout;
     use bevy_curved_spaces::view::stereo::eye_frames;
     let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
@@ -348,9 +349,10 @@ fn stereo_layouts_render_alike_on_gpu_and_cpu() {
 #[test]
 fn gpu_disparity_in_the_torus_matches_the_geometry() {
     let _gpu = gpu_lock();
+    use bevy_curved_spaces::components::StereoSettings;
     use bevy_curved_spaces::geometry::ORIGIN;
-    use bevy_curved_spaces::prelude::{StereoMode, StereoSettings};
     use bevy_curved_spaces::scene::{Ball, Object};
+    use bevy_curved_spaces::view::StereoMode;
     use glam::DVec3;
     let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
     let space = bevy_curved_spaces::space::seed_space("torus").expect("builds");
@@ -436,7 +438,8 @@ fn gpu_disparity_in_the_torus_matches_the_geometry() {
 #[test]
 fn scaled_up_stereo_halves_do_not_mix_at_the_split() {
     let _gpu = gpu_lock();
-    use bevy_curved_spaces::prelude::{StereoMode, StereoSettings};
+    use bevy_curved_spaces::components::StereoSettings;
+    use bevy_curved_spaces::view::StereoMode;
     let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
     let space = bevy_curved_spaces::space::seed_space("seifert-weber").expect("builds");
     let camera = TraceCamera::default_for(&space);
@@ -541,7 +544,7 @@ fn compare_scene(
             ..OffscreenRender::new(
                 ActiveSpace::new(id, space.clone()),
                 TraceCamera {
-                    frame: frame,
+                    frame,
                     fov_y_degrees: 70.0,
                 },
                 (WIDTH, HEIGHT),
@@ -674,7 +677,7 @@ fn the_example_scene_files_render_alike_on_gpu_and_cpu() {
 #[test]
 fn an_offscreen_render_of_a_scene_too_large_for_the_gpu_says_why() {
     use bevy_curved_spaces::components::BaseScene;
-    use bevy_curved_spaces::render::offscreen::OffscreenError;
+    use bevy_curved_spaces::offscreen::OffscreenError;
     let _gpu = gpu_lock();
     let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
     let space = bevy_curved_spaces::space::seed_space("torus").expect("seed");
