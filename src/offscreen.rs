@@ -15,7 +15,6 @@ use bevy::prelude::*;
 use bevy::render::render_resource::{TextureFormat, TextureUsages};
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
 use bevy::window::ExitCondition;
-use bevy::winit::WinitPlugin;
 use glam::DMat4;
 use image::RgbImage;
 use std::sync::{Arc, Mutex};
@@ -137,22 +136,20 @@ impl OffscreenRenderer {
             return Err(OffscreenError::NoAdapter);
         }
         let mut app = App::new();
-        app.add_plugins(
-            DefaultPlugins
-                .set(WindowPlugin {
-                    primary_window: None,
-                    exit_condition: ExitCondition::DontExit,
-                    ..default()
-                })
-                .disable::<WinitPlugin>()
-                .set(bevy::log::LogPlugin {
-                    level: bevy::log::Level::WARN,
-                    // "software rendering is slow" is expected on lavapipe, not news.
-                    filter: "wgpu=error,wgpu_hal::gles=off,naga=warn,bevy_render::renderer=error"
-                        .into(),
-                    ..default()
-                }),
-        )
+        let plugins = DefaultPlugins.set(WindowPlugin {
+            primary_window: None,
+            exit_condition: ExitCondition::DontExit,
+            ..default()
+        });
+        // No window and no event loop: the app is driven by `update` below.
+        #[cfg(feature = "window")]
+        let plugins = plugins.disable::<bevy::winit::WinitPlugin>();
+        app.add_plugins(plugins.set(bevy::log::LogPlugin {
+            level: bevy::log::Level::WARN,
+            // "software rendering is slow" is expected on lavapipe, not news.
+            filter: "wgpu=error,wgpu_hal::gles=off,naga=warn,bevy_render::renderer=error".into(),
+            ..default()
+        }))
         .add_plugins(ScheduleRunnerPlugin::run_loop(Duration::ZERO))
         .add_plugins(CurvedSpacesPlugin {
             controls: false,

@@ -504,156 +504,182 @@ pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, 
         ..Default::default()
     };
     for subject in &subjects {
-        announce(progress, format!("{}: f32 drift", subject.id));
-        report.drift.extend(drift(subject, config));
-        progress.inc(1);
-        announce(progress, format!("{}: automatic budgets", subject.id));
-        let mut budgets = Vec::new();
-        for &fog in &config.fog_factors {
-            let scene = subject.scene(fog);
-            for quality in [Quality::Low, Quality::Medium, Quality::High] {
-                let allowed = quality.miss_fraction();
-                let choice = auto_budget(&subject.space, &scene, allowed, config.budget_samples);
-                budgets.push((fog, quality, choice.budget));
-                report.auto_budgets.push(AutoBudgetRow {
-                    space: subject.id.clone(),
-                    geometry: subject.geometry(),
-                    quality: format!("{quality:?}").to_lowercase(),
-                    fog_factor: fog,
-                    miss_fraction_allowed: allowed,
-                    choice,
-                });
-            }
-        }
-        progress.inc(1);
-        for &fog in &config.fog_factors {
-            announce(
-                progress,
-                format!("{}: fog cut-off at λ = {fog} inradii", subject.id),
-            );
-            report.cutoff.push(cutoff(subject, fog, config.error_size));
-            progress.inc(1);
-        }
-        let Some(harness) = harness.as_mut() else {
-            continue;
-        };
-        // The budget sweep at the default fog, then the fog sweep at the automatic budget.
-        let mut settings: Vec<(u32, String, f64)> = config
-            .budgets
-            .iter()
-            .map(|&b| (b, "fixed".to_string(), DEFAULT_FOG_FACTOR))
-            .collect();
-        for &fog in &config.fog_factors {
-            let budget = budgets
-                .iter()
-                .find(|(f, q, _)| *f == fog && *q == Quality::High)
-                .map_or(64, |b| b.2);
-            settings.push((budget, "auto-high".to_string(), fog));
-        }
-        announce(
-            progress,
-            format!("{}: specialised against general shader", subject.id),
-        );
-        let auto_default = budgets
-            .iter()
-            .find(|(f, q, _)| *f == DEFAULT_FOG_FACTOR && *q == Quality::High)
-            .map_or(32, |b| b.2);
-        report
-            .specialisation
-            .push(specialisation(harness, subject, auto_default, config)?);
-        progress.inc(1);
-        announce(progress, format!("{}: stereo against mono", subject.id));
-        report
-            .stereo
-            .push(stereo_cost(harness, subject, auto_default, config)?);
-        progress.inc(1);
-        for &triangles in &config.mesh_triangles {
-            announce(
-                progress,
-                format!("{}: a mesh of {triangles} triangles", subject.id),
-            );
-            report.meshes.push(mesh_cost(
-                harness,
-                subject,
-                triangles,
-                auto_default,
-                config,
-            )?);
-            progress.inc(1);
-        }
-        let mut exact_cache: Vec<(f64, Reference)> = Vec::new();
-        for (budget, from, fog) in settings {
-            let scene = subject.scene(fog);
-            let gpu = subject.pack(&scene, budget)?;
-            for &(w, h) in &config.sizes {
-                announce(
-                    progress,
-                    format!(
-                        "{}: {w}×{h}, budget {budget}, λ = {fog} inradii",
-                        subject.id
-                    ),
-                );
-                let (stats, baseline) = time_setting(harness, subject, &gpu, (w, h), config)?;
-                report.timings.push(TimingRow {
-                    space: subject.id.clone(),
-                    geometry: subject.geometry(),
-                    width: w,
-                    height: h,
-                    budget,
-                    budget_from: from.clone(),
-                    fog_factor: fog,
-                    frames: stats.frames,
-                    median_ms: stats.median,
-                    p10_ms: stats.p10,
-                    p90_ms: stats.p90,
-                    baseline_ms: baseline.median,
-                    ratio: stats.median / baseline.median,
-                });
-                progress.inc(1);
-            }
-            announce(
-                progress,
-                format!(
-                    "{}: accuracy, budget {budget}, λ = {fog} inradii",
-                    subject.id
-                ),
-            );
-            let exact = match exact_cache.iter().find(|(f, _)| *f == fog) {
-                Some((_, r)) => r.clone(),
-                None => {
-                    let r =
-                        Reference::trace(subject, &scene, config.error_size, EXACT_BUDGET, false);
-                    exact_cache.push((fog, r.clone()));
-                    r
-                }
-            };
-            let same = Reference::trace(subject, &scene, config.error_size, budget as usize, false);
-            let rounded =
-                Reference::trace(subject, &scene, config.error_size, budget as usize, true);
-            let measured = gpu_pixels(harness, subject, &gpu, budget, config.error_size)?;
-            let against_exact = measured.compare(&exact);
-            let against_same = measured.compare(&same);
-            report.errors.push(ErrorRow {
-                space: subject.id.clone(),
-                geometry: subject.geometry(),
-                budget,
-                budget_from: from,
-                fog_factor: fog,
-                width: config.error_size.0,
-                height: config.error_size.1,
-                hit_differs: against_exact.hit_differs,
-                hit_differs_same_budget: against_same.hit_differs,
-                hit_floor_f32: rounded.compare(&same).hit_differs,
-                budget_exhausted: measured.exhausted as f64
-                    / f64::from(config.error_size.0 * config.error_size.1),
-                mean_levels: against_exact.mean_levels,
-                max_levels: against_exact.max_levels,
-                over_2_levels: against_exact.over_2_levels,
-                over_10_levels: against_exact.over_10_levels,
-            });
-            progress.inc(1);
+        let budgets = cpu_measurements(subject, config, progress, &mut report);
+        if let Some(harness) = harness.as_mut() {
+            gpu_measurements(harness, subject, &budgets, config, progress, &mut report)?;
         }
     }
     progress.finish_and_clear();
     Ok(report)
+}
+
+/// The automatic budgets chosen for a space: (fog factor, quality, budget).
+type ChosenBudgets = Vec<(f64, Quality, u32)>;
+
+/// What needs no GPU: the f32 drift, the automatic budgets and the fog cut-off's error.
+fn cpu_measurements(
+    subject: &Subject,
+    config: &BenchConfig,
+    progress: &ProgressBar,
+    report: &mut BenchReport,
+) -> ChosenBudgets {
+    announce(progress, format!("{}: f32 drift", subject.id));
+    report.drift.extend(drift(subject, config));
+    progress.inc(1);
+    announce(progress, format!("{}: automatic budgets", subject.id));
+    let mut budgets = Vec::new();
+    for &fog in &config.fog_factors {
+        let scene = subject.scene(fog);
+        for quality in [Quality::Low, Quality::Medium, Quality::High] {
+            let allowed = quality.miss_fraction();
+            let choice = auto_budget(&subject.space, &scene, allowed, config.budget_samples);
+            budgets.push((fog, quality, choice.budget));
+            report.auto_budgets.push(AutoBudgetRow {
+                space: subject.id.clone(),
+                geometry: subject.geometry(),
+                quality: format!("{quality:?}").to_lowercase(),
+                fog_factor: fog,
+                miss_fraction_allowed: allowed,
+                choice,
+            });
+        }
+    }
+    progress.inc(1);
+    for &fog in &config.fog_factors {
+        announce(
+            progress,
+            format!("{}: fog cut-off at λ = {fog} inradii", subject.id),
+        );
+        report.cutoff.push(cutoff(subject, fog, config.error_size));
+        progress.inc(1);
+    }
+    budgets
+}
+
+/// Frame times and errors on the GPU: the specialised shader, stereo and meshes at the
+/// automatic budget, then the budget sweep at the default fog and the fog sweep at the
+/// automatic budget, each timed and compared with the f64 reference.
+fn gpu_measurements(
+    harness: &mut Harness,
+    subject: &Subject,
+    budgets: &ChosenBudgets,
+    config: &BenchConfig,
+    progress: &ProgressBar,
+    report: &mut BenchReport,
+) -> Result<(), BenchError> {
+    // The budget sweep at the default fog, then the fog sweep at the automatic budget.
+    let mut settings: Vec<(u32, String, f64)> = config
+        .budgets
+        .iter()
+        .map(|&b| (b, "fixed".to_string(), DEFAULT_FOG_FACTOR))
+        .collect();
+    for &fog in &config.fog_factors {
+        let budget = budgets
+            .iter()
+            .find(|(f, q, _)| *f == fog && *q == Quality::High)
+            .map_or(64, |b| b.2);
+        settings.push((budget, "auto-high".to_string(), fog));
+    }
+    announce(
+        progress,
+        format!("{}: specialised against general shader", subject.id),
+    );
+    let auto_default = budgets
+        .iter()
+        .find(|(f, q, _)| *f == DEFAULT_FOG_FACTOR && *q == Quality::High)
+        .map_or(32, |b| b.2);
+    report
+        .specialisation
+        .push(specialisation(harness, subject, auto_default, config)?);
+    progress.inc(1);
+    announce(progress, format!("{}: stereo against mono", subject.id));
+    report
+        .stereo
+        .push(stereo_cost(harness, subject, auto_default, config)?);
+    progress.inc(1);
+    for &triangles in &config.mesh_triangles {
+        announce(
+            progress,
+            format!("{}: a mesh of {triangles} triangles", subject.id),
+        );
+        report.meshes.push(mesh_cost(
+            harness,
+            subject,
+            triangles,
+            auto_default,
+            config,
+        )?);
+        progress.inc(1);
+    }
+    let mut exact_cache: Vec<(f64, Reference)> = Vec::new();
+    for (budget, from, fog) in settings {
+        let scene = subject.scene(fog);
+        let gpu = subject.pack(&scene, budget)?;
+        for &(w, h) in &config.sizes {
+            announce(
+                progress,
+                format!(
+                    "{}: {w}×{h}, budget {budget}, λ = {fog} inradii",
+                    subject.id
+                ),
+            );
+            let (stats, baseline) = time_setting(harness, subject, &gpu, (w, h), config)?;
+            report.timings.push(TimingRow {
+                space: subject.id.clone(),
+                geometry: subject.geometry(),
+                width: w,
+                height: h,
+                budget,
+                budget_from: from.clone(),
+                fog_factor: fog,
+                frames: stats.frames,
+                median_ms: stats.median,
+                p10_ms: stats.p10,
+                p90_ms: stats.p90,
+                baseline_ms: baseline.median,
+                ratio: stats.median / baseline.median,
+            });
+            progress.inc(1);
+        }
+        announce(
+            progress,
+            format!(
+                "{}: accuracy, budget {budget}, λ = {fog} inradii",
+                subject.id
+            ),
+        );
+        let exact = match exact_cache.iter().find(|(f, _)| *f == fog) {
+            Some((_, r)) => r.clone(),
+            None => {
+                let r = Reference::trace(subject, &scene, config.error_size, EXACT_BUDGET, false);
+                exact_cache.push((fog, r.clone()));
+                r
+            }
+        };
+        let same = Reference::trace(subject, &scene, config.error_size, budget as usize, false);
+        let rounded = Reference::trace(subject, &scene, config.error_size, budget as usize, true);
+        let measured = gpu_pixels(harness, subject, &gpu, budget, config.error_size)?;
+        let against_exact = measured.compare(&exact);
+        let against_same = measured.compare(&same);
+        report.errors.push(ErrorRow {
+            space: subject.id.clone(),
+            geometry: subject.geometry(),
+            budget,
+            budget_from: from,
+            fog_factor: fog,
+            width: config.error_size.0,
+            height: config.error_size.1,
+            hit_differs: against_exact.hit_differs,
+            hit_differs_same_budget: against_same.hit_differs,
+            hit_floor_f32: rounded.compare(&same).hit_differs,
+            budget_exhausted: measured.exhausted as f64
+                / f64::from(config.error_size.0 * config.error_size.1),
+            mean_levels: against_exact.mean_levels,
+            max_levels: against_exact.max_levels,
+            over_2_levels: against_exact.over_2_levels,
+            over_10_levels: against_exact.over_10_levels,
+        });
+        progress.inc(1);
+    }
+    Ok(())
 }

@@ -446,10 +446,6 @@ impl GpuScene {
                 lights: key.lights,
             });
         }
-        let size = |r: f64| match g {
-            Geometry::Euclidean => r,
-            _ => g.cs(r).0,
-        };
         let shading = &scene.shading;
         let mut out = UniformWriter::with_capacity(bytes);
         out.push(&GpuShading {
@@ -482,65 +478,12 @@ impl GpuScene {
         let mut partners: Vec<u32> = space.faces.iter().map(|f| f.partner as u32).collect();
         partners.resize(4 * space.faces.len().div_ceil(4), 0);
         out.words.extend(partners);
-        for o in &balls {
-            if let Object::Ball(ball) = o {
-                out.push(&GpuBall {
-                    centre: vec4(ball.centre),
-                    colour: colour(ball.colour, size(ball.radius)),
-                    emission: colour(ball.emission, 0.0),
-                });
-            }
-        }
-        for o in &tubes {
-            if let Object::Tube(tube) = o {
-                let (c, s) = tube.cs_length();
-                out.push(&GpuTube {
-                    a: vec4(tube.a),
-                    towards_b: vec4(tube.towards_b()),
-                    colour: colour(tube.colour, size(tube.radius).powi(2)),
-                    length: vec4(DVec4::new(c, s, 0.0, 0.0)),
-                    emission: colour(tube.emission, 0.0),
-                });
-            }
-        }
-        for o in &globes {
-            if let Object::Ball(ball) = o
-                && let Some(t) = ball.texture
-            {
-                out.push(&GpuGlobe {
-                    centre: vec4(ball.centre),
-                    colour: colour(ball.colour, size(ball.radius)),
-                    emission: colour(ball.emission, f64::from(t.texture)),
-                    spin: vec4(DVec4::new(t.spin, 0.0, 0.0, 0.0)),
-                    inverse: mat4(g.inverse(t.frame)),
-                });
-            }
-        }
-        for o in &discs {
-            if let Object::Disc(disc) = o {
-                out.push(&GpuDisc {
-                    centre: vec4(disc.centre),
-                    normal: vec4(disc.normal),
-                    covector: vec4(disc.covector(g)),
-                    colour: colour(disc.colour, disc.radius),
-                    emission: colour(disc.emission, 0.0),
-                });
-            }
-        }
-        for o in &instances {
-            if let Object::Mesh(m) = o {
-                out.push(&GpuInstance {
-                    frame: mat4(m.frame),
-                    inverse: mat4(m.inverse),
-                    info: [
-                        roots.get(m.mesh as usize).copied().unwrap_or(0),
-                        m.material.unwrap_or(u32::MAX),
-                        0,
-                        0,
-                    ],
-                });
-            }
-        }
+        pack_objects(
+            &mut out,
+            g,
+            [&balls, &tubes, &globes, &discs, &instances],
+            &roots,
+        );
         let words = out.words;
         debug_assert_eq!(words.len() * 4 + VIEW_WORDS * 4, bytes);
         let avatar = scene.avatar.as_ref().map(|a| GpuAvatar {
@@ -555,6 +498,75 @@ impl GpuScene {
             data,
             avatar,
         })
+    }
+}
+
+/// Appends the objects' arrays to the uniform, kind by kind (balls, tubes, globes, discs,
+/// mesh instances), each element a typed struct of [`super::layout`].
+fn pack_objects(out: &mut UniformWriter, g: Geometry, kinds: [&[&Object]; 5], roots: &[u32]) {
+    let [balls, tubes, globes, discs, instances] = kinds;
+    let size = |r: f64| match g {
+        Geometry::Euclidean => r,
+        _ => g.cs(r).0,
+    };
+    for o in balls {
+        if let Object::Ball(ball) = o {
+            out.push(&GpuBall {
+                centre: vec4(ball.centre),
+                colour: colour(ball.colour, size(ball.radius)),
+                emission: colour(ball.emission, 0.0),
+            });
+        }
+    }
+    for o in tubes {
+        if let Object::Tube(tube) = o {
+            let (c, s) = tube.cs_length();
+            out.push(&GpuTube {
+                a: vec4(tube.a),
+                towards_b: vec4(tube.towards_b()),
+                colour: colour(tube.colour, size(tube.radius).powi(2)),
+                length: vec4(DVec4::new(c, s, 0.0, 0.0)),
+                emission: colour(tube.emission, 0.0),
+            });
+        }
+    }
+    for o in globes {
+        if let Object::Ball(ball) = o
+            && let Some(t) = ball.texture
+        {
+            out.push(&GpuGlobe {
+                centre: vec4(ball.centre),
+                colour: colour(ball.colour, size(ball.radius)),
+                emission: colour(ball.emission, f64::from(t.texture)),
+                spin: vec4(DVec4::new(t.spin, 0.0, 0.0, 0.0)),
+                inverse: mat4(g.inverse(t.frame)),
+            });
+        }
+    }
+    for o in discs {
+        if let Object::Disc(disc) = o {
+            out.push(&GpuDisc {
+                centre: vec4(disc.centre),
+                normal: vec4(disc.normal),
+                covector: vec4(disc.covector(g)),
+                colour: colour(disc.colour, disc.radius),
+                emission: colour(disc.emission, 0.0),
+            });
+        }
+    }
+    for o in instances {
+        if let Object::Mesh(m) = o {
+            out.push(&GpuInstance {
+                frame: mat4(m.frame),
+                inverse: mat4(m.inverse),
+                info: [
+                    roots.get(m.mesh as usize).copied().unwrap_or(0),
+                    m.material.unwrap_or(u32::MAX),
+                    0,
+                    0,
+                ],
+            });
+        }
     }
 }
 
