@@ -14,7 +14,7 @@ use bevy::prelude::*;
 use std::sync::Arc;
 
 /// The scene the tracer shows: the base scene (or the default parts) and the user's objects
-/// with their images; the avatar as [`SceneParts::avatar`] says. Objects that cannot be
+/// with their images; the avatar as [`SceneParts::avatar`](crate::scene::SceneParts::avatar) says. Objects that cannot be
 /// placed are left out and described in the returned message.
 #[must_use]
 pub fn build_scene(

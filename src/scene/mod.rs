@@ -2,7 +2,7 @@
 //! globes) and triangle meshes with their bounding-volume hierarchy ([`mesh`]), lights and
 //! the shading model ([`shading`]), textures ([`texture`]), the player's avatar ([`avatar`]),
 //! and the scene that holds them and places objects through the faces ([`model`]). glTF
-//! models ([`gltf`]) and scene files ([`file`]) come with the `gltf` and `scene-files`
+//! models ([`gltf`]) and scene files ([`file`](mod@file)) come with the `gltf` and `scene-files`
 //! features.
 
 pub mod assets;

@@ -28,12 +28,12 @@ pub struct Ball {
 /// on the ball's own `+y` axis.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BallTexture {
-    /// Index into [`CurvedScene::textures`].
+    /// Index into [`CurvedScene::textures`](crate::scene::CurvedScene::textures).
     pub texture: u32,
     /// The ball's orientation: an isometry taking the origin to the centre, its `y` axis
     /// the spin axis and its `z` axis longitude 0.
     pub frame: DMat4,
-    /// Spin about the `y` axis, radians per second of [`CurvedScene::time`].
+    /// Spin about the `y` axis, radians per second of [`CurvedScene::time`](crate::scene::CurvedScene::time).
     pub spin: f64,
 }
 
@@ -228,11 +228,11 @@ impl Disc {
     }
 }
 
-/// A mesh placed in the cell: [`CurvedScene::meshes`]`[mesh]` in the frame `frame` (an isometry
+/// A mesh placed in the cell: [`CurvedScene::meshes`](crate::scene::CurvedScene::meshes)`[mesh]` in the frame `frame` (an isometry
 /// taking the mesh's chart to the cell's).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MeshInstance {
-    /// Index into [`CurvedScene::meshes`].
+    /// Index into [`CurvedScene::meshes`](crate::scene::CurvedScene::meshes).
     pub mesh: u32,
     /// Where the mesh is: its frame (an isometry).
     pub frame: DMat4,
@@ -240,7 +240,7 @@ pub struct MeshInstance {
     pub inverse: DMat4,
     /// The mesh's radius (largest vertex distance from its origin).
     pub radius: f64,
-    /// A material used instead of the mesh's own (index into [`CurvedScene::materials`]).
+    /// A material used instead of the mesh's own (index into [`CurvedScene::materials`](crate::scene::CurvedScene::materials)).
     pub material: Option<u32>,
 }
 
@@ -415,7 +415,7 @@ fn first_root(
 impl Object {
     /// The first hit along `X(s) ∝ p + s v` with `0 < s < s_max` (`p` on the model, `v` a
     /// unit tangent at `p`) of a ball, tube or disc, with its own colour (untextured). A mesh
-    /// needs the scene's meshes: see [`CurvedScene::intersect`].
+    /// needs the scene's meshes: see [`CurvedScene::intersect`](crate::scene::CurvedScene::intersect).
     #[must_use]
     pub fn intersect(&self, geometry: Geometry, p: DVec4, v: DVec4, s_max: f64) -> Option<Hit> {
         let k = geometry.kappa();

@@ -137,7 +137,7 @@ impl Shading {
 pub struct SurfaceMaterial {
     /// Colour, linear RGB.
     pub colour: DVec3,
-    /// Index into [`CurvedScene::textures`].
+    /// Index into [`CurvedScene::textures`](crate::scene::CurvedScene::textures).
     pub texture: Option<u32>,
     /// Emitted colour, linear RGB.
     pub emission: DVec3,
