@@ -328,7 +328,7 @@ impl Default for PlayerSettings {
 
 /// Whether the primary window's cursor is grabbed for mouse look.
 #[derive(Resource, Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct MouseLook {
+pub(crate) struct MouseLook {
     /// Whether the cursor is grabbed now.
     pub grabbed: bool,
 }

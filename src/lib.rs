@@ -67,7 +67,7 @@
 
 #[cfg(feature = "bench")]
 pub mod bench;
-pub mod colour;
+pub(crate) mod colour;
 pub mod components;
 pub mod geometry;
 pub mod headset;

@@ -5,7 +5,7 @@ use glam::{DMat3, DMat4, DVec3, DVec4};
 
 /// The largest absolute entry of a matrix (given as its array of entries).
 #[must_use]
-pub fn max_abs_entry(entries: &[f64]) -> f64 {
+pub(crate) fn max_abs_entry(entries: &[f64]) -> f64 {
     entries.iter().fold(0.0_f64, |acc, x| acc.max(x.abs()))
 }
 

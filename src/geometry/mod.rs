@@ -9,7 +9,8 @@ mod isometry;
 mod ray;
 mod real;
 
-pub use isometry::{max_abs_entry, translate_local};
+pub(crate) use isometry::max_abs_entry;
+pub use isometry::translate_local;
 pub use ray::{Ray, chart_ray};
 
 pub use real::{Real, Vector4};

@@ -37,7 +37,7 @@ pub fn step_frame(geometry: Geometry, frame: DMat4, motion: &PlayerMotion) -> DM
 
 /// Reads keys, mouse and scroll into each player's [`PlayerMotion`].
 #[allow(clippy::too_many_arguments)]
-pub fn read_input(
+pub(crate) fn read_input(
     keys: Res<ButtonInput<KeyCode>>,
     motion: Res<AccumulatedMouseMotion>,
     scroll: Res<AccumulatedMouseScroll>,
@@ -92,7 +92,7 @@ pub fn read_input(
 }
 
 /// Grabs the cursor on a click in the window, releases it with the release key.
-pub fn grab_cursor(
+pub(crate) fn grab_cursor(
     mouse: Res<ButtonInput<MouseButton>>,
     keys: Res<ButtonInput<KeyCode>>,
     bindings: Res<KeyBindings>,
@@ -120,7 +120,7 @@ pub fn grab_cursor(
 }
 
 /// Applies each player's motion to its frame.
-pub fn move_players(
+pub(crate) fn move_players(
     active: Res<ActiveSpace>,
     mut players: Query<(&mut PlayerFrame, &PlayerMotion)>,
 ) {
@@ -133,7 +133,7 @@ pub fn move_players(
 }
 
 /// Wraps players that left the cell and re-orthonormalizes every frame.
-pub fn wrap_players(
+pub(crate) fn wrap_players(
     active: Res<ActiveSpace>,
     settings: Res<PlayerSettings>,
     mut players: Query<(&mut PlayerFrame, &mut Holonomy)>,

@@ -15,19 +15,19 @@ pub type Mat4F = [[f32; 4]; 4];
 
 /// A 4-vector rounded to f32.
 #[must_use]
-pub fn vec4(v: DVec4) -> Vec4F {
+pub(crate) fn vec4(v: DVec4) -> Vec4F {
     v.to_array().map(|x| x as f32)
 }
 
 /// A colour and a fourth value rounded to f32.
 #[must_use]
-pub fn colour(rgb: DVec3, w: f64) -> Vec4F {
+pub(crate) fn colour(rgb: DVec3, w: f64) -> Vec4F {
     vec4(rgb.extend(w))
 }
 
 /// A 4×4 matrix rounded to f32, column by column.
 #[must_use]
-pub fn mat4(m: DMat4) -> Mat4F {
+pub(crate) fn mat4(m: DMat4) -> Mat4F {
     [m.x_axis, m.y_axis, m.z_axis, m.w_axis].map(vec4)
 }
 
@@ -137,26 +137,26 @@ pub struct GpuInstance {
 }
 
 /// `Face` data as the uniform holds it: one covector and one pairing per face (two arrays).
-pub const FACE_BYTES: usize = size_of::<Vec4F>() + size_of::<Mat4F>();
+pub(crate) const FACE_BYTES: usize = size_of::<Vec4F>() + size_of::<Mat4F>();
 
 /// The uniform's words so far, with typed pushes.
 #[derive(Clone, Debug, Default)]
-pub struct UniformWriter {
+pub(crate) struct UniformWriter {
     /// The words written.
-    pub words: Vec<u32>,
+    pub(crate) words: Vec<u32>,
 }
 
 impl UniformWriter {
     /// An empty writer with room for `bytes`.
     #[must_use]
-    pub fn with_capacity(bytes: usize) -> Self {
+    pub(crate) fn with_capacity(bytes: usize) -> Self {
         Self {
             words: Vec::with_capacity(bytes / 4),
         }
     }
 
     /// Appends a struct's bytes.
-    pub fn push<T: Pod>(&mut self, value: &T) {
+    pub(crate) fn push<T: Pod>(&mut self, value: &T) {
         self.words
             .extend_from_slice(bytemuck::cast_slice::<T, u32>(std::slice::from_ref(value)));
     }

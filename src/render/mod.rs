@@ -53,7 +53,7 @@ pub(crate) const UPSCALE_SHADER: Handle<Shader> =
 /// The scene the GPU draws, shared by all curved-space cameras (rebuilt when the space or
 /// the tracer settings change).
 #[derive(Resource, Clone, Debug)]
-pub struct PreparedScene(pub Arc<GpuScene>);
+pub(crate) struct PreparedScene(pub(crate) Arc<GpuScene>);
 
 /// Frames the tracer has drawn so far (all views), readable from the main world: headless
 /// renders wait for it before they capture a picture.

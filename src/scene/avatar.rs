@@ -7,11 +7,11 @@ use super::shading::SurfaceMaterial;
 use glam::DVec3;
 
 /// The ship's length in model units (nose at `z = −1`, tail at `z = 0.5`).
-pub const SHIP_LENGTH: f64 = 1.5;
+pub(crate) const SHIP_LENGTH: f64 = 1.5;
 
 /// Hits on the avatar nearer to the eye than this many times its radius are the eye's own
 /// copy (with room for a stereo eye's offset) and are not drawn.
-pub const SKIP_FACTOR: f64 = 2.0;
+pub(crate) const SKIP_FACTOR: f64 = 2.0;
 
 /// The ship: a dart pointing along `−z` (where the camera looks) with fins, a light hull
 /// and a glowing engine at the back, the eye at the origin inside it.
