@@ -348,3 +348,36 @@ fn an_unusable_eye_distance_is_reported_and_replaced_by_the_default() {
         0.05
     );
 }
+
+/// The fog in use has one rule: the setting, else the base scene's own, else three inradii;
+/// the status reports the one the tracer packed.
+#[test]
+fn the_fog_in_use_is_the_setting_then_the_scene_files_then_the_default() {
+    let (mut app, _camera) = test_app("torus");
+    let default_fog =
+        Shading::DEFAULT_FOG_INRADII * inradius(&seed_space("torus").expect("builds"));
+    let status_fog = |app: &App| app.world().resource::<TracerStatus>().fog_distance;
+    assert!(
+        (status_fog(&app) - default_fog).abs() < 1e-12,
+        "{}",
+        status_fog(&app)
+    );
+
+    let space = seed_space("torus").expect("builds");
+    let mut scene = CurvedScene::default_for(&space, 1.234);
+    scene.shading.fog_distance = 1.234;
+    app.insert_resource(BaseScene {
+        space_id: "torus".into(),
+        scene: Some(std::sync::Arc::new(scene)),
+        start: None,
+        parts: None,
+    });
+    app.update();
+    assert_eq!(status_fog(&app), 1.234, "the base scene's own fog");
+
+    app.world_mut()
+        .resource_mut::<TracerSettings>()
+        .fog_distance = Some(2.5);
+    app.update();
+    assert_eq!(status_fog(&app), 2.5, "the setting wins");
+}
