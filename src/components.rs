@@ -192,9 +192,7 @@ impl BaseScene {
             parts: Some(file.parts),
         }
     }
-}
 
-impl BaseScene {
     /// The base scene for the active space, if it is the one the scene was made for.
     #[must_use]
     pub fn for_space(&self, active: &ActiveSpace) -> Option<&CurvedScene> {

@@ -18,13 +18,11 @@ use crate::components::{
     PlayerFrame, PlayerSettings, Quality, SceneObjects, StereoSettings, TracerSettings,
     TracerStatus,
 };
-
 use crate::player;
 use crate::render::TracerRenderPlugin;
 use crate::render::upload::upload_scene;
 use crate::scene::SceneParts;
-use crate::space::DEFAULT_SPACE;
-use crate::space::Holonomy;
+use crate::space::{DEFAULT_SPACE, Holonomy};
 use bevy::core_pipeline::tonemapping::{DebandDither, Tonemapping};
 use bevy::prelude::*;
 
