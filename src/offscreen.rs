@@ -90,18 +90,18 @@ pub enum OffscreenError {
         "no GPU adapter was found (no GPU and no software Vulkan driver): on Debian install one with `apt-get install mesa-vulkan-drivers libvulkan1`, or use --cpu"
     )]
     NoAdapter,
-    /// Image size `0`×`1` is not supported: width and height must be 1 to 8192.
+    /// The image size (width, height attached) is not supported: each must be 1 to 8192.
     #[error("image size {0}×{1} is not supported: width and height must be 1 to 8192")]
     BadSize(u32, u32),
-    /// The GPU tracer did not produce a picture within `0` (is the GPU busy or the scene too heavy?).
+    /// The GPU tracer did not produce a picture within the time limit (attached).
     #[error(
         "the GPU tracer did not produce a picture within {0:?} (is the GPU busy or the scene too heavy?)"
     )]
     Timeout(Duration),
-    /// The scene cannot be drawn on the GPU: `0`.
+    /// The scene cannot be drawn on the GPU (the reason is attached).
     #[error("the scene cannot be drawn on the GPU: {0}")]
     Scene(String),
-    /// The captured picture has an unexpected format: `0`.
+    /// The captured picture has an unexpected format (described in the message).
     #[error("the captured picture has an unexpected format: {0}")]
     Format(String),
 }

@@ -46,12 +46,12 @@ pub use bevy_mod_openxr::add_xr_plugins;
 #[allow(missing_docs)]
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum XrUnavailable {
-    /// No OpenXR loader was found (`0`).
+    /// No OpenXR loader was found (the loader's error is attached).
     #[error(
         "no OpenXR loader was found ({0}); install one (Debian: `apt-get install libopenxr-dev`, which provides libopenxr_loader.so) and a runtime (SteamVR, Monado or your headset's)"
     )]
     NoLoader(String),
-    /// No OpenXR runtime was found (`0`): start SteamVR, Monado or your headset's runtime (or point XR_RUNTIME_JSON at its manifest).
+    /// No OpenXR runtime was found (its error is attached): start SteamVR, Monado or your headset's runtime (or point XR_RUNTIME_JSON at its manifest).
     #[error(
         "no OpenXR runtime was found ({0}): start SteamVR, Monado or your headset's runtime (or point XR_RUNTIME_JSON at its manifest)"
     )]

@@ -24,13 +24,13 @@ pub enum HarnessError {
         "no GPU adapter was found (no GPU and no software Vulkan driver): on Debian install one with `apt-get install mesa-vulkan-drivers libvulkan1`"
     )]
     NoAdapter,
-    /// The GPU device could not be opened: `0`.
+    /// The GPU device could not be opened (the reason is attached).
     #[error("the GPU device could not be opened: {0}")]
     Device(String),
-    /// The shader did not compile: `0`.
+    /// The shader did not compile (the compiler's message is attached).
     #[error("the shader did not compile: {0}")]
     Shader(String),
-    /// The GPU failed while rendering: `0`.
+    /// The GPU failed while rendering (the reason is attached).
     #[error("the GPU failed while rendering: {0}")]
     Gpu(String),
 }

@@ -150,7 +150,7 @@ pub enum BenchError {
     /// Writing `path` failed: `error`.
     #[error("writing {path} failed: {error}")]
     Write { path: String, error: String },
-    /// Nothing to measure: `0`.
+    /// Nothing to measure (the reason is attached).
     #[error("nothing to measure: {0}")]
     Empty(&'static str),
 }

@@ -75,10 +75,10 @@ fn tick(v: f64) -> String {
 #[allow(missing_docs)]
 #[derive(Debug, thiserror::Error)]
 pub enum PlotError {
-    /// Drawing the chart `0` failed: `1`.
+    /// Drawing a chart failed (its name and the reason are attached).
     #[error("drawing the chart {0} failed: {1}")]
     Draw(String, String),
-    /// Writing `0` failed: `1`.
+    /// Writing a file failed (its path and the reason are attached).
     #[error("writing {0} failed: {1}")]
     Write(String, String),
 }

@@ -38,15 +38,15 @@ pub const ORIGIN: DVec4 = DVec4::new(0.0, 0.0, 0.0, 1.0);
 #[allow(missing_docs)]
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum GeometryError {
-    /// Chart point (`0`, `1`, `2`) is not in hyperbolic space: the Klein model needs |x| < 1.
+    /// A chart point (attached) is not in hyperbolic space: the Klein model needs |x| < 1.
     #[error(
         "chart point ({0}, {1}, {2}) is not in hyperbolic space: the Klein model needs |x| < 1"
     )]
     OutsideKleinBall(f64, f64, f64),
-    /// Chart point (`0`, `1`, `2`) is not finite.
+    /// A chart point (attached) is not finite.
     #[error("chart point ({0}, {1}, {2}) is not finite")]
     NotFinite(f64, f64, f64),
-    /// Direction (`0`, `1`, `2`) has zero length or is not finite.
+    /// A direction (attached) has zero length or is not finite.
     #[error("direction ({0}, {1}, {2}) has zero length or is not finite")]
     ZeroDirection(f64, f64, f64),
 }

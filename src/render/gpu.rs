@@ -225,10 +225,10 @@ pub enum GpuSceneError {
         limit: usize,
         triangles: usize,
     },
-    /// The crossing budget must be at least 1, got `0`.
+    /// The crossing budget must be at least 1 (the budget given is attached).
     #[error("the crossing budget must be at least 1, got {0}")]
     NoCrossings(u32),
-    /// A crossing budget of `0` is more than the GPU tracer takes ({MAX_GPU_BUDGET}): a frame could run for seconds.
+    /// The crossing budget (attached) is more than the GPU tracer takes, [`MAX_GPU_BUDGET`]: a frame could run for seconds.
     #[error(
         "a crossing budget of {0} is more than the GPU tracer takes ({MAX_GPU_BUDGET}): a frame could run for seconds; the fog ends rays long before"
     )]

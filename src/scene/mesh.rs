@@ -40,10 +40,10 @@ pub enum MeshError {
     /// The mesh has no triangles.
     #[error("the mesh has no triangles")]
     Empty,
-    /// The mesh has `0` triangles.
+    /// The mesh has more triangles than the limit (the count is attached).
     #[error("the mesh has {0} triangles; at most {MAX_MESH_TRIANGLES} are taken")]
     TooMany(usize),
-    /// Vertex `0` is not a finite position.
+    /// A vertex (its index is attached) is not a finite position.
     #[error("vertex {0} is not a finite position")]
     NotFinite(usize),
     /// Vertex `index` is `distance` from the mesh's origin after scaling.
@@ -55,7 +55,7 @@ pub enum MeshError {
         distance: f64,
         limit: f64,
     },
-    /// The scale must be a positive number, got `0`.
+    /// The scale must be a positive number (the value given is attached).
     #[error("the scale must be a positive number, got {0}")]
     Scale(f64),
 }

@@ -19,10 +19,10 @@ pub const MAX_IMAGES: usize = 512;
 #[allow(missing_docs)]
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum PlaceError {
-    /// The object is not inside the cell: its centre is `0` outside face `1`.
+    /// The object is not inside the cell: its centre is outside a face (by the distance, through the face, attached).
     #[error("the object is not inside the cell: its centre is {0:.3} outside face {1}")]
     Outside(f64, usize),
-    /// The object meets more than {MAX_IMAGES} copies of the cell.
+    /// The object meets more than [`MAX_IMAGES`] copies of the cell.
     #[error(
         "the object meets more than {MAX_IMAGES} copies of the cell; make it smaller than the cell"
     )]

@@ -22,10 +22,10 @@ pub enum TextureError {
         #[source]
         source: image::ImageError,
     },
-    /// The texture is `0`×`1` texels.
+    /// The texture's size (width × height, attached) is empty or too large.
     #[error("the texture is {0}×{1} texels; it must be 1 to {MAX_TEXTURE_SIDE} on each side")]
     Size(u32, u32),
-    /// `0` bytes of texels do not make a `1`×`2` RGBA8 texture.
+    /// The texel bytes (their count, width, height attached) do not make an RGBA8 texture of that size.
     #[error("{0} bytes of texels do not make a {1}×{2} RGBA8 texture")]
     Length(usize, u32, u32),
 }

@@ -119,7 +119,7 @@ pub enum SpaceError {
         edge_cycles: usize,
         face_pairs: usize,
     },
-    /// Unknown space ``0``.
+    /// No seed space has this id and no space file is at this path.
     #[error("unknown space `{0}`; `curved-spaces list` shows the known ones")]
     UnknownSpace(String),
 }

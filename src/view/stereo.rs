@@ -196,7 +196,7 @@ pub fn default_ipd(inradius: f64) -> f64 {
 #[allow(missing_docs)]
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum StereoError {
-    /// The eye distance (IPD) must be a positive finite number of space units, got `0`.
+    /// The eye distance (IPD, attached) is not a positive finite number of space units.
     #[error("the eye distance (IPD) must be a positive finite number of space units, got {0}")]
     BadIpd(f64),
     /// An eye distance of `ipd` is more than the cell's inradius `inradius`: the eyes would see different cells' worth of space.
