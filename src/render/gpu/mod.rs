@@ -16,11 +16,17 @@ use crate::view::{ViewKind, ViewLayout};
 use bevy::shader::ShaderDefVal;
 use glam::{DMat4, DVec4};
 
+mod key;
+
+#[cfg(feature = "bench")]
+pub use key::compose_wgsl;
+pub use key::{GENERAL_CAPACITY, ShaderKey};
+
 /// The WGSL source of the tracer.
-pub const TRACER_WGSL: &str = include_str!("../../shaders/curved_space.wgsl");
+pub const TRACER_WGSL: &str = include_str!("../../../shaders/curved_space.wgsl");
 
 /// The WGSL source of the upscaling pass (the resolution scale).
-pub const UPSCALE_WGSL: &str = include_str!("../../shaders/upscale.wgsl");
+pub const UPSCALE_WGSL: &str = include_str!("../../../shaders/upscale.wgsl");
 
 /// wgpu's default `max_uniform_buffer_binding_size`: the tracer's data must fit in it.
 pub const MAX_UNIFORM_BYTES: usize = 64 << 10;
@@ -35,170 +41,6 @@ pub const MAX_GPU_BUDGET: u32 = 4096;
 
 /// Words of the per-view part at the start of the uniform ([`GpuView`]).
 pub const VIEW_WORDS: usize = size_of::<GpuView>() / 4;
-
-/// What the shader is specialised on: one compiled pipeline per key.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct ShaderKey {
-    /// The geometry (only its formulas are compiled).
-    pub geometry: Geometry,
-    /// Faces of the cell.
-    pub faces: u32,
-    /// Plain balls.
-    pub balls: u32,
-    /// Geodesic tubes.
-    pub tubes: u32,
-    /// Textured balls.
-    pub globes: u32,
-    /// Discs.
-    pub discs: u32,
-    /// Placed meshes.
-    pub instances: u32,
-    /// Point lights.
-    pub lights: u32,
-    /// Images per light (the light and its copies through the faces).
-    pub light_images: u32,
-    /// Whether the player's avatar is drawn.
-    pub avatar: bool,
-    /// Whether any texture is used.
-    pub textures: bool,
-    /// The unspecialised variant (the benchmark's comparison): all geometries' formulas,
-    /// arrays of [`GENERAL_CAPACITY`], geometry and counts read from the uniform.
-    pub general: bool,
-}
-
-/// Array sizes of the unspecialised variant: faces, balls, tubes.
-pub const GENERAL_CAPACITY: (u32, u32, u32) = (crate::space::MAX_FACES as u32, 256, 256);
-
-impl ShaderKey {
-    /// The key of an empty scene in `geometry` (no faces, objects or lights): a start for
-    /// struct-update syntax.
-    #[must_use]
-    pub fn empty(geometry: Geometry) -> Self {
-        Self {
-            geometry,
-            faces: 0,
-            balls: 0,
-            tubes: 0,
-            globes: 0,
-            discs: 0,
-            instances: 0,
-            lights: 0,
-            light_images: 0,
-            avatar: false,
-            textures: false,
-            general: false,
-        }
-    }
-
-    /// The shader defs of this key (see the header of `shaders/curved_space.wgsl`).
-    #[must_use]
-    pub fn shader_defs(&self) -> Vec<ShaderDefVal> {
-        let (faces, balls, tubes) = self.array_sizes();
-        let mut defs: Vec<ShaderDefVal> = if self.general {
-            ["SPHERICAL", "EUCLIDEAN", "HYPERBOLIC", "CURVED", "GENERAL"]
-                .map(ShaderDefVal::from)
-                .into()
-        } else {
-            match self.geometry {
-                Geometry::Spherical => vec!["SPHERICAL".into(), "CURVED".into()],
-                Geometry::Euclidean => vec!["EUCLIDEAN".into()],
-                Geometry::Hyperbolic => vec!["HYPERBOLIC".into(), "CURVED".into()],
-            }
-        };
-        defs.push(ShaderDefVal::UInt("FACE_COUNT".into(), faces));
-        defs.push(ShaderDefVal::UInt("PARTNER_VECS".into(), faces.div_ceil(4)));
-        let mut counted = |flag: &str, count_def: &str, n: u32| {
-            if n > 0 {
-                defs.push(flag.into());
-                defs.push(ShaderDefVal::UInt(count_def.into(), n));
-            }
-        };
-        counted("BALLS", "BALL_COUNT", balls);
-        counted("TUBES", "TUBE_COUNT", tubes);
-        counted("GLOBES", "GLOBE_COUNT", self.globes);
-        counted("DISCS", "DISC_COUNT", self.discs);
-        counted("INSTANCES", "INSTANCE_COUNT", self.instances);
-        counted("LIGHTS", "LIGHT_COUNT", self.lights);
-        if self.lights > 0 {
-            defs.push(ShaderDefVal::UInt(
-                "LIGHT_IMAGES".into(),
-                self.light_images.max(1),
-            ));
-        }
-        if self.avatar {
-            defs.push("AVATAR".into());
-        }
-        if self.avatar || self.instances > 0 {
-            defs.push("MESHES".into());
-        }
-        if self.textures {
-            defs.push("TEXTURES".into());
-        }
-        if self.avatar || self.instances > 0 || self.textures {
-            defs.push("SCENE_DATA".into());
-        }
-        defs
-    }
-
-    /// The sizes of the uniform's face, ball and tube arrays.
-    #[must_use]
-    pub fn array_sizes(&self) -> (u32, u32, u32) {
-        if self.general {
-            GENERAL_CAPACITY
-        } else {
-            (self.faces, self.balls, self.tubes)
-        }
-    }
-
-    /// Size in bytes of `SpaceUniform` for this key, from the sizes of its typed parts.
-    #[must_use]
-    pub fn uniform_bytes(&self) -> usize {
-        let vec4 = size_of::<Vec4F>();
-        let (faces, balls, tubes) = self.array_sizes();
-        let (faces, balls, tubes) = (faces as usize, balls as usize, tubes as usize);
-        let count = |n: u32| n as usize;
-        size_of::<GpuView>()
-            + size_of::<GpuShading>()
-            + vec4 // scene data offsets
-            + count(self.lights) * (1 + count(self.light_images.max(1))) * vec4
-            + faces * FACE_BYTES
-            + faces.div_ceil(4) * vec4 // partners, four to a vec4
-            + balls * size_of::<GpuBall>()
-            + tubes * size_of::<GpuTube>()
-            + count(self.globes) * size_of::<GpuGlobe>()
-            + count(self.discs) * size_of::<GpuDisc>()
-            + count(self.instances) * size_of::<GpuInstance>()
-            + if self.general { vec4 } else { 0 }
-    }
-}
-
-#[cfg(feature = "bench")]
-/// Composes WGSL with shader defs through naga_oil (as Bevy does) into a naga module; the
-/// error names the file and what went wrong.
-pub fn compose_wgsl(
-    source: &str,
-    file_path: &str,
-    defs: &[ShaderDefVal],
-) -> Result<naga::Module, String> {
-    use naga_oil::compose::{Composer, NagaModuleDescriptor, ShaderDefValue, ShaderType};
-    let shader_defs = defs
-        .iter()
-        .map(|d| match d {
-            ShaderDefVal::Bool(k, v) => (k.clone(), ShaderDefValue::Bool(*v)),
-            ShaderDefVal::Int(k, v) => (k.clone(), ShaderDefValue::Int(*v)),
-            ShaderDefVal::UInt(k, v) => (k.clone(), ShaderDefValue::UInt(*v)),
-        })
-        .collect();
-    Composer::default()
-        .make_naga_module(NagaModuleDescriptor {
-            source,
-            file_path,
-            shader_type: ShaderType::Wgsl,
-            shader_defs,
-            additional_imports: &[],
-        })
-        .map_err(|e| format!("{file_path}: {e:?}"))
-}
 
 /// The scene cannot be given to the GPU tracer.
 // The fields of a variant are the values its message names.
