@@ -1,7 +1,6 @@
 //! What the shader is specialised on ([`ShaderKey`]): its shader defs and the uniform's size,
 //! and composing the WGSL with them (for the tests and the benchmark).
 
-use super::VIEW_WORDS;
 use crate::geometry::Geometry;
 use crate::render::layout::{
     FACE_BYTES, GpuBall, GpuDisc, GpuGlobe, GpuInstance, GpuShading, GpuTube, GpuView, Vec4F,

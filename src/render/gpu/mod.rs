@@ -6,8 +6,8 @@
 //! layout has no padding: the buffer is the members' components one after another.
 
 use super::layout::{
-    AVATAR_SLOTS, FACE_BYTES, GpuBall, GpuDisc, GpuGlobe, GpuInstance, GpuShading, GpuTube,
-    GpuView, Mat4F, UniformWriter, Vec4F, colour, mat4, vec4,
+    AVATAR_SLOTS, GpuBall, GpuDisc, GpuGlobe, GpuInstance, GpuShading, GpuTube, GpuView, Mat4F,
+    UniformWriter, Vec4F, colour, mat4, vec4,
 };
 use crate::geometry::Geometry;
 use crate::scene::{CurvedScene, Object};
