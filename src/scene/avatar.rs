@@ -1,5 +1,5 @@
 //! The player's avatar: a small dart-shaped ship round the eye, seen only where rays come
-//! back round the space (a ray reaches the copy the eye sits in within [`SKIP_FACTOR`] times
+//! back round the space (a ray reaches the copy the eye sits in within a few times
 //! the ship's radius and passes through it).
 
 use super::mesh::{MeshSource, Model};
