@@ -52,6 +52,8 @@ struct Shading {
     fog: vec4<f32>,
     // Fog distance λ, cut-off distance λ ln(1/w), S(near_light), crossing budget.
     params: vec4<f32>,
+    // (1, 0, 0, 0): a one the compiler cannot see through (transform_compensated).
+    exact: vec4<f32>,
 }
 
 #ifdef LIGHTS
@@ -125,6 +127,8 @@ struct SpaceUniform {
     covectors: array<vec4<f32>, #{FACE_COUNT}>,
     // Face pairings g_f: a ray leaving through f comes back through partner(f).
     pairings: array<mat4x4<f32>, #{FACE_COUNT}>,
+    // What rounding g_f to f32 left out: the pairing is applied as hi + lo, compensated.
+    pairings_lo: array<mat4x4<f32>, #{FACE_COUNT}>,
     partners: array<vec4<u32>, #{PARTNER_VECS}>,
 #ifdef BALLS
     balls: array<Ball, #{BALL_COUNT}>,
@@ -781,14 +785,44 @@ fn exit_face(ray: Ray, skip: u32) -> Exit {
     return exit;
 }
 
+// s + e = a + b exactly (Knuth's two-sum: additions only). `one` is 1 at run time but not to
+// the compiler: multiplying by it keeps an optimiser from rewriting (a + b) − a as b, which
+// is true of real numbers and would make the error term zero.
+fn two_sum(a: vec4<f32>, b: vec4<f32>, one: f32) -> array<vec4<f32>, 2> {
+    let s = (a + b) * one;
+    let bb = (s - a) * one;
+    return array<vec4<f32>, 2>(s, (a - (s - bb)) + (b - bb));
+}
+
+// (hi + lo) x with the products and sums of hi x compensated (Ogita–Rump–Oishi Dot2, four
+// rows at once): as accurate as twice the precision rounded once (Rust:
+// `Vector4::transform_compensated`). A pairing's entries reach e^(2r) while the points it
+// moves have size e^r, so the plain product cancels and loses a digit in H³. fma gives the
+// products' rounding errors; where a driver does not fuse it, the error terms are zero and
+// this is the plain product plus lo x, no worse than before.
+fn transform_compensated(hi: mat4x4<f32>, lo: mat4x4<f32>, x: vec4<f32>) -> vec4<f32> {
+    let one = space.shading.exact.x;
+    var p = hi[0] * x.x * one;
+    var s = fma(hi[0], vec4<f32>(x.x), -p) + lo[0] * x.x;
+    for (var j = 1; j < 4; j += 1) {
+        let h = hi[j] * x[j] * one;
+        let r = fma(hi[j], vec4<f32>(x[j]), -h);
+        let sum = two_sum(p, h, one);
+        p = sum[0];
+        s += (sum[1] + r) + lo[j] * x[j];
+    }
+    return p + s;
+}
+
 // Through the exit face: exit point (N·v) p − (N·p) v, tangent κ (N·p) p + (N·v) v, then the
-// face's pairing, both projected back onto the model (Rust: `CellWalker::cross`).
+// face's pairing (compensated), both projected back onto the model (Rust: `CellWalker::cross`).
 fn cross_face(ray: Ray, exit: Exit) -> Ray {
     let at_face = ray.point * exit.den + ray.tangent * exit.num;
     let along = ray.point * (-kappa() * exit.num) + ray.tangent * exit.den;
-    let m = space.pairings[exit.face];
-    let point = project_point(m * at_face);
-    return Ray(point, unit_tangent(point, m * along));
+    let hi = space.pairings[exit.face];
+    let lo = space.pairings_lo[exit.face];
+    let point = project_point(transform_compensated(hi, lo, at_face));
+    return Ray(point, unit_tangent(point, transform_compensated(hi, lo, along)));
 }
 
 // What a segment meets first (Rust: `CurvedScene::intersect`): its chart ratio s (s_max when

@@ -5,6 +5,7 @@
 //! S³ is `⟨X,X⟩ = 1`, H³ the upper sheet of `⟨X,X⟩ = −1`, E³ the plane `w = 1`.
 //! The chart `x = X.xyz / X.w` (gnomonic, Klein, affine) maps geodesics to straight lines.
 
+mod dd;
 mod isometry;
 mod ray;
 mod real;
@@ -13,6 +14,7 @@ pub(crate) use isometry::max_abs_entry;
 pub use isometry::translate_local;
 pub use ray::{Ray, chart_ray};
 
+pub use dd::{DdMat4, DdVec4, DoubleDouble};
 pub use real::{Real, Vector4};
 
 use glam::{DVec3, DVec4};
@@ -169,8 +171,11 @@ impl Geometry {
     /// `γ(t) = C p + S v`, `γ'(t) = −κ S p + C v`.
     #[must_use]
     pub fn geodesic<V: Vector4>(self, p: V, v: V, t: f64) -> (V, V) {
-        let (c, s) = self.cs(t);
-        let (c, s) = (V::Real::from_f64(c), V::Real::from_f64(s));
+        let (c, s) = match self {
+            Self::Spherical => V::Real::cos_sin_of(t),
+            Self::Euclidean => (V::Real::ONE, V::Real::from_f64(t)),
+            Self::Hyperbolic => V::Real::cosh_sinh_of(t),
+        };
         let k = V::Real::from_f64(self.kappa());
         (p.scale(c) + v.scale(s), p.scale(-k * s) + v.scale(c))
     }

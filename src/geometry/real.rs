@@ -1,11 +1,12 @@
-//! Precision-generic scalars and 4-vectors, so the tracer runs the same code in `f64`
-//! (the reference) and `f32` (what the GPU computes), and the difference can be measured.
+//! Precision-generic scalars and 4-vectors, so the tracer runs the same code in
+//! double-double (the reference, [`super::DoubleDouble`]), `f64` and `f32` (what the GPU
+//! computes), and the differences can be measured.
 
 use glam::{DMat4, DVec4, Mat4, Vec4};
 use std::fmt::Debug;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
-/// A floating-point scalar: `f32` or `f64`.
+/// A floating-point scalar: `f32`, `f64` or [`super::DoubleDouble`].
 pub trait Real:
     Copy
     + PartialOrd
@@ -28,7 +29,7 @@ pub trait Real:
     /// The nearest value to an `f64`.
     #[must_use]
     fn from_f64(x: f64) -> Self;
-    /// The value as an `f64` (exact).
+    /// The value as an `f64` (exact for `f32` and `f64`, rounded for double-double).
     #[must_use]
     fn to_f64(self) -> f64;
     /// Square root.
@@ -52,6 +53,28 @@ pub trait Real:
     /// Neither infinite nor NaN.
     #[must_use]
     fn is_finite(self) -> bool;
+    /// `(s, e)` with `s + e = self + b` exactly (Knuth's two-sum; for double-double, `e`
+    /// is zero).
+    #[must_use]
+    fn two_sum(self, b: Self) -> (Self, Self) {
+        let s = self + b;
+        let bb = s - self;
+        (s, (self - (s - bb)) + (b - bb))
+    }
+    /// `(p, e)` with `p + e = self · b` exactly (a fused multiply-add gives `e`; for
+    /// double-double, `e` is zero).
+    #[must_use]
+    fn two_prod(self, b: Self) -> (Self, Self);
+    /// `(cos t, sin t)` of an exact `f64` angle, to this type's precision.
+    #[must_use]
+    fn cos_sin_of(t: f64) -> (Self, Self) {
+        (Self::from_f64(t.cos()), Self::from_f64(t.sin()))
+    }
+    /// `(cosh t, sinh t)` of an exact `f64` distance, to this type's precision.
+    #[must_use]
+    fn cosh_sinh_of(t: f64) -> (Self, Self) {
+        (Self::from_f64(t.cosh()), Self::from_f64(t.sinh()))
+    }
 }
 
 macro_rules! impl_real {
@@ -96,13 +119,19 @@ macro_rules! impl_real {
             fn is_finite(self) -> bool {
                 <$t>::is_finite(self)
             }
+            #[inline]
+            fn two_prod(self, b: Self) -> (Self, Self) {
+                let p = self * b;
+                (p, self.mul_add(b, -p))
+            }
         }
     };
 }
 impl_real!(f32);
 impl_real!(f64);
 
-/// A 4-vector of the model (glam's `Vec4` or `DVec4`) with its matching 4×4 matrix type.
+/// A 4-vector of the model (glam's `Vec4` or `DVec4`, or [`super::DdVec4`]) with its
+/// matching 4×4 matrix type.
 pub trait Vector4:
     Copy + Debug + Send + Sync + 'static + Add<Output = Self> + Sub<Output = Self> + Neg<Output = Self>
 {
@@ -136,6 +165,38 @@ pub trait Vector4:
     /// The nearest matrix to an `f64` one.
     #[must_use]
     fn matrix_from_f64(m: DMat4) -> Self::Matrix;
+    /// Column `j` of a matrix.
+    #[must_use]
+    fn column(m: &Self::Matrix, j: usize) -> Self;
+    /// A matrix in `f64` (exact for `f32` and `f64`).
+    #[must_use]
+    fn matrix_to_f64(m: &Self::Matrix) -> DMat4 {
+        DMat4::from_cols_array_2d(&std::array::from_fn(|j| {
+            Self::column(m, j).to_f64().to_array()
+        }))
+    }
+    /// `(hi + lo) · x` with the products and sums of `hi · x` compensated (Ogita, Rump and
+    /// Oishi's `Dot2`): as accurate as computing in twice the precision and rounding once.
+    ///
+    /// A pairing of a curved space has entries up to `e^(2r)` for faces at distance `r`
+    /// while the points it moves have size `e^r`, so the plain product cancels and loses
+    /// about a digit in the Seifert–Weber space; `lo` is what rounding `hi` to this
+    /// precision left out (zero in `f64`). See `docs/design.md` §3.
+    #[must_use]
+    fn transform_compensated(hi: &Self::Matrix, lo: &Self::Matrix, x: Self) -> Self {
+        let row = |i: usize| {
+            let (mut p, mut s) = Self::column(hi, 0).component(i).two_prod(x.component(0));
+            s = s + Self::column(lo, 0).component(i) * x.component(0);
+            for j in 1..4 {
+                let (h, r) = Self::column(hi, j).component(i).two_prod(x.component(j));
+                let (sum, q) = p.two_sum(h);
+                p = sum;
+                s = s + (q + r) + Self::column(lo, j).component(i) * x.component(j);
+            }
+            p + s
+        };
+        Self::new(row(0), row(1), row(2), row(3))
+    }
 }
 
 macro_rules! impl_vector4 {
@@ -166,6 +227,10 @@ macro_rules! impl_vector4 {
             #[inline]
             fn from_f64(v: DVec4) -> Self {
                 <$v>::new(v.x as $t, v.y as $t, v.z as $t, v.w as $t)
+            }
+            #[inline]
+            fn column(m: &$m, j: usize) -> Self {
+                m.col(j)
             }
             #[inline]
             fn matrix_from_f64(m: DMat4) -> $m {

@@ -62,6 +62,9 @@ pub struct GpuShading {
     pub fog: Vec4F,
     /// Fog distance, cut-off distance, S(near light), crossing budget.
     pub params: Vec4F,
+    /// `(1, 0, 0, 0)`: a one the shader compiler cannot see through, so that the compensated
+    /// pairing's error-free transforms are not simplified away (`transform_compensated`).
+    pub exact: Vec4F,
 }
 
 /// `Ball` (plain balls).
@@ -136,8 +139,9 @@ pub struct GpuInstance {
     pub info: [u32; 4],
 }
 
-/// `Face` data as the uniform holds it: one covector and one pairing per face (two arrays).
-pub(crate) const FACE_BYTES: usize = size_of::<Vec4F>() + size_of::<Mat4F>();
+/// `Face` data as the uniform holds it: per face a covector, its pairing rounded to f32
+/// and what that rounding left out (three arrays).
+pub(crate) const FACE_BYTES: usize = size_of::<Vec4F>() + 2 * size_of::<Mat4F>();
 
 /// The uniform's words so far, with typed pushes.
 #[derive(Clone, Debug, Default)]

@@ -1,6 +1,7 @@
 //! Spaces: a geometry, a convex fundamental polyhedron and one pairing per face, validated
 //! by Poincaré's polyhedron theorem when built (`docs/design.md` §2).
 
+pub mod accuracy;
 pub mod catalog;
 mod error;
 pub mod file;

@@ -5,6 +5,7 @@
 
 use super::Space;
 use crate::geometry::{Geometry, Ray, Real, Vector4};
+use glam::{DMat4, DVec4};
 
 /// Where a ray leaves the cell through a face: the ratio `T = num/den = S(t)/C(t)` of the
 /// exit point along the ray (`X ∝ p + T v`).
@@ -33,8 +34,11 @@ pub struct CellWalker<V: Vector4> {
     pub geometry: Geometry,
     /// Face covectors `N_f`: the cell is `N_f·X ≤ 0`.
     pub covectors: Vec<V>,
-    /// Face pairings.
+    /// Face pairings, rounded to this precision.
     pub pairings: Vec<V::Matrix>,
+    /// What rounding each pairing to this precision left out (zero in `f64`): the pairing
+    /// is applied as `pairings + pairings_lo`, compensated.
+    pub pairings_lo: Vec<V::Matrix>,
     /// Each face's partner.
     pub partners: Vec<usize>,
 }
@@ -74,20 +78,39 @@ impl<V: Vector4> CellWalker<V> {
     /// The walker of a space in the precision `V`.
     #[must_use]
     pub fn new(space: &Space) -> Self {
+        let covectors: Vec<_> = space.faces.iter().map(|f| f.covector).collect();
+        let pairings: Vec<_> = space.faces.iter().map(|f| f.pairing).collect();
+        let partners: Vec<_> = space.faces.iter().map(|f| f.partner).collect();
+        Self::from_parts(space.geometry, &covectors, &pairings, partners)
+    }
+
+    /// A walker from faces given directly (`f64` covectors and pairings, each face's
+    /// partner), for cells that are not a validated [`Space`], such as a billiard of mirrors.
+    #[must_use]
+    pub fn from_parts(
+        geometry: Geometry,
+        covectors: &[DVec4],
+        pairings: &[DMat4],
+        partners: Vec<usize>,
+    ) -> Self {
         Self {
-            geometry: space.geometry,
-            covectors: space
-                .faces
+            geometry,
+            covectors: covectors.iter().map(|&c| V::from_f64(c)).collect(),
+            pairings: pairings.iter().map(|&m| V::matrix_from_f64(m)).collect(),
+            pairings_lo: pairings
                 .iter()
-                .map(|f| V::from_f64(f.covector))
+                .map(|&m| V::matrix_from_f64(m - V::matrix_to_f64(&V::matrix_from_f64(m))))
                 .collect(),
-            pairings: space
-                .faces
-                .iter()
-                .map(|f| V::matrix_from_f64(f.pairing))
-                .collect(),
-            partners: space.faces.iter().map(|f| f.partner).collect(),
+            partners,
         }
+    }
+
+    /// Applies face `face`'s pairing to `x`, compensated
+    /// ([`Vector4::transform_compensated`]).
+    #[inline]
+    #[must_use]
+    pub fn apply_pairing(&self, face: usize, x: V) -> V {
+        V::transform_compensated(&self.pairings[face], &self.pairings_lo[face], x)
     }
 
     /// The exit face: the smallest positive `T = −(N·p)/(N·v)` among faces with `N·v > 0`.
@@ -121,7 +144,9 @@ impl<V: Vector4> CellWalker<V> {
     /// Moves the ray to its exit point and applies the face's pairing; returns the new ray
     /// (re-normalized onto the model) and the geodesic length of the segment.
     ///
-    /// Exit point `X ∝ (N·v) p − (N·p) v`, tangent `γ' ∝ κ (N·p) p + (N·v) v`.
+    /// Exit point `X ∝ (N·v) p − (N·p) v`, tangent `γ' ∝ κ (N·p) p + (N·v) v`; the pairing
+    /// is applied compensated ([`Self::apply_pairing`]), the one step where the plain
+    /// arithmetic lost digits beyond the problem's conditioning.
     #[must_use]
     pub fn cross(&self, ray: &Ray<V>, exit: &Exit<V::Real>) -> (Ray<V>, V::Real) {
         let g = self.geometry;
@@ -129,9 +154,8 @@ impl<V: Vector4> CellWalker<V> {
         let (num, den) = (exit.num, exit.den);
         let at_face = ray.point.scale(den) + ray.tangent.scale(num);
         let tangent = ray.point.scale(-k * num) + ray.tangent.scale(den);
-        let m = self.pairings[exit.face];
-        let point = g.project_point(m * at_face);
-        let tangent = g.unit_tangent(point, m * tangent);
+        let point = g.project_point(self.apply_pairing(exit.face, at_face));
+        let tangent = g.unit_tangent(point, self.apply_pairing(exit.face, tangent));
         (Ray { point, tangent }, g.distance_from_ratio(num, den))
     }
 

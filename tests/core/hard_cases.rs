@@ -116,18 +116,8 @@ fn mirrored_walkers(g: Geometry, covectors: &[DVec4]) -> (CellWalker<DVec4>, Cel
     let pairings: Vec<_> = covectors.iter().map(|c| g.reflection(*c)).collect();
     let partners: Vec<usize> = (0..covectors.len()).collect();
     (
-        CellWalker {
-            geometry: g,
-            covectors: covectors.to_vec(),
-            pairings: pairings.clone(),
-            partners: partners.clone(),
-        },
-        CellWalker {
-            geometry: g,
-            covectors: covectors.iter().map(|c| Vec4::from_f64(*c)).collect(),
-            pairings: pairings.iter().map(|m| Vec4::matrix_from_f64(*m)).collect(),
-            partners,
-        },
+        CellWalker::from_parts(g, covectors, &pairings, partners.clone()),
+        CellWalker::from_parts(g, covectors, &pairings, partners),
     )
 }
 

@@ -6,6 +6,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod accuracy;
 mod geometry;
 mod hard_cases;
 mod headset;

@@ -298,6 +298,7 @@ impl GpuScene {
                 g.s(shading.near_light),
                 f64::from(max_crossings),
             )),
+            exact: vec4(DVec4::X),
         });
         out.push(&offsets);
         for light in &scene.lights {
@@ -316,6 +317,13 @@ impl GpuScene {
         }
         for face in &space.faces {
             out.push(&mat4(face.pairing));
+        }
+        // What rounding each pairing to f32 left out: the shader applies hi + lo compensated.
+        for face in &space.faces {
+            let hi = mat4(face.pairing).map(|c| DVec4::from_array(c.map(f64::from)));
+            out.push(&mat4(
+                face.pairing - DMat4::from_cols(hi[0], hi[1], hi[2], hi[3]),
+            ));
         }
         let mut partners: Vec<u32> = space.faces.iter().map(|f| f.partner as u32).collect();
         partners.resize(4 * space.faces.len().div_ceil(4), 0);
@@ -436,6 +444,7 @@ impl GpuScene {
         let vec4_words = words_of(size_of::<Vec4F>());
         let arrays = [
             (vec4_words, faces, cap_faces as usize),
+            (words_of(size_of::<Mat4F>()), faces, cap_faces as usize),
             (words_of(size_of::<Mat4F>()), faces, cap_faces as usize),
             (
                 vec4_words,
