@@ -222,6 +222,100 @@ pub(super) fn drift(subject: &Subject, config: &BenchConfig) -> Vec<DriftRow> {
         .collect()
 }
 
+/// Width of the distance bins of the digits-lost curve.
+const CURVE_BIN: f64 = 2.0;
+
+/// Walks of [`BenchConfig::conditioning_rays`] rays of 100 crossings in f64 and f32, with the
+/// pairing compensated and plain, against the double-double reference: the statistics over
+/// crossings 1–30 and 1–100, and the digits lost beyond conditioning against distance.
+pub(super) fn conditioning(
+    subject: &Subject,
+    config: &BenchConfig,
+) -> (Vec<ConditioningRow>, Vec<ConditioningPoint>) {
+    use crate::space::accuracy::{CrossingAccuracy, ReferenceWalk, SATURATED, summarize};
+    const CROSSINGS: usize = 100;
+    let space = &subject.space;
+    let rays = sample_rays(space, config.conditioning_rays, 0xc0d1);
+    let walkers = |compensated| {
+        let mut w64 = CellWalker::<DVec4>::new(space);
+        let mut w32 = CellWalker::<Vec4>::new(space);
+        w64.compensated = compensated;
+        w32.compensated = compensated;
+        (w64, w32)
+    };
+    let variants = [("compensated", walkers(true)), ("plain", walkers(false))];
+    // Per ray: for each (precision, pairing) the accuracy at every crossing.
+    let per_ray: Vec<Vec<(&str, &str, Vec<CrossingAccuracy>)>> = rays
+        .par_iter()
+        .map(|ray| {
+            let reference = ReferenceWalk::new(space, *ray, CROSSINGS);
+            let limits64 = reference.conditioning(f64::EPSILON);
+            let limits32 = reference.conditioning(F32_EPSILON);
+            variants
+                .iter()
+                .flat_map(|(pairing, (w64, w32))| {
+                    [
+                        ("f64", *pairing, reference.accuracy_of(w64, &limits64)),
+                        ("f32", *pairing, reference.accuracy_of(w32, &limits32)),
+                    ]
+                })
+                .collect()
+        })
+        .collect();
+    let mut rows = Vec::new();
+    let mut curve = Vec::new();
+    for precision in ["f64", "f32"] {
+        for (pairing, _) in &variants {
+            let all: Vec<&CrossingAccuracy> = per_ray
+                .iter()
+                .flatten()
+                .filter(|(p, q, _)| *p == precision && q == pairing)
+                .flat_map(|(_, _, rows)| rows)
+                .collect();
+            for n in [30, CROSSINGS] {
+                let Some(s) = summarize(all.iter().copied().filter(|c| c.crossing <= n)) else {
+                    continue;
+                };
+                rows.push(ConditioningRow {
+                    space: subject.id.clone(),
+                    geometry: subject.geometry(),
+                    precision: precision.into(),
+                    pairing: pairing.to_string(),
+                    crossings: n,
+                    median: s.median,
+                    worst: s.worst,
+                    counted: s.counted,
+                    left_out: s.left_out,
+                });
+            }
+            let mut bins: Vec<(usize, Vec<f64>)> = Vec::new();
+            for c in &all {
+                let Some(r) = c.ratio().filter(|_| c.conditioning <= SATURATED) else {
+                    continue;
+                };
+                let bin = (c.distance / CURVE_BIN) as usize;
+                match bins.iter_mut().find(|(b, _)| *b == bin) {
+                    Some((_, v)) => v.push(r.max(1e-6).log10()),
+                    None => bins.push((bin, vec![r.max(1e-6).log10()])),
+                }
+            }
+            bins.sort_by_key(|(b, _)| *b);
+            for (bin, digits) in bins {
+                let count = digits.len();
+                curve.push(ConditioningPoint {
+                    space: subject.id.clone(),
+                    precision: precision.into(),
+                    pairing: pairing.to_string(),
+                    distance: (bin as f64 + 0.5) * CURVE_BIN,
+                    median_digits: median(digits).unwrap_or(0.0),
+                    count,
+                });
+            }
+        }
+    }
+    (rows, curve)
+}
+
 /// The error of the fog cut-off: the f64 picture with it against one traced without it.
 pub(super) fn cutoff(subject: &Subject, fog_factor: f64, (w, h): (u32, u32)) -> CutoffRow {
     let scene = subject.scene(fog_factor);

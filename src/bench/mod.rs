@@ -65,6 +65,9 @@ pub struct BenchConfig {
     pub drift_rays: usize,
     /// Crossing counts the drift is reported at.
     pub drift_crossings: Vec<usize>,
+    /// Rays per space walked against the double-double reference (100 crossings each).
+    #[serde(default)]
+    pub conditioning_rays: usize,
     /// Rays sampled for each automatic budget.
     pub budget_samples: usize,
     /// Skip the GPU part (CPU accuracy only).
@@ -100,6 +103,7 @@ impl BenchConfig {
             max_frames: 200,
             drift_rays: 64,
             drift_crossings: vec![10, 30, 100, 1000],
+            conditioning_rays: 32,
             budget_samples: 4096,
             cpu_only: false,
             mesh_triangles: vec![12, 960, 4608, 19_200, 76_800, 307_200],
@@ -120,6 +124,7 @@ impl BenchConfig {
             max_frames: 2,
             drift_rays: 8,
             drift_crossings: vec![10, 30, 100],
+            conditioning_rays: 4,
             budget_samples: 512,
             cpu_only: false,
             mesh_triangles: vec![12, 960],
@@ -222,6 +227,48 @@ pub struct ErrorRow {
     pub over_2_levels: f64,
     /// Fraction of pixels off by more than 10 levels.
     pub over_10_levels: f64,
+}
+
+/// A walk's error against the double-double reference in units of the conditioning limit
+/// (`space::accuracy`): 1 is the limit, 10 a digit lost beyond it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ConditioningRow {
+    /// Seed space id.
+    pub space: String,
+    /// Its geometry.
+    pub geometry: String,
+    /// `f64` or `f32`.
+    pub precision: String,
+    /// `compensated` (the walk) or `plain` (the plain product, as before compensation).
+    pub pairing: String,
+    /// Crossings of the rays (statistics over crossings 1 to this).
+    pub crossings: usize,
+    /// Median error / conditioning over the crossings counted.
+    pub median: f64,
+    /// Largest error / conditioning.
+    pub worst: f64,
+    /// Crossings counted.
+    pub counted: usize,
+    /// Crossings left out: split or saturated (`space::accuracy::SATURATED`).
+    pub left_out: usize,
+}
+
+/// Digits lost beyond the conditioning limit against distance: the median over the rays'
+/// crossings in one distance bin of `log10(error / conditioning)`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ConditioningPoint {
+    /// Seed space id.
+    pub space: String,
+    /// `f64` or `f32`.
+    pub precision: String,
+    /// `compensated` or `plain`.
+    pub pairing: String,
+    /// Middle of the distance bin.
+    pub distance: f64,
+    /// Median `log10(error / conditioning)` in the bin (below 0: under the limit).
+    pub median_digits: f64,
+    /// Crossings in the bin.
+    pub count: usize,
 }
 
 /// f32 against f64 along long rays.
@@ -367,6 +414,12 @@ pub struct BenchReport {
     pub errors: Vec<ErrorRow>,
     /// f32 drift of long rays.
     pub drift: Vec<DriftRow>,
+    /// Walks against the double-double reference (absent from older reports).
+    #[serde(default)]
+    pub conditioning: Vec<ConditioningRow>,
+    /// Digits lost beyond conditioning against distance, per space.
+    #[serde(default)]
+    pub conditioning_curve: Vec<ConditioningPoint>,
     /// Errors of the fog cut-off.
     pub cutoff: Vec<CutoffRow>,
     /// Automatic budgets.
@@ -525,6 +578,13 @@ fn cpu_measurements(
 ) -> ChosenBudgets {
     announce(progress, format!("{}: f32 drift", subject.id));
     report.drift.extend(drift(subject, config));
+    announce(
+        progress,
+        format!("{}: walks against the double-double reference", subject.id),
+    );
+    let (rows, curve) = conditioning(subject, config);
+    report.conditioning.extend(rows);
+    report.conditioning_curve.extend(curve);
     progress.inc(1);
     announce(progress, format!("{}: automatic budgets", subject.id));
     let mut budgets = Vec::new();

@@ -25,9 +25,11 @@ pub fn write_report(
     .map_err(|e| write_err(&json, &e))?;
     std::fs::write(&json, body).map_err(|e| write_err(&json, &e))?;
     written.push(json);
-    let tables: [(&str, Vec<serde_json::Value>); 8] = [
+    let tables: [(&str, Vec<serde_json::Value>); 10] = [
         ("timings", to_values(&report.timings)),
         ("errors", to_values(&report.errors)),
+        ("conditioning", to_values(&report.conditioning)),
+        ("conditioning_curve", to_values(&report.conditioning_curve)),
         ("drift", to_values(&report.drift)),
         ("cutoff", to_values(&report.cutoff)),
         ("auto_budgets", to_values(&report.auto_budgets)),
@@ -114,6 +116,7 @@ pub fn summary_markdown(report: &BenchReport) -> String {
     specialisation_section(&mut md, report);
     stereo_section(&mut md, report);
     mesh_section(&mut md, report);
+    conditioning_section(&mut md, report);
     drift_section(&mut md, report);
     cutoff_section(&mut md, report);
     auto_budget_section(&mut md, report);
@@ -289,6 +292,44 @@ fn mesh_section(md: &mut String, report: &BenchReport) {
                 r.ratio
             );
         }
+    }
+}
+
+/// Walks against the double-double reference: error / conditioning, compensated and plain.
+fn conditioning_section(md: &mut String, report: &BenchReport) {
+    use std::fmt::Write as _;
+    if report.conditioning.is_empty() {
+        return;
+    }
+    let _ = writeln!(
+        *md,
+        "\n### Error / conditioning limit against the double-double reference (1 = the limit, 10 = a digit lost)\n\n| space | precision | crossings | median | worst | plain pairing: median | plain: worst | crossings counted (left out) |\n|---|---|---:|---:|---:|---:|---:|---:|"
+    );
+    for row in report
+        .conditioning
+        .iter()
+        .filter(|r| r.pairing == "compensated")
+    {
+        let plain = report.conditioning.iter().find(|p| {
+            p.pairing == "plain"
+                && p.space == row.space
+                && p.precision == row.precision
+                && p.crossings == row.crossings
+        });
+        let f = |x: Option<f64>| x.map_or_else(|| "–".to_string(), |x| format!("{x:.2}"));
+        let _ = writeln!(
+            *md,
+            "| {} | {} | {} | {:.2} | {:.2} | {} | {} | {} ({}) |",
+            row.space,
+            row.precision,
+            row.crossings,
+            row.median,
+            row.worst,
+            f(plain.map(|p| p.median)),
+            f(plain.map(|p| p.worst)),
+            row.counted,
+            row.left_out
+        );
     }
 }
 
@@ -498,6 +539,59 @@ pub fn charts(report: &BenchReport) -> Vec<(&'static str, Chart)> {
             legend: Corner::LowerRight,
         },
     ));
+    // Digits lost beyond conditioning against distance, for the curved spaces and the torus.
+    if !report.conditioning_curve.is_empty() {
+        let mut series = Vec::new();
+        for space in [
+            "seifert-weber",
+            "mirrored-dodecahedron",
+            "poincare",
+            "torus",
+        ] {
+            for (precision, pairing) in [
+                ("f64", "compensated"),
+                ("f32", "compensated"),
+                ("f64", "plain"),
+            ] {
+                if pairing == "plain" && space != "seifert-weber" {
+                    continue;
+                }
+                let points: Vec<(f64, f64)> = report
+                    .conditioning_curve
+                    .iter()
+                    .filter(|p| {
+                        p.space == space && p.precision == precision && p.pairing == pairing
+                    })
+                    .map(|p| (p.distance, p.median_digits))
+                    .collect();
+                if points.is_empty() {
+                    continue;
+                }
+                series.push(Series {
+                    name: if pairing == "plain" {
+                        format!("{space} {precision}, plain pairing")
+                    } else {
+                        format!("{space} {precision}")
+                    },
+                    points,
+                    dashed: pairing == "plain",
+                });
+            }
+        }
+        charts.push((
+            "digits_lost",
+            Chart {
+                title: "Digits lost beyond the conditioning limit (median log10 error / limit)"
+                    .into(),
+                x_label: "geodesic distance along the ray".into(),
+                y_label: "log10(error / conditioning limit)".into(),
+                log_x: false,
+                log_y: false,
+                series,
+                legend: Corner::UpperRight,
+            },
+        ));
+    }
     // Mesh scenes: frame time against triangle count.
     if !report.meshes.is_empty() {
         let series = series_per_space(

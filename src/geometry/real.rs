@@ -200,7 +200,7 @@ pub trait Vector4:
 }
 
 macro_rules! impl_vector4 {
-    ($v:ty, $m:ty, $t:ty) => {
+    ($v:ident, $m:ty, $t:ty) => {
         impl Vector4 for $v {
             type Real = $t;
             type Matrix = $m;
@@ -231,6 +231,40 @@ macro_rules! impl_vector4 {
             #[inline]
             fn column(m: &$m, j: usize) -> Self {
                 m.col(j)
+            }
+            /// The same `Dot2` as the default, four rows at once in glam's SIMD vectors, with
+            /// Veltkamp–Dekker splitting for the exact products (plain arithmetic, no
+            /// library `fma` call where the target has no fused multiply-add).
+            #[inline]
+            fn transform_compensated(hi: &$m, lo: &$m, x: Self) -> Self {
+                const FACTOR: $t = ((1u64 << <$t>::MANTISSA_DIGITS.div_ceil(2)) + 1) as $t;
+                let split = |a: $v| {
+                    let c = a * FACTOR;
+                    let h = c - (c - a);
+                    (h, a - h)
+                };
+                let mut p = <$v>::ZERO;
+                let mut s = <$v>::ZERO;
+                for j in 0..4 {
+                    let col = hi.col(j);
+                    let xj = <$v>::splat(x[j]);
+                    let h = col * xj;
+                    let (ch, cl) = split(col);
+                    let (xh, xl) = split(xj);
+                    let r = ((ch * xh - h) + ch * xl + cl * xh) + cl * xl;
+                    let extra = lo.col(j) * xj;
+                    if j == 0 {
+                        p = h;
+                        s = r + extra;
+                    } else {
+                        let sum = p + h;
+                        let bb = sum - p;
+                        let q = (p - (sum - bb)) + (h - bb);
+                        p = sum;
+                        s += (q + r) + extra;
+                    }
+                }
+                p + s
             }
             #[inline]
             fn matrix_from_f64(m: DMat4) -> $m {

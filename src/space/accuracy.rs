@@ -20,8 +20,8 @@
 
 use super::Space;
 use super::walk::{CellWalker, Exit, Limit, Trace};
-use crate::geometry::{DdVec4, DoubleDouble, Geometry, Ray, Real, Vector4};
-use glam::DVec4;
+use crate::geometry::{DdMat4, DdVec4, DoubleDouble, Geometry, Ray, Real, Vector4};
+use glam::{DMat4, DVec4};
 
 /// The errors of a walk at one crossing.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -172,6 +172,82 @@ pub fn conditioning(
     squares.into_iter().map(f64::sqrt).zip(split).collect()
 }
 
+/// A ray walked in double-double: the truth other walks of the same start are measured
+/// against.
+#[derive(Clone, Debug)]
+pub struct ReferenceWalk {
+    walker: CellWalker<DdVec4>,
+    start: Ray<DdVec4>,
+    trace: Trace<DdVec4>,
+}
+
+impl ReferenceWalk {
+    /// Walks `start` for `crossings` crossings in double-double.
+    #[must_use]
+    pub fn new(space: &Space, start: Ray<DVec4>, crossings: usize) -> Self {
+        let walker = reference_walker(space);
+        let start = walker.normalized(to_dd(&start));
+        let trace = walker.trace(start, Limit::Crossings(crossings));
+        Self {
+            walker,
+            start,
+            trace,
+        }
+    }
+
+    /// The reference trace.
+    #[must_use]
+    pub fn trace(&self) -> &Trace<DdVec4> {
+        &self.trace
+    }
+
+    /// The conditioning limit at each crossing for rounding unit `epsilon` (see
+    /// [`conditioning`]).
+    #[must_use]
+    pub fn conditioning(&self, epsilon: f64) -> Vec<(f64, bool)> {
+        conditioning(&self.walker, &self.start, &self.trace, epsilon)
+    }
+
+    /// The accuracy of `walker`'s walk from the same start (rounded to its precision) at
+    /// each crossing, given the conditioning limits of its precision.
+    #[must_use]
+    pub fn accuracy_of<V: Vector4>(
+        &self,
+        walker: &CellWalker<V>,
+        limits: &[(f64, bool)],
+    ) -> Vec<CrossingAccuracy> {
+        let g = walker.geometry;
+        let start = Ray {
+            point: V::from_f64(self.start.point.to_f64()),
+            tangent: V::from_f64(self.start.tangent.to_f64()),
+        };
+        let walk = walker.trace(start, Limit::Crossings(self.trace.crossings.len()));
+        let mut diverged = false;
+        self.trace
+            .crossings
+            .iter()
+            .zip(limits)
+            .enumerate()
+            .map(|(k, (r, &(conditioning, split)))| {
+                let ours = walk.crossings.get(k);
+                diverged |= ours.is_none_or(|c| c.face != r.face);
+                let error = ours.map_or(f64::INFINITY, |c| {
+                    separation(g, to_dd(&c.ray).point, r.ray.point)
+                });
+                CrossingAccuracy {
+                    crossing: k + 1,
+                    distance: r.distance,
+                    error,
+                    conditioning,
+                    // A walk that took other faces where the reference's perturbations did
+                    // not is wrong, not ill-conditioned: its ratio stays in (and is large).
+                    split: split || (diverged && conditioning > SATURATED),
+                }
+            })
+            .collect()
+    }
+}
+
 /// A walk's error against the double-double reference at each of `crossings` crossings,
 /// with the conditioning limit of its precision.
 #[must_use]
@@ -180,41 +256,9 @@ pub fn walk_accuracy<V: Vector4>(
     start: Ray<DVec4>,
     crossings: usize,
 ) -> Vec<CrossingAccuracy> {
-    let reference_walker = reference_walker(space);
-    let start_dd = reference_walker.normalized(to_dd(&start));
-    let reference = reference_walker.trace(start_dd, Limit::Crossings(crossings));
-    let walker = CellWalker::<V>::new(space);
-    let walk = walker.trace(
-        Ray {
-            point: V::from_f64(start.point),
-            tangent: V::from_f64(start.tangent),
-        },
-        Limit::Crossings(crossings),
-    );
-    let epsilon = V::Real::EPSILON.to_f64();
-    let limits = conditioning(&reference_walker, &start_dd, &reference, epsilon);
-    let g = space.geometry;
-    let mut diverged = false;
-    reference
-        .crossings
-        .iter()
-        .zip(&limits)
-        .enumerate()
-        .map(|(k, (r, &(conditioning, split)))| {
-            let ours = walk.crossings.get(k);
-            diverged |= ours.is_none_or(|c| c.face != r.face);
-            let error = ours.map_or(f64::INFINITY, |c| {
-                separation(g, to_dd(&c.ray).point, r.ray.point)
-            });
-            CrossingAccuracy {
-                crossing: k + 1,
-                distance: r.distance,
-                error,
-                conditioning,
-                split: split || (diverged && conditioning > 1e-3),
-            }
-        })
-        .collect()
+    let reference = ReferenceWalk::new(space, start, crossings);
+    let limits = reference.conditioning(V::Real::EPSILON.to_f64());
+    reference.accuracy_of(&CellWalker::<V>::new(space), &limits)
 }
 
 /// Crossings whose conditioning limit is past this (geodesic units) are left out of the
@@ -307,4 +351,131 @@ pub fn same_path_error<V: Vector4>(space: &Space, start: Ray<DVec4>, trace: &Tra
         ray
     };
     separation(g, end.point, to_dd(&trace.end).point)
+}
+
+/// A frame (columns right, up, back, position) moved in double-double along the path a
+/// player's `f64` frame took: the same local motions (computed exactly from the same
+/// inputs) and the same face crossings, with the pairings made exact isometries. What the
+/// player's frame differs from it by is the player's rounding ([`ReferenceFrame::drift`]).
+#[derive(Clone, Debug)]
+pub struct ReferenceFrame {
+    geometry: Geometry,
+    frame: [DdVec4; 4],
+    pairings: Vec<DdMat4>,
+}
+
+/// Gram–Schmidt of a frame in the form: the position projected onto the model, then the
+/// three axes made tangent there and orthonormal, in order.
+fn orthonormal(g: Geometry, cols: [DdVec4; 4]) -> [DdVec4; 4] {
+    let p = g.project_point(cols[3]);
+    let mut out = [p; 4];
+    for i in 0..3 {
+        let mut v = g.project_tangent(p, cols[i]);
+        for done in &out[..i] {
+            v = v - done.scale(g.form(v, *done));
+        }
+        out[i] = v.scale(DoubleDouble::ONE / g.form(v, v).sqrt());
+    }
+    out
+}
+
+impl ReferenceFrame {
+    /// Starts at an `f64` frame of `space`.
+    #[must_use]
+    pub fn new(space: &Space, frame: DMat4) -> Self {
+        let g = space.geometry;
+        let pairings = space
+            .faces
+            .iter()
+            .map(|f| {
+                // The pairing carries the origin's frame to its columns: orthonormalising
+                // them in double-double gives the isometry the f64 matrix rounds.
+                let m = DdMat4::from_f64(f.pairing);
+                DdMat4(orthonormal(g, m.0))
+            })
+            .collect();
+        Self {
+            geometry: g,
+            frame: DdMat4::from_f64(frame).0,
+            pairings,
+        }
+    }
+
+    /// The frame in `f64` (rounded).
+    #[must_use]
+    pub fn frame(&self) -> DMat4 {
+        let c = self.frame.map(|v| v.to_f64());
+        DMat4::from_cols(c[0], c[1], c[2], c[3])
+    }
+
+    /// One player step: translate by `translation` in the frame's own axes, turn about its
+    /// right, up and back axes by `rotation` (radians, in that order), then cross `faces`
+    /// in order — what `player::step_frame` and `space::wrap_into_cell` did.
+    pub fn step(&mut self, translation: glam::DVec3, rotation: glam::DVec3, faces: &[usize]) {
+        let g = self.geometry;
+        let one = DoubleDouble::ONE;
+        let zero = DoubleDouble::ZERO;
+        let mut m = DdMat4(self.frame);
+        let t = translation.to_array().map(DoubleDouble::new);
+        let length = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
+        if length.hi > 0.0 && length.is_finite() {
+            let u = t.map(|x| x / length);
+            let (c, s) = match g {
+                Geometry::Spherical => {
+                    let (s, c) = length.sin_cos();
+                    (c, s)
+                }
+                Geometry::Euclidean => (one, length),
+                Geometry::Hyperbolic => length.cosh_sinh(),
+            };
+            let k = DoubleDouble::new(g.kappa());
+            let u4 = DdVec4([u[0], u[1], u[2], zero]);
+            let o = DdVec4([zero, zero, zero, one]);
+            let col = |j: usize| {
+                let mut e = DdVec4::default();
+                e.0[j] = one;
+                e + u4.scale((c - one) * u[j]) - o.scale(k * s * u[j])
+            };
+            m = m * DdMat4([col(0), col(1), col(2), o.scale(c) + u4.scale(s)]);
+        }
+        for (axis, angle) in rotation.to_array().into_iter().enumerate() {
+            if angle == 0.0 || !angle.is_finite() {
+                continue;
+            }
+            let (s, c) = DoubleDouble::new(angle).sin_cos();
+            // Right-handed rotation about `axis` (as glam's `from_axis_angle`).
+            let (a, b) = ((axis + 1) % 3, (axis + 2) % 3);
+            let mut r = DdMat4(std::array::from_fn(|j| {
+                let mut e = DdVec4::default();
+                e.0[j] = one;
+                e
+            }));
+            r.0[a].0[a] = c;
+            r.0[a].0[b] = s;
+            r.0[b].0[a] = -s;
+            r.0[b].0[b] = c;
+            m = m * r;
+        }
+        for &f in faces {
+            m = self.pairings[f] * m;
+        }
+        self.frame = m.0;
+    }
+
+    /// How far an `f64` frame is from this one: the geodesic distance between the
+    /// positions, and the largest angle between corresponding axes (radians, to first
+    /// order).
+    #[must_use]
+    pub fn drift(&self, frame: DMat4) -> (f64, f64) {
+        let g = self.geometry;
+        let theirs = DdMat4::from_f64(frame).0;
+        let position = separation(g, self.frame[3], theirs[3]);
+        let orientation = (0..3)
+            .map(|i| {
+                let d = self.frame[i] - theirs[i];
+                g.form(d, d).to_f64().abs().sqrt()
+            })
+            .fold(0.0, f64::max);
+        (position, orientation)
+    }
 }

@@ -1,7 +1,8 @@
 //! Walking geodesics through the cell, face to face (`docs/design.md` §3).
 //!
-//! The walk is generic over precision ([`Vector4`]): `f64` is the reference, `f32` is what the
-//! GPU computes, and running both measures what f32 costs.
+//! The walk is generic over precision ([`Vector4`]): double-double is the reference
+//! ([`super::accuracy`]), `f64` what the CPU computes, `f32` what the GPU computes, and
+//! running them side by side measures what each costs.
 
 use super::Space;
 use crate::geometry::{Geometry, Ray, Real, Vector4};
@@ -41,6 +42,9 @@ pub struct CellWalker<V: Vector4> {
     pub pairings_lo: Vec<V::Matrix>,
     /// Each face's partner.
     pub partners: Vec<usize>,
+    /// Apply pairings compensated (the default); `false` gives the plain product, which
+    /// loses up to a digit in curved cells, for comparison (the benchmark reports both).
+    pub compensated: bool,
 }
 
 /// One face crossing of a traced ray.
@@ -102,6 +106,7 @@ impl<V: Vector4> CellWalker<V> {
                 .map(|&m| V::matrix_from_f64(m - V::matrix_to_f64(&V::matrix_from_f64(m))))
                 .collect(),
             partners,
+            compensated: true,
         }
     }
 
@@ -110,7 +115,13 @@ impl<V: Vector4> CellWalker<V> {
     #[inline]
     #[must_use]
     pub fn apply_pairing(&self, face: usize, x: V) -> V {
-        V::transform_compensated(&self.pairings[face], &self.pairings_lo[face], x)
+        // Flat pairings are rotations and translations with small entries: nothing cancels,
+        // and the plain product is already at the limit (docs/performance.md).
+        if self.compensated && self.geometry != Geometry::Euclidean {
+            V::transform_compensated(&self.pairings[face], &self.pairings_lo[face], x)
+        } else {
+            self.pairings[face] * x
+        }
     }
 
     /// The exit face: the smallest positive `T = −(N·p)/(N·v)` among faces with `N·v > 0`.

@@ -339,6 +339,21 @@ fn bench_quick_writes_results_that_respect_their_bounds() {
             assert_eq!(hit, 0.0, "f32 in the torus with a sufficient budget: {e}");
         }
     }
+    // The walks against the double-double reference: both spaces, both precisions, both
+    // pairings, over 30 and 100 crossings; the walk itself within the accuracy target.
+    let conditioning = rows("conditioning");
+    assert_eq!(conditioning.len(), 2 * 2 * 2 * 2, "{conditioning:?}");
+    for c in conditioning
+        .iter()
+        .filter(|c| c["pairing"] == "compensated")
+    {
+        assert!(
+            c["median"].as_f64().unwrap() <= 2.0 && c["worst"].as_f64().unwrap() <= 5.0,
+            "{c}"
+        );
+    }
+    assert!(!rows("conditioning_curve").is_empty());
+    assert!(dir.join("digits_lost.png").exists());
     for d in rows("drift") {
         if d["space"] == "torus" {
             assert_eq!(d["same_faces"].as_f64(), Some(1.0), "{d}");

@@ -89,7 +89,7 @@ fn the_typed_gpu_structs_match_their_wgsl_twins() {
         GpuView,
         [frames, lens, viewport, split, anaglyph, avatar, avatar_info]
     );
-    check!("Shading", GpuShading, [fog, params]);
+    check!("Shading", GpuShading, [fog, params, exact]);
     check!("Ball", GpuBall, [centre, colour, emission]);
     check!("Tube", GpuTube, [a, towards_b, colour, length, emission]);
     check!("Globe", GpuGlobe, [centre, colour, emission, spin, inverse]);

@@ -261,3 +261,153 @@ fn dodecahedra_invariants_match_their_closed_forms() {
         );
     }
 }
+
+/// A player's path: `steps` random local steps (translations up to 0.05 inradii per axis,
+/// turns up to 0.2 rad) or straight ahead by 0.05 inradii, wrapped into the cell as the
+/// plugin does. Returns the f64 frame's drift from the double-double frame of the same path
+/// (position, orientation) at the end, and the path's conditioning at half way and at the
+/// end: how far the reference moves when its start is turned or moved by `ε` about or along
+/// each axis (`None` when not asked for).
+fn player_path(
+    space: &Space,
+    steps: usize,
+    straight: bool,
+    with_conditioning: bool,
+) -> ((f64, f64), Option<(f64, f64)>) {
+    use bevy_curved_spaces::components::{PlayerMotion, PlayerSettings};
+    use bevy_curved_spaces::player::step_frame;
+    use bevy_curved_spaces::space::accuracy::ReferenceFrame;
+    use bevy_curved_spaces::space::wrap_into_cell;
+    use bevy_curved_spaces::trace::SplitMix64;
+    let g = space.geometry();
+    let r = inradius(space);
+    let margin = PlayerSettings::default().wrap_margin;
+    let mut rng = SplitMix64(0xC0FFEE);
+    let mut next = || 2.0 * rng.unit() - 1.0;
+    let mut frame = bevy_curved_spaces::view::TraceCamera::default_for(space).frame;
+    let mut reference = ReferenceFrame::new(space, frame);
+    let mut perturbed: Vec<ReferenceFrame> = if with_conditioning {
+        [DVec3::X, DVec3::Y, DVec3::Z]
+            .into_iter()
+            .flat_map(|axis| {
+                let (mut turned, mut moved) = (reference.clone(), reference.clone());
+                turned.step(DVec3::ZERO, axis * f64::EPSILON, &[]);
+                moved.step(axis * f64::EPSILON, DVec3::ZERO, &[]);
+                [turned, moved]
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let spread = |reference: &ReferenceFrame, perturbed: &[ReferenceFrame]| {
+        perturbed
+            .iter()
+            .map(|p| {
+                let (a, b) = reference.drift(p.frame());
+                a.max(b)
+            })
+            .fold(0.0, f64::max)
+    };
+    let mut half = 0.0;
+    for n in 1..=steps {
+        let motion = if straight {
+            PlayerMotion {
+                translation: DVec3::new(0.0, 0.0, -0.05 * r),
+                rotation: DVec3::ZERO,
+            }
+        } else {
+            PlayerMotion {
+                translation: DVec3::new(next(), next(), next()) * 0.05 * r,
+                rotation: DVec3::new(next(), next(), next()) * 0.2,
+            }
+        };
+        let (wrapped, crossed) = wrap_into_cell(space, step_frame(g, frame, &motion), margin);
+        frame = wrapped;
+        reference.step(motion.translation, motion.rotation, &crossed);
+        for p in &mut perturbed {
+            p.step(motion.translation, motion.rotation, &crossed);
+        }
+        if n == steps / 2 && with_conditioning {
+            half = spread(&reference, &perturbed);
+        }
+    }
+    let conditioning = with_conditioning.then(|| (half, spread(&reference, &perturbed)));
+    (reference.drift(frame), conditioning)
+}
+
+/// In E³ and S³ neighbouring paths do not diverge, so the player's frame after 10⁶ random
+/// steps is off the double-double frame of the same path by its rounding alone: a few units
+/// of ε per step, adding up like a random walk. Bound: `16 √n ε` (measured: 3·10⁻¹³ in the
+/// torus, 5·10⁻¹⁴ in Poincaré, against 3.6·10⁻¹²).
+#[test]
+fn the_player_drifts_by_rounding_alone_in_flat_and_spherical_spaces() {
+    let steps = 1_000_000;
+    let bound = 16.0 * (steps as f64).sqrt() * f64::EPSILON;
+    std::thread::scope(|scope| {
+        for id in ["torus", "poincare"] {
+            scope.spawn(move || {
+                let space = seed_space(id).unwrap();
+                let ((position, orientation), _) = player_path(&space, steps, false, false);
+                assert!(
+                    position <= bound && orientation <= bound,
+                    "{id}: after {steps} steps the frame drifted {position:.2e} in position and \
+                     {orientation:.2e} in orientation (bound {bound:.2e})"
+                );
+            });
+        }
+    });
+    // A straight walk through many faces: every step rounds the same way, so the errors
+    // add up in step, `n ε` (measured: 1.0·10⁻¹¹ in the half-turn space, against 2.2·10⁻¹¹).
+    for id in ["torus", "poincare", "half-turn"] {
+        let space = seed_space(id).unwrap();
+        let ((position, orientation), _) = player_path(&space, 100_000, true, false);
+        let bound = 100_000.0 * f64::EPSILON;
+        assert!(
+            position <= bound && orientation <= bound,
+            "{id} straight: {position:.2e}, {orientation:.2e}"
+        );
+    }
+}
+
+/// In H³ the path itself is ill-conditioned: a turn of `ε` at the start moves the end by
+/// `cond = ε e^(λ n)` after `n` steps, `λ` the path's growth rate per step (measured from
+/// the conditioning at half way and at the end). One rounding of `ε` per step carried to the
+/// end adds up to `cond · √(1/(2λ))` when the roundings are independent (random steps) and
+/// to `cond / λ` when every step rounds alike (a straight walk). The player's drift stays
+/// within 4× that limit, on a random walk of 8192 steps (before the conditioning reaches the
+/// cell's size) and a straight walk of 256 steps (12.7 inradii, through a dozen faces).
+#[test]
+fn the_player_drifts_at_the_conditioning_limit_in_hyperbolic_space() {
+    for id in ["seifert-weber", "mirrored-dodecahedron"] {
+        let space = seed_space(id).unwrap();
+        for (steps, straight) in [(8192, false), (256, true)] {
+            let ((position, orientation), conditioning) =
+                player_path(&space, steps, straight, true);
+            let (half, end) = conditioning.unwrap();
+            let rate = ((end / half).ln() / (steps / 2) as f64).max(1.0 / steps as f64);
+            // Random steps round independently (they add up as a random walk); straight
+            // steps round the same way every time (they add up in step).
+            let limit = if straight {
+                end / rate
+            } else {
+                end * (1.0 / (2.0 * rate)).sqrt()
+            };
+            eprintln!(
+                "{id} {steps} steps{}: drift {:.2e}, limit {limit:.2e} ({:.2}×)",
+                if straight { " straight" } else { "" },
+                position.max(orientation),
+                position.max(orientation) / limit
+            );
+            assert!(
+                position.max(orientation) <= 4.0 * limit,
+                "{id} ({} {steps} steps): drift {position:.2e} / {orientation:.2e}, \
+                 conditioning {end:.2e}, growth {rate:.2e} per step, limit {limit:.2e}",
+                if straight { "straight" } else { "random" }
+            );
+            assert!(
+                end < 1e-6,
+                "{id}: the path saturated ({end:.2e}); shorten it"
+            );
+        }
+    }
+}
