@@ -69,6 +69,7 @@
 pub mod bench;
 pub(crate) mod colour;
 pub mod components;
+pub mod files;
 pub mod geometry;
 pub mod headset;
 pub mod offscreen;

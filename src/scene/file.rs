@@ -194,10 +194,12 @@ fn one() -> f64 {
 /// Reads a scene file.
 pub fn load_scene_file(path: &Path) -> Result<SceneFile, SceneFileError> {
     let name = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| SceneFileError {
-        file: name.clone(),
-        line: None,
-        message: format!("cannot read the scene file: {e}"),
+    let text = crate::files::read_text(path, crate::files::MAX_SCENE_FILE_BYTES).map_err(|e| {
+        SceneFileError {
+            file: name.clone(),
+            line: None,
+            message: format!("cannot read the scene file: {e}"),
+        }
     })?;
     let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
     parse_scene(&text, &base, &name)

@@ -167,10 +167,13 @@ impl SpaceRecord {
 /// Reads, parses and validates a space file.
 pub fn load_space_file(path: &Path) -> Result<Space, SpaceFileError> {
     let name = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|source| SpaceFileError::Io {
-        path: name.clone(),
-        source,
-    })?;
+    let text =
+        crate::files::read_text(path, crate::files::MAX_SPACE_FILE_BYTES).map_err(|source| {
+            SpaceFileError::Io {
+                path: name.clone(),
+                source,
+            }
+        })?;
     let record: SpaceRecord =
         serde_json::from_str(&text).map_err(|source| SpaceFileError::Json {
             path: name.clone(),

@@ -381,6 +381,21 @@ fn bad_scene_files_get_errors_naming_the_line_and_the_problem() {
         err.to_string().contains("cannot read the scene file"),
         "{err}"
     );
+    // A directory, /dev/zero (endless) and a sparse file over the limit are refused before
+    // anything is read.
+    let err = load_scene_file(&dir).expect_err("a directory");
+    assert!(err.to_string().contains("a directory"), "{err}");
+    if std::path::Path::new("/dev/zero").exists() {
+        let err = load_scene_file(std::path::Path::new("/dev/zero")).expect_err("/dev/zero");
+        assert!(err.to_string().contains("not a regular file"), "{err}");
+    }
+    let huge = dir.join("huge.toml");
+    std::fs::File::create(&huge)
+        .expect("create")
+        .set_len(bevy_curved_spaces::files::MAX_SCENE_FILE_BYTES + 1)
+        .expect("grow");
+    let err = load_scene_file(&huge).expect_err("too large");
+    assert!(err.to_string().contains("more than the limit"), "{err}");
 }
 
 #[test]

@@ -589,3 +589,41 @@ mod hostile_files {
         }
     }
 }
+
+/// What is not a regular file of at most `MAX_SPACE_FILE_BYTES` is refused before anything
+/// is read: a directory, a FIFO (which would block), `/dev/zero` (which never ends) and a
+/// (sparse) file one byte over the limit, each with its own message.
+#[test]
+fn space_files_that_are_not_regular_or_too_large_are_refused_at_once() {
+    use bevy_curved_spaces::files::MAX_SPACE_FILE_BYTES;
+    let dir = crate::common::scratch_dir("space-files-special");
+    let refused = |path: &std::path::Path, expect: &str| {
+        let started = std::time::Instant::now();
+        let e = load_space_file(path).expect_err("refused").to_string();
+        assert!(e.contains(expect), "{}: {e}", path.display());
+        assert!(e.contains(&path.display().to_string()), "{e}");
+        assert!(
+            started.elapsed().as_secs_f64() < 5.0,
+            "{}: slow",
+            path.display()
+        );
+    };
+    refused(&dir, "a directory");
+    if std::path::Path::new("/dev/zero").exists() {
+        refused(std::path::Path::new("/dev/zero"), "not a regular file");
+    }
+    let fifo = dir.join("fifo.json");
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+    if made.is_ok_and(|s| s.success()) {
+        refused(&fifo, "not a regular file");
+    }
+    let huge = dir.join("huge.json");
+    std::fs::File::create(&huge)
+        .unwrap()
+        .set_len(MAX_SPACE_FILE_BYTES + 1)
+        .unwrap();
+    refused(&huge, "more than the limit");
+    let binary = dir.join("binary.json");
+    std::fs::write(&binary, [0xff, 0xfe, 0x00, 0x80]).unwrap();
+    refused(&binary, "not UTF-8");
+}
