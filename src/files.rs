@@ -12,9 +12,22 @@ pub const MAX_SPACE_FILE_BYTES: u64 = 4 << 20;
 /// The largest scene file read (bytes).
 pub const MAX_SCENE_FILE_BYTES: u64 = 16 << 20;
 
+/// The largest model (`.glb`, `.gltf`, or a buffer or image file it names) read (bytes).
+pub const MAX_MODEL_BYTES: u64 = 512 << 20;
+
 /// The text of a regular file of at most `limit` bytes; anything else is an error that
 /// says what the path is instead, or how large it is against the limit.
 pub(crate) fn read_text(path: &Path, limit: u64) -> Result<String, Error> {
+    String::from_utf8(read_bytes(path, limit)?).map_err(|e| {
+        Error::new(
+            ErrorKind::InvalidData,
+            format!("it is not UTF-8 text ({e})"),
+        )
+    })
+}
+
+/// Checks that `path` is a regular file of at most `limit` bytes without reading it.
+pub(crate) fn check_regular(path: &Path, limit: u64) -> Result<u64, Error> {
     let meta = std::fs::metadata(path)?;
     if !meta.is_file() {
         let kind = if meta.is_dir() {
@@ -24,27 +37,29 @@ pub(crate) fn read_text(path: &Path, limit: u64) -> Result<String, Error> {
         };
         return Err(Error::new(ErrorKind::InvalidInput, format!("it is {kind}")));
     }
-    let too_large = |size: u64| {
-        Error::new(
-            ErrorKind::InvalidData,
-            format!("it is {size} bytes, more than the limit of {limit} bytes"),
-        )
-    };
     if meta.len() > limit {
-        return Err(too_large(meta.len()));
+        return Err(too_large(meta.len(), limit));
     }
+    Ok(meta.len())
+}
+
+fn too_large(size: u64, limit: u64) -> Error {
+    Error::new(
+        ErrorKind::InvalidData,
+        format!("it is {size} bytes, more than the limit of {limit} bytes"),
+    )
+}
+
+/// The bytes of a regular file of at most `limit` bytes (see [`read_text`]).
+pub(crate) fn read_bytes(path: &Path, limit: u64) -> Result<Vec<u8>, Error> {
+    let size = check_regular(path, limit)?;
     // The file may grow between the check and the read: read one byte past the limit at most.
-    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    let mut bytes = Vec::with_capacity(size as usize);
     std::fs::File::open(path)?
         .take(limit + 1)
         .read_to_end(&mut bytes)?;
     if bytes.len() as u64 > limit {
-        return Err(too_large(bytes.len() as u64));
+        return Err(too_large(bytes.len() as u64, limit));
     }
-    String::from_utf8(bytes).map_err(|e| {
-        Error::new(
-            ErrorKind::InvalidData,
-            format!("it is not UTF-8 text ({e})"),
-        )
-    })
+    Ok(bytes)
 }

@@ -8,11 +8,29 @@ use super::texture::{Texture, TextureError};
 use glam::{DMat3, DMat4, DVec2, DVec3};
 use std::path::Path;
 
+/// The most node instances a model's scene may expand to (a node reached along several
+/// paths counts once per path).
+pub const MAX_NODE_INSTANCES: usize = 100_000;
+
+/// The most triangles a model may have, over all its node instances.
+pub const MAX_MODEL_TRIANGLES: usize = 4_000_000;
+
 /// A model could not be read.
 // The fields of a variant are the values its message names.
 #[allow(missing_docs)]
 #[derive(Debug, thiserror::Error)]
 pub enum GltfError {
+    /// Cannot read `what` of the glTF `path`: `source` (not a regular file, too large, …).
+    #[error("cannot read {what} of the glTF {path}: {source}")]
+    File {
+        path: String,
+        what: String,
+        #[source]
+        source: std::io::Error,
+    },
+    /// The glTF `path` is malformed: `problem`.
+    #[error("the glTF {path}: {problem}")]
+    Malformed { path: String, problem: String },
     /// Cannot read the glTF `path`: `source`.
     #[error("cannot read the glTF {path}: {source}")]
     Read {
@@ -67,27 +85,7 @@ pub enum GltfError {
 /// a model with no triangles at all is an error.
 pub fn load(path: &Path) -> Result<Model, GltfError> {
     let name = path.display().to_string();
-    let (document, buffers, images) = gltf::import(path).map_err(|source| {
-        // The reader checks that every primitive has positions: name that plainly.
-        if let gltf::Error::Validation(errors) = &source
-            && let Some((at, _)) = errors
-                .iter()
-                .find(|(at, _)| at.as_str().ends_with("[\"POSITION\"]"))
-        {
-            let at = at.as_str();
-            return GltfError::MissingPositions {
-                path: name.clone(),
-                at: at
-                    .strip_suffix(".attributes[\"POSITION\"]")
-                    .unwrap_or(at)
-                    .to_string(),
-            };
-        }
-        GltfError::Read {
-            path: name.clone(),
-            source,
-        }
-    })?;
+    let (document, buffers, images) = import(path, &name)?;
     let textures = images
         .iter()
         .enumerate()
@@ -138,6 +136,27 @@ pub fn load(path: &Path) -> Result<Model, GltfError> {
     let default_material = materials.len() as u32;
     materials.push(SurfaceMaterial::default());
 
+    let source = scene_meshes(&document, &buffers, &name, default_material)?;
+    if source.indices.is_empty() {
+        return Err(GltfError::NoTriangles { path: name });
+    }
+    Ok(Model {
+        source,
+        materials,
+        textures,
+    })
+}
+
+/// Every triangle primitive of the document's scene (its default scene, else its first, else
+/// all nodes), node transforms applied; node cycles, too many node instances or triangles,
+/// attributes of the wrong type and non-finite numbers are errors.
+fn scene_meshes(
+    document: &gltf::Document,
+    buffers: &[gltf::buffer::Data],
+    name: &str,
+    default_material: u32,
+) -> Result<MeshSource, GltfError> {
+    let name = name.to_string();
     let mut source = MeshSource::default();
     let roots: Vec<gltf::Node> = match document
         .default_scene()
@@ -146,10 +165,37 @@ pub fn load(path: &Path) -> Result<Model, GltfError> {
         Some(scene) => scene.nodes().collect(),
         None => document.nodes().collect(),
     };
-    let mut stack: Vec<(gltf::Node, DMat4)> =
-        roots.into_iter().map(|n| (n, DMat4::IDENTITY)).collect();
-    while let Some((node, parent)) = stack.pop() {
+    let malformed = |problem: String| GltfError::Malformed {
+        path: name.clone(),
+        problem,
+    };
+    // Depth-first, with the path from the root: a node among its own ancestors is a cycle.
+    let mut stack: Vec<(gltf::Node, DMat4, usize)> =
+        roots.into_iter().map(|n| (n, DMat4::IDENTITY, 0)).collect();
+    let mut ancestors: Vec<usize> = Vec::new();
+    let mut instances = 0usize;
+    while let Some((node, parent, depth)) = stack.pop() {
+        ancestors.truncate(depth);
+        if ancestors.contains(&node.index()) {
+            return Err(malformed(format!(
+                "node {} is its own descendant (the node hierarchy has a cycle)",
+                node.index()
+            )));
+        }
+        ancestors.push(node.index());
+        instances += 1;
+        if instances > MAX_NODE_INSTANCES {
+            return Err(malformed(format!(
+                "its scene expands to more than {MAX_NODE_INSTANCES} node instances"
+            )));
+        }
         let local = DMat4::from_cols_array_2d(&node.transform().matrix().map(|c| c.map(f64::from)));
+        if !local.is_finite() {
+            return Err(malformed(format!(
+                "node {} has a transform that is not finite",
+                node.index()
+            )));
+        }
         let world = parent * local;
         let normal_matrix = DMat3::from_mat4(world).inverse().transpose();
         if let Some(mesh) = node.mesh() {
@@ -158,6 +204,9 @@ pub fn load(path: &Path) -> Result<Model, GltfError> {
                 if primitive.mode() != gltf::mesh::Mode::Triangles {
                     continue;
                 }
+                check_attribute_types(&primitive).map_err(|problem| {
+                    malformed(format!("mesh {mesh_name:?}, primitive {pi}: {problem}"))
+                })?;
                 let reader = primitive.reader(|b| buffers.get(b.index()).map(|d| &d.0[..]));
                 let positions: Vec<DVec3> = reader
                     .read_positions()
@@ -202,6 +251,16 @@ pub fn load(path: &Path) -> Result<Model, GltfError> {
                     .map(|c| [c[0], c[1], c[2]])
                     .collect();
                 let n = triangles.len();
+                if source.indices.len() + n > MAX_MODEL_TRIANGLES {
+                    return Err(malformed(format!(
+                        "it has more than {MAX_MODEL_TRIANGLES} triangles over its node instances"
+                    )));
+                }
+                if let Some(p) = positions.iter().find(|p| !p.is_finite()) {
+                    return Err(malformed(format!(
+                        "mesh {mesh_name:?}, primitive {pi} has a vertex at {p} (not finite)"
+                    )));
+                }
                 source.append(MeshSource {
                     positions,
                     normals: normals.filter(|n| n.len() == count),
@@ -211,16 +270,270 @@ pub fn load(path: &Path) -> Result<Model, GltfError> {
                 });
             }
         }
-        stack.extend(node.children().map(|c| (c, world)));
+        stack.extend(node.children().map(|c| (c, world, depth + 1)));
     }
-    if source.indices.is_empty() {
-        return Err(GltfError::NoTriangles { path: name });
-    }
-    Ok(Model {
+    Ok(source)
+}
+
+/// What `gltf::import` does, made safe for any input: the file and every buffer or image
+/// file it names are read only when regular and within [`crate::files::MAX_MODEL_BYTES`];
+/// the GLB header is checked before the `gltf` crate does arithmetic on it; every buffer
+/// view and accessor is checked against its buffer before anything indexes into it.
+fn import(
+    path: &Path,
+    name: &str,
+) -> Result<
+    (
+        gltf::Document,
+        Vec<gltf::buffer::Data>,
+        Vec<gltf::image::Data>,
+    ),
+    GltfError,
+> {
+    use crate::files::{MAX_MODEL_BYTES, check_regular, read_bytes};
+    let malformed = |problem: String| GltfError::Malformed {
+        path: name.to_string(),
+        problem,
+    };
+    let file_error = |what: &str, source| GltfError::File {
+        path: name.to_string(),
+        what: what.to_string(),
         source,
-        materials,
-        textures,
-    })
+    };
+    let bytes = read_bytes(path, MAX_MODEL_BYTES).map_err(|e| file_error("the file", e))?;
+    if bytes.starts_with(b"glTF") {
+        let declared = bytes
+            .get(8..12)
+            .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]));
+        match declared {
+            Some(length) if (12..=bytes.len() as u64).contains(&u64::from(length)) => {}
+            Some(length) => {
+                return Err(malformed(format!(
+                    "its GLB header gives a length of {length} bytes; the file has {}",
+                    bytes.len()
+                )));
+            }
+            None => return Err(malformed("its GLB header is cut short".into())),
+        }
+    }
+    let gltf::Gltf { document, mut blob } = gltf::Gltf::from_slice(&bytes).map_err(|source| {
+        // The reader checks that every primitive has positions: name that plainly.
+        if let gltf::Error::Validation(errors) = &source
+            && let Some((at, _)) = errors
+                .iter()
+                .find(|(at, _)| at.as_str().ends_with("[\"POSITION\"]"))
+        {
+            let at = at.as_str();
+            return GltfError::MissingPositions {
+                path: name.to_string(),
+                at: at
+                    .strip_suffix(".attributes[\"POSITION\"]")
+                    .unwrap_or(at)
+                    .to_string(),
+            };
+        }
+        GltfError::Read {
+            path: name.to_string(),
+            source,
+        }
+    })?;
+    let base = path.parent().unwrap_or(Path::new("."));
+    let read_error = |source| GltfError::Read {
+        path: name.to_string(),
+        source,
+    };
+    let mut buffers = Vec::new();
+    for buffer in document.buffers() {
+        let data = match buffer.source() {
+            gltf::buffer::Source::Uri(uri) if !uri.starts_with("data:") => {
+                let file = external_file(base, uri).ok_or_else(|| {
+                    malformed(format!(
+                        "buffer {} names {uri:?}, not a file",
+                        buffer.index()
+                    ))
+                })?;
+                let mut data = read_bytes(&file, MAX_MODEL_BYTES)
+                    .map_err(|e| file_error(&format!("buffer {} ({uri})", buffer.index()), e))?;
+                data.resize(data.len().next_multiple_of(4), 0);
+                gltf::buffer::Data(data)
+            }
+            source => gltf::buffer::Data::from_source_and_blob(source, Some(base), &mut blob)
+                .map_err(read_error)?,
+        };
+        if data.len() < buffer.length() {
+            return Err(malformed(format!(
+                "buffer {} declares {} bytes but holds {}",
+                buffer.index(),
+                buffer.length(),
+                data.len()
+            )));
+        }
+        buffers.push(data);
+    }
+    check_views_and_accessors(&document, &buffers).map_err(malformed)?;
+    let mut images = Vec::new();
+    for image in document.images() {
+        if let gltf::image::Source::Uri { uri, .. } = image.source()
+            && !uri.starts_with("data:")
+        {
+            let file = external_file(base, uri).ok_or_else(|| {
+                malformed(format!("image {} names {uri:?}, not a file", image.index()))
+            })?;
+            check_regular(&file, MAX_MODEL_BYTES)
+                .map_err(|e| file_error(&format!("image {} ({uri})", image.index()), e))?;
+        }
+        images.push(
+            gltf::image::Data::from_source(image.source(), Some(base), &buffers)
+                .map_err(read_error)?,
+        );
+    }
+    Ok((document, buffers, images))
+}
+
+/// The file a relative or `file:` URI names (percent-escapes decoded), as the `gltf` crate
+/// resolves it; `None` for any other scheme.
+fn external_file(base: &Path, uri: &str) -> Option<std::path::PathBuf> {
+    let decode = |s: &str| -> String {
+        let bytes = s.as_bytes();
+        let mut out = Vec::with_capacity(bytes.len());
+        let mut i = 0;
+        while i < bytes.len() {
+            let hex = |b: u8| (b as char).to_digit(16);
+            match (
+                bytes[i],
+                bytes.get(i + 1).copied(),
+                bytes.get(i + 2).copied(),
+            ) {
+                (b'%', Some(h), Some(l)) if hex(h).is_some() && hex(l).is_some() => {
+                    out.push((hex(h).unwrap_or(0) * 16 + hex(l).unwrap_or(0)) as u8);
+                    i += 3;
+                }
+                (b, _, _) => {
+                    out.push(b);
+                    i += 1;
+                }
+            }
+        }
+        String::from_utf8_lossy(&out).into_owned()
+    };
+    if let Some(rest) = uri
+        .strip_prefix("file://")
+        .or_else(|| uri.strip_prefix("file:"))
+    {
+        Some(std::path::PathBuf::from(rest))
+    } else if uri.contains(':') {
+        None
+    } else {
+        Some(base.join(decode(uri)))
+    }
+}
+
+/// Every buffer view inside its buffer, every accessor (and sparse part) inside its view.
+fn check_views_and_accessors(
+    document: &gltf::Document,
+    buffers: &[gltf::buffer::Data],
+) -> Result<(), String> {
+    for view in document.views() {
+        let held = buffers.get(view.buffer().index()).map_or(0, |b| b.len());
+        let end = view.offset().checked_add(view.length());
+        if end.is_none_or(|end| end > held) {
+            return Err(format!(
+                "buffer view {} spans bytes {}..{} of buffer {}, which holds {held}",
+                view.index(),
+                view.offset(),
+                end.map_or_else(|| "overflow".to_string(), |e| e.to_string()),
+                view.buffer().index()
+            ));
+        }
+    }
+    let fits = |view: &gltf::buffer::View, offset: usize, count: usize, element: usize| {
+        let stride = view.stride().unwrap_or(element).max(element);
+        count == 0
+            || stride
+                .checked_mul(count - 1)
+                .and_then(|s| s.checked_add(offset))
+                .and_then(|s| s.checked_add(element))
+                .is_some_and(|end| end <= view.length())
+    };
+    for accessor in document.accessors() {
+        let element = accessor.size();
+        if let Some(view) = accessor.view()
+            && !fits(&view, accessor.offset(), accessor.count(), element)
+        {
+            return Err(format!(
+                "accessor {} ({} elements of {element} bytes from byte {}) does not fit in buffer view {} ({} bytes)",
+                accessor.index(),
+                accessor.count(),
+                accessor.offset(),
+                view.index(),
+                view.length()
+            ));
+        }
+        if let Some(sparse) = accessor.sparse() {
+            let indices = sparse.indices();
+            let values = sparse.values();
+            let index_size = indices.index_type().size();
+            if !fits(
+                &indices.view(),
+                indices.offset(),
+                sparse.count(),
+                index_size,
+            ) || !fits(&values.view(), values.offset(), sparse.count(), element)
+            {
+                return Err(format!(
+                    "the sparse part of accessor {} does not fit in its buffer views",
+                    accessor.index()
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Positions and normals must be float triples, texture coordinates float or normalised
+/// 8/16-bit pairs, indices unsigned scalars: anything else would be read as something it
+/// is not.
+fn check_attribute_types(primitive: &gltf::Primitive) -> Result<(), String> {
+    use gltf::Semantic;
+    use gltf::accessor::{DataType, Dimensions};
+    for (semantic, accessor) in primitive.attributes() {
+        let (ty, dims, normalised) = (
+            accessor.data_type(),
+            accessor.dimensions(),
+            accessor.normalized(),
+        );
+        let ok = match semantic {
+            Semantic::Positions | Semantic::Normals => {
+                ty == DataType::F32 && dims == Dimensions::Vec3
+            }
+            Semantic::TexCoords(_) => {
+                dims == Dimensions::Vec2
+                    && (ty == DataType::F32
+                        || (normalised && matches!(ty, DataType::U8 | DataType::U16)))
+            }
+            _ => true,
+        };
+        if !ok {
+            return Err(format!(
+                "its {semantic:?} are {}{ty:?} {dims:?}, which glTF does not allow there",
+                if normalised { "normalised " } else { "" }
+            ));
+        }
+    }
+    if let Some(indices) = primitive.indices()
+        && (indices.dimensions() != Dimensions::Scalar
+            || !matches!(
+                indices.data_type(),
+                DataType::U8 | DataType::U16 | DataType::U32
+            ))
+    {
+        return Err(format!(
+            "its indices are {:?} {:?}, not unsigned integers",
+            indices.data_type(),
+            indices.dimensions()
+        ));
+    }
+    Ok(())
 }
 
 /// What [`write_glb`] writes: one mesh of one primitive with one material.

@@ -8,5 +8,6 @@ mod common;
 
 mod cli;
 mod gpu;
+mod hostile_models;
 mod scenes;
 mod shaders;
