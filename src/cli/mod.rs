@@ -87,7 +87,7 @@ struct TraceArgs {
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true, default_value = "0,0,0")]
     from: DVec3,
     /// Stop after this many face crossings (at most 10⁶).
-    #[arg(long, value_parser = parse_crossings)]
+    #[arg(long, value_parser = parse_crossings, allow_negative_numbers = true)]
     crossings: Option<usize>,
     /// Stop at this geodesic distance (at most 10⁶).
     #[arg(long, value_parser = parse_distance, allow_hyphen_values = true)]
@@ -109,7 +109,7 @@ struct RenderArgs {
     #[arg(long)]
     cpu: bool,
     /// Image size, WIDTHxHEIGHT.
-    #[arg(long, value_parser = parse_size, default_value = DEFAULT_SIZE)]
+    #[arg(long, value_parser = parse_size, default_value = DEFAULT_SIZE, allow_hyphen_values = true)]
     size: (u32, u32),
     /// Output PNG file.
     #[arg(long, default_value = DEFAULT_OUT)]
@@ -119,10 +119,10 @@ struct RenderArgs {
     fog: Option<f64>,
     /// Crossing budget per ray (at most 10⁶; default: the smallest that reaches the fog
     /// cut-off for every sampled ray, chosen automatically).
-    #[arg(long, value_parser = parse_crossings)]
+    #[arg(long, value_parser = parse_crossings, allow_negative_numbers = true)]
     crossings: Option<usize>,
     /// Vertical field of view in degrees.
-    #[arg(long, default_value_t = DEFAULT_FOV, value_parser = parse_fov)]
+    #[arg(long, default_value_t = DEFAULT_FOV, value_parser = parse_fov, allow_negative_numbers = true)]
     fov: f64,
     /// Camera position in the chart (default: a view past the centre ball).
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true, requires = "look_at")]
@@ -137,7 +137,7 @@ struct RenderArgs {
     #[arg(long, conflicts_with = "space")]
     scene: Option<PathBuf>,
     /// The scene's clock in seconds (turns spinning globes).
-    #[arg(long, default_value_t = 0.0, value_parser = parse_time)]
+    #[arg(long, default_value_t = 0.0, value_parser = parse_time, allow_negative_numbers = true)]
     time: f64,
 }
 
@@ -183,10 +183,10 @@ struct BenchArgs {
     #[arg(long, value_delimiter = ',')]
     spaces: Option<Vec<String>>,
     /// Crossing budgets of the sweep (comma-separated; default 2,4,8,16,32,64).
-    #[arg(long, value_delimiter = ',', value_parser = clap::value_parser!(u32).range(1..=4096))]
+    #[arg(long, value_delimiter = ',', value_parser = clap::value_parser!(u32).range(1..=4096), allow_negative_numbers = true)]
     budgets: Option<Vec<u32>>,
     /// Timed resolutions (comma-separated WIDTHxHEIGHT; default 320x180,640x360,1280x720).
-    #[arg(long, value_delimiter = ',', value_parser = parse_size)]
+    #[arg(long, value_delimiter = ',', value_parser = parse_size, allow_hyphen_values = true)]
     sizes: Option<Vec<(u32, u32)>>,
     /// Skip the GPU: only the CPU measurements (f32 drift, fog cut-off, automatic budgets).
     #[arg(long)]
@@ -209,7 +209,7 @@ struct WalkArgs {
     #[arg(long, value_parser = parse_positive, allow_hyphen_values = true)]
     fog: Option<f64>,
     /// Crossing budget per ray, 1 to 1024 (default: automatic, from the fog and the quality).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024), allow_negative_numbers = true)]
     crossings: Option<u32>,
     /// Start without the panel (F1 shows it).
     #[arg(long)]

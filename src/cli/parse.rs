@@ -27,12 +27,18 @@ pub(super) fn parse_vec3(s: &str) -> Result<DVec3, String> {
     Ok(DVec3::from_array(v))
 }
 
+/// The largest scene clock accepted (seconds, either sign): a spinning globe's angle is
+/// the time times its rate, and past this it would lose every digit of its fraction.
+pub(super) const MAX_TIME: f64 = 1e9;
+
 pub(super) fn parse_time(s: &str) -> Result<f64, String> {
     s.trim()
         .parse::<f64>()
         .ok()
-        .filter(|t| t.is_finite())
-        .ok_or_else(|| format!("expected a time in seconds, got {s:?}"))
+        .filter(|t| t.is_finite() && t.abs() <= MAX_TIME)
+        .ok_or_else(|| {
+            format!("expected a time in seconds from -{MAX_TIME:e} to {MAX_TIME:e}, got `{s}`")
+        })
 }
 
 pub(super) fn parse_positive(s: &str) -> Result<f64, String> {

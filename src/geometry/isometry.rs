@@ -172,7 +172,7 @@ impl Geometry {
         let p = self.from_chart(eye)?;
         let q = self.from_chart(target)?;
         let gap = target - eye;
-        if gap.length_squared() == 0.0 {
+        if gap == DVec3::ZERO {
             return Err(super::GeometryError::ZeroDirection(gap.x, gap.y, gap.z));
         }
         let back = -self.tangent_towards(p, q);

@@ -42,14 +42,14 @@ pub const ORIGIN: DVec4 = DVec4::new(0.0, 0.0, 0.0, 1.0);
 pub enum GeometryError {
     /// A chart point (attached) is not in hyperbolic space: the Klein model needs |x| < 1.
     #[error(
-        "chart point ({0}, {1}, {2}) is not in hyperbolic space: the Klein model needs |x| < 1"
+        "chart point ({0:?}, {1:?}, {2:?}) is not in hyperbolic space: the Klein model needs |x| < 1"
     )]
     OutsideKleinBall(f64, f64, f64),
     /// A chart point (attached) is not finite.
-    #[error("chart point ({0}, {1}, {2}) is not finite")]
+    #[error("chart point ({0:?}, {1:?}, {2:?}) is not finite")]
     NotFinite(f64, f64, f64),
     /// A direction (attached) has zero length or is not finite.
-    #[error("direction ({0}, {1}, {2}) has zero length or is not finite")]
+    #[error("direction ({0:?}, {1:?}, {2:?}) has zero length or is not finite")]
     ZeroDirection(f64, f64, f64),
 }
 
@@ -230,12 +230,16 @@ impl Geometry {
     }
 
     /// The unit tangent at `p` whose chart direction is `dir`.
+    /// Any finite non-zero `dir` names a direction, however large or small its entries:
+    /// it is scaled by its largest entry before its length is taken (so `1e308` does not
+    /// overflow and `1e-320` does not underflow).
     pub fn tangent_from_chart(self, p: DVec4, dir: DVec3) -> Result<DVec4, GeometryError> {
-        let n = dir.length();
-        if !(n.is_finite() && n > 0.0) {
+        let largest = dir.abs().max_element();
+        if !(largest.is_finite() && largest > 0.0) {
             return Err(GeometryError::ZeroDirection(dir.x, dir.y, dir.z));
         }
-        Ok(self.unit_tangent(p, (dir / n).extend(0.0)))
+        let scaled = dir / largest;
+        Ok(self.unit_tangent(p, (scaled / scaled.length()).extend(0.0)))
     }
 
     /// The unit chart direction of the tangent `v` at `p`
@@ -249,6 +253,8 @@ impl Geometry {
     #[must_use]
     pub fn tangent_towards(self, p: DVec4, q: DVec4) -> DVec4 {
         let d = self.project_tangent(p, q - p);
+        // Scaled by its largest entry first: a far `q` (1e155 in E³) would overflow the form.
+        let d = d / d.abs().max_element();
         d / self.form(d, d).sqrt()
     }
 }

@@ -539,3 +539,107 @@ fn render_scene_files_and_name_their_mistakes() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// Negative numbers are values, not flags: the range check names what is wrong with them.
+#[test]
+fn negative_numbers_reach_their_range_checks() {
+    for (args, expect) in [
+        (&["--fov", "-70"][..], "expected an angle between 0 and 180"),
+        (&["--time", "-1e308"][..], "expected a time in seconds"),
+        (&["--size", "-5x3"][..], "expected WIDTHxHEIGHT"),
+        (&["--crossings", "-3"][..], "expected a whole number"),
+    ] {
+        let mut all = vec!["render", "torus", "--cpu"];
+        all.extend(args);
+        let out = run(&all);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{args:?} accepted");
+        assert!(err.contains(expect), "{args:?}: {err}");
+        assert!(!err.contains("unexpected argument"), "{args:?}: {err}");
+    }
+    // A negative time in range is a time like any other.
+    let dir = temp_dir("negative");
+    let png = dir.join("t.png");
+    let out = run(&[
+        "render",
+        "torus",
+        "--cpu",
+        "--size",
+        "16x9",
+        "--time",
+        "-5",
+        "--out",
+        png.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// Directions at the edges of f64 name the direction they point in, and a far look-at
+/// point looks the same way as a near one on the same line.
+#[test]
+fn extreme_directions_and_far_targets_are_directions_too() {
+    let along_x = json(&[
+        "trace",
+        "torus",
+        "--dir",
+        "1,0,0",
+        "--crossings",
+        "3",
+        "--json",
+    ]);
+    for dir in ["1e308,0,0", "1e-320,0,0", "5e-324,0,0"] {
+        let got = json(&["trace", "torus", "--dir", dir, "--crossings", "3", "--json"]);
+        assert_eq!(got, along_x, "--dir {dir}");
+    }
+    let diagonal = json(&[
+        "trace",
+        "torus",
+        "--dir",
+        "1,1,0",
+        "--crossings",
+        "3",
+        "--json",
+    ]);
+    let huge = json(&[
+        "trace",
+        "torus",
+        "--dir",
+        "1e308,1e308,0",
+        "--crossings",
+        "3",
+        "--json",
+    ]);
+    assert_eq!(huge, diagonal);
+    // The user's number is quoted as written, not as a 309-digit expansion.
+    let out = run(&["trace", "torus", "--dir", "0,0,0", "--crossings", "1"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("(0.0, 0.0, 0.0)"), "{err}");
+    let dir = temp_dir("far-look");
+    let picture = |target: &str| {
+        let png = dir.join(format!("{}.png", target.replace(',', "_")));
+        let out = run(&[
+            "render",
+            "torus",
+            "--cpu",
+            "--size",
+            "32x18",
+            "--eye",
+            "0,0,0",
+            "--look-at",
+            target,
+            "--out",
+            png.to_str().unwrap(),
+        ]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        image::open(&png).expect("a PNG").to_rgb8()
+    };
+    assert_eq!(picture("1e155,0,0"), picture("1,0,0"));
+}
