@@ -255,7 +255,9 @@ pub fn parse_scene(text: &str, base: &Path, file: &str) -> Result<SceneFile, Sce
         scene.shading.ambient = *a.get_ref();
     }
     if let Some(c) = spec.fog_colour {
-        scene.shading.fog_colour = DVec3::from_array(c).clamp(DVec3::ZERO, DVec3::ONE);
+        scene.shading.fog_colour = colour(c)
+            .map_err(|m| fail(None, format!("fog_colour: {m}")))?
+            .min(DVec3::ONE);
     }
     if !spec.lights.is_empty() {
         scene.lights.clear();
@@ -271,10 +273,17 @@ pub fn parse_scene(text: &str, base: &Path, file: &str) -> Result<SceneFile, Sce
             )));
         }
         let position = g.project_point(frame.w_axis);
+        let outside = space.outside_by(position);
+        if !(outside <= 1e-9) {
+            return Err(at(format!(
+                "the light is not inside the cell: its position is {outside:.3} (chart units) \
+                 past a face; lights are placed in the cell, and their images follow"
+            )));
+        }
         scene.lights.push(Light::new(
             &space,
             position,
-            colour(l.colour),
+            colour(l.colour).map_err(at)?,
             l.intensity * g.s(r).powi(2),
         ));
     }
@@ -384,8 +393,13 @@ fn resolve_space(id: &str, base: &Path) -> Result<Space, String> {
     ))
 }
 
-fn colour(c: [f64; 3]) -> DVec3 {
-    DVec3::from_array(c).max(DVec3::ZERO)
+/// A colour (or emission) from a file: finite, negative channels taken as 0.
+fn colour(c: [f64; 3]) -> Result<DVec3, String> {
+    let v = DVec3::from_array(c);
+    if !v.is_finite() {
+        return Err(format!("colours must be finite numbers, got {c:?}"));
+    }
+    Ok(v.max(DVec3::ZERO))
 }
 
 fn positive(name: &str, x: f64) -> Result<f64, String> {
@@ -407,17 +421,28 @@ fn point_of(space: &Space, place: &Place) -> Result<DVec4, String> {
         (p, None) => {
             let p = DVec3::from_array(p.unwrap_or_default());
             if !p.is_finite() {
-                return Err(format!("position {p} is not finite"));
+                return Err(format!("position {:?} is not finite", p.to_array()));
             }
             let d = p.length() * inradius(space);
             if g == Geometry::Spherical && d >= std::f64::consts::FRAC_PI_2 {
-                return Err(format!("position {p} is past the hemisphere of the cell"));
+                return Err(format!(
+                    "position {:?} is past the hemisphere of the cell",
+                    p.to_array()
+                ));
             }
-            Ok(if d > 0.0 {
+            let point = if d > 0.0 {
                 g.translation(p, d) * space.centre()
             } else {
                 space.centre()
-            })
+            };
+            if !point.is_finite() {
+                return Err(format!(
+                    "position {:?} is too far from the centre for {} space",
+                    p.to_array(),
+                    g.name()
+                ));
+            }
+            Ok(point)
         }
     }
 }
@@ -426,6 +451,17 @@ fn point_of(space: &Space, place: &Place) -> Result<DVec4, String> {
 fn frame_of(space: &Space, place: &Place) -> Result<DMat4, String> {
     let g = space.geometry;
     let point = point_of(space, place)?;
+    for (name, angle) in [
+        ("yaw", place.yaw),
+        ("pitch", place.pitch),
+        ("roll", place.roll),
+    ] {
+        if !angle.is_finite() {
+            return Err(format!(
+                "{name} must be a finite angle in degrees, got {angle}"
+            ));
+        }
+    }
     let turn = g.rotation(DVec3::Y, place.yaw.to_radians())
         * g.rotation(DVec3::X, place.pitch.to_radians())
         * g.rotation(DVec3::Z, place.roll.to_radians());
@@ -471,8 +507,8 @@ fn build_object(
         } => {
             let radius = positive("radius", *radius)? * r;
             Object::Ball(
-                Ball::new(g, point_of(space, at)?, radius, colour(*c))
-                    .with_emission(colour(*emission)),
+                Ball::new(g, point_of(space, at)?, radius, colour(*c)?)
+                    .with_emission(colour(*emission)?),
             )
         }
         ObjectSpec::Globe {
@@ -493,8 +529,8 @@ fn build_object(
                 return Err(format!("spin must be finite, got {spin}"));
             }
             Object::Ball(
-                Ball::new(g, centre, radius, colour(*c))
-                    .with_emission(colour(*emission))
+                Ball::new(g, centre, radius, colour(*c)?)
+                    .with_emission(colour(*emission)?)
                     .with_texture(BallTexture {
                         texture: scene.textures.len() as u32 - 1,
                         frame,
@@ -523,7 +559,7 @@ fn build_object(
             if g.distance(a, b) < 1e-9 {
                 return Err("the tube's ends are the same point".into());
             }
-            Object::Tube(Tube::new(g, a, b, radius, colour(*c)).with_emission(colour(*emission)))
+            Object::Tube(Tube::new(g, a, b, radius, colour(*c)?).with_emission(colour(*emission)?))
         }
         ObjectSpec::Disc {
             at,
@@ -538,7 +574,7 @@ fn build_object(
                 .tangent_from_chart(centre, DVec3::from_array(*normal))
                 .map_err(|e| format!("normal: {e}"))?;
             Object::Disc(
-                Disc::new(g, centre, n, radius, colour(*c)).with_emission(colour(*emission)),
+                Disc::new(g, centre, n, radius, colour(*c)?).with_emission(colour(*emission)?),
             )
         }
         ObjectSpec::Mesh {
@@ -574,9 +610,9 @@ fn build_object(
             let mut instance = MeshInstance::new(g, mesh, frame, radius);
             if c.is_some() || *emission != [0.0; 3] {
                 scene.materials.push(SurfaceMaterial {
-                    colour: colour(c.unwrap_or([1.0; 3])),
+                    colour: colour(c.unwrap_or([1.0; 3]))?,
                     texture: None,
-                    emission: colour(*emission),
+                    emission: colour(*emission)?,
                 });
                 instance.material = Some(scene.materials.len() as u32 - 1);
             }

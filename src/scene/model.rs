@@ -22,6 +22,10 @@ pub enum PlaceError {
     /// The object is not inside the cell: its centre is outside a face (by the distance, through the face, attached).
     #[error("the object is not inside the cell: its centre is {0:.3} outside face {1}")]
     Outside(f64, usize),
+    /// The object's centre or size is not a finite number (a position too far away for
+    /// the geometry, or NaN).
+    #[error("the object's centre or size is not a finite number (is it too far away?)")]
+    NotFinite,
     /// The object meets more than [`MAX_IMAGES`] copies of the cell.
     #[error(
         "the object meets more than {MAX_IMAGES} copies of the cell; make it smaller than the cell"
@@ -299,7 +303,10 @@ impl CurvedScene {
     /// (an edge of a neighbouring cell) is kept too; it costs time, never a wrong pixel.
     pub fn place(&mut self, space: &Space, object: Object) -> Result<usize, PlaceError> {
         let g = space.geometry;
-        let (centre, _) = object.bounding_ball(g);
+        let (centre, radius) = object.bounding_ball(g);
+        if !(centre.is_finite() && radius.is_finite()) {
+            return Err(PlaceError::NotFinite);
+        }
         let faces = space.faces.len();
         if let Some((f, d)) = (0..faces)
             .map(|f| (f, space.face_distance(f, centre)))

@@ -325,6 +325,37 @@ fn bad_scene_files_get_errors_naming_the_line_and_the_problem() {
             2,
             "not inside the cell",
         ),
+        // Numbers that are not numbers, or too large for the geometry.
+        (
+            "space = \"torus\"\n[[object]]\ntype = \"mesh\"\npath = \"cube.glb\"\nsize = 0.2\nyaw = nan\n",
+            2,
+            "yaw must be a finite angle",
+        ),
+        (
+            "space = \"torus\"\n[start]\nposition = [0, 0, 0]\nroll = inf\n",
+            2,
+            "roll must be a finite angle",
+        ),
+        (
+            "space = \"seifert-weber\"\n[[object]]\ntype = \"ball\"\nposition = [1e200, 0, 0]\nradius = 0.2\n",
+            2,
+            "too far from the centre",
+        ),
+        (
+            "space = \"torus\"\n[[object]]\ntype = \"ball\"\nposition = [1e200, 0, 0]\nradius = 0.2\n",
+            2,
+            "position [1e200, 0.0, 0.0] is too far",
+        ),
+        (
+            "space = \"torus\"\n[[light]]\nposition = [1000, 0, 0]\n",
+            2,
+            "the light is not inside the cell",
+        ),
+        (
+            "space = \"torus\"\n[[object]]\ntype = \"ball\"\nradius = 0.2\ncolour = [nan, 0, 0]\n",
+            2,
+            "colours must be finite",
+        ),
         (
             "space = \"torus\"\n\n\n[[object]]\ntype = \"mesh\"\npath = \"missing.glb\"\nsize = 0.3\n",
             4,
