@@ -29,23 +29,44 @@ pub(super) fn list() {
     }
 }
 
+/// A number for people: fixed point where that is readable, scientific notation for the
+/// very small and very large, and words where `f64` could not hold it.
+fn number(x: f64, digits: usize) -> String {
+    if !x.is_finite() {
+        return "larger than f64 can hold".to_string();
+    }
+    let a = x.abs();
+    if a == 0.0 || (1e-4..1e9).contains(&a) {
+        format!("{x:.digits$}")
+    } else {
+        format!("{x:.digits$e}")
+    }
+}
+
 pub(super) fn info(space: &Space, as_json: bool) -> Result<(), String> {
     let inv = Invariants::compute(space);
     if as_json {
+        let mut value = serde_json::to_value(&inv).map_err(|e| e.to_string())?;
+        // JSON has no infinity: a number f64 cannot hold is null, and a note says why.
+        if !inv.volume.is_finite() {
+            value["volume_note"] = serde_json::json!(
+                "the volume is larger than f64 can hold (1.8e308): the cell is too large"
+            );
+        }
         say!(
             "{}",
-            serde_json::to_string_pretty(&inv).map_err(|e| e.to_string())?
+            serde_json::to_string_pretty(&value).map_err(|e| e.to_string())?
         );
         return Ok(());
     }
-    let opt = |x: Option<f64>| x.map_or("–".to_string(), |x| format!("{x:.10}"));
+    let opt = |x: Option<f64>| x.map_or("–".to_string(), |x| number(x, 10));
     let opt_n = |x: Option<usize>| x.map_or("–".to_string(), |x| x.to_string());
     say!("{} ({})", inv.name, inv.geometry.name());
     say!("  {}", space.description());
     say!("  faces               {}", inv.faces.len());
-    say!("  volume              {:.12}", inv.volume);
-    say!("  inradius            {:.10}", inv.inradius);
-    say!("  circumradius        {:.10}", inv.circumradius);
+    say!("  volume              {}", number(inv.volume, 12));
+    say!("  inradius            {}", number(inv.inradius, 10));
+    say!("  circumradius        {}", number(inv.circumradius, 10));
     say!("  edge length         {}", opt(inv.edge_length));
     let cycles: Vec<String> = inv
         .edge_cycles
@@ -68,7 +89,11 @@ pub(super) fn info(space: &Space, as_json: bool) -> Result<(), String> {
         Some(list) if !list.is_empty() => {
             say!("  closed geodesics    length × count");
             for g in list {
-                say!("                      {:.10} × {}", g.length, g.count);
+                say!(
+                    "                      {} × {}",
+                    number(g.length, 10),
+                    g.count
+                );
             }
         }
         Some(_) => {}

@@ -85,7 +85,21 @@ pub enum SpaceFileError {
     /// Space file `path`: `source`.
     #[error("space file {path}: {source}")]
     Invalid { path: String, source: SpaceError },
+    /// Space file `path`: its `what` is `length` bytes, more than `limit`.
+    #[error("space file {path}: its {what} is {length} bytes long, more than the limit of {limit}")]
+    TooLong {
+        path: String,
+        what: &'static str,
+        length: usize,
+        limit: usize,
+    },
 }
+
+/// The longest space name a space file may give (bytes).
+pub const MAX_NAME_BYTES: usize = 256;
+
+/// The longest description a space file may give (bytes).
+pub const MAX_DESCRIPTION_BYTES: usize = 16 << 10;
 
 impl SpaceRecord {
     /// The record of a space (pairings written out as matrices).
@@ -121,6 +135,19 @@ impl SpaceRecord {
             face,
             reason: reason.to_string(),
         };
+        for (what, text, limit) in [
+            ("name", &self.name, MAX_NAME_BYTES),
+            ("description", &self.description, MAX_DESCRIPTION_BYTES),
+        ] {
+            if text.len() > limit {
+                return Err(SpaceFileError::TooLong {
+                    path: path.to_string(),
+                    what,
+                    length: text.len(),
+                    limit,
+                });
+            }
+        }
         let mut specs = Vec::with_capacity(self.faces.len());
         for (i, f) in self.faces.iter().enumerate() {
             let normal = DVec3::from_array(f.normal);

@@ -50,7 +50,30 @@ pub struct FaceSpec {
     pub pairing: Option<Pairing>,
 }
 
+/// The power of two nearest the largest face distance of a flat cell, when every offset
+/// and translation is finite (otherwise the checks report the bad face).
+fn flat_scale(specs: &[FaceSpec]) -> Option<f64> {
+    let largest = specs.iter().map(|f| f.offset.abs()).fold(0.0_f64, f64::max);
+    let finite = specs
+        .iter()
+        .all(|f| f.offset.is_finite() && f.pairing.is_none_or(|p| p.matrix.is_finite()));
+    (finite && largest > 0.0 && largest.is_finite())
+        .then(|| 2f64.powi(largest.log2().round() as i32))
+        .filter(|s| s.is_finite() && *s > 0.0)
+}
+
 impl FaceSpec {
+    /// The face of a flat cell scaled by `factor` (offset and the pairing's translation).
+    fn scaled(&self, factor: f64) -> Self {
+        let mut f = *self;
+        f.offset *= factor;
+        if let Some(p) = &mut f.pairing {
+            let t = p.matrix.w_axis.truncate() * factor;
+            p.matrix.w_axis = t.extend(p.matrix.w_axis.w);
+        }
+        f
+    }
+
     /// A face glued to `partner` by `matrix`.
     #[must_use]
     pub fn paired(normal: DVec3, offset: f64, partner: usize, matrix: DMat4) -> Self {
@@ -208,6 +231,43 @@ impl Space {
     /// angle sum `2π/k` and going once around it is an isometry of order `k`; for a
     /// manifold the vertex links are spheres (Euler characteristic 0).
     pub fn new(
+        name: impl Into<String>,
+        description: impl Into<String>,
+        geometry: Geometry,
+        specs: &[FaceSpec],
+    ) -> Result<Self, SpaceError> {
+        // A flat cell has no scale of its own, and the checks' tolerances are in chart
+        // units: build it at unit size (scaled by the power of two nearest its largest face
+        // distance, which is exact) and scale the result back.
+        if geometry == Geometry::Euclidean
+            && let Some(scale) = flat_scale(specs)
+            && scale != 1.0
+        {
+            let scaled: Vec<FaceSpec> = specs.iter().map(|f| f.scaled(1.0 / scale)).collect();
+            let mut space = Self::build(name, description, geometry, &scaled)?;
+            space.scale_flat(scale);
+            return Ok(space);
+        }
+        Self::build(name, description, geometry, specs)
+    }
+
+    /// Multiplies a flat space's lengths by `scale` (a power of two: exact).
+    fn scale_flat(&mut self, scale: f64) {
+        for face in &mut self.faces {
+            face.offset *= scale;
+            face.covector = face.normal.extend(-face.offset);
+            let t = face.pairing.w_axis.truncate() * scale;
+            face.pairing.w_axis = t.extend(1.0);
+        }
+        for v in &mut self.vertices {
+            *v *= scale;
+        }
+        for e in &mut self.edges {
+            e.length *= scale;
+        }
+    }
+
+    fn build(
         name: impl Into<String>,
         description: impl Into<String>,
         geometry: Geometry,

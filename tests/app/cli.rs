@@ -1,6 +1,6 @@
 //! The `curved-spaces` command line: outputs a script can rely on, and clear errors.
 
-use serde_json::Value;
+use serde_json::{Value, json};
 use std::process::{Command, Output};
 
 fn run(args: &[&str]) -> Output {
@@ -642,4 +642,41 @@ fn extreme_directions_and_far_targets_are_directions_too() {
         image::open(&png).expect("a PNG").to_rgb8()
     };
     assert_eq!(picture("1e155,0,0"), picture("1,0,0"));
+}
+
+/// `info` prints valid JSON whatever the space: a number f64 cannot hold is null with a
+/// note, a name longer than the limit is a clear error.
+#[test]
+fn info_is_valid_json_or_a_clear_error_at_the_edges() {
+    let dir = temp_dir("info-edges");
+    let exported = run(&["export", "torus"]);
+    assert!(exported.status.success());
+    let mut record: Value = serde_json::from_slice(&exported.stdout).expect("JSON");
+    let s = 2f64.powi(500);
+    for face in record["faces"].as_array_mut().unwrap() {
+        let offset = face["offset"].as_f64().unwrap();
+        face["offset"] = json!(offset * s);
+        for row in 0..3 {
+            let t = face["pairing"][row][3].as_f64().unwrap();
+            face["pairing"][row][3] = json!(t * s);
+        }
+    }
+    let huge = dir.join("huge.json");
+    std::fs::write(&huge, serde_json::to_vec(&record).unwrap()).unwrap();
+    let info = json(&["info", huge.to_str().unwrap(), "--json"]);
+    assert!(info["volume"].is_null(), "{info}");
+    assert!(
+        info["volume_note"]
+            .as_str()
+            .unwrap()
+            .contains("larger than f64")
+    );
+    assert!((info["inradius"].as_f64().unwrap() / (0.5 * s) - 1.0).abs() < 1e-14);
+    record["name"] = json!("x".repeat(300));
+    let long = dir.join("long.json");
+    std::fs::write(&long, serde_json::to_vec(&record).unwrap()).unwrap();
+    let out = run(&["info", long.to_str().unwrap(), "--json"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(err.contains("its name is 300 bytes long"), "{err}");
 }

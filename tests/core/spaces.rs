@@ -627,3 +627,56 @@ fn space_files_that_are_not_regular_or_too_large_are_refused_at_once() {
     std::fs::write(&binary, [0xff, 0xfe, 0x00, 0x80]).unwrap();
     refused(&binary, "not UTF-8");
 }
+
+/// The torus written as a space file scaled by `factor` (offsets and translations).
+fn scaled_torus(factor: f64) -> Result<Space, String> {
+    let mut record = serde_json::to_value(SpaceRecord::from_space(&space("torus"))).unwrap();
+    for face in record["faces"].as_array_mut().unwrap() {
+        let offset = face["offset"].as_f64().unwrap();
+        face["offset"] = serde_json::json!(offset * factor);
+        for row in 0..3 {
+            let t = face["pairing"][row][3].as_f64().unwrap();
+            face["pairing"][row][3] = serde_json::json!(t * factor);
+        }
+    }
+    let record: SpaceRecord = serde_json::from_value(record).unwrap();
+    record.build("scaled.json").map_err(|e| e.to_string())
+}
+
+/// A flat space is valid at any scale f64 holds (the checks' tolerances were absolute, and
+/// the torus at 2⁻²⁰ was "a redundant inequality"), its invariants scale with it, and a
+/// degenerate cell is still refused at any scale.
+#[test]
+fn flat_spaces_are_valid_at_any_scale() {
+    for k in [-40, -30, -20, -1, 1, 20, 300, 500] {
+        let s = 2f64.powi(k);
+        let torus = scaled_torus(s).unwrap_or_else(|e| panic!("2^{k}: {e}"));
+        assert!(close(inradius(&torus), 0.5 * s, 1e-14), "2^{k}");
+        assert!(close(edge_length(&torus).unwrap(), s, 1e-14), "2^{k}");
+        let v = volume(&torus);
+        if k <= 300 {
+            assert!(close(v, s * s * s, 1e-12), "2^{k}: volume {v}");
+        } else {
+            assert!(v.is_infinite(), "2^{k}: volume {v}");
+        }
+    }
+    // Two opposite faces at different distances: the translation does not map one onto the
+    // other, at any scale.
+    for k in [-30, 0, 300] {
+        let s = 2f64.powi(k);
+        let mut record = serde_json::to_value(SpaceRecord::from_space(&space("torus"))).unwrap();
+        record["faces"][0]["offset"] = serde_json::json!(0.75 * s);
+        for face in record["faces"].as_array_mut().unwrap().iter_mut().skip(1) {
+            let offset = face["offset"].as_f64().unwrap();
+            face["offset"] = serde_json::json!(offset * s);
+        }
+        for face in record["faces"].as_array_mut().unwrap() {
+            for row in 0..3 {
+                let t = face["pairing"][row][3].as_f64().unwrap();
+                face["pairing"][row][3] = serde_json::json!(t * s);
+            }
+        }
+        let record: SpaceRecord = serde_json::from_value(record).unwrap();
+        assert!(record.build("bad.json").is_err(), "2^{k}: accepted");
+    }
+}
