@@ -10,7 +10,7 @@ use crate::view::StereoMode;
 use crate::view::stereo::{HUMAN_IPD_METRES, default_ipd};
 use bevy::diagnostic::{DiagnosticsStore, FrameTimeDiagnosticsPlugin};
 use bevy::prelude::*;
-use bevy::render::view::screenshot::{Screenshot, save_to_disk};
+use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
 use bevy_egui::{EguiContexts, EguiPlugin, EguiPrimaryContextPass, egui};
 
 /// Whether the panel is shown.
@@ -170,9 +170,24 @@ fn take_screenshot(
         .map_or(0, |d| d.as_secs());
     let path = format!("curved-spaces-{}-{stamp}.png", active.id);
     info!("saving a screenshot to {path}");
-    commands
-        .spawn(Screenshot::primary_window())
-        .observe(save_to_disk(path));
+    commands.spawn(Screenshot::primary_window()).observe(
+        move |captured: On<ScreenshotCaptured>| {
+            // Written whole or not at all, and a failure is reported, not lost.
+            let written = captured
+                .image
+                .clone()
+                .try_into_dynamic()
+                .map_err(|e| e.to_string())
+                .and_then(|img| {
+                    crate::files::write_png(std::path::Path::new(&path), &img.to_rgb8())
+                        .map_err(|e| e.to_string())
+                });
+            match written {
+                Ok(()) => info!("wrote {path}"),
+                Err(e) => error!("cannot write the screenshot {path}: {e}"),
+            }
+        },
+    );
 }
 
 #[allow(clippy::too_many_arguments)]

@@ -126,20 +126,19 @@ pub fn write_chart(chart: &Chart, stem: &Path) -> Result<(), PlotError> {
         root.present()
             .map_err(|e| PlotError::Draw(chart.title.clone(), e.to_string()))?;
     }
-    image::save_buffer(
-        &png,
-        &buffer,
-        SIZE.0,
-        SIZE.1,
-        image::ExtendedColorType::Rgb8,
-    )
-    .map_err(|e| PlotError::Write(png.display().to_string(), e.to_string()))?;
+    let picture = image::RgbImage::from_raw(SIZE.0, SIZE.1, buffer)
+        .ok_or_else(|| PlotError::Draw(chart.title.clone(), "wrong buffer size".into()))?;
+    crate::files::write_png(&png, &picture)
+        .map_err(|e| PlotError::Write(png.display().to_string(), e.to_string()))?;
+    let mut text = String::new();
     {
-        let root = SVGBackend::new(&svg, SIZE).into_drawing_area();
+        let root = SVGBackend::with_string(&mut text, SIZE).into_drawing_area();
         draw(chart, &root)?;
         root.present()
             .map_err(|e| PlotError::Write(svg.display().to_string(), e.to_string()))?;
     }
+    crate::files::write_atomic(&svg, text.as_bytes())
+        .map_err(|e| PlotError::Write(svg.display().to_string(), e.to_string()))?;
     Ok(())
 }
 

@@ -23,7 +23,7 @@ pub fn write_report(
         "report": report,
     }))
     .map_err(|e| write_err(&json, &e))?;
-    std::fs::write(&json, body).map_err(|e| write_err(&json, &e))?;
+    crate::files::write_atomic(&json, body.as_bytes()).map_err(|e| write_err(&json, &e))?;
     written.push(json);
     let tables: [(&str, Vec<serde_json::Value>); 10] = [
         ("timings", to_values(&report.timings)),
@@ -39,11 +39,13 @@ pub fn write_report(
     ];
     for (name, rows) in tables {
         let path = dir.join(format!("{name}.csv"));
-        std::fs::write(&path, to_csv(&rows)).map_err(|e| write_err(&path, &e))?;
+        crate::files::write_atomic(&path, to_csv(&rows).as_bytes())
+            .map_err(|e| write_err(&path, &e))?;
         written.push(path);
     }
     let summary = dir.join("summary.md");
-    std::fs::write(&summary, summary_markdown(report)).map_err(|e| write_err(&summary, &e))?;
+    crate::files::write_atomic(&summary, summary_markdown(report).as_bytes())
+        .map_err(|e| write_err(&summary, &e))?;
     written.push(summary);
     for (stem, chart) in charts(report) {
         let path = dir.join(stem);

@@ -106,7 +106,7 @@ pub(super) fn export(space: &Space, out: Option<&Path>) -> Result<(), String> {
         serde_json::to_string_pretty(&SpaceRecord::from_space(space)).map_err(|e| e.to_string())?;
     match out {
         Some(path) => {
-            std::fs::write(path, text + "\n")
+            bevy_curved_spaces::files::write_atomic(path, (text + "\n").as_bytes())
                 .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
             say!("wrote {}", path.display());
         }

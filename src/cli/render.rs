@@ -263,7 +263,6 @@ fn save(image: &RgbImage, out: &Path) -> Result<(), String> {
         std::fs::create_dir_all(dir)
             .map_err(|e| format!("cannot create folder {}: {e}", dir.display()))?;
     }
-    image
-        .save(out)
+    bevy_curved_spaces::files::write_png(out, image)
         .map_err(|e| format!("cannot write {}: {e}", out.display()))
 }

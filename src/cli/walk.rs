@@ -41,7 +41,10 @@ pub(super) fn screenshot_then_exit(
                 .clone()
                 .try_into_dynamic()
                 .map_err(|e| e.to_string())
-                .and_then(|img| img.to_rgb8().save(&path).map_err(|e| e.to_string()));
+                .and_then(|img| {
+                    bevy_curved_spaces::files::write_png(&path, &img.to_rgb8())
+                        .map_err(|e| e.to_string())
+                });
             match saved {
                 Ok(()) => {
                     let shown = std::fs::canonicalize(&path).unwrap_or_else(|_| path.clone());

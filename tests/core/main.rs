@@ -7,6 +7,7 @@
 mod common;
 
 mod accuracy;
+mod files;
 mod geometry;
 mod hard_cases;
 mod headset;
