@@ -2,43 +2,45 @@
 
 use super::*;
 use bevy::prelude::*;
-use bevy_curved_spaces::geometry::Vector4;
-use bevy_curved_spaces::geometry::chart_ray;
-use bevy_curved_spaces::space::Space;
-use bevy_curved_spaces::space::{CellWalker, Limit, Trace};
+use bevy_curved_spaces::geometry::{Ray, Vector4, chart_ray};
+use bevy_curved_spaces::space::{CellWalker, Crossing, Limit, Space};
 use glam::{DVec4, Vec4};
 use serde_json::json;
 
-/// The trace in f64 whatever precision it ran in.
-pub(super) fn trace_f64<V: Vector4>(
+/// Walks the ray in precision `V`, handing each crossing (in f64) to `visit` as it
+/// happens; stops after [`MAX_WALK`] crossings whatever the limit. Returns the end, the
+/// distance, and whether the crossing cap stopped a distance-limited walk early.
+fn stream<V: Vector4>(
     space: &Space,
-    start: DVec4,
-    dir: DVec4,
+    start: Ray<DVec4>,
     limit: Limit,
-) -> Trace<DVec4> {
+    mut visit: impl FnMut(&Crossing<DVec4>) -> bool,
+) -> (Ray<DVec4>, f64, bool) {
     let walker = CellWalker::<V>::new(space);
-    let start = bevy_curved_spaces::geometry::Ray {
-        point: V::from_f64(start),
-        tangent: V::from_f64(dir),
-    };
-    let t = walker.trace(start, limit);
-    let ray = |r: bevy_curved_spaces::geometry::Ray<V>| bevy_curved_spaces::geometry::Ray {
+    let to_f64 = |r: Ray<V>| Ray {
         point: r.point.to_f64(),
         tangent: r.tangent.to_f64(),
     };
-    Trace {
-        crossings: t
-            .crossings
-            .iter()
-            .map(|c| bevy_curved_spaces::space::Crossing {
-                face: c.face,
-                distance: c.distance,
-                ray: ray(c.ray),
-            })
-            .collect(),
-        end: ray(t.end),
-        distance: t.distance,
-    }
+    let start = Ray {
+        point: V::from_f64(start.point),
+        tangent: V::from_f64(start.tangent),
+    };
+    let mut count = 0usize;
+    let mut capped = false;
+    let (end, distance) = walker.walk(start, limit, |c| {
+        count += 1;
+        let keep_on = visit(&Crossing {
+            face: c.face,
+            distance: c.distance,
+            ray: to_f64(c.ray),
+        });
+        if count >= MAX_WALK && matches!(limit, Limit::Distance(_)) {
+            capped = true;
+            return false;
+        }
+        keep_on
+    });
+    (to_f64(end), distance, capped)
 }
 
 pub(super) fn trace(args: &TraceArgs) -> Result<(), String> {
@@ -57,47 +59,28 @@ pub(super) fn trace(args: &TraceArgs) -> Result<(), String> {
         (None, Some(d)) => Limit::Distance(d),
         (None, None) => return Err("give --crossings N or --distance D".into()),
     };
-    let result = match args.precision {
-        Precision::F64 => trace_f64::<DVec4>(&space, start.point, start.tangent, limit),
-        Precision::F32 => trace_f64::<Vec4>(&space, start.point, start.tangent, limit),
-    };
     let chart = |p: DVec4| g.to_chart(p).to_array();
-    if args.json {
-        let crossings: Vec<_> = result
-            .crossings
-            .iter()
-            .map(|c| {
-                json!({
-                    "face_normal": space.faces()[c.face].normal.to_array(),
-                    "distance": c.distance,
-                    "point": chart(c.ray.point),
-                })
-            })
-            .collect();
-        let out = json!({
-            "crossings": crossings,
-            "end": {
-                "point": chart(result.end.point),
-                "direction": g.chart_direction(result.end.point, result.end.tangent).to_array(),
-                "distance": result.distance,
+    // Each crossing is printed as it is walked: any length runs in constant memory, and
+    // the JSON is written piece by piece (an array, then the end).
+    // The JSON item before the current one: it gets its comma once another follows.
+    let mut pending: Option<String> = None;
+    let mut index = 0usize;
+    let mut print = |c: &Crossing<DVec4>| {
+        index += 1;
+        if args.json {
+            let item = json!({
+                "face_normal": space.faces()[c.face].normal.to_array(),
+                "distance": c.distance,
+                "point": chart(c.ray.point),
+            });
+            if let Some(previous) = pending.replace(item.to_string()) {
+                say!("    {previous},");
             }
-        });
-        say!(
-            "{}",
-            serde_json::to_string_pretty(&out).map_err(|e| e.to_string())?
-        );
-    } else {
-        say!(
-            "{:>5} {:>5} {:>20}  entry point (chart)",
-            "#",
-            "face",
-            "distance"
-        );
-        for (i, c) in result.crossings.iter().enumerate() {
+        } else {
             let p = chart(c.ray.point);
             say!(
                 "{:>5} {:>5} {:>20.15}  ({:+.15}, {:+.15}, {:+.15})",
-                i + 1,
+                index,
                 c.face,
                 c.distance,
                 p[0],
@@ -105,14 +88,54 @@ pub(super) fn trace(args: &TraceArgs) -> Result<(), String> {
                 p[2]
             );
         }
-        let p = chart(result.end.point);
+        true
+    };
+    if args.json {
+        say!("{{\n  \"crossings\": [");
+    } else {
+        say!(
+            "{:>5} {:>5} {:>20}  entry point (chart)",
+            "#",
+            "face",
+            "distance"
+        );
+    }
+    let (end, distance, capped) = match args.precision {
+        Precision::F64 => stream::<DVec4>(&space, start, limit, &mut print),
+        Precision::F32 => stream::<Vec4>(&space, start, limit, &mut print),
+    };
+    let stopped = capped.then(|| {
+        format!(
+            "reaching distance {} needs more than {MAX_WALK} crossings, the most `trace` walks: \
+             stopped at distance {distance}",
+            args.distance.unwrap_or(distance)
+        )
+    });
+    if args.json {
+        if let Some(last) = pending.take() {
+            say!("    {last}");
+        }
+        let mut end = json!({
+            "point": chart(end.point),
+            "direction": g.chart_direction(end.point, end.tangent).to_array(),
+            "distance": distance,
+        });
+        if let Some(s) = &stopped {
+            end["stopped"] = json!(s);
+        }
+        say!("  ],\n  \"end\": {end}\n}}");
+    } else {
+        let p = chart(end.point);
         say!(
             "end at distance {:.15}: ({:+.15}, {:+.15}, {:+.15})",
-            result.distance,
+            distance,
             p[0],
             p[1],
             p[2]
         );
     }
-    Ok(())
+    match stopped {
+        Some(s) => Err(s),
+        None => Ok(()),
+    }
 }

@@ -215,18 +215,25 @@ impl<V: Vector4> CellWalker<V> {
         }
     }
 
-    /// Traces a ray through the cell until the limit, recording each crossing.
-    #[must_use]
-    pub fn trace(&self, start: Ray<V>, limit: Limit) -> Trace<V> {
+    /// Walks a ray through the cell until the limit, handing each crossing to `visit` as it
+    /// happens (nothing is kept, so a walk of any length runs in constant memory);
+    /// `visit` returning `false` stops the walk there. Returns where it stopped and the
+    /// distance walked.
+    pub fn walk(
+        &self,
+        start: Ray<V>,
+        limit: Limit,
+        mut visit: impl FnMut(&Crossing<V>) -> bool,
+    ) -> (Ray<V>, f64) {
         let mut ray = self.normalized(start);
-        let mut crossings = Vec::new();
+        let mut count = 0usize;
         let mut distance = 0.0;
         let mut skip = None;
         let max_crossings = match limit {
             Limit::Crossings(n) => n,
             Limit::Distance(_) => usize::MAX,
         };
-        while crossings.len() < max_crossings {
+        while count < max_crossings {
             let Some(exit) = self.exit(&ray, skip) else {
                 break;
             };
@@ -235,26 +242,35 @@ impl<V: Vector4> CellWalker<V> {
             if let Limit::Distance(d) = limit
                 && distance + length >= d
             {
-                ray = self.advance(&ray, d - distance);
-                distance = d;
-                return Trace {
-                    crossings,
-                    end: ray,
-                    distance,
-                };
+                return (self.advance(&ray, d - distance), d);
             }
             distance += length;
             ray = next;
             skip = Some(self.partners[exit.face]);
-            crossings.push(Crossing {
+            count += 1;
+            let crossing = Crossing {
                 face: exit.face,
                 distance,
                 ray,
-            });
+            };
+            if !visit(&crossing) {
+                break;
+            }
         }
+        (ray, distance)
+    }
+
+    /// Traces a ray through the cell until the limit, recording each crossing.
+    #[must_use]
+    pub fn trace(&self, start: Ray<V>, limit: Limit) -> Trace<V> {
+        let mut crossings = Vec::new();
+        let (end, distance) = self.walk(start, limit, |c| {
+            crossings.push(*c);
+            true
+        });
         Trace {
             crossings,
-            end: ray,
+            end,
             distance,
         }
     }

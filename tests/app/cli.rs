@@ -680,3 +680,46 @@ fn info_is_valid_json_or_a_clear_error_at_the_edges() {
     assert!(!out.status.success());
     assert!(err.contains("its name is 300 bytes long"), "{err}");
 }
+
+/// `trace` streams: a walk of 10⁶ crossings prints valid JSON in constant memory, and a
+/// distance that needs more crossings than that ends the JSON properly, says where it
+/// stopped, and fails naming the limit.
+#[test]
+fn long_traces_stream_valid_json_and_name_their_limit() {
+    let out = run(&[
+        "trace",
+        "seifert-weber",
+        "--dir",
+        "1,0.3,0.2",
+        "--crossings",
+        "1000000",
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: Value = serde_json::from_slice(&out.stdout).expect("valid JSON");
+    assert_eq!(v["crossings"].as_array().unwrap().len(), 1_000_000);
+    let out = run(&[
+        "trace",
+        "torus",
+        "--dir",
+        "1,0.3,0.2",
+        "--distance",
+        "1e6",
+        "--json",
+    ]);
+    assert!(!out.status.success());
+    let v: Value = serde_json::from_slice(&out.stdout).expect("valid JSON");
+    assert_eq!(v["crossings"].as_array().unwrap().len(), 1_000_000);
+    assert!(
+        v["end"]["stopped"]
+            .as_str()
+            .unwrap()
+            .contains("1000000 crossings")
+    );
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("needs more than 1000000 crossings"), "{err}");
+}
