@@ -413,6 +413,19 @@ fn positive(name: &str, x: f64) -> Result<f64, String> {
 /// The point of a place: geodesic coordinates in inradii, or a chart point.
 fn point_of(space: &Space, place: &Place) -> Result<DVec4, String> {
     let g = space.geometry;
+    // Every number of a place is checked, the angles too where the object has no use for them.
+    for (name, angle) in [
+        ("yaw", place.yaw),
+        ("pitch", place.pitch),
+        ("roll", place.roll),
+    ] {
+        if !angle.is_finite() {
+            return Err(format!(
+                "{name} must be a finite angle in degrees, got {angle}"
+            ));
+        }
+    }
+
     match (place.position, place.chart) {
         (Some(_), Some(_)) => Err("give either position or chart, not both".into()),
         (None, Some(c)) => g

@@ -1,0 +1,440 @@
+//! The fuzz suite: every shipped scene file and glTF asset mutated (numbers replaced by
+//! NaN, infinities, huge, tiny and negative values; lines and keys deleted; truncations;
+//! random bytes; out-of-range indices), and every numeric command-line option given
+//! hostile values. Each outcome must be a result or a clear error — never a panic, never
+//! past a time bound, never a non-finite number in what loads. Deterministic seeds, bounded
+//! cases, so it fits in CI; the files that once broke the loaders are kept in
+//! `tests/corpus/` and replayed by `the_regression_corpus_is_refused_cleanly`.
+
+use bevy_curved_spaces::geometry::Geometry;
+use bevy_curved_spaces::scene::file::parse_scene;
+use bevy_curved_spaces::scene::gltf::load;
+use proptest::prelude::*;
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+fn manifest() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The number literals a mutation puts in place of a number.
+const HOSTILE: [&str; 10] = [
+    "nan",
+    "inf",
+    "-inf",
+    "1e308",
+    "-1e308",
+    "1e-320",
+    "0",
+    "-1",
+    "123456789",
+    "-0.0",
+];
+
+fn scene_texts() -> Vec<(PathBuf, String)> {
+    let dir = manifest().join("assets/scenes");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    files.sort();
+    files
+        .into_iter()
+        .map(|p| {
+            let text = std::fs::read_to_string(&p).unwrap();
+            (p, text)
+        })
+        .collect()
+}
+
+/// Byte ranges of the number literals of a TOML text (outside comments and strings).
+fn numbers(text: &str) -> Vec<std::ops::Range<usize>> {
+    let mut out = Vec::new();
+    let mut offset = 0;
+    for line in text.split_inclusive('\n') {
+        let code = line.split('#').next().unwrap_or("");
+        let bytes = code.as_bytes();
+        let mut i = 0;
+        let mut in_string = false;
+        while i < bytes.len() {
+            let c = bytes[i];
+            if c == b'"' {
+                in_string = !in_string;
+            }
+            let starts = !in_string
+                && (c.is_ascii_digit()
+                    || (c == b'-' && bytes.get(i + 1).is_some_and(u8::is_ascii_digit)))
+                && (i == 0 || !(bytes[i - 1].is_ascii_alphanumeric() || bytes[i - 1] == b'_'));
+            if starts {
+                let start = i;
+                i += 1;
+                while i < bytes.len()
+                    && (bytes[i].is_ascii_digit()
+                        || matches!(bytes[i], b'.' | b'e' | b'E' | b'-' | b'+'))
+                {
+                    i += 1;
+                }
+                out.push(offset + start..offset + i);
+            } else {
+                i += 1;
+            }
+        }
+        offset += line.len();
+    }
+    out
+}
+
+/// What a loaded scene holds is finite.
+fn scene_is_finite(file: &bevy_curved_spaces::scene::file::SceneFile) -> bool {
+    let g: Geometry = file.space.geometry();
+    file.base.objects.iter().all(|o| {
+        let (c, r) = o.bounding_ball(g);
+        c.is_finite() && r.is_finite()
+    }) && file
+        .base
+        .lights
+        .iter()
+        .all(|l| l.position.is_finite() && l.colour.is_finite() && l.power.is_finite())
+        && file.base.shading.fog_distance.is_finite()
+}
+
+/// Parses a mutated scene text within the time bound; `true` for a scene, `false` for an
+/// error. A scene must be finite.
+fn outcome(text: &str, base: &Path) -> bool {
+    let started = Instant::now();
+    let result = parse_scene(text, base, "fuzz.toml");
+    let seconds = started.elapsed().as_secs_f64();
+    assert!(seconds < 10.0, "{seconds:.1} s for:\n{text}");
+    match result {
+        Ok(file) => {
+            assert!(scene_is_finite(&file), "a non-finite scene from:\n{text}");
+            true
+        }
+        Err(e) => {
+            assert!(e.to_string().starts_with("fuzz.toml"), "{e}");
+            false
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(200))]
+
+    /// A number of a shipped scene replaced by a hostile one.
+    #[test]
+    fn scene_files_with_hostile_numbers(which in 0usize..16, slot in 0usize..64, value in 0usize..HOSTILE.len()) {
+        let scenes = scene_texts();
+        let (path, text) = &scenes[which % scenes.len()];
+        let spots = numbers(text);
+        let spot = spots[slot % spots.len()].clone();
+        let mutated = format!("{}{}{}", &text[..spot.start], HOSTILE[value], &text[spot.end..]);
+        outcome(&mutated, path.parent().unwrap());
+    }
+
+    /// A shipped scene with a line deleted, cut short, or with random characters inserted.
+    #[test]
+    fn scene_files_cut_and_scrambled(which in 0usize..16, line in 0usize..64, cut in 0.0f64..1.0, junk in "[ -~\\n]{0,24}") {
+        let scenes = scene_texts();
+        let (path, text) = &scenes[which % scenes.len()];
+        let base = path.parent().unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        let without: Vec<&str> = lines.iter().enumerate().filter(|(i, _)| *i != line % lines.len()).map(|(_, l)| *l).collect();
+        outcome(&without.join("\n"), base);
+        let mut at = (cut * text.len() as f64) as usize;
+        while !text.is_char_boundary(at) {
+            at -= 1;
+        }
+        outcome(&text[..at], base);
+        outcome(&format!("{}{junk}{}", &text[..at], &text[at..]), base);
+    }
+}
+
+/// Deep nesting in a scene file is an error, not a stack overflow.
+#[test]
+fn deeply_nested_scene_files_are_refused() {
+    let base = manifest().join("assets/scenes");
+    for depth in [100, 10_000, 1_000_000] {
+        let text = format!(
+            "space = \"torus\"\nfog = {}1{}\n",
+            "[".repeat(depth),
+            "]".repeat(depth)
+        );
+        assert!(!outcome(&text, &base), "depth {depth} accepted");
+    }
+}
+
+/// The shipped models' bytes, and their JSON and BIN chunks.
+fn glb_parts(name: &str) -> (Vec<u8>, Value, Vec<u8>) {
+    let bytes = std::fs::read(manifest().join("assets/models").join(name)).unwrap();
+    let json_length = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    let json: Value = serde_json::from_slice(&bytes[20..20 + json_length]).unwrap();
+    let bin = bytes[20 + json_length + 8..].to_vec();
+    (bytes, json, bin)
+}
+
+fn glb(doc: &Value, bin: &[u8]) -> Vec<u8> {
+    let mut json_bytes = serde_json::to_vec(doc).unwrap();
+    json_bytes.resize(json_bytes.len().next_multiple_of(4), b' ');
+    let total = 12 + 8 + json_bytes.len() + 8 + bin.len();
+    let mut out = Vec::new();
+    out.extend_from_slice(b"glTF");
+    out.extend_from_slice(&2u32.to_le_bytes());
+    out.extend_from_slice(&(total as u32).to_le_bytes());
+    out.extend_from_slice(&(json_bytes.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"JSON");
+    out.extend_from_slice(&json_bytes);
+    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"BIN\0");
+    out.extend_from_slice(bin);
+    out
+}
+
+/// Loads model bytes from a file within the time bound; a loaded model is finite.
+fn model_outcome(bytes: &[u8], name: &str) -> bool {
+    let path = crate::common::scratch_dir("fuzz-models").join(name);
+    std::fs::write(&path, bytes).unwrap();
+    let started = Instant::now();
+    let result = load(&path);
+    let seconds = started.elapsed().as_secs_f64();
+    assert!(seconds < 10.0, "{name}: {seconds:.1} s");
+    match result {
+        Ok(model) => {
+            assert!(
+                model.source.positions.iter().all(|p| p.is_finite()),
+                "{name}: non-finite positions loaded"
+            );
+            true
+        }
+        Err(e) => {
+            assert!(e.to_string().contains(&path.display().to_string()), "{e}");
+            false
+        }
+    }
+}
+
+/// Every number (and index) in a JSON value, as paths into it.
+fn json_numbers(v: &Value, path: &mut Vec<Value>, out: &mut Vec<Vec<Value>>) {
+    match v {
+        Value::Number(_) => out.push(path.clone()),
+        Value::Array(a) => {
+            for (i, x) in a.iter().enumerate() {
+                path.push(Value::from(i));
+                json_numbers(x, path, out);
+                path.pop();
+            }
+        }
+        Value::Object(o) => {
+            for (k, x) in o {
+                path.push(Value::from(k.as_str()));
+                json_numbers(x, path, out);
+                path.pop();
+            }
+        }
+        _ => {}
+    }
+}
+
+fn at_path<'a>(v: &'a mut Value, path: &[Value]) -> &'a mut Value {
+    path.iter().fold(v, |v, k| match k {
+        Value::String(s) => &mut v[s.as_str()],
+        k => &mut v[k.as_u64().unwrap() as usize],
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(200))]
+
+    /// A number or index of a shipped model's JSON replaced by a hostile one, or its key
+    /// deleted.
+    #[test]
+    fn models_with_hostile_numbers(which in 0usize..2, slot in 0usize..512, value in prop_oneof![
+        Just(serde_json::json!(-1)), Just(serde_json::json!(0)), Just(serde_json::json!(1u64 << 40)),
+        Just(serde_json::json!(4_294_967_295u64)), Just(serde_json::json!(1e308)), Just(serde_json::json!(-1e308)),
+        Just(serde_json::json!(1e-320)), Just(serde_json::json!(3)), Just(Value::Null), Just(serde_json::json!("x")),
+    ], delete in any::<bool>()) {
+        let name = ["cube.glb", "torus_knot.glb"][which];
+        let (_, mut doc, bin) = glb_parts(name);
+        let mut spots = Vec::new();
+        json_numbers(&doc, &mut Vec::new(), &mut spots);
+        let spot = &spots[slot % spots.len()];
+        if delete {
+            let (key, parent) = spot.split_last().unwrap();
+            if let (Value::String(k), Some(o)) = (key, at_path(&mut doc, parent).as_object_mut()) {
+                o.remove(k);
+            }
+        } else {
+            *at_path(&mut doc, spot) = value;
+        }
+        model_outcome(&glb(&doc, &bin), &format!("numbers-{which}-{slot}.glb"));
+    }
+
+    /// A shipped model with random bytes overwritten, or cut short.
+    #[test]
+    fn models_with_random_bytes(which in 0usize..2, at in 0.0f64..1.0, bytes in proptest::collection::vec(any::<u8>(), 1..16), cut in any::<bool>()) {
+        let name = ["cube.glb", "torus_knot.glb"][which];
+        let (mut file, _, _) = glb_parts(name);
+        let start = (at * file.len() as f64) as usize;
+        if cut {
+            file.truncate(start);
+        } else {
+            for (i, b) in bytes.iter().enumerate() {
+                if let Some(x) = file.get_mut(start + i) {
+                    *x = *b;
+                }
+            }
+        }
+        model_outcome(&file, &format!("bytes-{which}-{start}.glb"));
+    }
+}
+
+/// Every file of the regression corpus (inputs that once panicked or hung) is refused with
+/// an error, quickly.
+#[test]
+fn the_regression_corpus_is_refused_cleanly() {
+    let dir = manifest().join("tests/corpus");
+    let mut seen = 0;
+    for entry in std::fs::read_dir(&dir).expect("tests/corpus exists") {
+        let path = entry.unwrap().path();
+        let started = Instant::now();
+        let message = match path.extension().and_then(|e| e.to_str()) {
+            Some("glb" | "gltf") => load(&path).err().map(|e| e.to_string()),
+            Some("toml") => bevy_curved_spaces::scene::file::load_scene_file(&path)
+                .err()
+                .map(|e| e.to_string()),
+            Some("json") => bevy_curved_spaces::space::file::load_space_file(&path)
+                .err()
+                .map(|e| e.to_string()),
+            _ => continue,
+        };
+        assert!(message.is_some(), "{}: accepted", path.display());
+        assert!(
+            started.elapsed().as_secs_f64() < 5.0,
+            "{}: slow",
+            path.display()
+        );
+        seen += 1;
+    }
+    assert!(seen >= 8, "only {seen} corpus files");
+}
+
+/// Every numeric option of the command line at 0, negative, NaN, ±inf, 1e308 and 1e-320:
+/// a result or an error message, exit status 0 or 1 — never a panic (101) or a signal.
+#[test]
+fn hostile_numbers_on_the_command_line() {
+    let values = ["0", "-1", "nan", "inf", "-inf", "1e308", "1e-320", "-0"];
+    let mut outcomes = (0, 0);
+    for value in values {
+        let vec3 = format!("{value},0,0");
+        let cases: Vec<Vec<&str>> = vec![
+            vec![
+                "render",
+                "torus",
+                "--cpu",
+                "--size",
+                "16x9",
+                "--crossings",
+                "4",
+                "--fov",
+                value,
+            ],
+            vec![
+                "render",
+                "torus",
+                "--cpu",
+                "--size",
+                "16x9",
+                "--crossings",
+                "4",
+                "--time",
+                value,
+            ],
+            vec![
+                "render",
+                "torus",
+                "--cpu",
+                "--size",
+                "16x9",
+                "--crossings",
+                "4",
+                "--fog",
+                value,
+            ],
+            vec![
+                "render",
+                "torus",
+                "--cpu",
+                "--size",
+                "16x9",
+                "--crossings",
+                "4",
+                "--ipd",
+                value,
+                "--stereo",
+                "anaglyph",
+            ],
+            vec![
+                "render",
+                "torus",
+                "--cpu",
+                "--size",
+                "16x9",
+                "--crossings",
+                value,
+            ],
+            vec![
+                "render",
+                "torus",
+                "--cpu",
+                "--size",
+                "16x9",
+                "--crossings",
+                "4",
+                "--eye",
+                &vec3,
+                "--look-at",
+                "0.1,0.1,0.1",
+            ],
+            vec!["trace", "seifert-weber", "--dir", &vec3, "--crossings", "3"],
+            vec![
+                "trace",
+                "seifert-weber",
+                "--from",
+                &vec3,
+                "--dir",
+                "1,0,0",
+                "--crossings",
+                "3",
+            ],
+            vec!["trace", "torus", "--dir", "1,0,0", "--distance", value],
+            vec!["trace", "torus", "--dir", "1,0,0", "--crossings", value],
+        ];
+        for mut args in cases {
+            let out_dir = crate::common::scratch_dir("fuzz-cli");
+            let png = out_dir.join("fuzz.png");
+            if args[0] == "render" {
+                args.extend(["--out", png.to_str().unwrap()]);
+            }
+            let started = Instant::now();
+            let out = std::process::Command::new(env!("CARGO_BIN_EXE_curved-spaces"))
+                .args(&args)
+                .output()
+                .expect("the binary runs");
+            let err = String::from_utf8_lossy(&out.stderr);
+            match out.status.code() {
+                Some(0) => outcomes.0 += 1,
+                Some(1 | 2) => {
+                    assert!(err.contains("error"), "{args:?}: no message: {err}");
+                    outcomes.1 += 1;
+                }
+                other => panic!("{args:?}: exit {other:?}\n{err}"),
+            }
+            assert!(started.elapsed().as_secs_f64() < 30.0, "{args:?}: slow");
+        }
+    }
+    eprintln!(
+        "command lines: {} ran, {} refused with a message",
+        outcomes.0, outcomes.1
+    );
+}
