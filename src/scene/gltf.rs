@@ -316,6 +316,29 @@ fn import(
             None => return Err(malformed("its GLB header is cut short".into())),
         }
     }
+    // The gltf crate's own validation indexes the accessors a primitive's POSITION names
+    // before checking that they exist: check every attribute's accessor first.
+    let unchecked =
+        gltf::Gltf::from_slice_without_validation(&bytes).map_err(|source| GltfError::Read {
+            path: name.to_string(),
+            source,
+        })?;
+    let root = unchecked.document.as_json();
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, primitive) in mesh.primitives.iter().enumerate() {
+            if let Some(index) = primitive
+                .attributes
+                .values()
+                .map(|i| i.value())
+                .find(|&i| i >= root.accessors.len())
+            {
+                return Err(malformed(format!(
+                    "mesh {m}, primitive {p} names accessor {index}, but there are {}",
+                    root.accessors.len()
+                )));
+            }
+        }
+    }
     let gltf::Gltf { document, mut blob } = gltf::Gltf::from_slice(&bytes).map_err(|source| {
         // The reader checks that every primitive has positions: name that plainly.
         if let gltf::Error::Validation(errors) = &source
@@ -371,6 +394,22 @@ fn import(
         buffers.push(data);
     }
     check_views_and_accessors(&document, &buffers).map_err(malformed)?;
+    // The gltf crate unwraps these when asked for an image's source.
+    for (i, image) in document.as_json().images.iter().enumerate() {
+        match (&image.buffer_view, &image.mime_type, &image.uri) {
+            (Some(_), None, _) => {
+                return Err(malformed(format!(
+                    "image {i} is in a buffer view but gives no mimeType"
+                )));
+            }
+            (None, _, None) => {
+                return Err(malformed(format!(
+                    "image {i} gives neither a buffer view nor a uri"
+                )));
+            }
+            _ => {}
+        }
+    }
     let mut images = Vec::new();
     for image in document.images() {
         if let gltf::image::Source::Uri { uri, .. } = image.source()
@@ -457,6 +496,20 @@ fn check_views_and_accessors(
     };
     for accessor in document.accessors() {
         let element = accessor.size();
+        // The gltf reader computes `count − 1` and asserts `stride ≥ element`.
+        if accessor.count() == 0 {
+            return Err(format!("accessor {} has no elements", accessor.index()));
+        }
+        if let Some(view) = accessor.view()
+            && view.stride().is_some_and(|s| s < element)
+        {
+            return Err(format!(
+                "accessor {} has elements of {element} bytes but buffer view {} strides {} bytes",
+                accessor.index(),
+                view.index(),
+                view.stride().unwrap_or(0)
+            ));
+        }
         if let Some(view) = accessor.view()
             && !fits(&view, accessor.offset(), accessor.count(), element)
         {
@@ -470,6 +523,12 @@ fn check_views_and_accessors(
             ));
         }
         if let Some(sparse) = accessor.sparse() {
+            if sparse.count() == 0 {
+                return Err(format!(
+                    "the sparse part of accessor {} has no elements",
+                    accessor.index()
+                ));
+            }
             let indices = sparse.indices();
             let values = sparse.values();
             let index_size = indices.index_type().size();

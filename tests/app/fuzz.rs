@@ -120,7 +120,11 @@ fn outcome(text: &str, base: &Path) -> bool {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(200))]
+    #![proptest_config(ProptestConfig {
+        cases: 400,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(0xf022),
+        ..ProptestConfig::default()
+    })]
 
     /// A number of a shipped scene replaced by a hostile one.
     #[test]
@@ -244,7 +248,11 @@ fn at_path<'a>(v: &'a mut Value, path: &[Value]) -> &'a mut Value {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(200))]
+    #![proptest_config(ProptestConfig {
+        cases: 400,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(0xf022),
+        ..ProptestConfig::default()
+    })]
 
     /// A number or index of a shipped model's JSON replaced by a hostile one, or its key
     /// deleted.
