@@ -176,6 +176,9 @@ pub struct BaseScene {
     pub scene: Option<Arc<CurvedScene>>,
     /// Where players start (a frame), if the scene says.
     pub start: Option<DMat4>,
+    /// The start view's vertical field of view (degrees), if the scene says: new
+    /// [`CurvedSpaceCamera`]s take it.
+    pub fov: Option<f64>,
     /// The parts the plugin starts [`TracerSettings::parts`] with, if the scene says.
     pub parts: Option<SceneParts>,
 }
@@ -189,6 +192,7 @@ impl BaseScene {
             space_id: file.space_id.clone(),
             scene: Some(Arc::new(file.base.clone())),
             start: file.start,
+            fov: file.start_fov,
             parts: Some(file.parts),
         }
     }

@@ -161,6 +161,10 @@ fn start_camera(
     {
         entity.insert(PlayerFrame(base.start_frame(&active)));
     }
+    // The scene's start view includes its field of view.
+    if let Some(fov) = base.fov.filter(|_| active.id == base.space_id) {
+        entity.insert(CurvedSpaceCamera { fov_y_degrees: fov });
+    }
     // The tracer writes final colours: no anti-aliasing, tonemapping or dithering on top.
     entity.insert((Msaa::Off, Tonemapping::None, DebandDither::Disabled));
 }

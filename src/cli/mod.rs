@@ -121,9 +121,9 @@ struct RenderArgs {
     /// cut-off for every sampled ray, chosen automatically).
     #[arg(long, value_parser = parse_crossings, allow_negative_numbers = true)]
     crossings: Option<usize>,
-    /// Vertical field of view in degrees.
-    #[arg(long, default_value_t = DEFAULT_FOV, value_parser = parse_fov, allow_negative_numbers = true)]
-    fov: f64,
+    /// Vertical field of view in degrees (default: the scene file's `fov`, else 70).
+    #[arg(long, value_parser = parse_fov, allow_negative_numbers = true)]
+    fov: Option<f64>,
     /// Camera position in the chart (default: a view past the centre ball).
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true, requires = "look_at")]
     eye: Option<DVec3>,
@@ -267,7 +267,7 @@ const DEFAULT_SIZE: &str = "640x360";
 /// `render`'s output file when none is given (also where `walk` renders without a display).
 const DEFAULT_OUT: &str = "curved-spaces.png";
 /// The vertical field of view in degrees when none is given.
-const DEFAULT_FOV: f64 = 70.0;
+pub(super) const DEFAULT_FOV: f64 = 70.0;
 
 impl RenderArgs {
     /// `render SPACE` with every other option at its default.
@@ -279,7 +279,7 @@ impl RenderArgs {
             out: DEFAULT_OUT.into(),
             fog: None,
             crossings: None,
-            fov: DEFAULT_FOV,
+            fov: None,
             eye: None,
             look_at: None,
             stereo: StereoArgs::default(),

@@ -2,7 +2,7 @@
 //! offscreen or the f64 CPU reference. Both renderers take the same view: camera, budget,
 //! stereo eyes and scene are decided once here, then handed to the one asked for.
 
-use super::{RenderArgs, resolve_space};
+use super::{DEFAULT_FOV, RenderArgs, resolve_space};
 use bevy_curved_spaces::components::StereoSettings;
 use bevy_curved_spaces::components::{AUTO_BUDGET_SAMPLES, ActiveSpace, BaseScene, Quality};
 use bevy_curved_spaces::offscreen::{OffscreenRender, render_offscreen};
@@ -137,9 +137,11 @@ fn view(args: &RenderArgs, chosen: &Chosen) -> Result<View, String> {
 /// default view.
 fn camera(args: &RenderArgs, chosen: &Chosen) -> Result<TraceCamera, String> {
     let space = &chosen.space;
+    // `--fov`, else the scene file's, else the default.
+    let fov = args.fov.or(chosen.base.fov).unwrap_or(DEFAULT_FOV);
     let (Some(eye), Some(target)) = (args.eye, args.look_at) else {
         return Ok(TraceCamera {
-            fov_y_degrees: args.fov,
+            fov_y_degrees: fov,
             frame: chosen
                 .base
                 .start
@@ -157,7 +159,7 @@ fn camera(args: &RenderArgs, chosen: &Chosen) -> Result<TraceCamera, String> {
             space.name()
         ));
     }
-    TraceCamera::looking_at(space.geometry(), eye, target, args.fov).map_err(|e| e.to_string())
+    TraceCamera::looking_at(space.geometry(), eye, target, fov).map_err(|e| e.to_string())
 }
 
 /// The eyes' frames (both the camera's in mono), saying where an eye was wrapped.

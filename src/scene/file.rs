@@ -54,6 +54,9 @@ pub struct SceneFile {
     pub base: CurvedScene,
     /// The player's start frame (`None`: the space's default view).
     pub start: Option<DMat4>,
+    /// The start view's vertical field of view in degrees (`fov` in `[start]`; `None`: the
+    /// camera's own).
+    pub start_fov: Option<f64>,
     /// The default scene's parts the file asks for (the cell's edges, the centre ball, the
     /// avatar).
     pub parts: SceneParts,
@@ -98,6 +101,8 @@ struct StartSpec {
     #[serde(flatten)]
     at: Place,
     look_at: Option<[f64; 3]>,
+    /// Vertical field of view in degrees.
+    fov: Option<f64>,
 }
 
 /// Where an object is: geodesic coordinates in inradii, or a chart point; its turn.
@@ -296,11 +301,26 @@ pub fn parse_scene(text: &str, base: &Path, file: &str) -> Result<SceneFile, Sce
         Some(s) => Some(start_frame(&space, s.get_ref()).map_err(|m| fail(Some(s.span()), m))?),
         None => None,
     };
+    let start_fov = match spec
+        .start
+        .as_ref()
+        .and_then(|s| s.get_ref().fov.map(|f| (s, f)))
+    {
+        Some((_, fov)) if fov > 0.0 && fov < 180.0 => Some(fov),
+        Some((s, fov)) => {
+            return Err(fail(
+                Some(s.span()),
+                format!("fov must be an angle between 0 and 180 degrees, got {fov}"),
+            ));
+        }
+        None => None,
+    };
     Ok(SceneFile {
         space_id,
         space,
         base: scene,
         start,
+        start_fov,
         parts: SceneParts {
             edges: spec.edges,
             centre_ball: spec.centre_ball,
@@ -327,6 +347,7 @@ const KEYS: &[&str] = &[
     "pitch",
     "roll",
     "look_at",
+    "fov",
     "type",
     "radius",
     "colour",

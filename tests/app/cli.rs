@@ -723,3 +723,41 @@ fn long_traces_stream_valid_json_and_name_their_limit() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("needs more than 1000000 crossings"), "{err}");
 }
+
+/// A scene file's `[start]` gives the field of view too: `render --scene` uses it unless
+/// `--fov` says otherwise, so a benchmark view is fully described by its file.
+#[test]
+fn a_scene_files_start_view_has_its_field_of_view() {
+    let dir = temp_dir("scene-fov");
+    let scene = dir.join("narrow.toml");
+    std::fs::write(
+        &scene,
+        "space = \"torus\"\n[start]\nposition = [0, 0, 0]\nfov = 30\n",
+    )
+    .unwrap();
+    let picture = |extra: &[&str], name: &str| {
+        let png = dir.join(name);
+        let mut args = vec![
+            "render",
+            "--cpu",
+            "--size",
+            "32x18",
+            "--out",
+            png.to_str().unwrap(),
+        ];
+        args.extend(extra);
+        let out = run(&args);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        image::open(&png).expect("a PNG").to_rgb8()
+    };
+    let s = scene.to_str().unwrap();
+    let from_file = picture(&["--scene", s], "file.png");
+    let explicit = picture(&["--scene", s, "--fov", "30"], "explicit.png");
+    let wide = picture(&["--scene", s, "--fov", "70"], "wide.png");
+    assert_eq!(from_file, explicit);
+    assert_ne!(from_file, wide);
+}

@@ -539,6 +539,7 @@ fn compare_scene(
                 scene: Some(std::sync::Arc::new(scene.clone())),
                 start: None,
                 parts: None,
+                fov: None,
             },
             time,
             ..OffscreenRender::new(
@@ -696,6 +697,7 @@ fn an_offscreen_render_of_a_scene_too_large_for_the_gpu_says_why() {
             scene: Some(std::sync::Arc::new(scene)),
             start: None,
             parts: None,
+            fov: None,
         },
         ..OffscreenRender::new(
             ActiveSpace::new("torus", space.clone()),

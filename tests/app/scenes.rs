@@ -347,6 +347,11 @@ fn bad_scene_files_get_errors_naming_the_line_and_the_problem() {
             "position [1e200, 0.0, 0.0] is too far",
         ),
         (
+            "space = \"torus\"\n[start]\nposition = [0, 0, 0]\nfov = 200\n",
+            2,
+            "fov must be an angle between 0 and 180",
+        ),
+        (
             "space = \"torus\"\n[[light]]\nposition = [1000, 0, 0]\n",
             2,
             "the light is not inside the cell",

@@ -371,6 +371,7 @@ fn the_fog_in_use_is_the_setting_then_the_scene_files_then_the_default() {
         scene: Some(std::sync::Arc::new(scene)),
         start: None,
         parts: None,
+        fov: None,
     });
     app.update();
     assert_eq!(status_fog(&app), 1.234, "the base scene's own fog");
@@ -380,4 +381,31 @@ fn the_fog_in_use_is_the_setting_then_the_scene_files_then_the_default() {
         .fog_distance = Some(2.5);
     app.update();
     assert_eq!(status_fog(&app), 2.5, "the setting wins");
+}
+
+/// A base scene's start view brings its field of view: a camera spawned in its space takes
+/// it, one in another space keeps its own.
+#[test]
+fn a_camera_takes_the_base_scenes_field_of_view_in_its_space() {
+    for (space, expected) in [("torus", 40.0), ("poincare", 70.0)] {
+        let mut app = App::new();
+        app.add_plugins((MinimalPlugins, InputPlugin))
+            .insert_resource(BaseScene {
+                space_id: "torus".into(),
+                fov: Some(40.0),
+                ..default()
+            })
+            .add_plugins(CurvedSpacesPlugin {
+                space: space.into(),
+                ..default()
+            });
+        let camera = app.world_mut().spawn(CurvedSpaceCamera::default()).id();
+        app.update();
+        let fov = app
+            .world()
+            .get::<CurvedSpaceCamera>(camera)
+            .expect("the camera")
+            .fov_y_degrees;
+        assert_eq!(fov, expected, "{space}");
+    }
 }
