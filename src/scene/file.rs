@@ -484,18 +484,8 @@ fn point_of(space: &Space, place: &Place) -> Result<DVec4, String> {
 /// The frame of a place: the translation to its point, turned by yaw, pitch and roll.
 fn frame_of(space: &Space, place: &Place) -> Result<DMat4, String> {
     let g = space.geometry;
+    // Checks the angles too.
     let point = point_of(space, place)?;
-    for (name, angle) in [
-        ("yaw", place.yaw),
-        ("pitch", place.pitch),
-        ("roll", place.roll),
-    ] {
-        if !angle.is_finite() {
-            return Err(format!(
-                "{name} must be a finite angle in degrees, got {angle}"
-            ));
-        }
-    }
     let turn = g.rotation(DVec3::Y, place.yaw.to_radians())
         * g.rotation(DVec3::X, place.pitch.to_radians())
         * g.rotation(DVec3::Z, place.roll.to_radians());

@@ -696,20 +696,29 @@ pub fn write_glb(path: &Path, mesh: &GlbMesh) -> std::io::Result<()> {
     doc["buffers"] = json!([{"byteLength": bin.len()}]);
     doc["bufferViews"] = json!(views);
     doc["accessors"] = json!(accessors);
-    let mut json_bytes = serde_json::to_vec(&doc).map_err(std::io::Error::other)?;
-    while !json_bytes.len().is_multiple_of(4) {
-        json_bytes.push(b' ');
-    }
-    let total = 12 + 8 + json_bytes.len() + 8 + bin.len();
+    let json_bytes = serde_json::to_vec(&doc).map_err(std::io::Error::other)?;
+    let out = glb_container(&json_bytes, &bin);
+    crate::files::write_atomic(path, &out)
+}
+
+/// A binary glTF container of a JSON chunk and a BIN chunk (each padded to 4 bytes as the
+/// format asks): how [`write_glb`] packs a model, and how tests build files of their own.
+#[must_use]
+pub fn glb_container(json: &[u8], bin: &[u8]) -> Vec<u8> {
+    let mut json = json.to_vec();
+    json.resize(json.len().next_multiple_of(4), b' ');
+    let mut bin = bin.to_vec();
+    bin.resize(bin.len().next_multiple_of(4), 0);
+    let total = 12 + 8 + json.len() + 8 + bin.len();
     let mut out = Vec::with_capacity(total);
     out.extend_from_slice(b"glTF");
     out.extend_from_slice(&2u32.to_le_bytes());
     out.extend_from_slice(&(total as u32).to_le_bytes());
-    out.extend_from_slice(&(json_bytes.len() as u32).to_le_bytes());
+    out.extend_from_slice(&(json.len() as u32).to_le_bytes());
     out.extend_from_slice(b"JSON");
-    out.extend_from_slice(&json_bytes);
+    out.extend_from_slice(&json);
     out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
     out.extend_from_slice(b"BIN\0");
     out.extend_from_slice(&bin);
-    std::fs::write(path, out)
+    out
 }

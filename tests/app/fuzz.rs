@@ -179,20 +179,7 @@ fn glb_parts(name: &str) -> (Vec<u8>, Value, Vec<u8>) {
 }
 
 fn glb(doc: &Value, bin: &[u8]) -> Vec<u8> {
-    let mut json_bytes = serde_json::to_vec(doc).unwrap();
-    json_bytes.resize(json_bytes.len().next_multiple_of(4), b' ');
-    let total = 12 + 8 + json_bytes.len() + 8 + bin.len();
-    let mut out = Vec::new();
-    out.extend_from_slice(b"glTF");
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&(total as u32).to_le_bytes());
-    out.extend_from_slice(&(json_bytes.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"JSON");
-    out.extend_from_slice(&json_bytes);
-    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"BIN\0");
-    out.extend_from_slice(bin);
-    out
+    bevy_curved_spaces::scene::gltf::glb_container(&serde_json::to_vec(doc).unwrap(), bin)
 }
 
 /// Loads model bytes from a file within the time bound; a loaded model is finite.

@@ -14,22 +14,7 @@ fn dir() -> PathBuf {
 
 /// A GLB of `doc` (JSON) and `bin` (the BIN chunk, padded).
 fn glb(doc: &Value, bin: &[u8]) -> Vec<u8> {
-    let mut json_bytes = serde_json::to_vec(doc).unwrap();
-    json_bytes.resize(json_bytes.len().next_multiple_of(4), b' ');
-    let mut bin = bin.to_vec();
-    bin.resize(bin.len().next_multiple_of(4), 0);
-    let total = 12 + 8 + json_bytes.len() + 8 + bin.len();
-    let mut out = Vec::new();
-    out.extend_from_slice(b"glTF");
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&(total as u32).to_le_bytes());
-    out.extend_from_slice(&(json_bytes.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"JSON");
-    out.extend_from_slice(&json_bytes);
-    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"BIN\0");
-    out.extend_from_slice(&bin);
-    out
+    bevy_curved_spaces::scene::gltf::glb_container(&serde_json::to_vec(doc).unwrap(), bin)
 }
 
 /// One triangle: positions (36 bytes) then indices (12 bytes) in the BIN chunk.
