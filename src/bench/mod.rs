@@ -23,7 +23,7 @@ use crate::view::TraceCamera;
 pub use accuracy::growth;
 use accuracy::*;
 use indicatif::{ProgressBar, ProgressStyle};
-pub use report::{charts, read_report, summary_markdown, write_report};
+pub use report::{charts, read_report, summary_markdown, write_report, write_scene_report};
 use serde::{Deserialize, Serialize};
 pub use timing::bench_mesh;
 use timing::*;
@@ -158,6 +158,9 @@ pub enum BenchError {
     /// Nothing to measure (the reason is attached).
     #[error("nothing to measure: {0}")]
     Empty(&'static str),
+    /// The scene file could not be loaded (its error attached).
+    #[error("{0}")]
+    SceneFile(String),
 }
 
 /// GPU frame time of one setting.
@@ -498,6 +501,77 @@ impl Subject {
     fn scene(&self, fog_factor: f64) -> CurvedScene {
         CurvedScene::default_for(&self.space, fog_factor * self.inradius)
     }
+}
+
+/// Times a scene file's start view (its space, objects, lights, fog, parts, and its `fov`)
+/// at each of `config.budgets` × `config.sizes`, against the trivial material in the same
+/// loop: one [`TimingRow`] per budget and size, `space` being the file's name. Nothing else
+/// of the benchmark is measured.
+#[cfg(feature = "scene-files")]
+pub fn run_scene(
+    config: &BenchConfig,
+    path: &std::path::Path,
+    progress: &ProgressBar,
+) -> Result<BenchReport, BenchError> {
+    let file = crate::scene::file::load_scene_file(path)
+        .map_err(|e| BenchError::SceneFile(e.to_string()))?;
+    let space = file.space.clone();
+    let default_view = TraceCamera::default_for(&space);
+    let subject = Subject {
+        id: path.file_stem().map_or_else(
+            || path.display().to_string(),
+            |s| s.to_string_lossy().into_owned(),
+        ),
+        inradius: invariants::inradius(&space),
+        camera: TraceCamera {
+            frame: file.start.unwrap_or(default_view.frame),
+            fov_y_degrees: file.start_fov.unwrap_or(default_view.fov_y_degrees),
+        },
+        space,
+    };
+    let scene = file.base.adding_parts(&subject.space, file.parts);
+    let mut harness = Harness::new()?;
+    progress.set_length((config.budgets.len() * config.sizes.len()) as u64);
+    let mut report = BenchReport {
+        device: Some(harness.info().clone()),
+        build: if cfg!(debug_assertions) {
+            "debug"
+        } else {
+            "release"
+        }
+        .to_string(),
+        cpu_threads: rayon::current_num_threads(),
+        ..Default::default()
+    };
+    for &budget in &config.budgets {
+        let gpu = subject.pack(&scene, budget)?;
+        for &(w, h) in &config.sizes {
+            announce(
+                progress,
+                format!("{}: budget {budget} at {w}×{h}", subject.id),
+            );
+            let (tracer, baseline) =
+                timing::time_setting(&mut harness, &subject, &gpu, (w, h), config)?;
+            report.timings.push(TimingRow {
+                space: subject.id.clone(),
+                geometry: subject.geometry(),
+                width: w,
+                height: h,
+                budget,
+                budget_from: "fixed".into(),
+                fog_factor: scene.shading.fog_distance / subject.inradius,
+                frames: tracer.frames,
+                median_ms: tracer.median,
+                p10_ms: tracer.p10,
+                p90_ms: tracer.p90,
+                baseline_ms: baseline.median,
+                ratio: tracer.median / baseline.median,
+            });
+            progress.inc(1);
+        }
+    }
+    progress.finish_and_clear();
+    Ok(report)
 }
 
 /// Shows what the benchmark is doing: on the bar, or (no terminal) as a log line.

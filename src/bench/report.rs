@@ -56,6 +56,52 @@ pub fn write_report(
     Ok(written)
 }
 
+/// Writes a scene benchmark ([`super::run_scene`]): `bench.json`, `timings.csv` and a
+/// `summary.md` of its frame times, per budget and size.
+pub fn write_scene_report(
+    report: &BenchReport,
+    config: &BenchConfig,
+    dir: &Path,
+) -> Result<Vec<PathBuf>, BenchError> {
+    use std::fmt::Write as _;
+    let write_err = |path: &Path, e: &dyn std::fmt::Display| BenchError::Write {
+        path: path.display().to_string(),
+        error: e.to_string(),
+    };
+    std::fs::create_dir_all(dir).map_err(|e| write_err(dir, &e))?;
+    let json = dir.join("bench.json");
+    let body = serde_json::to_string_pretty(&serde_json::json!({
+        "config": {"budgets": config.budgets, "sizes": config.sizes},
+        "report": report,
+    }))
+    .map_err(|e| write_err(&json, &e))?;
+    crate::files::write_atomic(&json, body.as_bytes()).map_err(|e| write_err(&json, &e))?;
+    let csv = dir.join("timings.csv");
+    crate::files::write_atomic(&csv, to_csv(&to_values(&report.timings)).as_bytes())
+        .map_err(|e| write_err(&csv, &e))?;
+    let mut md = String::new();
+    let name = report.timings.first().map_or("", |t| t.space.as_str());
+    let device = report.device.as_ref().map_or_else(
+        || "no GPU".to_string(),
+        |d| format!("{} ({})", d.name, d.driver),
+    );
+    let _ = writeln!(
+        md,
+        "Scene {name}: its start view. Device: {device}. Build: {}.\n\n| budget | size | median ms | p10–p90 ms | trivial material ms | × trivial |\n|---:|---|---:|---:|---:|---:|",
+        report.build
+    );
+    for t in &report.timings {
+        let _ = writeln!(
+            md,
+            "| {} | {}×{} | {:.3} | {:.3}–{:.3} | {:.3} | {:.1} |",
+            t.budget, t.width, t.height, t.median_ms, t.p10_ms, t.p90_ms, t.baseline_ms, t.ratio
+        );
+    }
+    let summary = dir.join("summary.md");
+    crate::files::write_atomic(&summary, md.as_bytes()).map_err(|e| write_err(&summary, &e))?;
+    Ok(vec![json, csv, summary])
+}
+
 /// Reads a `bench.json` written by [`write_report`] back (to redraw its charts and tables).
 pub fn read_report(path: &Path) -> Result<(BenchConfig, BenchReport), BenchError> {
     let fail = |e: &dyn std::fmt::Display| BenchError::Write {

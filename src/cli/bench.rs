@@ -42,15 +42,48 @@ pub(super) fn bench(args: &BenchArgs) -> Result<(), String> {
             "note: this is a debug build; for representative timings run `cargo run --release -- bench`"
         );
     }
-    eprintln!(
-        "benchmarking {} space(s) at {} size(s), budgets {:?}, fog {:?} inradii…",
-        config.spaces.len(),
-        config.sizes.len(),
-        config.budgets,
-        config.fog_factors
-    );
+    if let Some(scene) = &args.scene {
+        eprintln!(
+            "benchmarking the start view of {} at {} size(s), budgets {:?}…",
+            scene.display(),
+            config.sizes.len(),
+            config.budgets
+        );
+    } else {
+        eprintln!(
+            "benchmarking {} space(s) at {} size(s), budgets {:?}, fog {:?} inradii…",
+            config.spaces.len(),
+            config.sizes.len(),
+            config.budgets,
+            config.fog_factors
+        );
+    }
     let started = Instant::now();
     let progress = indicatif::ProgressBar::new(0);
+    if let Some(scene) = &args.scene {
+        let report = bevy_curved_spaces::bench::run_scene(&config, scene, &progress)
+            .map_err(|e| e.to_string())?;
+        for t in &report.timings {
+            say!(
+                "{:<24} {:>5}×{:<5} budget {:>4}: {:>9.3} ms ({:.1}× the trivial material)",
+                t.space,
+                t.width,
+                t.height,
+                t.budget,
+                t.median_ms,
+                t.ratio
+            );
+        }
+        let written = bevy_curved_spaces::bench::write_scene_report(&report, &config, &args.out)
+            .map_err(|e| e.to_string())?;
+        say!(
+            "wrote {} files to {} in {:.1} s",
+            written.len(),
+            args.out.display(),
+            started.elapsed().as_secs_f64()
+        );
+        return Ok(());
+    }
     let report = bevy_curved_spaces::bench::run(&config, &progress).map_err(|e| e.to_string())?;
     if let Some(device) = &report.device {
         say!(

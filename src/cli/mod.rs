@@ -194,6 +194,10 @@ struct BenchArgs {
     /// Measure nothing: redraw the tables, charts and summary of an earlier bench.json.
     #[arg(long, conflicts_with_all = ["quick", "spaces", "budgets", "sizes", "cpu_only"])]
     from: Option<PathBuf>,
+    /// Time a scene file's start view instead (its space, objects, fog and `fov`), at each
+    /// budget and size; writes timings.csv and the summary.
+    #[arg(long, conflicts_with_all = ["spaces", "cpu_only", "from"])]
+    scene: Option<PathBuf>,
 }
 
 #[derive(Args)]

@@ -761,3 +761,63 @@ fn a_scene_files_start_view_has_its_field_of_view() {
     assert_eq!(from_file, explicit);
     assert_ne!(from_file, wide);
 }
+
+/// `bench --scene FILE` times a scene file's start view per budget and size, against the
+/// trivial material in the same loop, and writes timings.csv with those columns.
+#[test]
+fn bench_times_any_scene_file() {
+    let dir = temp_dir("bench-scene");
+    let scene = dir.join("view.toml");
+    std::fs::write(
+        &scene,
+        "space = \"seifert-weber\"\nfog = 2.0\nedges = false\n[start]\nposition = [0, 0, 0]\nfov = 50\n",
+    )
+    .unwrap();
+    let out_dir = dir.join("out");
+    let out = run(&[
+        "bench",
+        "--scene",
+        scene.to_str().unwrap(),
+        "--budgets",
+        "2,4",
+        "--sizes",
+        "32x18",
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let csv = std::fs::read_to_string(out_dir.join("timings.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    for column in ["budget", "width", "height", "median_ms", "baseline_ms"] {
+        assert!(header.contains(&column), "{column} missing from {header:?}");
+    }
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 2, "{csv}");
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    for row in &rows {
+        assert_eq!(row[col("width")], "32");
+        assert!(row[col("median_ms")].parse::<f64>().unwrap() > 0.0);
+        assert!(row[col("baseline_ms")].parse::<f64>().unwrap() > 0.0);
+    }
+    assert!(
+        std::fs::read_to_string(out_dir.join("summary.md"))
+            .unwrap()
+            .contains("| 4 | 32×18 |")
+    );
+    // A scene file that does not load is an error naming it.
+    std::fs::write(&scene, "space = \"klein-bottle\"\n").unwrap();
+    let out = run(&[
+        "bench",
+        "--scene",
+        scene.to_str().unwrap(),
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("unknown space"));
+}
