@@ -230,6 +230,12 @@ pub struct ErrorRow {
     pub over_2_levels: f64,
     /// Fraction of pixels off by more than 10 levels.
     pub over_10_levels: f64,
+    /// Mean face crossings per pixel on the GPU (from the `HIT_ID` pass): the work done.
+    #[serde(default)]
+    pub mean_crossings: f64,
+    /// 90th percentile of the face crossings per pixel.
+    #[serde(default)]
+    pub p90_crossings: f64,
 }
 
 /// A walk's error against the double-double reference in units of the conditioning limit
@@ -574,6 +580,18 @@ pub fn run_scene(
     Ok(report)
 }
 
+/// Mean and 90th percentile of the face crossings per pixel of a `HIT_ID` picture.
+fn crossings_per_pixel(ids: &[[u32; 4]]) -> (f64, f64) {
+    if ids.is_empty() {
+        return (0.0, 0.0);
+    }
+    let mut c: Vec<u32> = ids.iter().map(|id| id[1]).collect();
+    c.sort_unstable();
+    let mean = c.iter().map(|&x| f64::from(x)).sum::<f64>() / c.len() as f64;
+    let p90 = f64::from(c[((c.len() - 1) as f64 * 0.9).round() as usize]);
+    (mean, p90)
+}
+
 /// Shows what the benchmark is doing: on the bar, or (no terminal) as a log line.
 fn announce(progress: &ProgressBar, message: String) {
     if progress.is_hidden() {
@@ -794,6 +812,7 @@ fn gpu_measurements(
         let rounded = Reference::trace(subject, &scene, config.error_size, budget as usize, true);
         let measured = gpu_pixels(harness, subject, &gpu, budget, config.error_size)?;
         let against_exact = measured.compare(&exact);
+        let work = crossings_per_pixel(&measured.ids);
         let against_same = measured.compare(&same);
         report.errors.push(ErrorRow {
             space: subject.id.clone(),
@@ -812,6 +831,8 @@ fn gpu_measurements(
             max_levels: against_exact.max_levels,
             over_2_levels: against_exact.over_2_levels,
             over_10_levels: against_exact.over_10_levels,
+            mean_crossings: work.0,
+            p90_crossings: work.1,
         });
         progress.inc(1);
     }

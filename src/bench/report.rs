@@ -161,6 +161,7 @@ pub fn summary_markdown(report: &BenchReport) -> String {
     sizes.sort_unstable();
     sizes.dedup();
     timings_section(&mut md, report, &spaces, &sizes);
+    work_section(&mut md, report);
     specialisation_section(&mut md, report);
     stereo_section(&mut md, report);
     mesh_section(&mut md, report);
@@ -169,6 +170,50 @@ pub fn summary_markdown(report: &BenchReport) -> String {
     cutoff_section(&mut md, report);
     auto_budget_section(&mut md, report);
     md
+}
+
+/// The work per pixel and its cost, so that runs on other machines compare by what they do.
+fn work_section(md: &mut String, report: &BenchReport) {
+    use std::fmt::Write as _;
+    let rows: Vec<(&ErrorRow, &TimingRow)> = report
+        .errors
+        .iter()
+        .filter(|e| e.budget_from == "auto-high" && e.fog_factor == DEFAULT_FOG_FACTOR)
+        .filter_map(|e| {
+            let t = report
+                .timings
+                .iter()
+                .filter(|t| {
+                    t.space == e.space
+                        && t.budget_from == e.budget_from
+                        && t.fog_factor == e.fog_factor
+                })
+                .max_by_key(|t| t.width * t.height)?;
+            Some((e, t))
+        })
+        .collect();
+    if rows.is_empty() {
+        return;
+    }
+    let _ = writeln!(
+        *md,
+        "\n### Work per pixel at the automatic budget (quality High, fog {DEFAULT_FOG_FACTOR} inradii)\n\n| space | budget | mean crossings / pixel | 90th percentile | frame ms at | ns per pixel-crossing |\n|---|---:|---:|---:|---|---:|"
+    );
+    for (e, t) in rows {
+        let pixel_crossings = f64::from(t.width * t.height) * e.mean_crossings.max(1.0);
+        let _ = writeln!(
+            *md,
+            "| {} | {} | {:.2} | {:.0} | {:.2} ({}×{}) | {:.1} |",
+            e.space,
+            e.budget,
+            e.mean_crossings,
+            e.p90_crossings,
+            t.median_ms,
+            t.width,
+            t.height,
+            t.median_ms * 1e6 / pixel_crossings
+        );
+    }
 }
 
 /// Frame times at the automatic budget, and speed against error.

@@ -339,6 +339,21 @@ fn bench_quick_writes_results_that_respect_their_bounds() {
             assert_eq!(hit, 0.0, "f32 in the torus with a sufficient budget: {e}");
         }
     }
+    // The work per pixel beside the time: crossings per pixel from the HIT_ID pass.
+    for e in rows("errors") {
+        let mean = e["mean_crossings"].as_f64().unwrap();
+        let p90 = e["p90_crossings"].as_f64().unwrap();
+        let budget = e["budget"].as_f64().unwrap();
+        assert!(
+            mean > 0.0 && mean <= budget && p90 >= mean.floor() && p90 <= budget,
+            "{e}"
+        );
+    }
+    assert!(
+        std::fs::read_to_string(dir.join("summary.md"))
+            .unwrap()
+            .contains("ns per pixel-crossing")
+    );
     // The walks against the double-double reference: both spaces, both precisions, both
     // pairings, over 30 and 100 crossings; the walk itself within the accuracy target.
     let conditioning = rows("conditioning");
