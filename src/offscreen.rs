@@ -254,6 +254,13 @@ impl OffscreenRenderer {
     }
 }
 
+/// Writes a captured picture (a screenshot) as an 8-bit RGB PNG, whole or not at all
+/// (`files::write_png`); the error says what failed.
+pub fn save_screenshot(image: &Image, path: &std::path::Path) -> Result<(), String> {
+    let rgb = to_rgb(image).map_err(|e| e.to_string())?;
+    crate::files::write_png(path, &rgb).map_err(|e| e.to_string())
+}
+
 fn to_rgb(image: &Image) -> Result<RgbImage, OffscreenError> {
     let dynamic = image
         .clone()

@@ -173,16 +173,7 @@ fn take_screenshot(
     commands.spawn(Screenshot::primary_window()).observe(
         move |captured: On<ScreenshotCaptured>| {
             // Written whole or not at all, and a failure is reported, not lost.
-            let written = captured
-                .image
-                .clone()
-                .try_into_dynamic()
-                .map_err(|e| e.to_string())
-                .and_then(|img| {
-                    crate::files::write_png(std::path::Path::new(&path), &img.to_rgb8())
-                        .map_err(|e| e.to_string())
-                });
-            match written {
+            match crate::offscreen::save_screenshot(&captured.image, std::path::Path::new(&path)) {
                 Ok(()) => info!("wrote {path}"),
                 Err(e) => error!("cannot write the screenshot {path}: {e}"),
             }

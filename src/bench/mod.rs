@@ -538,17 +538,7 @@ pub fn run_scene(
     let scene = file.base.adding_parts(&subject.space, file.parts);
     let mut harness = Harness::new()?;
     progress.set_length((config.budgets.len() * config.sizes.len()) as u64);
-    let mut report = BenchReport {
-        device: Some(harness.info().clone()),
-        build: if cfg!(debug_assertions) {
-            "debug"
-        } else {
-            "release"
-        }
-        .to_string(),
-        cpu_threads: rayon::current_num_threads(),
-        ..Default::default()
-    };
+    let mut report = BenchReport::empty(Some(&harness));
     for &budget in &config.budgets {
         let gpu = subject.pack(&scene, budget)?;
         for &(w, h) in &config.sizes {
@@ -578,6 +568,23 @@ pub fn run_scene(
     }
     progress.finish_and_clear();
     Ok(report)
+}
+
+impl BenchReport {
+    /// A report with nothing measured yet: the device (if any), the build and the threads.
+    fn empty(harness: Option<&Harness>) -> Self {
+        Self {
+            device: harness.map(|h| h.info().clone()),
+            build: if cfg!(debug_assertions) {
+                "debug"
+            } else {
+                "release"
+            }
+            .to_string(),
+            cpu_threads: rayon::current_num_threads(),
+            ..Default::default()
+        }
+    }
 }
 
 /// Mean and 90th percentile of the face crossings per pixel of a `HIT_ID` picture.
@@ -637,17 +644,7 @@ pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, 
         )
         .expect("a valid progress template"),
     );
-    let mut report = BenchReport {
-        device: harness.as_ref().map(|h| h.info().clone()),
-        build: if cfg!(debug_assertions) {
-            "debug"
-        } else {
-            "release"
-        }
-        .to_string(),
-        cpu_threads: rayon::current_num_threads(),
-        ..Default::default()
-    };
+    let mut report = BenchReport::empty(harness.as_ref());
     for subject in &subjects {
         let budgets = cpu_measurements(subject, config, progress, &mut report);
         if let Some(harness) = harness.as_mut() {

@@ -5,26 +5,44 @@ use super::*;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
+/// Writing `path` failed.
+fn write_error(path: &Path, e: &dyn std::fmt::Display) -> BenchError {
+    BenchError::Write {
+        path: path.display().to_string(),
+        error: e.to_string(),
+    }
+}
+
+/// Writes `text` whole to `dir/name` (`files::write_atomic`), creating `dir` first.
+fn write_text(dir: &Path, name: &str, text: &str) -> Result<PathBuf, BenchError> {
+    std::fs::create_dir_all(dir).map_err(|e| write_error(dir, &e))?;
+    let path = dir.join(name);
+    crate::files::write_atomic(&path, text.as_bytes()).map_err(|e| write_error(&path, &e))?;
+    Ok(path)
+}
+
+/// `bench.json`: what was asked for and what was measured.
+fn write_json(
+    dir: &Path,
+    config: serde_json::Value,
+    report: &BenchReport,
+) -> Result<PathBuf, BenchError> {
+    let body = serde_json::to_string_pretty(&serde_json::json!({
+        "config": config,
+        "report": report,
+    }))
+    .map_err(|e| write_error(&dir.join("bench.json"), &e))?;
+    write_text(dir, "bench.json", &body)
+}
+
 /// Writes `report` as `bench.json`, one CSV per table and the charts into `dir`.
 pub fn write_report(
     report: &BenchReport,
     config: &BenchConfig,
     dir: &Path,
 ) -> Result<Vec<PathBuf>, BenchError> {
-    let write_err = |path: &Path, e: &dyn std::fmt::Display| BenchError::Write {
-        path: path.display().to_string(),
-        error: e.to_string(),
-    };
-    std::fs::create_dir_all(dir).map_err(|e| write_err(dir, &e))?;
-    let mut written = Vec::new();
-    let json = dir.join("bench.json");
-    let body = serde_json::to_string_pretty(&serde_json::json!({
-        "config": config,
-        "report": report,
-    }))
-    .map_err(|e| write_err(&json, &e))?;
-    crate::files::write_atomic(&json, body.as_bytes()).map_err(|e| write_err(&json, &e))?;
-    written.push(json);
+    let config = serde_json::to_value(config).map_err(|e| write_error(dir, &e))?;
+    let mut written = vec![write_json(dir, config, report)?];
     let tables: [(&str, Vec<serde_json::Value>); 10] = [
         ("timings", to_values(&report.timings)),
         ("errors", to_values(&report.errors)),
@@ -38,15 +56,9 @@ pub fn write_report(
         ("meshes", to_values(&report.meshes)),
     ];
     for (name, rows) in tables {
-        let path = dir.join(format!("{name}.csv"));
-        crate::files::write_atomic(&path, to_csv(&rows).as_bytes())
-            .map_err(|e| write_err(&path, &e))?;
-        written.push(path);
+        written.push(write_text(dir, &format!("{name}.csv"), &to_csv(&rows))?);
     }
-    let summary = dir.join("summary.md");
-    crate::files::write_atomic(&summary, summary_markdown(report).as_bytes())
-        .map_err(|e| write_err(&summary, &e))?;
-    written.push(summary);
+    written.push(write_text(dir, "summary.md", &summary_markdown(report))?);
     for (stem, chart) in charts(report) {
         let path = dir.join(stem);
         write_chart(&chart, &path)?;
@@ -64,21 +76,9 @@ pub fn write_scene_report(
     dir: &Path,
 ) -> Result<Vec<PathBuf>, BenchError> {
     use std::fmt::Write as _;
-    let write_err = |path: &Path, e: &dyn std::fmt::Display| BenchError::Write {
-        path: path.display().to_string(),
-        error: e.to_string(),
-    };
-    std::fs::create_dir_all(dir).map_err(|e| write_err(dir, &e))?;
-    let json = dir.join("bench.json");
-    let body = serde_json::to_string_pretty(&serde_json::json!({
-        "config": {"budgets": config.budgets, "sizes": config.sizes},
-        "report": report,
-    }))
-    .map_err(|e| write_err(&json, &e))?;
-    crate::files::write_atomic(&json, body.as_bytes()).map_err(|e| write_err(&json, &e))?;
-    let csv = dir.join("timings.csv");
-    crate::files::write_atomic(&csv, to_csv(&to_values(&report.timings)).as_bytes())
-        .map_err(|e| write_err(&csv, &e))?;
+    let config = serde_json::json!({"budgets": config.budgets, "sizes": config.sizes});
+    let json = write_json(dir, config, report)?;
+    let csv = write_text(dir, "timings.csv", &to_csv(&to_values(&report.timings)))?;
     let mut md = String::new();
     let name = report.timings.first().map_or("", |t| t.space.as_str());
     let device = report.device.as_ref().map_or_else(
@@ -97,8 +97,7 @@ pub fn write_scene_report(
             t.budget, t.width, t.height, t.median_ms, t.p10_ms, t.p90_ms, t.baseline_ms, t.ratio
         );
     }
-    let summary = dir.join("summary.md");
-    crate::files::write_atomic(&summary, md.as_bytes()).map_err(|e| write_err(&summary, &e))?;
+    let summary = write_text(dir, "summary.md", &md)?;
     Ok(vec![json, csv, summary])
 }
 

@@ -36,16 +36,7 @@ pub(super) fn screenshot_then_exit(
     let path = shot.path.clone();
     commands.spawn(Screenshot::primary_window()).observe(
         move |captured: On<ScreenshotCaptured>, mut exit: MessageWriter<AppExit>| {
-            let saved = captured
-                .image
-                .clone()
-                .try_into_dynamic()
-                .map_err(|e| e.to_string())
-                .and_then(|img| {
-                    bevy_curved_spaces::files::write_png(&path, &img.to_rgb8())
-                        .map_err(|e| e.to_string())
-                });
-            match saved {
+            match bevy_curved_spaces::offscreen::save_screenshot(&captured.image, &path) {
                 Ok(()) => {
                     let shown = std::fs::canonicalize(&path).unwrap_or_else(|_| path.clone());
                     say!("wrote {}", shown.display());
