@@ -430,31 +430,8 @@ fn import(
 }
 
 /// The file a relative or `file:` URI names (percent-escapes decoded), as the `gltf` crate
-/// resolves it; `None` for any other scheme.
+/// resolves it; `None` for any other scheme, and for escapes that decode to no UTF-8 text.
 fn external_file(base: &Path, uri: &str) -> Option<std::path::PathBuf> {
-    let decode = |s: &str| -> String {
-        let bytes = s.as_bytes();
-        let mut out = Vec::with_capacity(bytes.len());
-        let mut i = 0;
-        while i < bytes.len() {
-            let hex = |b: u8| (b as char).to_digit(16);
-            match (
-                bytes[i],
-                bytes.get(i + 1).copied(),
-                bytes.get(i + 2).copied(),
-            ) {
-                (b'%', Some(h), Some(l)) if hex(h).is_some() && hex(l).is_some() => {
-                    out.push((hex(h).unwrap_or(0) * 16 + hex(l).unwrap_or(0)) as u8);
-                    i += 3;
-                }
-                (b, _, _) => {
-                    out.push(b);
-                    i += 1;
-                }
-            }
-        }
-        String::from_utf8_lossy(&out).into_owned()
-    };
     if let Some(rest) = uri
         .strip_prefix("file://")
         .or_else(|| uri.strip_prefix("file:"))
@@ -463,7 +440,8 @@ fn external_file(base: &Path, uri: &str) -> Option<std::path::PathBuf> {
     } else if uri.contains(':') {
         None
     } else {
-        Some(base.join(decode(uri)))
+        // Not UTF-8 once decoded: the gltf crate would unwrap the error, so it names no file.
+        urlencoding::decode(uri).ok().map(|path| base.join(&*path))
     }
 }
 

@@ -185,3 +185,18 @@ fn fifos_devices_and_huge_files_are_refused_before_reading() {
     std::fs::write(&path, serde_json::to_vec(&doc).unwrap()).unwrap();
     refused(&path, "more than the limit");
 }
+
+/// Image and buffer URIs whose percent-escapes decode to no UTF-8 text (the gltf crate
+/// unwrapped that decoding and panicked) name no file: a clear error.
+#[test]
+fn uris_that_decode_to_no_text_are_refused() {
+    let (doc, bin) = triangle();
+    let mut d = doc.clone();
+    d["images"] = json!([{"uri": "%ff.png"}]);
+    refused(&write("image_uri_not_utf8.glb", &d, &bin), "not a file");
+    let mut d = doc;
+    d["buffers"][0]["uri"] = json!("%ff%fe.bin");
+    let path = dir().join("buffer_uri_not_utf8.gltf");
+    std::fs::write(&path, serde_json::to_vec(&d).unwrap()).unwrap();
+    refused(&path, "not a file");
+}
