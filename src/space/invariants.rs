@@ -124,11 +124,7 @@ fn flat_volume(space: &Space) -> f64 {
         .iter()
         .map(|v| v.abs().max_element())
         .fold(0.0_f64, f64::max);
-    let scale = if largest > 0.0 && largest.is_finite() {
-        2f64.powi(largest.log2().round() as i32)
-    } else {
-        1.0
-    };
+    let scale = super::power_of_two_near(largest).unwrap_or(1.0);
     let unit: f64 = space
         .faces
         .iter()

@@ -57,8 +57,18 @@ fn flat_scale(specs: &[FaceSpec]) -> Option<f64> {
     let finite = specs
         .iter()
         .all(|f| f.offset.is_finite() && f.pairing.is_none_or(|p| p.matrix.is_finite()));
-    (finite && largest > 0.0 && largest.is_finite())
-        .then(|| 2f64.powi(largest.log2().round() as i32))
+    if finite {
+        power_of_two_near(largest)
+    } else {
+        None
+    }
+}
+
+/// The power of two nearest `x` (positive and finite), by which a flat cell can be scaled
+/// exactly; `None` for any other `x`.
+pub(crate) fn power_of_two_near(x: f64) -> Option<f64> {
+    (x > 0.0 && x.is_finite())
+        .then(|| 2f64.powi(x.log2().round() as i32))
         .filter(|s| s.is_finite() && *s > 0.0)
 }
 
