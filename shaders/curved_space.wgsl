@@ -19,6 +19,9 @@
 //   LIGHTS + LIGHT_COUNT, LIGHT_IMAGES   point lights, each with up to LIGHT_IMAGES copies
 //   HIT_ID                               (benchmark) output what each ray met instead of a
 //                                        colour: object, crossings, face path, how it ended
+//   CULLING + MASK_VECS                  balls and tubes carry face masks: a segment tests
+//                                        only those whose faces it comes near
+//                                        (src/scene/culling.rs)
 //   STEREO_SPLIT                         two eyes in two halves of the view (src/stereo.rs)
 //   ANAGLYPH                             two eyes traced per pixel and mixed by two matrices
 //
@@ -144,6 +147,14 @@ struct SpaceUniform {
 #endif
 #ifdef INSTANCES
     instances: array<Instance, #{INSTANCE_COUNT}>,
+#endif
+#ifdef CULLING
+    // Per face (four to a vec4): the bound on −N·X of the points of the model within the
+    // culling distance of its plane.
+    near: array<vec4<f32>, #{PARTNER_VECS}>,
+    // Per ball, then per tube (four to a vec4): the faces (bits of faces 0–31) a segment
+    // must come near to meet it.
+    masks: array<vec4<u32>, #{MASK_VECS}>,
 #endif
 #ifdef GENERAL
     // κ, face count, ball count, tube count.
@@ -829,6 +840,44 @@ fn cross_face(ray: Ray, exit: Exit) -> Ray {
     return Ray(point, unit_tangent(point, transform_compensated(hi, lo, along)));
 }
 
+#ifdef CULLING
+// The faces (bits of faces 0–31) the segment p + s v, s in [0, s_max], comes near (Rust:
+// `FaceCulling::near_faces`): −N·X is linear in s, so its least value is at an end; |X(s)|
+// is at most 1 in E³ and H³ and √(1 + s_max²) in S³.
+fn near_faces(ray: Ray, s_max: f32) -> u32 {
+    var scale = 1.0;
+#ifdef SPHERICAL
+    scale = sqrt(1.0 + s_max * s_max);
+#endif
+    var near = 0u;
+    for (var f = 0u; f < min(face_count(), 32u); f += 1u) {
+        let n = space.covectors[f];
+        let r0 = -dot(n, ray.point);
+        let r1 = r0 - s_max * dot(n, ray.tangent);
+        if min(r0, r1) <= space.near[f / 4u][f % 4u] * scale {
+            near |= 1u << f;
+        }
+    }
+    return near;
+}
+
+// Whether a segment near the faces `near` may meet object `object` (balls, then tubes).
+fn may_meet(object: u32, near: u32) -> bool {
+    let mask = space.masks[object / 4u][object % 4u];
+    return (mask & near) == mask;
+}
+
+// How many masks come before the tubes'.
+fn masked_balls() -> u32 {
+    var n = 0u;
+#ifdef BALLS
+    n = ball_count();
+#endif
+    return n;
+}
+
+#endif
+
 // What a segment meets first (Rust: `CurvedScene::intersect`): its chart ratio s (s_max when
 // nothing), the kind (0 nothing, 1 ball, 2 tube, 3 globe, 4 disc, 5 mesh instance, 6 avatar
 // image) and index, and for meshes the triangle hit.
@@ -853,8 +902,16 @@ fn intersect_scene(ray: Ray, s_max: f32, travelled: f32) -> SceneHit {
 #ifdef MESHES
     hit.mesh = MeshHit(NO_HIT, 0u, vec2<f32>(0.0), vec3<f32>(0.0));
 #endif
+#ifdef CULLING
+    let near = near_faces(ray, s_max);
+#endif
 #ifdef BALLS
     for (var i = 0u; i < ball_count(); i += 1u) {
+#ifdef CULLING
+        if !may_meet(i, near) {
+            continue;
+        }
+#endif
         let s = hit_ball_at(space.balls[i].centre, space.balls[i].colour.w, p, v, hit.s);
         if s < hit.s {
             hit.s = s;
@@ -865,6 +922,11 @@ fn intersect_scene(ray: Ray, s_max: f32, travelled: f32) -> SceneHit {
 #endif
 #ifdef TUBES
     for (var i = 0u; i < tube_count(); i += 1u) {
+#ifdef CULLING
+        if !may_meet(masked_balls() + i, near) {
+            continue;
+        }
+#endif
         let s = hit_tube(space.tubes[i], p, v, hit.s);
         if s < hit.s {
             hit.s = s;

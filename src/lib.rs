@@ -70,6 +70,7 @@ pub mod bench;
 pub(crate) mod colour;
 pub mod components;
 pub mod files;
+pub mod frame_rate;
 pub mod geometry;
 pub mod headset;
 pub mod offscreen;

@@ -18,6 +18,7 @@ use crate::components::{
     PlayerFrame, PlayerSettings, Quality, SceneObjects, StereoSettings, TracerSettings,
     TracerStatus,
 };
+use crate::frame_rate::{FrameRateTarget, hold_frame_rate};
 use crate::player;
 use crate::render::TracerRenderPlugin;
 use crate::render::upload::upload_scene;
@@ -48,6 +49,10 @@ pub struct CurvedSpacesPlugin {
     /// Draw the player's ship where rays come back round the space (toggle it at run time
     /// in [`TracerSettings::parts`]).
     pub avatar: bool,
+    /// Frames a second to hold by adapting the resolution scale within the quality's range
+    /// ([`crate::frame_rate`]); `None` keeps the quality's scale (changeable at run time in
+    /// [`FrameRateTarget`]).
+    pub target_fps: Option<f64>,
 }
 
 impl Default for CurvedSpacesPlugin {
@@ -61,6 +66,7 @@ impl Default for CurvedSpacesPlugin {
             ui: false,
             stereo: StereoSettings::default(),
             avatar: true,
+            target_fps: None,
         }
     }
 }
@@ -97,6 +103,7 @@ impl Plugin for CurvedSpacesPlugin {
             time: None,
         })
         .insert_resource(self.stereo)
+        .insert_resource(FrameRateTarget::fps(self.target_fps))
         .init_resource::<TracerStatus>()
         .init_resource::<SceneObjects>()
         .init_resource::<BaseScene>()
@@ -121,6 +128,7 @@ impl Plugin for CurvedSpacesPlugin {
                     .in_set(CurvedSpacesSystems::Move),
                 player::wrap_players.in_set(CurvedSpacesSystems::Wrap),
                 (upload_scene, check_stereo_settings).in_set(CurvedSpacesSystems::Upload),
+                hold_frame_rate.before(CurvedSpacesSystems::Upload),
             ),
         )
         .add_observer(start_camera);

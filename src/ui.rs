@@ -4,6 +4,7 @@
 use crate::components::{ActiveSpace, CurvedSpaceCamera, Quality, TracerSettings, TracerStatus};
 use crate::components::{PlayerFrame, PlayerSettings};
 use crate::components::{PointerOverUi, StereoSettings};
+use crate::frame_rate::FrameRateTarget;
 use crate::space::Holonomy;
 use crate::space::SEED_SPACES;
 use crate::view::StereoMode;
@@ -193,6 +194,7 @@ fn panel(
     mut stereo: ResMut<StereoSettings>,
     diagnostics: Res<DiagnosticsStore>,
     mut cameras: Query<(&mut CurvedSpaceCamera, &PlayerFrame, &Holonomy)>,
+    mut frame_rate: ResMut<FrameRateTarget>,
 ) -> Result {
     let ctx = contexts.ctx_mut()?;
     if !shown.0 {
@@ -277,11 +279,28 @@ fn panel(
                     settings.max_crossings = Some(budget);
                 }
             }
+            let mut hold = frame_rate.target_ms.is_some();
+            let mut fps = frame_rate.target_ms.map_or(30.0, |ms| 1e3 / ms);
+            ui.horizontal(|ui| {
+                ui.checkbox(&mut hold, "hold");
+                ui.add_enabled(hold, egui::Slider::new(&mut fps, 10.0..=144.0).text("fps"))
+                    .on_hover_text(
+                        "Lowers or raises the traced resolution, within the quality's range, \
+                         to keep this frame rate",
+                    );
+            });
+            let target_ms = hold.then_some(1e3 / fps);
+            if target_ms != frame_rate.target_ms {
+                frame_rate.target_ms = target_ms;
+                frame_rate.frames_since_change = 0;
+            }
             let mut scale = settings.resolution_scale;
-            if ui
-                .add(egui::Slider::new(&mut scale, 0.25..=1.0).text("resolution scale"))
-                .changed()
-            {
+            let slider = egui::Slider::new(&mut scale, 0.25..=1.0).text(if hold {
+                "resolution scale (chosen)"
+            } else {
+                "resolution scale"
+            });
+            if ui.add_enabled(!hold, slider).changed() {
                 settings.resolution_scale = scale;
             }
             ui.add(egui::Slider::new(&mut player.speed, 0.01..=20.0).logarithmic(true).text("speed (inradii/s)"));

@@ -441,6 +441,38 @@ pub struct BenchReport {
     /// Absent from reports written before meshes existed.
     #[serde(default)]
     pub meshes: Vec<MeshRow>,
+    /// The cell's edges, culled and not (absent from reports written before culling).
+    #[serde(default)]
+    pub edges: Vec<EdgesRow>,
+}
+
+/// What the default scene's cell edges (tubes and vertex balls) cost: the default view
+/// timed with them (face culling on, as drawn), with them unculled (every object tested in
+/// every cell), and without them, interleaved in one loop.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct EdgesRow {
+    /// Seed space id.
+    pub space: String,
+    /// Its geometry.
+    pub geometry: String,
+    /// Picture width in pixels.
+    pub width: u32,
+    /// Picture height in pixels.
+    pub height: u32,
+    /// Crossing budget per ray.
+    pub budget: u32,
+    /// Edge tubes and vertex balls.
+    pub edge_objects: usize,
+    /// Median frame time with the edges, culled (as the plugin draws them), ms.
+    pub with_edges_ms: f64,
+    /// Median frame time with the edges, every one tested in every cell, ms.
+    pub unculled_ms: f64,
+    /// Median frame time of the same view without edges, ms.
+    pub without_edges_ms: f64,
+    /// `with_edges_ms / without_edges_ms`.
+    pub ratio: f64,
+    /// `unculled_ms / without_edges_ms`.
+    pub unculled_ratio: f64,
 }
 
 /// A mesh at the cell's centre: frame time against triangle count, timed interleaved with
@@ -631,7 +663,7 @@ pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, 
     };
     let gpu_steps = if harness.is_some() {
         (config.budgets.len() + config.fog_factors.len()) * (config.sizes.len() + 1)
-            + 2
+            + 3
             + config.mesh_triangles.len()
     } else {
         0
@@ -745,6 +777,14 @@ fn gpu_measurements(
     report
         .stereo
         .push(stereo_cost(harness, subject, auto_default, config)?);
+    progress.inc(1);
+    announce(
+        progress,
+        format!("{}: edges culled, unculled and none", subject.id),
+    );
+    report
+        .edges
+        .push(edges_cost(harness, subject, auto_default, config)?);
     progress.inc(1);
     for &triangles in &config.mesh_triangles {
         announce(

@@ -43,7 +43,7 @@ pub fn write_report(
 ) -> Result<Vec<PathBuf>, BenchError> {
     let config = serde_json::to_value(config).map_err(|e| write_error(dir, &e))?;
     let mut written = vec![write_json(dir, config, report)?];
-    let tables: [(&str, Vec<serde_json::Value>); 10] = [
+    let tables: [(&str, Vec<serde_json::Value>); 11] = [
         ("timings", to_values(&report.timings)),
         ("errors", to_values(&report.errors)),
         ("conditioning", to_values(&report.conditioning)),
@@ -54,6 +54,7 @@ pub fn write_report(
         ("specialisation", to_values(&report.specialisation)),
         ("stereo", to_values(&report.stereo)),
         ("meshes", to_values(&report.meshes)),
+        ("edges", to_values(&report.edges)),
     ];
     for (name, rows) in tables {
         written.push(write_text(dir, &format!("{name}.csv"), &to_csv(&rows))?);
@@ -161,6 +162,7 @@ pub fn summary_markdown(report: &BenchReport) -> String {
     sizes.dedup();
     timings_section(&mut md, report, &spaces, &sizes);
     work_section(&mut md, report);
+    edges_section(&mut md, report);
     specialisation_section(&mut md, report);
     stereo_section(&mut md, report);
     mesh_section(&mut md, report);
@@ -356,6 +358,34 @@ fn stereo_section(md: &mut String, report: &BenchReport) {
                 r.anaglyph_ratio
             );
         }
+    }
+}
+
+/// What the cell's edges cost, culled and not, against the view without them.
+fn edges_section(md: &mut String, report: &BenchReport) {
+    use std::fmt::Write as _;
+    if report.edges.is_empty() {
+        return;
+    }
+    let _ = writeln!(
+        *md,
+        "\n### The cell's edges: the default view with its edge tubes and vertex balls (culled by face masks, as drawn; and every one tested in every cell) against the same view without them, timed in turn\n\n| space | size | budget | edge objects | with edges ms | × without | unculled ms | × without | without edges ms |\n|---|---|---:|---:|---:|---:|---:|---:|---:|"
+    );
+    for r in &report.edges {
+        let _ = writeln!(
+            *md,
+            "| {} | {}×{} | {} | {} | {:.2} | {:.2}× | {:.2} | {:.2}× | {:.2} |",
+            r.space,
+            r.width,
+            r.height,
+            r.budget,
+            r.edge_objects,
+            r.with_edges_ms,
+            r.ratio,
+            r.unculled_ms,
+            r.unculled_ratio,
+            r.without_edges_ms
+        );
     }
 }
 

@@ -69,20 +69,89 @@ pub(super) fn time_setting(
 /// first frame compiles the pipeline.
 pub(super) fn time_interleaved(
     harness: &mut Harness,
-    (pa, a): (&Program, &Frame),
-    (pb, b): (&Program, &Frame),
+    a: (&Program, &Frame),
+    b: (&Program, &Frame),
     config: &BenchConfig,
 ) -> Result<(Stats, Stats), BenchError> {
-    let (mut ta, mut tb) = (Vec::new(), Vec::new());
+    let stats = time_in_turn(harness, &[a, b], config)?;
+    Ok((stats[0], stats[1]))
+}
+
+/// [`time_interleaved`] for any number of programs, each drawn once per round.
+pub(super) fn time_in_turn(
+    harness: &mut Harness,
+    programs: &[(&Program, &Frame)],
+    config: &BenchConfig,
+) -> Result<Vec<Stats>, BenchError> {
+    let mut times: Vec<Vec<f64>> = vec![Vec::new(); programs.len()];
     let start = std::time::Instant::now();
-    while ta.len() < config.max_frames.max(1)
-        && (ta.len() < config.min_frames.max(1)
-            || start.elapsed().as_secs_f64() < config.min_seconds)
+    let mut rounds = 0;
+    while rounds < config.max_frames.max(1)
+        && (rounds < config.min_frames.max(1) || start.elapsed().as_secs_f64() < config.min_seconds)
     {
-        ta.push(harness.draw(pa, a)?);
-        tb.push(harness.draw(pb, b)?);
+        for ((program, frame), t) in programs.iter().zip(&mut times) {
+            t.push(harness.draw(program, frame)?);
+        }
+        rounds += 1;
     }
-    Ok((Stats::of(ta), Stats::of(tb)))
+    Ok(times.into_iter().map(Stats::of).collect())
+}
+
+/// The default view with the cell's edges culled (as drawn), unculled, and without edges,
+/// timed in turn at the middle resolution.
+pub(super) fn edges_cost(
+    harness: &mut Harness,
+    subject: &Subject,
+    budget: u32,
+    config: &BenchConfig,
+) -> Result<EdgesRow, BenchError> {
+    let with = subject.scene(DEFAULT_FOG_FACTOR);
+    let without = CurvedScene::with_parts(
+        &subject.space,
+        DEFAULT_FOG_FACTOR * subject.inradius,
+        crate::scene::SceneParts {
+            edges: false,
+            ..Default::default()
+        },
+    );
+    let culled = subject.pack(&with, budget)?;
+    let unculled = culled.without_culling();
+    let none = subject.pack(&without, budget)?;
+    let (w, h) = config.middle_size();
+    let layout = subject.camera.layout(w, h);
+    let runs: Vec<(Program, Frame)> = [&culled, &unculled, &none]
+        .into_iter()
+        .map(|gpu| {
+            (
+                Program::Tracer(gpu.key, ViewKind::Mono, Output::Colour),
+                harness.frame(
+                    w,
+                    h,
+                    Output::Colour,
+                    &uniform_words(&layout, gpu),
+                    &gpu.data,
+                ),
+            )
+        })
+        .collect();
+    for (program, frame) in &runs {
+        harness.draw(program, frame)?;
+    }
+    let programs: Vec<(&Program, &Frame)> = runs.iter().map(|(p, f)| (p, f)).collect();
+    let stats = time_in_turn(harness, &programs, config)?;
+    Ok(EdgesRow {
+        space: subject.id.clone(),
+        geometry: subject.geometry(),
+        width: w,
+        height: h,
+        budget,
+        edge_objects: with.objects.len() - without.objects.len(),
+        with_edges_ms: stats[0].median,
+        unculled_ms: stats[1].median,
+        without_edges_ms: stats[2].median,
+        ratio: stats[0].median / stats[2].median,
+        unculled_ratio: stats[1].median / stats[2].median,
+    })
 }
 
 /// Times the specialised and the unspecialised shader on the same view, interleaved, at the

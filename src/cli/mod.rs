@@ -235,7 +235,14 @@ struct WalkArgs {
     /// toggles it too).
     #[arg(long)]
     no_avatar: bool,
+    /// Frames a second to hold by lowering or raising the traced resolution within the
+    /// quality's range (0: keep the quality's resolution). Off for --screenshot.
+    #[arg(long, default_value_t = DEFAULT_WALK_FPS, value_parser = parse_fps, allow_negative_numbers = true)]
+    fps: f64,
 }
+
+/// The frame rate `walk` holds unless told otherwise.
+pub const DEFAULT_WALK_FPS: f64 = 30.0;
 
 #[derive(Clone, Copy, ValueEnum)]
 enum QualityArg {
@@ -307,6 +314,7 @@ impl Default for WalkArgs {
             xr: false,
             scene: None,
             no_avatar: false,
+            fps: DEFAULT_WALK_FPS,
         }
     }
 }

@@ -48,6 +48,16 @@ pub(super) fn parse_positive(s: &str) -> Result<f64, String> {
     }
 }
 
+/// A frame rate to hold: 0 (off) to 1000.
+pub(super) fn parse_fps(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(x) if x.is_finite() && (0.0..=1000.0).contains(&x) => Ok(x),
+        _ => Err(format!(
+            "expected frames a second from 0 (off) to 1000, got `{s}`"
+        )),
+    }
+}
+
 /// Longer walks than this take minutes and say nothing new.
 pub(super) const MAX_WALK: usize = 1_000_000;
 

@@ -164,6 +164,8 @@ pub(super) fn add_walk_plugins<'a>(
             ui: true,
             stereo,
             avatar: !args.no_avatar,
+            // A screenshot shows the quality's resolution, not one chosen by timing.
+            target_fps: (args.screenshot.is_none() && args.fps > 0.0).then_some(args.fps),
             ..default()
         })
         .insert_resource(bevy_curved_spaces::ui::PanelVisible(!args.no_ui))

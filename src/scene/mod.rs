@@ -7,6 +7,7 @@
 
 pub mod assets;
 pub mod avatar;
+pub mod culling;
 #[cfg(feature = "scene-files")]
 pub mod file;
 #[cfg(feature = "gltf")]
@@ -17,6 +18,7 @@ pub mod object;
 pub mod shading;
 pub mod texture;
 
+pub use culling::FaceCulling;
 pub use mesh::Model;
 pub use model::{
     Avatar, CurvedScene, MAX_AVATAR_IMAGES, MAX_IMAGES, PlaceError, SceneParts, SegmentHit,

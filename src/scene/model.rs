@@ -4,7 +4,7 @@
 use super::mesh::{self, Mesh, Model};
 use super::object::{Ball, Hit, MeshInstance, Object, Tube};
 use super::shading::{DEFAULT_CUTOFF_WEIGHT, Light, Shading, SurfaceMaterial};
-use super::{avatar, texture::Texture};
+use super::{FaceCulling, avatar, texture::Texture};
 use crate::geometry::Geometry;
 use crate::space::Space;
 use glam::{DMat4, DVec2, DVec3, DVec4};
@@ -133,9 +133,30 @@ impl CurvedScene {
         s_max: f64,
         travelled: f64,
     ) -> Option<SegmentHit> {
+        self.intersect_culled(g, p, v, s_max, travelled, None)
+    }
+
+    /// [`CurvedScene::intersect`], skipping the objects that `culling` (this scene's, from
+    /// [`FaceCulling::new`]) shows the segment cannot meet: the same hit, sooner.
+    #[must_use]
+    pub fn intersect_culled(
+        &self,
+        g: Geometry,
+        p: DVec4,
+        v: DVec4,
+        s_max: f64,
+        travelled: f64,
+        culling: Option<&FaceCulling>,
+    ) -> Option<SegmentHit> {
         let mut best: Option<SegmentHit> = None;
         let mut limit = s_max;
+        let near = culling.map(|c| (c, c.near_faces(p, v, s_max)));
         for (i, o) in self.objects.iter().enumerate() {
+            if let Some((c, near)) = near
+                && !c.may_meet(i, near)
+            {
+                continue;
+            }
             let hit = match o {
                 Object::Mesh(m) => self.intersect_mesh(g, m, p, v, limit),
                 _ => o.intersect(g, p, v, limit).map(|mut h| {

@@ -3,7 +3,7 @@
 //! crossing budget.
 
 use crate::geometry::{Geometry, Ray};
-use crate::scene::{CurvedScene, Hit};
+use crate::scene::{CurvedScene, FaceCulling, Hit};
 use crate::space::{CellWalker, Space};
 use crate::view::{PixelRays, TraceCamera, ViewLayout};
 use glam::{DVec3, DVec4};
@@ -100,6 +100,20 @@ pub fn first_hit_traced(
     start: Ray<DVec4>,
     max_crossings: usize,
 ) -> TracedRay {
+    first_hit_culled(walker, scene, None, start, max_crossings)
+}
+
+/// [`first_hit_traced`] testing in each cell only the objects the segment can come near
+/// ([`FaceCulling`], built once per scene with [`FaceCulling::new`]): the same result, sooner
+/// where the scene draws the cell's edges.
+#[must_use]
+pub fn first_hit_culled(
+    walker: &CellWalker<DVec4>,
+    scene: &CurvedScene,
+    culling: Option<&FaceCulling>,
+    start: Ray<DVec4>,
+    max_crossings: usize,
+) -> TracedRay {
     let g = walker.geometry;
     let cutoff = scene.shading.cutoff_distance();
     let mut ray = walker.normalized(start);
@@ -114,7 +128,7 @@ pub fn first_hit_traced(
             };
         };
         let s_exit = exit.ratio();
-        let nearest = scene.intersect(g, ray.point, ray.tangent, s_exit, distance);
+        let nearest = scene.intersect_culled(g, ray.point, ray.tangent, s_exit, distance, culling);
         if let Some((object, hit)) = nearest {
             let d = distance + g.distance_from_ratio(hit.s, 1.0);
             let end = if d >= cutoff {
@@ -219,6 +233,7 @@ pub fn render_view(
     progress: impl Fn(u32, u32) + Sync,
 ) -> RgbImage {
     let walker = CellWalker::<DVec4>::new(space);
+    let culling = FaceCulling::new(space, scene);
     let g = space.geometry;
     let (w, h) = (settings.width, settings.height);
     let done = AtomicU32::new(0);
@@ -228,8 +243,14 @@ pub fn render_view(
             let mut row = Vec::with_capacity(3 * w as usize);
             for i in 0..w {
                 let colour = |ray| {
-                    trace_pixel(&walker, scene, ray, settings.max_crossings)
-                        .clamp(DVec3::ZERO, DVec3::ONE)
+                    let traced = first_hit_culled(
+                        &walker,
+                        scene,
+                        culling.as_ref(),
+                        ray,
+                        settings.max_crossings,
+                    );
+                    colour_of(g, scene, &traced.end).clamp(DVec3::ZERO, DVec3::ONE)
                 };
                 let c = match layout.rays_at(g, i, j) {
                     PixelRays::One(ray) => colour(ray),

@@ -108,26 +108,35 @@ fn every_shader_def_combination_validates_and_matches_the_packed_layout() {
         for faces in [1, 6, 8, 12, 128] {
             for balls in [0, 1, 21] {
                 for tubes in [0, 1, 30] {
-                    let key = ShaderKey {
-                        geometry,
-                        faces,
-                        balls,
-                        tubes,
-                        lights: 1,
-                        light_images: faces + 1,
-                        ..ShaderKey::empty(geometry)
+                    // Culling masks balls and tubes: with them, and without.
+                    let cullings: &[bool] = if balls + tubes > 0 {
+                        &[false, true]
+                    } else {
+                        &[false]
                     };
-                    assert_eq!(
-                        validate(&key),
-                        key.uniform_bytes(),
-                        "{key:?}: naga's layout differs from the packer's size"
-                    );
-                    checked += 1;
+                    for &culling in cullings {
+                        let key = ShaderKey {
+                            geometry,
+                            faces,
+                            balls,
+                            tubes,
+                            lights: 1,
+                            light_images: faces + 1,
+                            culling,
+                            ..ShaderKey::empty(geometry)
+                        };
+                        assert_eq!(
+                            validate(&key),
+                            key.uniform_bytes(),
+                            "{key:?}: naga's layout differs from the packer's size"
+                        );
+                        checked += 1;
+                    }
                 }
             }
         }
     }
-    assert_eq!(checked, 3 * 5 * 3 * 3);
+    assert_eq!(checked, 3 * 5 * (3 * 3 + 8));
 }
 
 /// Globes, discs, meshes, the avatar, textures and several lights, alone and together, in
@@ -263,6 +272,15 @@ fn every_seed_scene_packs_to_the_shader_layout() {
                 (gpu.words.len() + VIEW_WORDS) * 4,
                 validate(&gpu.key),
                 "{}: packed words differ from the shader's uniform size",
+                seed.id
+            );
+            // The edges hug the faces: they are culled; the same scene unculled packs too.
+            assert_eq!(gpu.key.culling, parts.edges, "{}", seed.id);
+            let unculled = gpu.without_culling();
+            assert_eq!(
+                (unculled.words.len() + VIEW_WORDS) * 4,
+                validate(&unculled.key),
+                "{}: unculled words differ from the shader's uniform size",
                 seed.id
             );
         }

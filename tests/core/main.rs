@@ -7,7 +7,9 @@
 mod common;
 
 mod accuracy;
+mod culling;
 mod files;
+mod frame_rate;
 mod geometry;
 mod hard_cases;
 mod headset;

@@ -32,6 +32,9 @@ pub struct ShaderKey {
     pub avatar: bool,
     /// Whether any texture is used.
     pub textures: bool,
+    /// Whether balls and tubes carry face masks ([`crate::scene::FaceCulling`]): a segment
+    /// tests only those whose faces it comes near.
+    pub culling: bool,
     /// The unspecialised variant (the benchmark's comparison): all geometries' formulas,
     /// arrays of [`GENERAL_CAPACITY`], geometry and counts read from the uniform.
     pub general: bool,
@@ -57,6 +60,7 @@ impl ShaderKey {
             light_images: 0,
             avatar: false,
             textures: false,
+            culling: false,
             general: false,
         }
     }
@@ -108,6 +112,10 @@ impl ShaderKey {
         if self.avatar || self.instances > 0 || self.textures {
             defs.push("SCENE_DATA".into());
         }
+        if self.culling {
+            defs.push("CULLING".into());
+            defs.push(ShaderDefVal::UInt("MASK_VECS".into(), self.mask_vecs()));
+        }
         defs
     }
 
@@ -118,6 +126,28 @@ impl ShaderKey {
             GENERAL_CAPACITY
         } else {
             (self.faces, self.balls, self.tubes)
+        }
+    }
+
+    /// `vec4`s of the face masks (a `u32` per ball and tube, four to a `vec4`); 0 without
+    /// culling.
+    #[must_use]
+    pub fn mask_vecs(&self) -> u32 {
+        if self.culling {
+            (self.balls + self.tubes).div_ceil(4)
+        } else {
+            0
+        }
+    }
+
+    /// `vec4`s at the end of the uniform that only culling uses: the per-face thresholds
+    /// (four to a `vec4`) and the masks.
+    #[must_use]
+    pub fn culling_vecs(&self) -> usize {
+        if self.culling {
+            self.faces.div_ceil(4) as usize + self.mask_vecs() as usize
+        } else {
+            0
         }
     }
 
@@ -139,6 +169,7 @@ impl ShaderKey {
             + count(self.globes) * size_of::<GpuGlobe>()
             + count(self.discs) * size_of::<GpuDisc>()
             + count(self.instances) * size_of::<GpuInstance>()
+            + self.culling_vecs() * vec4
             + if self.general { vec4 } else { 0 }
     }
 }

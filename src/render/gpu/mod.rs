@@ -10,7 +10,7 @@ use super::layout::{
     UniformWriter, Vec4F, colour, mat4, vec4,
 };
 use crate::geometry::Geometry;
-use crate::scene::{CurvedScene, Object};
+use crate::scene::{CurvedScene, FaceCulling, Object};
 use crate::space::Space;
 use crate::view::{ViewKind, ViewLayout};
 use bevy::shader::ShaderDefVal;
@@ -258,6 +258,7 @@ impl GpuScene {
                 triangles: scene.meshes.iter().map(|m| m.triangles.len()).sum(),
             });
         }
+        let culling = FaceCulling::new(space, scene);
         let light_images = scene
             .lights
             .iter()
@@ -276,6 +277,7 @@ impl GpuScene {
             light_images,
             avatar: scene.avatar.is_some(),
             textures: !scene.textures.is_empty(),
+            culling: culling.is_some() && balls.len() + tubes.len() > 0,
             general: false,
         };
         let bytes = key.uniform_bytes();
@@ -334,6 +336,11 @@ impl GpuScene {
             [&balls, &tubes, &globes, &discs, &instances],
             &roots,
         );
+        if key.culling
+            && let Some(culling) = &culling
+        {
+            pack_culling(&mut out, scene, culling, space.faces.len());
+        }
         let words = out.words;
         debug_assert_eq!(words.len() * 4 + VIEW_WORDS * 4, bytes);
         let avatar = scene.avatar.as_ref().map(|a| GpuAvatar {
@@ -349,6 +356,33 @@ impl GpuScene {
             avatar,
         })
     }
+}
+
+/// Appends the culling's per-face thresholds (rounded up to f32, four to a `vec4`) and the
+/// masks of the balls, then the tubes (a `u32` each, four to a `vec4`), in the GPU's order.
+fn pack_culling(out: &mut UniformWriter, scene: &CurvedScene, culling: &FaceCulling, faces: usize) {
+    let mut thresholds: Vec<u32> = (0..4 * faces.div_ceil(4))
+        .map(|f| {
+            culling
+                .thresholds
+                .get(f)
+                .map_or(0, |&t| f32_rounded(t, false).to_bits())
+        })
+        .collect();
+    out.words.append(&mut thresholds);
+    let of_kind = |kind: GpuKind| -> Vec<u32> {
+        scene
+            .objects
+            .iter()
+            .enumerate()
+            .filter(|(_, o)| gpu_kind(o) == kind)
+            .map(|(i, _)| culling.masks[i])
+            .collect()
+    };
+    let (balls, tubes) = (of_kind(GpuKind::Ball), of_kind(GpuKind::Tube));
+    let mut masks: Vec<u32> = balls.iter().chain(&tubes).copied().collect();
+    masks.resize(4 * masks.len().div_ceil(4), 0);
+    out.words.append(&mut masks);
 }
 
 /// Appends the objects' arrays to the uniform, kind by kind (balls, tubes, globes, discs,
@@ -421,12 +455,30 @@ fn pack_objects(out: &mut UniformWriter, g: Geometry, kinds: [&[&Object]; 5], ro
 }
 
 impl GpuScene {
+    /// The same scene with every object tested in every cell (the benchmark's comparison
+    /// for [`FaceCulling`]): the culling's words dropped from the end of the uniform.
+    #[must_use]
+    pub fn without_culling(&self) -> GpuScene {
+        let mut words = self.words.clone();
+        words.truncate(words.len() - 4 * self.key.culling_vecs());
+        GpuScene {
+            key: ShaderKey {
+                culling: false,
+                ..self.key
+            },
+            words,
+            data: self.data.clone(),
+            avatar: self.avatar,
+        }
+    }
+
     /// The same scene for the unspecialised shader variant: arrays padded to
     /// [`GENERAL_CAPACITY`] and the geometry and counts appended. `None` if the scene has
     /// more faces or objects than that.
     #[must_use]
     pub fn generalised(&self) -> Option<GpuScene> {
-        let k = self.key;
+        let unculled = self.without_culling();
+        let k = unculled.key;
         let (cap_faces, cap_balls, cap_tubes) = GENERAL_CAPACITY;
         // Only balls and tubes have general arrays.
         let other_kinds = k.globes + k.discs + k.instances > 0 || k.avatar;
@@ -465,14 +517,14 @@ impl GpuScene {
         // Shading, data offsets and the lights.
         let header = words_of(size_of::<GpuShading>())
             + vec4_words * (1 + k.lights as usize * (1 + k.light_images.max(1) as usize));
-        let mut words = self.words[..header].to_vec();
+        let mut words = unculled.words[..header].to_vec();
         let mut at = header;
         for (size, count, capacity) in arrays {
-            words.extend_from_slice(&self.words[at..at + size * count]);
+            words.extend_from_slice(&unculled.words[at..at + size * count]);
             words.resize(words.len() + size * (capacity - count), 0);
             at += size * count;
         }
-        debug_assert_eq!(at, self.words.len());
+        debug_assert_eq!(at, unculled.words.len());
         let general = [
             self.key.geometry.kappa() as f32,
             k.faces as f32,

@@ -1,0 +1,134 @@
+//! Holding a frame rate: the traced resolution follows the measured frame times.
+//!
+//! The tracer's cost is about proportional to the pixels traced, so a frame time `t` at
+//! resolution scale `σ` (a fraction of the view's width and height) predicts `t (σ'/σ)²` at
+//! `σ'`. [`hold_frame_rate`] smooths the frame times, and when they leave a band around the
+//! target (slower than 1.15×, or faster than 0.7×) for long enough it moves the scale
+//! towards the one predicted to meet it, by at most a step, in steps of 1/32, within the
+//! quality's range. The band and the wait are the hysteresis: a scale that meets the target
+//! is kept, so the picture does not pump.
+
+use crate::components::{Quality, TracerSettings};
+use bevy::prelude::*;
+
+/// Frames the smoothed time must stay outside the band before the scale moves again.
+pub const SETTLE_FRAMES: u32 = 12;
+
+/// Slower than this × the target lowers the scale.
+pub const SLOW: f64 = 1.15;
+
+/// Faster than this × the target raises it (a scale step of 1/32 changes the time by a few
+/// per cent, so the band is wide enough that one step does not cross it).
+pub const FAST: f64 = 0.7;
+
+/// The frame time to hold and what was chosen (a resource; `target_ms: None` leaves the
+/// resolution scale to the settings and the panel).
+#[derive(Resource, Clone, Copy, Debug, PartialEq)]
+pub struct FrameRateTarget {
+    /// Frame time to hold, in ms (`1000 / fps`); `None`: off.
+    pub target_ms: Option<f64>,
+    /// Smoothed frame time (ms), as last measured.
+    pub smoothed_ms: f64,
+    /// Frames measured since the scale last moved.
+    pub frames_since_change: u32,
+    /// Times the scale moved (the panel shows it; a test counts it).
+    pub changes: u64,
+}
+
+impl FrameRateTarget {
+    /// Holding `fps` frames a second (`None` or not positive: off).
+    #[must_use]
+    pub fn fps(fps: Option<f64>) -> Self {
+        Self {
+            target_ms: fps.filter(|f| f.is_finite() && *f > 0.0).map(|f| 1e3 / f),
+            smoothed_ms: 0.0,
+            frames_since_change: 0,
+            changes: 0,
+        }
+    }
+}
+
+impl Default for FrameRateTarget {
+    fn default() -> Self {
+        Self::fps(None)
+    }
+}
+
+/// The range of resolution scales a quality may hold a frame rate with: from its floor to
+/// full resolution.
+#[must_use]
+pub fn scale_range(quality: Quality) -> (f32, f32) {
+    let floor = match quality {
+        Quality::Low => 0.25,
+        Quality::Medium => 0.35,
+        Quality::High => 0.5,
+    };
+    (floor, 1.0)
+}
+
+/// The scale after a smoothed frame time `smoothed` at scale `scale` against `target` (ms),
+/// or `None` to keep it: outside the band, a step of at most ×1.25 down or ×1.1 up towards
+/// the predicted scale, rounded to 1/32 and kept in `range`.
+#[must_use]
+pub fn next_scale(scale: f32, smoothed: f64, target: f64, range: (f32, f32)) -> Option<f32> {
+    if !(smoothed > 0.0 && target > 0.0) {
+        return None;
+    }
+    let ratio = smoothed / target;
+    let factor = if ratio > SLOW {
+        (1.0 / ratio).sqrt().max(0.8)
+    } else if ratio < FAST {
+        (1.0 / ratio).sqrt().min(1.1)
+    } else {
+        return None;
+    };
+    let wanted = (f64::from(scale) * factor * 32.0).round() / 32.0;
+    let next = (wanted as f32).clamp(range.0, range.1);
+    (next != scale).then_some(next)
+}
+
+/// Moves [`TracerSettings::resolution_scale`] to hold [`FrameRateTarget`] (a system in
+/// `Update`; it does nothing while the target is off).
+pub fn hold_frame_rate(
+    time: Res<Time>,
+    mut target: ResMut<FrameRateTarget>,
+    mut settings: ResMut<TracerSettings>,
+) {
+    let Some(target_ms) = target.target_ms else {
+        return;
+    };
+    let dt = 1e3 * time.delta_secs_f64();
+    if !(dt > 0.0 && dt.is_finite()) {
+        return;
+    }
+    // An exponential average over about 8 frames; the first frame starts it.
+    target.smoothed_ms = if target.smoothed_ms > 0.0 {
+        target.smoothed_ms + 0.125 * (dt - target.smoothed_ms)
+    } else {
+        dt
+    };
+    target.frames_since_change = target.frames_since_change.saturating_add(1);
+    if target.frames_since_change < SETTLE_FRAMES {
+        return;
+    }
+    let range = scale_range(settings.quality);
+    if let Some(next) = next_scale(
+        settings.resolution_scale,
+        target.smoothed_ms,
+        target_ms,
+        range,
+    ) {
+        // The frames measured so far were at the old scale: predict them at the new one.
+        let s = f64::from(next / settings.resolution_scale);
+        info!(
+            "holding {:.0} fps: resolution scale {} → {next} ({:.1} ms a frame)",
+            1e3 / target_ms,
+            settings.resolution_scale,
+            target.smoothed_ms
+        );
+        target.smoothed_ms *= s * s;
+        settings.resolution_scale = next;
+        target.frames_since_change = 0;
+        target.changes += 1;
+    }
+}

@@ -1,0 +1,120 @@
+//! Holding a frame rate (`frame_rate::hold_frame_rate`), driven headless by a fake clock whose
+//! frame time follows the pixels traced: slow frames lower the resolution scale, fast ones
+//! raise it, and it settles without pumping.
+
+use bevy::prelude::*;
+use bevy::time::TimeUpdateStrategy;
+use bevy_curved_spaces::components::{Quality, TracerSettings};
+use bevy_curved_spaces::frame_rate::{FrameRateTarget, hold_frame_rate, next_scale, scale_range};
+use bevy_curved_spaces::scene::SceneParts;
+use std::time::Duration;
+
+fn app(fps: f64, quality: Quality) -> App {
+    let mut app = App::new();
+    app.add_plugins(bevy::time::TimePlugin)
+        .insert_resource(TracerSettings {
+            fog_distance: None,
+            max_crossings: None,
+            quality,
+            resolution_scale: quality.resolution_scale(),
+            parts: SceneParts::default(),
+            time: None,
+        })
+        .insert_resource(FrameRateTarget::fps(Some(fps)))
+        .add_systems(Update, hold_frame_rate);
+    app
+}
+
+fn scale(app: &App) -> f32 {
+    app.world().resource::<TracerSettings>().resolution_scale
+}
+
+/// Runs `frames` frames, each taking `cost(scale)` ms on the fake clock; returns the scales.
+fn run(app: &mut App, frames: usize, cost: impl Fn(f32) -> f64) -> Vec<f32> {
+    (0..frames)
+        .map(|_| {
+            let ms = cost(scale(app));
+            app.insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f64(
+                ms / 1e3,
+            )));
+            app.update();
+            scale(app)
+        })
+        .collect()
+}
+
+/// A GPU whose frame costs `full` ms at full resolution, in proportion to the pixels.
+fn gpu(full: f64) -> impl Fn(f32) -> f64 {
+    move |s| full * f64::from(s).powi(2) + 0.5
+}
+
+#[test]
+fn slow_frames_lower_the_scale_and_it_settles_at_the_target() {
+    let mut app = app(30.0, Quality::High);
+    // 80 ms at full resolution: 30 fps needs about 0.64 of it.
+    let scales = run(&mut app, 400, gpu(80.0));
+    let last = *scales.last().unwrap();
+    assert!(last < 1.0, "the scale did not move: {last}");
+    let ms = gpu(80.0)(last);
+    assert!(
+        ms <= 1e3 / 30.0 * 1.15 && ms >= 1e3 / 30.0 * 0.7,
+        "settled at scale {last}, {ms:.1} ms a frame, outside the band around 33.3 ms"
+    );
+    // Settled: no change in the last 200 frames (no pumping).
+    assert!(
+        scales[200..].iter().all(|&s| s == last),
+        "the scale still moves: {:?}",
+        &scales[200..]
+    );
+}
+
+#[test]
+fn fast_frames_raise_the_scale_to_full_resolution() {
+    let mut app = app(30.0, Quality::Low);
+    assert_eq!(scale(&app), 0.5);
+    let scales = run(&mut app, 300, gpu(5.0));
+    assert_eq!(*scales.last().unwrap(), 1.0);
+    // Steps up are small: at most ×1.1, one per settling period.
+    for pair in scales.windows(2) {
+        assert!(pair[1] <= pair[0] * 1.1 + 1.0 / 64.0, "jumped {pair:?}");
+    }
+}
+
+#[test]
+fn the_scale_stays_within_the_quality_range() {
+    for quality in Quality::ALL {
+        let (floor, top) = scale_range(quality);
+        let mut app = app(60.0, quality);
+        // Far too slow even at the floor.
+        let scales = run(&mut app, 300, gpu(2000.0));
+        assert_eq!(*scales.last().unwrap(), floor, "{quality:?}");
+        assert!(scales.iter().all(|&s| (floor..=top).contains(&s)));
+    }
+}
+
+#[test]
+fn a_target_that_is_off_leaves_the_scale_alone() {
+    let mut app = app(30.0, Quality::Medium);
+    app.insert_resource(FrameRateTarget::fps(None));
+    let scales = run(&mut app, 100, gpu(500.0));
+    assert!(
+        scales
+            .iter()
+            .all(|&s| s == Quality::Medium.resolution_scale())
+    );
+    // Nonsense rates are off too.
+    for fps in [0.0, -5.0, f64::NAN, f64::INFINITY] {
+        assert_eq!(FrameRateTarget::fps(Some(fps)).target_ms, None, "{fps}");
+    }
+}
+
+#[test]
+fn inside_the_band_the_scale_is_kept() {
+    let range = (0.25, 1.0);
+    assert_eq!(next_scale(0.75, 33.0, 33.3, range), None);
+    assert_eq!(next_scale(0.75, 37.0, 33.3, range), None);
+    assert_eq!(next_scale(0.75, 25.0, 33.3, range), None);
+    assert!(next_scale(0.75, 40.0, 33.3, range).unwrap() < 0.75);
+    assert!(next_scale(0.75, 20.0, 33.3, range).unwrap() > 0.75);
+    assert_eq!(next_scale(0.75, f64::NAN, 33.3, range), None);
+}
