@@ -155,6 +155,11 @@ struct SpaceUniform {
     // Per ball, then per tube (four to a vec4): the faces (bits of faces 0–31) a segment
     // must come near to meet it.
     masks: array<vec4<u32>, #{MASK_VECS}>,
+    // The object lists (u32, four to a vec4): for the balls, then the tubes, where each of
+    // the CULL_BUCKETS buckets starts and where the last ends; then the object indices. An
+    // object whose mask names two faces or more is in the bucket of one pair f < g of them
+    // (g(g−1)/2 + f), the rest in the last bucket.
+    lists: array<vec4<u32>, #{LIST_VECS}>,
 #endif
 #ifdef GENERAL
     // κ, face count, ball count, tube count.
@@ -867,6 +872,17 @@ fn may_meet(object: u32, near: u32) -> bool {
     return (mask & near) == mask;
 }
 
+fn list_word(k: u32) -> u32 {
+    return space.lists[k / 4u][k % 4u];
+}
+
+// Tests the balls (kind 0) or tubes (kind 1) of bucket b that a segment near the faces
+// `near` may meet.
+fn cull_range(kind: u32, b: u32) -> vec2<u32> {
+    let at = kind * (#{CULL_BUCKETS}u + 1u) + b;
+    return vec2<u32>(list_word(at), list_word(at + 1u));
+}
+
 // How many masks come before the tubes'.
 fn masked_balls() -> u32 {
     var n = 0u;
@@ -904,14 +920,58 @@ fn intersect_scene(ray: Ray, s_max: f32, travelled: f32) -> SceneHit {
 #endif
 #ifdef CULLING
     let near = near_faces(ray, s_max);
-#endif
+    // The objects that hug fewer than two faces (all lanes the same bucket), then the
+    // buckets of each pair f < g of the faces the segment comes near (usually one: the
+    // faces it enters and leaves by), one pair a turn.
+    var outer = near;
+    var f = firstTrailingBit(outer);
+    outer &= outer - 1u;
+    var inner = outer;
+    var bucket = #{CULL_BUCKETS}u - 1u;
+    loop {
 #ifdef BALLS
-    for (var i = 0u; i < ball_count(); i += 1u) {
-#ifdef CULLING
-        if !may_meet(i, near) {
-            continue;
+        let balls = cull_range(0u, bucket);
+        for (var k = balls.x; k < balls.y; k += 1u) {
+            let i = list_word(k);
+            if may_meet(i, near) {
+                let s = hit_ball_at(space.balls[i].centre, space.balls[i].colour.w, p, v, hit.s);
+                if s < hit.s {
+                    hit.s = s;
+                    hit.kind = 1u;
+                    hit.index = i;
+                }
+            }
         }
 #endif
+#ifdef TUBES
+        let tubes = cull_range(1u, bucket);
+        for (var k = tubes.x; k < tubes.y; k += 1u) {
+            let i = list_word(k);
+            if may_meet(masked_balls() + i, near) {
+                let s = hit_tube(space.tubes[i], p, v, hit.s);
+                if s < hit.s {
+                    hit.s = s;
+                    hit.kind = 2u;
+                    hit.index = i;
+                }
+            }
+        }
+#endif
+        if inner == 0u {
+            break;
+        }
+        let g = firstTrailingBit(inner);
+        inner &= inner - 1u;
+        bucket = g * (g - 1u) / 2u + f;
+        if inner == 0u && outer != 0u {
+            f = firstTrailingBit(outer);
+            outer &= outer - 1u;
+            inner = outer;
+        }
+    }
+#else
+#ifdef BALLS
+    for (var i = 0u; i < ball_count(); i += 1u) {
         let s = hit_ball_at(space.balls[i].centre, space.balls[i].colour.w, p, v, hit.s);
         if s < hit.s {
             hit.s = s;
@@ -922,11 +982,6 @@ fn intersect_scene(ray: Ray, s_max: f32, travelled: f32) -> SceneHit {
 #endif
 #ifdef TUBES
     for (var i = 0u; i < tube_count(); i += 1u) {
-#ifdef CULLING
-        if !may_meet(masked_balls() + i, near) {
-            continue;
-        }
-#endif
         let s = hit_tube(space.tubes[i], p, v, hit.s);
         if s < hit.s {
             hit.s = s;
@@ -934,6 +989,7 @@ fn intersect_scene(ray: Ray, s_max: f32, travelled: f32) -> SceneHit {
             hit.index = i;
         }
     }
+#endif
 #endif
 #ifdef GLOBES
     for (var i = 0u; i < #{GLOBE_COUNT}u; i += 1u) {

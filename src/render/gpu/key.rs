@@ -115,6 +115,11 @@ impl ShaderKey {
         if self.culling {
             defs.push("CULLING".into());
             defs.push(ShaderDefVal::UInt("MASK_VECS".into(), self.mask_vecs()));
+            defs.push(ShaderDefVal::UInt("LIST_VECS".into(), self.list_vecs()));
+            defs.push(ShaderDefVal::UInt(
+                "CULL_BUCKETS".into(),
+                super::cull_buckets(self.faces as usize) as u32,
+            ));
         }
         defs
     }
@@ -140,12 +145,25 @@ impl ShaderKey {
         }
     }
 
+    /// `vec4`s of the culling's object lists (`u32`s four to a `vec4`): for the balls, then
+    /// the tubes, where each of [`super::cull_buckets`] buckets starts (and the end), then
+    /// the object indices.
+    #[must_use]
+    pub fn list_vecs(&self) -> u32 {
+        if self.culling {
+            let buckets = super::cull_buckets(self.faces as usize) as u32;
+            (2 * (buckets + 1) + self.balls + self.tubes).div_ceil(4)
+        } else {
+            0
+        }
+    }
+
     /// `vec4`s at the end of the uniform that only culling uses: the per-face thresholds
-    /// (four to a `vec4`) and the masks.
+    /// (four to a `vec4`), the masks and the object lists.
     #[must_use]
     pub fn culling_vecs(&self) -> usize {
         if self.culling {
-            self.faces.div_ceil(4) as usize + self.mask_vecs() as usize
+            self.faces.div_ceil(4) as usize + self.mask_vecs() as usize + self.list_vecs() as usize
         } else {
             0
         }

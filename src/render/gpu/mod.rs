@@ -10,6 +10,7 @@ use super::layout::{
     UniformWriter, Vec4F, colour, mat4, vec4,
 };
 use crate::geometry::Geometry;
+use crate::scene::culling::MAX_CULLED_FACES;
 use crate::scene::{CurvedScene, FaceCulling, Object};
 use crate::space::Space;
 use crate::view::{ViewKind, ViewLayout};
@@ -383,6 +384,50 @@ fn pack_culling(out: &mut UniformWriter, scene: &CurvedScene, culling: &FaceCull
     let mut masks: Vec<u32> = balls.iter().chain(&tubes).copied().collect();
     masks.resize(4 * masks.len().div_ceil(4), 0);
     out.words.append(&mut masks);
+    // The object lists: an object whose mask names two faces or more is in the bucket of
+    // one pair f < g of them (bucket g(g−1)/2 + f; the emptiest so far, to balance them),
+    // the rest in the last bucket. A segment visits the buckets of the pairs of faces it
+    // comes near and the last: the tube along the edge between the faces it enters and
+    // leaves by is visited alone.
+    let culled = faces.min(MAX_CULLED_FACES);
+    let buckets = cull_buckets(faces);
+    let bucketed = |masks: &[u32]| -> Vec<Vec<u32>> {
+        let mut lists: Vec<Vec<u32>> = vec![Vec::new(); buckets];
+        for (i, &m) in masks.iter().enumerate() {
+            let bits: Vec<usize> = (0..culled).filter(|&f| m & (1 << f) != 0).collect();
+            let b = bits
+                .iter()
+                .enumerate()
+                .flat_map(|(k, &f)| bits[k + 1..].iter().map(move |&g| g * (g - 1) / 2 + f))
+                .min_by_key(|&pair| lists[pair].len())
+                .unwrap_or(buckets - 1);
+            lists[b].push(i as u32);
+        }
+        lists
+    };
+    let lists = [bucketed(&balls), bucketed(&tubes)];
+    let mut words: Vec<u32> = Vec::new();
+    let mut at = 2 * (buckets as u32 + 1);
+    for kind in &lists {
+        for list in kind {
+            words.push(at);
+            at += list.len() as u32;
+        }
+        words.push(at);
+    }
+    for kind in &lists {
+        words.extend(kind.iter().flatten());
+    }
+    words.resize(4 * words.len().div_ceil(4), 0);
+    out.words.append(&mut words);
+}
+
+/// Buckets of the culling's object lists for a cell of `faces` faces: one per pair f < g
+/// of the faces masks name, and one for the objects whose mask names fewer than two.
+#[must_use]
+pub fn cull_buckets(faces: usize) -> usize {
+    let f = faces.min(MAX_CULLED_FACES);
+    f * f.saturating_sub(1) / 2 + 1
 }
 
 /// Appends the objects' arrays to the uniform, kind by kind (balls, tubes, globes, discs,
