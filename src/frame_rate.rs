@@ -59,8 +59,8 @@ impl Default for FrameRateTarget {
 #[must_use]
 pub fn scale_range(quality: Quality) -> (f32, f32) {
     let floor = match quality {
-        Quality::Low => 0.25,
-        Quality::Medium => 0.35,
+        Quality::Low => 0.125,
+        Quality::Medium => 0.25,
         Quality::High => 0.5,
     };
     (floor, 1.0)
@@ -88,9 +88,10 @@ pub fn next_scale(scale: f32, smoothed: f64, target: f64, range: (f32, f32)) -> 
 }
 
 /// Moves [`TracerSettings::resolution_scale`] to hold [`FrameRateTarget`] (a system in
-/// `Update`; it does nothing while the target is off).
+/// `Update`; it does nothing while the target is off). Frame times are wall-clock
+/// ([`Time<Real>`]): the app's virtual time caps a frame at 250 ms.
 pub fn hold_frame_rate(
-    time: Res<Time>,
+    time: Res<Time<Real>>,
     mut target: ResMut<FrameRateTarget>,
     mut settings: ResMut<TracerSettings>,
 ) {
@@ -111,6 +112,10 @@ pub fn hold_frame_rate(
     if target.frames_since_change < SETTLE_FRAMES {
         return;
     }
+    debug!(
+        "frame time {:.1} ms at resolution scale {}",
+        target.smoothed_ms, settings.resolution_scale
+    );
     let range = scale_range(settings.quality);
     if let Some(next) = next_scale(
         settings.resolution_scale,

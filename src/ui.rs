@@ -295,7 +295,7 @@ fn panel(
                 frame_rate.frames_since_change = 0;
             }
             let mut scale = settings.resolution_scale;
-            let slider = egui::Slider::new(&mut scale, 0.25..=1.0).text(if hold {
+            let slider = egui::Slider::new(&mut scale, 0.125..=1.0).text(if hold {
                 "resolution scale (chosen)"
             } else {
                 "resolution scale"
