@@ -906,6 +906,30 @@ struct SceneHit {
 #endif
 }
 
+#ifdef BALLS
+// Ball i's hit on the segment, kept in `hit` if it is nearer.
+fn nearer_ball(i: u32, p: vec4<f32>, v: vec4<f32>, hit: ptr<function, SceneHit>) {
+    let s = hit_ball_at(space.balls[i].centre, space.balls[i].colour.w, p, v, (*hit).s);
+    if s < (*hit).s {
+        (*hit).s = s;
+        (*hit).kind = 1u;
+        (*hit).index = i;
+    }
+}
+#endif
+
+#ifdef TUBES
+// Tube i's hit on the segment, kept in `hit` if it is nearer.
+fn nearer_tube(i: u32, p: vec4<f32>, v: vec4<f32>, hit: ptr<function, SceneHit>) {
+    let s = hit_tube(space.tubes[i], p, v, (*hit).s);
+    if s < (*hit).s {
+        (*hit).s = s;
+        (*hit).kind = 2u;
+        (*hit).index = i;
+    }
+}
+#endif
+
 // The nearest object along the segment p + s v, s in (0, s_max); `travelled` is the distance
 // before the segment (the avatar's copy the eye sits in is passed through).
 fn intersect_scene(ray: Ray, s_max: f32, travelled: f32) -> SceneHit {
@@ -934,12 +958,7 @@ fn intersect_scene(ray: Ray, s_max: f32, travelled: f32) -> SceneHit {
         for (var k = balls.x; k < balls.y; k += 1u) {
             let i = list_word(k);
             if may_meet(i, near) {
-                let s = hit_ball_at(space.balls[i].centre, space.balls[i].colour.w, p, v, hit.s);
-                if s < hit.s {
-                    hit.s = s;
-                    hit.kind = 1u;
-                    hit.index = i;
-                }
+                nearer_ball(i, p, v, &hit);
             }
         }
 #endif
@@ -948,12 +967,7 @@ fn intersect_scene(ray: Ray, s_max: f32, travelled: f32) -> SceneHit {
         for (var k = tubes.x; k < tubes.y; k += 1u) {
             let i = list_word(k);
             if may_meet(masked_balls() + i, near) {
-                let s = hit_tube(space.tubes[i], p, v, hit.s);
-                if s < hit.s {
-                    hit.s = s;
-                    hit.kind = 2u;
-                    hit.index = i;
-                }
+                nearer_tube(i, p, v, &hit);
             }
         }
 #endif
@@ -972,22 +986,12 @@ fn intersect_scene(ray: Ray, s_max: f32, travelled: f32) -> SceneHit {
 #else
 #ifdef BALLS
     for (var i = 0u; i < ball_count(); i += 1u) {
-        let s = hit_ball_at(space.balls[i].centre, space.balls[i].colour.w, p, v, hit.s);
-        if s < hit.s {
-            hit.s = s;
-            hit.kind = 1u;
-            hit.index = i;
-        }
+        nearer_ball(i, p, v, &hit);
     }
 #endif
 #ifdef TUBES
     for (var i = 0u; i < tube_count(); i += 1u) {
-        let s = hit_tube(space.tubes[i], p, v, hit.s);
-        if s < hit.s {
-            hit.s = s;
-            hit.kind = 2u;
-            hit.index = i;
-        }
+        nearer_tube(i, p, v, &hit);
     }
 #endif
 #endif
