@@ -850,10 +850,7 @@ fn cross_face(ray: Ray, exit: Exit) -> Ray {
 // `FaceCulling::near_faces`): −N·X is linear in s, so its least value is at an end; |X(s)|
 // is at most 1 in E³ and H³ and √(1 + s_max²) in S³.
 fn near_faces(ray: Ray, s_max: f32) -> u32 {
-    var scale = 1.0;
-#ifdef SPHERICAL
-    scale = sqrt(1.0 + s_max * s_max);
-#endif
+    let scale = segment_scale(s_max);
     var near = 0u;
     for (var f = 0u; f < min(face_count(), 32u); f += 1u) {
         let n = space.covectors[f];
@@ -864,6 +861,31 @@ fn near_faces(ray: Ray, s_max: f32) -> u32 {
         }
     }
     return near;
+}
+
+// |X(s)| on the segment, at most (see near_faces).
+fn segment_scale(s_max: f32) -> f32 {
+    var scale = 1.0;
+#ifdef SPHERICAL
+    scale = sqrt(1.0 + s_max * s_max);
+#endif
+    return scale;
+}
+
+// The part of `range` (of s) where the segment is near face `face`: −N·X(s) = a − s b is
+// linear, so it is an interval (empty when x > y).
+fn near_part(ray: Ray, face: u32, scale: f32, range: vec2<f32>) -> vec2<f32> {
+    let n = space.covectors[face];
+    let a = -dot(n, ray.point);
+    let b = dot(n, ray.tangent);
+    let t = space.near[face / 4u][face % 4u] * scale;
+    if b > 0.0 {
+        return vec2<f32>(max(range.x, (a - t) / b), range.y);
+    }
+    if b < 0.0 {
+        return vec2<f32>(range.x, min(range.y, (a - t) / b));
+    }
+    return select(vec2<f32>(1.0, 0.0), range, a <= t);
 }
 
 // Whether a segment near the faces `near` may meet object `object` (balls, then tubes).
@@ -952,9 +974,21 @@ fn intersect_scene(ray: Ray, s_max: f32, travelled: f32) -> SceneHit {
     outer &= outer - 1u;
     var inner = outer;
     var bucket = #{CULL_BUCKETS}u - 1u;
+    // The pair of the bucket, and whether the segment is near both at once (the parts of it
+    // near each overlap): objects on the pair's edge or corners need both.
+    var pair = vec2<u32>(0u, 0u);
+    let scale = segment_scale(s_max);
     loop {
+        var both = true;
+        if bucket != #{CULL_BUCKETS}u - 1u {
+            let part = near_part(ray, pair.y, scale, near_part(ray, pair.x, scale, vec2<f32>(0.0, s_max)));
+            both = part.x <= part.y;
+        }
 #ifdef BALLS
-        let balls = cull_range(0u, bucket);
+        var balls = cull_range(0u, bucket);
+        if !both {
+            balls.y = balls.x;
+        }
         for (var k = balls.x; k < balls.y; k += 1u) {
             let i = list_word(k);
             if may_meet(i, near) {
@@ -963,7 +997,10 @@ fn intersect_scene(ray: Ray, s_max: f32, travelled: f32) -> SceneHit {
         }
 #endif
 #ifdef TUBES
-        let tubes = cull_range(1u, bucket);
+        var tubes = cull_range(1u, bucket);
+        if !both {
+            tubes.y = tubes.x;
+        }
         for (var k = tubes.x; k < tubes.y; k += 1u) {
             let i = list_word(k);
             if may_meet(masked_balls() + i, near) {
@@ -977,6 +1014,7 @@ fn intersect_scene(ray: Ray, s_max: f32, travelled: f32) -> SceneHit {
         let g = firstTrailingBit(inner);
         inner &= inner - 1u;
         bucket = g * (g - 1u) / 2u + f;
+        pair = vec2<u32>(f, g);
         if inner == 0u && outer != 0u {
             f = firstTrailingBit(outer);
             outer &= outer - 1u;

@@ -153,7 +153,7 @@ impl CurvedScene {
         let near = culling.map(|c| (c, c.near_faces(p, v, s_max)));
         for (i, o) in self.objects.iter().enumerate() {
             if let Some((c, near)) = near
-                && !c.may_meet(i, near)
+                && !(c.may_meet(i, near) && c.may_meet_at_once(i, p, v, s_max))
             {
                 continue;
             }
