@@ -847,10 +847,9 @@ fn cross_face(ray: Ray, exit: Exit) -> Ray {
 
 #ifdef CULLING
 // The faces (bits of faces 0–31) the segment p + s v, s in [0, s_max], comes near (Rust:
-// `FaceCulling::near_faces`): −N·X is linear in s, so its least value is at an end; |X(s)|
-// is at most 1 in E³ and H³ and √(1 + s_max²) in S³.
-fn near_faces(ray: Ray, s_max: f32) -> u32 {
-    let scale = segment_scale(s_max);
+// `FaceCulling::near_faces`): −N·X is linear in s, so its least value is at an end; `scale`
+// bounds |X(s)| (segment_scale).
+fn near_faces(ray: Ray, s_max: f32, scale: f32) -> u32 {
     var near = 0u;
     for (var f = 0u; f < min(face_count(), 32u); f += 1u) {
         let n = space.covectors[f];
@@ -863,7 +862,7 @@ fn near_faces(ray: Ray, s_max: f32) -> u32 {
     return near;
 }
 
-// |X(s)| on the segment, at most (see near_faces).
+// A bound on |X(s)| over the segment: 1 in E³ and H³, √(1 + s_max²) in S³.
 fn segment_scale(s_max: f32) -> f32 {
     var scale = 1.0;
 #ifdef SPHERICAL
@@ -965,7 +964,8 @@ fn intersect_scene(ray: Ray, s_max: f32, travelled: f32) -> SceneHit {
     hit.mesh = MeshHit(NO_HIT, 0u, vec2<f32>(0.0), vec3<f32>(0.0));
 #endif
 #ifdef CULLING
-    let near = near_faces(ray, s_max);
+    let scale = segment_scale(s_max);
+    let near = near_faces(ray, s_max, scale);
     // The objects that hug fewer than two faces (all lanes the same bucket), then the
     // buckets of each pair f < g of the faces the segment comes near (usually one: the
     // faces it enters and leaves by), one pair a turn.
@@ -977,7 +977,6 @@ fn intersect_scene(ray: Ray, s_max: f32, travelled: f32) -> SceneHit {
     // The pair of the bucket, and whether the segment is near both at once (the parts of it
     // near each overlap): objects on the pair's edge or corners need both.
     var pair = vec2<u32>(0u, 0u);
-    let scale = segment_scale(s_max);
     loop {
         var both = true;
         if bucket != #{CULL_BUCKETS}u - 1u {

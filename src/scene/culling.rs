@@ -127,7 +127,8 @@ impl FaceCulling {
     /// products a face of the mask; the GPU checks it for the pair of faces it visits.
     #[must_use]
     pub fn may_meet_at_once(&self, object: usize, p: DVec4, v: DVec4, s_max: f64) -> bool {
-        let Some(&mask) = self.masks.get(object) else {
+        // An object without a mask is tested everywhere: nothing to check.
+        let Some(&mask) = self.masks.get(object).filter(|&&m| m != 0) else {
             return true;
         };
         let scale = self.segment_scale(s_max);
