@@ -446,6 +446,10 @@ fn render_stereo_writes_both_eyes_and_names_bad_stereo_options() {
         &["render", "torus", "--cpu", "--stereo", "sideways"],
         "unknown stereo mode \"sideways\"",
     );
+    // A frame rate to hold: 0 (off) to 1000; anything else is named before a window opens.
+    for fps in ["-1", "nan", "inf", "1e308", "1001", "fast"] {
+        fails_with(&["walk", "torus", "--fps", fps], "expected frames a second");
+    }
     fails_with(
         &[
             "render", "torus", "--cpu", "--stereo", "anaglyph", "--ipd", "2",
