@@ -12,9 +12,9 @@ use bevy::prelude::*;
 use bevy_curved_spaces::components::Quality;
 use bevy_curved_spaces::components::StereoSettings;
 use bevy_curved_spaces::space::DEFAULT_SPACE;
-use bevy_curved_spaces::space::file::load_space_file;
+use bevy_curved_spaces::space::Space;
+use bevy_curved_spaces::space::dirichlet::DirichletOptions;
 use bevy_curved_spaces::space::invariants::inradius;
-use bevy_curved_spaces::space::{SEED_SPACES, Space, SpaceError, seed_space};
 use bevy_curved_spaces::view::StereoMode;
 use bevy_curved_spaces::view::stereo::check_ipd;
 use clap::{Args, Parser, Subcommand, ValueEnum};
@@ -36,6 +36,10 @@ use std::path::{Path, PathBuf};
 pub struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
+    /// The centre of the Dirichlet domain of a space given by a generator file (`.gen`), as
+    /// a chart point `X,Y,Z` (default: the origin).
+    #[arg(long, global = true, value_parser = parse_vec3, allow_hyphen_values = true)]
+    basepoint: Option<DVec3>,
 }
 
 #[derive(Subcommand)]
@@ -261,16 +265,16 @@ impl From<QualityArg> for Quality {
     }
 }
 
-/// A seed space by id, or a space file by path.
+/// The basepoint given by `--basepoint`, for every space made from a generator file.
+static BASEPOINT: std::sync::OnceLock<Option<DVec3>> = std::sync::OnceLock::new();
+
+/// A seed space by id, or a space file by path (`.gen` generator file or JSON).
 fn resolve_space(arg: &str) -> Result<Space, String> {
-    if SEED_SPACES.iter().any(|s| s.id == arg) {
-        return seed_space(arg).map_err(|e| e.to_string());
-    }
-    let path = Path::new(arg);
-    if path.exists() || arg.ends_with(".json") {
-        return load_space_file(path).map_err(|e| e.to_string());
-    }
-    Err(SpaceError::UnknownSpace(arg.to_string()).to_string())
+    let options = DirichletOptions {
+        basepoint: BASEPOINT.get().copied().flatten(),
+        ..DirichletOptions::default()
+    };
+    bevy_curved_spaces::space::resolve_space(arg, Path::new(""), &options)
 }
 
 /// `render`'s picture size when none is given.
@@ -321,6 +325,7 @@ impl Default for WalkArgs {
 
 /// Runs a parsed command line.
 pub fn run(cli: Cli) -> Result<(), String> {
+    let _ = BASEPOINT.set(cli.basepoint);
     match cli.command {
         None => walk::walk(&WalkArgs::default()),
         Some(Command::Walk(args)) => walk::walk(&args),

@@ -19,9 +19,8 @@ use crate::scene::{
     Ball, BallTexture, CurvedScene, Disc, Light, MeshInstance, Object, SceneParts, Shading,
     SurfaceMaterial, Tube,
 };
-use crate::space::file::load_space_file;
+use crate::space::Space;
 use crate::space::invariants::inradius;
-use crate::space::{SEED_SPACES, Space, seed_space};
 use glam::{DMat4, DVec3, DVec4};
 use serde::Deserialize;
 use std::path::Path;
@@ -400,18 +399,11 @@ fn with_suggestion(message: &str) -> String {
 
 /// A seed space by id, or a space file by path (relative to `base`).
 fn resolve_space(id: &str, base: &Path) -> Result<Space, String> {
-    if SEED_SPACES.iter().any(|s| s.id == id) {
-        return seed_space(id).map_err(|e| e.to_string());
-    }
-    let path = base.join(id);
-    if path.exists() {
-        return load_space_file(&path).map_err(|e| e.to_string());
-    }
-    let ids: Vec<&str> = SEED_SPACES.iter().map(|s| s.id).collect();
-    Err(format!(
-        "unknown space {id:?}: not a seed space ({}) nor a space file",
-        ids.join(", ")
-    ))
+    crate::space::resolve_space(
+        id,
+        base,
+        &crate::space::dirichlet::DirichletOptions::default(),
+    )
 }
 
 /// A colour (or emission) from a file: finite, negative channels taken as 0.

@@ -3,15 +3,19 @@
 
 pub mod accuracy;
 pub mod catalog;
+pub mod dirichlet;
 mod error;
 pub mod file;
+pub mod group;
 pub mod invariants;
+pub mod library;
 mod validate;
 pub mod walk;
 mod wrap;
 
 pub use catalog::{DEFAULT_SPACE, SEED_SPACES, SeedSpace, seed_space};
 pub use error::SpaceError;
+pub use library::resolve_space;
 pub use walk::{CellWalker, Crossing, Exit, Limit, Trace};
 pub use wrap::{Holonomy, MAX_WRAPS_PER_STEP, wrap_into_cell};
 

@@ -1,0 +1,609 @@
+//! The Dirichlet domain of a group about the basepoint `o = (0, 0, 0, 1)`:
+//! `D = {x : d(x, o) ≤ d(x, g·o) for every g}`, built as a [`Space`] whose faces are the
+//! bisectors that bound it, each paired by the inverse of the element that made it.
+//!
+//! The method (`docs/groups.md`):
+//! 1. Enumerate the group breadth first (products of the generators and their inverses),
+//!    keeping the elements that move `o` at most a radius `r`; two elements are the same
+//!    when they move `o` to the same point (an element other than the identity that fixes
+//!    `o` is an error, as are distinct orbit points closer than [`SEPARATION`]).
+//! 2. Cut a large box of the chart by the bisectors, nearest first; a bisector of an element
+//!    that moves `o` by more than twice the circumradius `R` of the cut cell misses it, so
+//!    the cut stops there. The enumeration radius grows until it is at least `2R`.
+//! 3. The cell is validated by Poincaré's polyhedron theorem ([`Space::new`]): it is then a
+//!    fundamental domain of the group its pairings generate. Each generator is walked back
+//!    into the cell by the pairings; if one does not come back to the identity, the element
+//!    it ends at was missed, is added, and the cut starts again. When every generator comes
+//!    back, the pairings generate the whole group and the cell is its Dirichlet domain (it
+//!    contains the true one and has the same volume).
+
+use super::group::{Generators, GroupError, polish_isometry};
+use super::{FaceSpec, MAX_FACES, Space};
+use crate::geometry::{Geometry, ORIGIN, max_abs_entry};
+use glam::{DMat4, DVec3, DVec4};
+use std::collections::HashMap;
+
+/// Orbit points closer than this (geodesic distance; for flat groups, relative to the
+/// largest generator translation) but not equal are taken as a sign that the group is not
+/// discrete.
+pub const SEPARATION: f64 = 1e-5;
+
+/// Orbit points closer than this are the same point.
+const SAME: f64 = 1e-8;
+
+/// The most elements the enumeration keeps, by default.
+pub const DEFAULT_MAX_ELEMENTS: usize = 50_000;
+
+/// How many times the enumeration radius may grow before the domain is declared not to
+/// close up.
+const MAX_ATTEMPTS: usize = 12;
+
+/// Half the side of the box of the chart that the bisectors cut: points at the box are at
+/// distance `atan 1000 = π/2 − 0.001` in S³; the Klein ball fits in the unit box; flat groups
+/// are scaled so that their largest generator translation is 1.
+fn box_half_side(geometry: Geometry) -> f64 {
+    match geometry {
+        Geometry::Spherical => 1e3,
+        Geometry::Euclidean => 1e3,
+        Geometry::Hyperbolic => 1.0,
+    }
+}
+
+/// Choices for building a Dirichlet domain.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DirichletOptions {
+    /// The centre of the domain, as a chart point (default: the origin of the chart).
+    pub basepoint: Option<DVec3>,
+    /// The most group elements to enumerate before giving up.
+    pub max_elements: usize,
+}
+
+impl Default for DirichletOptions {
+    fn default() -> Self {
+        Self {
+            basepoint: None,
+            max_elements: DEFAULT_MAX_ELEMENTS,
+        }
+    }
+}
+
+/// One element of the group.
+#[derive(Clone, Copy, Debug)]
+struct Element {
+    matrix: DMat4,
+    /// Where it moves the basepoint.
+    point: DVec4,
+    /// `d(o, g·o)`.
+    distance: f64,
+    /// Length of the shortest word found for it.
+    word: usize,
+}
+
+/// The elements found so far, keyed by their orbit points.
+struct Orbit {
+    geometry: Geometry,
+    elements: Vec<Element>,
+    buckets: HashMap<[i64; 3], Vec<usize>>,
+}
+
+impl Orbit {
+    fn new(geometry: Geometry) -> Self {
+        let mut orbit = Self {
+            geometry,
+            elements: Vec::new(),
+            buckets: HashMap::new(),
+        };
+        orbit.push(Element {
+            matrix: DMat4::IDENTITY,
+            point: ORIGIN,
+            distance: 0.0,
+            word: 0,
+        });
+        orbit
+    }
+
+    /// Coordinates in which geodesically close points are close: the tangent vector at `o`
+    /// (E³, H³: the exponential map does not shrink distances there) or the point itself
+    /// (S³: chords are shorter than arcs); only its first three entries are keyed, the
+    /// fourth is compared.
+    fn coordinates(&self, p: DVec4, distance: f64) -> DVec4 {
+        match self.geometry {
+            Geometry::Spherical => p,
+            Geometry::Euclidean => p.truncate().extend(0.0),
+            Geometry::Hyperbolic => {
+                let x = p.truncate();
+                let len = x.length();
+                if len > 0.0 {
+                    (x * (distance / len)).extend(0.0)
+                } else {
+                    DVec4::ZERO
+                }
+            }
+        }
+    }
+
+    fn key(c: DVec4) -> [i64; 3] {
+        let k = |x: f64| (x / SEPARATION).floor() as i64;
+        [k(c.x), k(c.y), k(c.z)]
+    }
+
+    fn push(&mut self, e: Element) -> usize {
+        let i = self.elements.len();
+        let key = Self::key(self.coordinates(e.point, e.distance));
+        self.buckets.entry(key).or_default().push(i);
+        self.elements.push(e);
+        i
+    }
+
+    /// The element whose orbit point is nearest `p`, if one is within [`SEPARATION`].
+    fn nearest(&self, p: DVec4, distance: f64) -> Option<(usize, f64)> {
+        let c = self.coordinates(p, distance);
+        let [a, b, k] = Self::key(c);
+        let mut best: Option<(usize, f64)> = None;
+        for da in -1..=1 {
+            for db in -1..=1 {
+                for dk in -1..=1 {
+                    let Some(list) = self.buckets.get(&[a + da, b + db, k + dk]) else {
+                        continue;
+                    };
+                    for &i in list {
+                        let d = self.geometry.distance(self.elements[i].point, p);
+                        if d < SEPARATION && best.is_none_or(|(_, bd)| d < bd) {
+                            best = Some((i, d));
+                        }
+                    }
+                }
+            }
+        }
+        best
+    }
+
+    /// Adds `matrix` unless it is already known; `Ok(true)` when it is new.
+    fn insert(&mut self, matrix: DMat4, word: usize) -> Result<bool, GroupError> {
+        let point = matrix.w_axis;
+        let distance = self.geometry.distance(ORIGIN, point);
+        if let Some((i, d)) = self.nearest(point, distance) {
+            if d >= SAME {
+                return Err(GroupError::NotDiscrete {
+                    distance: d,
+                    limit: SEPARATION,
+                });
+            }
+            let known = self.elements[i].matrix;
+            let size = 1.0 + max_abs_entry(&matrix.to_cols_array());
+            if max_abs_entry(&(known - matrix).to_cols_array()) > 1e-6 * size {
+                let what = if word <= 1 {
+                    "a generator".to_string()
+                } else {
+                    format!("an element of the group (a product of {word} generators)")
+                };
+                return Err(GroupError::FixesBasepoint { what });
+            }
+            return Ok(false);
+        }
+        self.push(Element {
+            matrix,
+            point,
+            distance,
+            word,
+        });
+        Ok(true)
+    }
+}
+
+/// Breadth-first enumeration of the elements that move `o` at most `radius` (every element
+/// when `radius` is infinite, for the finite groups of S³).
+fn enumerate(
+    geometry: Geometry,
+    moves: &[DMat4],
+    radius: f64,
+    limit: usize,
+) -> Result<Orbit, GroupError> {
+    let mut orbit = Orbit::new(geometry);
+    let mut frontier = vec![0usize];
+    while !frontier.is_empty() {
+        let mut next = Vec::new();
+        for &e in &frontier {
+            let (m, word) = (orbit.elements[e].matrix, orbit.elements[e].word);
+            for &g in moves {
+                let product = polish_isometry(geometry, m * g);
+                if geometry.distance(ORIGIN, product.w_axis) > radius {
+                    continue;
+                }
+                if orbit.insert(product, word + 1)? {
+                    next.push(orbit.elements.len() - 1);
+                    if orbit.elements.len() > limit {
+                        return Err(GroupError::TooLarge { limit, radius });
+                    }
+                }
+            }
+        }
+        frontier = next;
+    }
+    Ok(orbit)
+}
+
+/// The bisector of `o` and `p` as a chart half-space `n·x ≤ r` with `|n| = 1`, or `None`
+/// when it lies at infinity in the chart (`p = −o` in S³).
+fn bisector(geometry: Geometry, p: DVec4) -> Option<(DVec3, f64)> {
+    let (n, r) = match geometry {
+        Geometry::Spherical => (p.truncate(), 1.0 - p.w),
+        Geometry::Euclidean => {
+            let t = p.truncate() / p.w;
+            (t, 0.5 * t.length_squared())
+        }
+        Geometry::Hyperbolic => (p.truncate(), p.w - 1.0),
+    };
+    let len = n.length();
+    (len > 1e-12 * (1.0 + r.abs())).then(|| (n / len, r / len))
+}
+
+/// A convex polyhedron of the chart: its vertices, each with the planes it lies on.
+struct Polyhedron {
+    points: Vec<DVec3>,
+    planes: Vec<Vec<u32>>,
+}
+
+/// Plane ids below this are the box's six sides.
+const BOX_PLANES: u32 = 6;
+
+impl Polyhedron {
+    fn cube(l: f64) -> Self {
+        let mut points = Vec::new();
+        let mut planes = Vec::new();
+        for i in 0..8u32 {
+            let s = |bit: u32| if i & (1 << bit) != 0 { 1.0 } else { -1.0 };
+            points.push(DVec3::new(s(0), s(1), s(2)) * l);
+            // Plane 2a is the side +axis a, 2a + 1 the side −axis a.
+            planes.push(
+                (0..3)
+                    .map(|a| 2 * a + u32::from(i & (1 << a) == 0))
+                    .collect(),
+            );
+        }
+        Self { points, planes }
+    }
+
+    /// Cuts by `n·x ≤ r`; whether anything was cut off.
+    fn cut(&mut self, id: u32, n: DVec3, r: f64) -> bool {
+        let eps = |x: DVec3| 1e-10 * (1.0 + x.length());
+        let s: Vec<f64> = self.points.iter().map(|&x| n.dot(x) - r).collect();
+        let out = |i: usize| s[i] > eps(self.points[i]);
+        let inside = |i: usize| s[i] < -eps(self.points[i]);
+        if !(0..s.len()).any(out) {
+            return false;
+        }
+        let mut points = Vec::new();
+        let mut planes: Vec<Vec<u32>> = Vec::new();
+        let mut add = |x: DVec3, p: Vec<u32>, points: &mut Vec<DVec3>| {
+            if let Some(k) = points
+                .iter()
+                .position(|&y: &DVec3| (y - x).length() < 1e-9 * (1.0 + x.length()))
+            {
+                for id in p {
+                    if !planes[k].contains(&id) {
+                        planes[k].push(id);
+                    }
+                }
+            } else {
+                points.push(x);
+                planes.push(p);
+            }
+        };
+        for i in 0..s.len() {
+            if inside(i) {
+                add(self.points[i], self.planes[i].clone(), &mut points);
+            } else if !out(i) {
+                let mut p = self.planes[i].clone();
+                p.push(id);
+                add(self.points[i], p, &mut points);
+            }
+        }
+        for i in (0..s.len()).filter(|&i| inside(i)) {
+            for j in (0..s.len()).filter(|&j| out(j)) {
+                let shared: Vec<u32> = self.planes[i]
+                    .iter()
+                    .copied()
+                    .filter(|p| self.planes[j].contains(p))
+                    .collect();
+                if shared.len() < 2 {
+                    continue;
+                }
+                let t = s[i] / (s[i] - s[j]);
+                let x = self.points[i] + (self.points[j] - self.points[i]) * t;
+                let mut p = shared;
+                p.push(id);
+                add(x, p, &mut points);
+            }
+        }
+        for p in &mut planes {
+            p.sort_unstable();
+        }
+        self.points = points;
+        self.planes = planes;
+        true
+    }
+
+    /// Whether a side of the box is still a face (the cut cell is not bounded by bisectors).
+    fn touches_box(&self) -> bool {
+        (0..BOX_PLANES).any(|b| self.planes.iter().filter(|p| p.contains(&b)).count() >= 3)
+    }
+
+    /// The planes with three vertices or more: the faces.
+    fn faces(&self) -> Vec<u32> {
+        let mut count: HashMap<u32, usize> = HashMap::new();
+        for p in &self.planes {
+            for &id in p {
+                *count.entry(id).or_default() += 1;
+            }
+        }
+        let mut faces: Vec<u32> = count
+            .into_iter()
+            .filter(|&(id, c)| id >= BOX_PLANES && c >= 3)
+            .map(|(id, _)| id)
+            .collect();
+        faces.sort_unstable();
+        faces
+    }
+}
+
+/// Geodesic distance from `o` of a chart point.
+fn chart_radius(geometry: Geometry, x: DVec3) -> f64 {
+    let l = x.length();
+    match geometry {
+        Geometry::Spherical => l.atan(),
+        Geometry::Euclidean => l,
+        Geometry::Hyperbolic => {
+            if l < 1.0 {
+                l.atanh()
+            } else {
+                f64::INFINITY
+            }
+        }
+    }
+}
+
+/// The cell cut from the box by the bisectors of the orbit's elements, nearest first.
+struct Cut {
+    polyhedron: Polyhedron,
+    /// Elements (indices into the orbit) whose bisectors are faces.
+    faces: Vec<usize>,
+    circumradius: f64,
+}
+
+fn cut_domain(orbit: &Orbit) -> Cut {
+    let geometry = orbit.geometry;
+    let mut order: Vec<usize> = (1..orbit.elements.len()).collect();
+    order.sort_by(|&a, &b| {
+        orbit.elements[a]
+            .distance
+            .total_cmp(&orbit.elements[b].distance)
+    });
+    let mut poly = Polyhedron::cube(box_half_side(geometry));
+    let radius = |poly: &Polyhedron| {
+        poly.points
+            .iter()
+            .map(|&x| chart_radius(geometry, x))
+            .fold(0.0, f64::max)
+    };
+    let mut circumradius = radius(&poly);
+    for &i in &order {
+        let e = &orbit.elements[i];
+        // The bisector lies at distance d/2 from o: beyond the cell once d/2 > R.
+        if e.distance > 2.0 * circumradius * (1.0 + 1e-9) + 1e-12 {
+            break;
+        }
+        let Some((n, r)) = bisector(geometry, e.point) else {
+            continue;
+        };
+        if poly.cut(BOX_PLANES + i as u32, n, r) {
+            circumradius = radius(&poly);
+        }
+    }
+    let faces = poly
+        .faces()
+        .into_iter()
+        .map(|id| (id - BOX_PLANES) as usize)
+        .collect();
+    Cut {
+        polyhedron: poly,
+        faces,
+        circumradius,
+    }
+}
+
+/// What stops a cut from becoming a space, before the validator sees it.
+enum Attempt {
+    Space(Box<Space>),
+    /// Enumerate further (a larger radius, or this missed element added to the moves).
+    Grow(Option<DMat4>),
+}
+
+/// The Dirichlet domain of the group generated by `generators`, validated as a space.
+pub fn dirichlet_space(
+    name: &str,
+    description: &str,
+    generators: &Generators,
+    options: &DirichletOptions,
+) -> Result<Space, GroupError> {
+    let geometry = generators.geometry;
+    let mut gens = generators.matrices.clone();
+    if let Some(b) = options.basepoint {
+        let point = match geometry {
+            Geometry::Euclidean if b.is_finite() => Some(b.extend(1.0)),
+            Geometry::Euclidean => None,
+            _ => geometry.from_chart(b).ok(),
+        }
+        .ok_or(GroupError::BadBasepoint {
+            point: b.to_array(),
+            geometry: geometry.name(),
+        })?;
+        let t = geometry.translation_to(point);
+        let t_inv = geometry.inverse(t);
+        for g in &mut gens {
+            *g = polish_isometry(geometry, t_inv * *g * t);
+        }
+    }
+    // Flat groups are cut at the scale of their largest translation, and scaled back.
+    let scale = if geometry == Geometry::Euclidean {
+        gens.iter()
+            .map(|g| g.w_axis.truncate().length())
+            .fold(0.0, f64::max)
+            .max(f64::MIN_POSITIVE)
+    } else {
+        1.0
+    };
+    for g in &mut gens {
+        if geometry == Geometry::Euclidean {
+            g.w_axis = (g.w_axis.truncate() / scale).extend(1.0);
+        }
+    }
+    let mut moves: Vec<DMat4> = Vec::new();
+    for &g in &gens {
+        moves.push(g);
+        moves.push(polish_isometry(geometry, geometry.inverse(g)));
+    }
+    let reach = moves
+        .iter()
+        .map(|g| geometry.distance(ORIGIN, g.w_axis))
+        .fold(0.0, f64::max);
+    let finite = geometry == Geometry::Spherical;
+    let mut radius = if finite {
+        f64::INFINITY
+    } else {
+        2.0 * reach + 1.0
+    };
+    let mut last_error = None;
+    for _ in 0..MAX_ATTEMPTS {
+        let orbit = enumerate(geometry, &moves, radius, options.max_elements)?;
+        let cut = cut_domain(&orbit);
+        let bounded = !cut.polyhedron.touches_box()
+            && (geometry != Geometry::Hyperbolic || cut.circumradius.is_finite());
+        if !bounded {
+            if finite {
+                let what = match orbit.elements.len() {
+                    1 => "the group is trivial: the whole 3-sphere".to_string(),
+                    n => format!("a group of order {n}"),
+                };
+                return Err(GroupError::ReachesEquator { what });
+            }
+            radius *= 1.6;
+            continue;
+        }
+        // Every element whose bisector can be a face moves o at most 2R, and reaching them
+        // by products may pass a little further out.
+        let needed = 2.0 * cut.circumradius + reach;
+        if !finite && radius < needed {
+            radius = needed * 1.05;
+            continue;
+        }
+        match attempt(name, description, geometry, &orbit, &cut, &gens, scale) {
+            Ok(Attempt::Space(space)) => return Ok(*space),
+            Ok(Attempt::Grow(_)) if finite => {
+                // Every element is known already: the numbers do not make a group.
+                return Err(GroupError::Unclosed);
+            }
+            Ok(Attempt::Grow(missed)) => {
+                if let Some(m) = missed {
+                    moves.push(m);
+                    moves.push(polish_isometry(geometry, geometry.inverse(m)));
+                }
+                radius *= 1.3;
+            }
+            Err(e) => {
+                if finite {
+                    return Err(e);
+                }
+                last_error = Some(e);
+                radius *= 1.3;
+            }
+        }
+    }
+    Err(last_error.unwrap_or(GroupError::NotCocompact {
+        radius: radius * scale,
+    }))
+}
+
+/// Makes the space of a bounded cut, and checks that its pairings generate the group.
+fn attempt(
+    name: &str,
+    description: &str,
+    geometry: Geometry,
+    orbit: &Orbit,
+    cut: &Cut,
+    gens: &[DMat4],
+    scale: f64,
+) -> Result<Attempt, GroupError> {
+    if cut.faces.len() > MAX_FACES {
+        return Err(GroupError::TooManyFaces {
+            count: cut.faces.len(),
+            max: MAX_FACES,
+        });
+    }
+    let mut specs = Vec::with_capacity(cut.faces.len());
+    for &i in &cut.faces {
+        let e = &orbit.elements[i];
+        let inverse = polish_isometry(geometry, geometry.inverse(e.matrix));
+        let inverse_point = inverse.w_axis;
+        let Some((j, _)) = orbit.nearest(inverse_point, geometry.distance(ORIGIN, inverse_point))
+        else {
+            return Ok(Attempt::Grow(None));
+        };
+        let Some(partner) = cut.faces.iter().position(|&f| f == j) else {
+            return Ok(Attempt::Grow(None));
+        };
+        let Some((n, r)) = bisector(geometry, e.point) else {
+            return Ok(Attempt::Grow(None));
+        };
+        let mut pairing = inverse;
+        if geometry == Geometry::Euclidean {
+            pairing.w_axis = (pairing.w_axis.truncate() * scale).extend(1.0);
+        }
+        specs.push(FaceSpec::paired(n, r * scale, partner, pairing));
+    }
+    let space = Space::new(name, description, geometry, &specs)?;
+    // Walk each generator's image of o back into the cell by the pairings.
+    for &g in gens {
+        let mut g = g;
+        if geometry == Geometry::Euclidean {
+            g.w_axis = (g.w_axis.truncate() * scale).extend(1.0);
+        }
+        let mut element = g;
+        for _ in 0..10_000 {
+            let x = element.w_axis;
+            let (f, s) = space
+                .faces()
+                .iter()
+                .enumerate()
+                .map(|(f, face)| {
+                    let x = if geometry == Geometry::Spherical {
+                        x
+                    } else {
+                        x / x.w
+                    };
+                    (f, face.covector.dot(x))
+                })
+                .max_by(|a, b| a.1.total_cmp(&b.1))
+                .unwrap_or((0, f64::NEG_INFINITY));
+            if s <= 1e-9 {
+                break;
+            }
+            element = polish_isometry(geometry, space.faces()[f].pairing * element);
+        }
+        let d = geometry.distance(ORIGIN, element.w_axis);
+        if d > 1e-7
+            * if geometry == Geometry::Euclidean {
+                scale
+            } else {
+                1.0
+            }
+        {
+            let mut missed = element;
+            if geometry == Geometry::Euclidean {
+                missed.w_axis = (missed.w_axis.truncate() / scale).extend(1.0);
+            }
+            return Ok(Attempt::Grow(Some(missed)));
+        }
+    }
+    Ok(Attempt::Space(Box::new(space)))
+}
