@@ -2,7 +2,9 @@
 
 use bevy::prelude::*;
 use bevy_curved_spaces::space::file::SpaceRecord;
+use bevy_curved_spaces::space::group::write_gen;
 use bevy_curved_spaces::space::invariants::Invariants;
+use bevy_curved_spaces::space::library::is_gen_path;
 use bevy_curved_spaces::space::{SEED_SPACES, Space};
 use std::path::Path;
 
@@ -101,9 +103,13 @@ pub(super) fn info(space: &Space, as_json: bool) -> Result<(), String> {
     Ok(())
 }
 
-pub(super) fn export(space: &Space, out: Option<&Path>) -> Result<(), String> {
-    let text =
-        serde_json::to_string_pretty(&SpaceRecord::from_space(space)).map_err(|e| e.to_string())?;
+pub(super) fn export(space: &Space, out: Option<&Path>, gen_format: bool) -> Result<(), String> {
+    let gen_format = gen_format || out.is_some_and(is_gen_path);
+    let text = if gen_format {
+        write_gen(space).trim_end().to_string()
+    } else {
+        serde_json::to_string_pretty(&SpaceRecord::from_space(space)).map_err(|e| e.to_string())?
+    };
     match out {
         Some(path) => {
             bevy_curved_spaces::files::write_atomic(path, (text + "\n").as_bytes())

@@ -63,13 +63,18 @@ enum Command {
     /// Measure speed against error: GPU frame times against a trivial material, accuracy
     /// against the f64 reference, f32 drift, the fog cut-off; writes JSON, CSV and charts.
     Bench(BenchArgs),
-    /// Write a space as a space file (JSON), a template for your own spaces.
+    /// Write a space as a space file (JSON, a template for your own spaces) or as a
+    /// generator file (`.gen`).
     Export {
         /// Seed space id or space file.
         space: String,
-        /// Output file (standard output if omitted).
+        /// Output file (standard output if omitted); a `.gen` name writes a generator file.
         #[arg(long)]
         out: Option<PathBuf>,
+        /// Write Curved Spaces' generator format (`.gen`: one matrix per face pairing)
+        /// instead of JSON.
+        #[arg(long)]
+        gen_format: bool,
     },
 }
 
@@ -337,8 +342,10 @@ pub fn run(cli: Cli) -> Result<(), String> {
         Some(Command::Trace(args)) => trace::trace(&args),
         Some(Command::Render(args)) => render::render_command(&args),
         Some(Command::Bench(args)) => bench::bench(&args),
-        Some(Command::Export { space, out }) => {
-            info::export(&resolve_space(&space)?, out.as_deref())
-        }
+        Some(Command::Export {
+            space,
+            out,
+            gen_format,
+        }) => info::export(&resolve_space(&space)?, out.as_deref(), gen_format),
     }
 }

@@ -1,10 +1,13 @@
 //! Finding a space by name: a seed space, a member of a library family, or a file
 //! (`.gen` generator file or JSON space file).
 
+use super::catalog::{affine, dodecahedron_normals, dodecahedron_offset};
 use super::dirichlet::DirichletOptions;
 use super::file::load_space_file;
-use super::group::load_gen_file;
+use super::group::{load_gen_file, parse_gen, space_from_matrices};
 use super::{SEED_SPACES, Space, SpaceError, seed_space};
+use crate::geometry::Geometry;
+use glam::{DMat3, DMat4, DQuat, DVec3, DVec4};
 use std::path::Path;
 
 /// Whether `path` names a generator file (by its extension, `.gen`, any case).
@@ -21,6 +24,9 @@ pub fn resolve_space(id: &str, base: &Path, options: &DirichletOptions) -> Resul
     if SEED_SPACES.iter().any(|s| s.id == id) {
         return seed_space(id).map_err(|e| e.to_string());
     }
+    if let Some(space) = library_space(id) {
+        return space;
+    }
     let path = base.join(id);
     if is_gen_path(&path) {
         return load_gen_file(&path, options);
@@ -29,4 +35,493 @@ pub fn resolve_space(id: &str, base: &Path, options: &DirichletOptions) -> Resul
         return load_space_file(&path).map_err(|e| e.to_string());
     }
     Err(SpaceError::UnknownSpace(id.to_string()).to_string())
+}
+
+/// A family of the library, as `curved-spaces list` shows it.
+#[derive(Clone, Copy, Debug)]
+pub struct Family {
+    /// The id, with parameters in capitals (`lens-P-Q`).
+    pub pattern: &'static str,
+    /// Its geometry.
+    pub geometry: Geometry,
+    /// One line about it.
+    pub summary: &'static str,
+    /// Members `list` shows by example.
+    pub examples: &'static [&'static str],
+}
+
+/// The families of the library beyond the seed spaces, in the order `list` shows them.
+pub const FAMILIES: &[Family] = &[
+    Family {
+        pattern: "lens-P-Q",
+        geometry: Geometry::Spherical,
+        summary: "lens space L(P,Q), P > Q ≥ 1 coprime, P ≤ 1000: the cyclic group \
+                  (z₁, z₂) ↦ (ζz₁, ζ^Q z₂), ζ = e^{2πi/P}, of order P",
+        examples: &["lens-5-2", "lens-7-2", "lens-7-3", "lens-12-5"],
+    },
+    Family {
+        pattern: "prism-N",
+        geometry: Geometry::Spherical,
+        summary: "prism space S³/D*₄ₙ, N ≥ 2: the binary dihedral group of order 4N",
+        examples: &["prism-2", "prism-3", "prism-6"],
+    },
+    Family {
+        pattern: "binary-tetrahedral",
+        geometry: Geometry::Spherical,
+        summary: "octahedral space S³/2T: the binary tetrahedral group of order 24",
+        examples: &["binary-tetrahedral"],
+    },
+    Family {
+        pattern: "binary-octahedral",
+        geometry: Geometry::Spherical,
+        summary: "truncated-cube space S³/2O: the binary octahedral group of order 48",
+        examples: &["binary-octahedral"],
+    },
+    Family {
+        pattern: "binary-icosahedral",
+        geometry: Geometry::Spherical,
+        summary: "Poincaré dodecahedral space S³/2I from its group of order 120 (= poincare)",
+        examples: &["binary-icosahedral"],
+    },
+    Family {
+        pattern: "mirrored-tetrahedron",
+        geometry: Geometry::Spherical,
+        summary: "orbifold: an all-right spherical tetrahedron (an orthant of S³) whose four \
+                  faces are mirrors; a group of order 16",
+        examples: &["mirrored-tetrahedron"],
+    },
+    Family {
+        pattern: "torus-A-B-C",
+        geometry: Geometry::Euclidean,
+        summary: "3-torus of the A×B×C box lattice (A, B, C > 0, at most 1000 to 1)",
+        examples: &["torus-1-1-2", "torus-1-2-3"],
+    },
+    Family {
+        pattern: "torus-hexagonal",
+        geometry: Geometry::Euclidean,
+        summary: "3-torus of the hexagonal lattice: a hexagonal prism",
+        examples: &["torus-hexagonal"],
+    },
+    Family {
+        pattern: "torus-fcc",
+        geometry: Geometry::Euclidean,
+        summary: "3-torus of the face-centred cubic lattice: a rhombic dodecahedron",
+        examples: &["torus-fcc"],
+    },
+    Family {
+        pattern: "torus-bcc",
+        geometry: Geometry::Euclidean,
+        summary: "3-torus of the body-centred cubic lattice: a truncated octahedron",
+        examples: &["torus-bcc"],
+    },
+    Family {
+        pattern: "first-amphicosm",
+        geometry: Geometry::Euclidean,
+        summary: "non-orientable flat manifold (Klein space): a glide reflection over a \
+                  rectangular lattice (space group Pc)",
+        examples: &["first-amphicosm"],
+    },
+    Family {
+        pattern: "second-amphicosm",
+        geometry: Geometry::Euclidean,
+        summary: "non-orientable flat manifold: a glide reflection over a centred lattice (Cc)",
+        examples: &["second-amphicosm"],
+    },
+    Family {
+        pattern: "first-amphidicosm",
+        geometry: Geometry::Euclidean,
+        summary: "non-orientable flat manifold with holonomy Z₂×Z₂: a screw and two glides \
+                  (Pca2₁)",
+        examples: &["first-amphidicosm"],
+    },
+    Family {
+        pattern: "second-amphidicosm",
+        geometry: Geometry::Euclidean,
+        summary: "non-orientable flat manifold with holonomy Z₂×Z₂: a screw and two glides \
+                  (Pna2₁)",
+        examples: &["second-amphidicosm"],
+    },
+    Family {
+        pattern: "census-N",
+        geometry: Geometry::Hyperbolic,
+        summary: "the N-th smallest closed orientable hyperbolic manifold of SnapPy's census, \
+                  N = 1…10 (census-1 = weeks, the smallest known)",
+        examples: &["weeks", "census-2", "census-10"],
+    },
+    Family {
+        pattern: "seifert-weber-group",
+        geometry: Geometry::Hyperbolic,
+        summary: "Seifert–Weber space from its six generators (= seifert-weber)",
+        examples: &["seifert-weber-group"],
+    },
+];
+
+/// The largest lens order P the library builds.
+pub const MAX_LENS_ORDER: u32 = 1000;
+
+/// The largest prism parameter N the library builds.
+pub const MAX_PRISM: u32 = 250;
+
+/// A census manifold shipped with the crate: SnapPy's name, the file's text and SnapPy's
+/// numbers for it (JSON).
+#[derive(Clone, Copy, Debug)]
+pub struct CensusManifold {
+    /// SnapPy's name, e.g. `m003(-3,1)`.
+    pub snappy_name: &'static str,
+    /// The `.gen` file.
+    pub generators: &'static str,
+    /// SnapPy's volume, homology, radii and length spectrum.
+    pub reference: &'static str,
+}
+
+macro_rules! census {
+    ($name:literal, $stem:literal) => {
+        CensusManifold {
+            snappy_name: $name,
+            generators: include_str!(concat!("../../assets/spaces/census/", $stem, ".gen")),
+            reference: include_str!(concat!("../../assets/spaces/census/", $stem, ".json")),
+        }
+    };
+}
+
+/// The ten smallest closed orientable hyperbolic manifolds of SnapPy's census, by volume.
+pub const CENSUS: [CensusManifold; 10] = [
+    census!("m003(-3,1)", "m003_-3_1"),
+    census!("m003(-2,3)", "m003_-2_3"),
+    census!("m007(3,1)", "m007_3_1"),
+    census!("m003(-4,3)", "m003_-4_3"),
+    census!("m004(6,1)", "m004_6_1"),
+    census!("m004(1,2)", "m004_1_2"),
+    census!("m009(4,1)", "m009_4_1"),
+    census!("m003(-3,4)", "m003_-3_4"),
+    census!("m003(-4,1)", "m003_-4_1"),
+    census!("m004(3,2)", "m004_3_2"),
+];
+
+fn gcd(a: u32, b: u32) -> u32 {
+    if b == 0 { a } else { gcd(b, a % b) }
+}
+
+/// The matrix of `x ↦ a·x·b` on quaternions `x = (x, y, z, w) = w + xi + yj + zk`.
+#[must_use]
+pub fn quaternion_map(a: DQuat, b: DQuat) -> DMat4 {
+    let col = |e: DQuat| DVec4::from(a * e * b);
+    DMat4::from_cols(
+        col(DQuat::from_xyzw(1.0, 0.0, 0.0, 0.0)),
+        col(DQuat::from_xyzw(0.0, 1.0, 0.0, 0.0)),
+        col(DQuat::from_xyzw(0.0, 0.0, 1.0, 0.0)),
+        col(DQuat::IDENTITY),
+    )
+}
+
+/// Left multiplication by the unit quaternion `w + xi + yj + zk`.
+fn left(x: f64, y: f64, z: f64, w: f64) -> DMat4 {
+    let q = DQuat::from_xyzw(x, y, z, w);
+    quaternion_map(q / q.length(), DQuat::IDENTITY)
+}
+
+fn translation(v: DVec3) -> DMat4 {
+    affine(DMat3::IDENTITY, v)
+}
+
+fn diag(x: f64, y: f64, z: f64) -> DMat3 {
+    DMat3::from_diagonal(DVec3::new(x, y, z))
+}
+
+/// A library space from its generators, as [`DirichletOptions`] and a name say.
+fn from_group(
+    id: &str,
+    description: &str,
+    matrices: &[DMat4],
+    basepoint: Option<DVec3>,
+) -> Result<Space, String> {
+    let options = DirichletOptions {
+        basepoint,
+        ..DirichletOptions::default()
+    };
+    space_from_matrices(id, description, matrices, &options).map_err(|e| format!("{id}: {e}"))
+}
+
+/// Parses `prefix-A-B-…` into its numbers (`None` if `id` is not of that form).
+fn numbers<T: std::str::FromStr>(id: &str, prefix: &str, count: usize) -> Option<Vec<T>> {
+    let rest = id.strip_prefix(prefix)?.strip_prefix('-')?;
+    let parts: Vec<&str> = rest.split('-').collect();
+    if parts.len() != count {
+        return None;
+    }
+    parts.iter().map(|p| p.parse().ok()).collect()
+}
+
+/// A member of a library family by id; `None` when `id` names no family (a family member
+/// with bad parameters is `Some(Err)` naming the problem).
+#[must_use]
+pub fn library_space(id: &str) -> Option<Result<Space, String>> {
+    let s3 = 0.5 * 3f64.sqrt();
+    let built = match id {
+        "binary-tetrahedral" => from_group(
+            id,
+            "Octahedral space S³/2T: the binary tetrahedral group (order 24), by left \
+             multiplication by i and (1 + i + j + k)/2.",
+            &[left(1.0, 0.0, 0.0, 0.0), left(0.5, 0.5, 0.5, 0.5)],
+            None,
+        ),
+        "binary-octahedral" => from_group(
+            id,
+            "Truncated-cube space S³/2O: the binary octahedral group (order 48), by left \
+             multiplication by (1 + i)/√2 and (1 + i + j + k)/2.",
+            &[left(1.0, 0.0, 0.0, 1.0), left(0.5, 0.5, 0.5, 0.5)],
+            None,
+        ),
+        "binary-icosahedral" => {
+            let phi = 0.5 * (1.0 + 5f64.sqrt());
+            from_group(
+                id,
+                "Poincaré dodecahedral space S³/2I: the binary icosahedral group (order 120), \
+                 by left multiplication by (1 + i + j + k)/2 and (φ + φ⁻¹i + j)/2.",
+                &[left(0.5, 0.5, 0.5, 0.5), left(1.0 / phi, 1.0, 0.0, phi)],
+                None,
+            )
+        }
+        "mirrored-tetrahedron" => {
+            // Reflections in four mutually orthogonal hyperplanes of R⁴, each at distance
+            // π/6 from the basepoint (their normals are the rows of a Hadamard matrix / 2).
+            let normals = [
+                DVec4::new(1.0, 1.0, 1.0, -1.0),
+                DVec4::new(1.0, -1.0, -1.0, -1.0),
+                DVec4::new(-1.0, 1.0, -1.0, -1.0),
+                DVec4::new(-1.0, -1.0, 1.0, -1.0),
+            ];
+            let gens: Vec<DMat4> = normals
+                .iter()
+                .map(|&n| {
+                    let n = n / n.length();
+                    DMat4::IDENTITY - 2.0 * outer(n, n)
+                })
+                .collect();
+            from_group(
+                id,
+                "An all-right spherical tetrahedron, one orthant of S³, whose four faces are \
+                 mirrors: the group of order 16 generated by four orthogonal reflections.",
+                &gens,
+                None,
+            )
+        }
+        "torus-hexagonal" => from_group(
+            id,
+            "3-torus of the hexagonal lattice (unit spacing): a hexagonal prism.",
+            &[
+                translation(DVec3::X),
+                translation(DVec3::new(0.5, s3, 0.0)),
+                translation(DVec3::Z),
+            ],
+            None,
+        ),
+        "torus-fcc" => from_group(
+            id,
+            "3-torus of the face-centred cubic lattice: a rhombic dodecahedron.",
+            &[
+                translation(DVec3::new(1.0, 1.0, 0.0)),
+                translation(DVec3::new(0.0, 1.0, 1.0)),
+                translation(DVec3::new(1.0, 0.0, 1.0)),
+            ],
+            None,
+        ),
+        "torus-bcc" => from_group(
+            id,
+            "3-torus of the body-centred cubic lattice: a truncated octahedron.",
+            &[
+                translation(DVec3::new(1.0, 1.0, 1.0)),
+                translation(DVec3::new(-1.0, 1.0, 1.0)),
+                translation(DVec3::new(1.0, -1.0, 1.0)),
+            ],
+            None,
+        ),
+        // Space group Pc: the glide (x, y, z) ↦ (x, −y, z + ½) over a rectangular lattice.
+        "first-amphicosm" => from_group(
+            id,
+            "First amphicosm (Klein space, space group Pc): the glide reflection \
+             (x, y, z) ↦ (x, −y, z + ½) and the translations along x and y.",
+            &[
+                translation(DVec3::X),
+                translation(DVec3::Y),
+                affine(diag(1.0, -1.0, 1.0), DVec3::new(0.0, 0.0, 0.5)),
+            ],
+            None,
+        ),
+        // Cc: the same glide over the C-centred lattice.
+        "second-amphicosm" => from_group(
+            id,
+            "Second amphicosm (space group Cc): the glide reflection (x, y, z) ↦ \
+             (x, −y, z + ½) and the centred lattice of (1, 0, 0) and (½, ½, 0).",
+            &[
+                translation(DVec3::X),
+                translation(DVec3::new(0.5, 0.5, 0.0)),
+                affine(diag(1.0, -1.0, 1.0), DVec3::new(0.0, 0.0, 0.5)),
+            ],
+            None,
+        ),
+        // Pca2₁: screw (−x, −y, z + ½), glides (x + ½, −y, z) and (½ − x, y, z + ½).
+        "first-amphidicosm" => from_group(
+            id,
+            "First amphidicosm (space group Pca2₁): the screw (x, y, z) ↦ (−x, −y, z + ½) \
+             and the glide (x, y, z) ↦ (x + ½, −y, z), with the translation along y.",
+            &[
+                affine(diag(-1.0, -1.0, 1.0), DVec3::new(0.0, 0.0, 0.5)),
+                affine(diag(1.0, -1.0, 1.0), DVec3::new(0.5, 0.0, 0.0)),
+                translation(DVec3::Y),
+            ],
+            None,
+        ),
+        // Pna2₁: screw (−x, −y, z + ½), glides (x + ½, ½ − y, z) and (½ − x, y + ½, z + ½).
+        "second-amphidicosm" => from_group(
+            id,
+            "Second amphidicosm (space group Pna2₁): the screw (x, y, z) ↦ (−x, −y, z + ½) \
+             and the glide (x, y, z) ↦ (x + ½, ½ − y, z), with the translation along y.",
+            &[
+                affine(diag(-1.0, -1.0, 1.0), DVec3::new(0.0, 0.0, 0.5)),
+                affine(diag(1.0, -1.0, 1.0), DVec3::new(0.5, 0.5, 0.0)),
+                translation(DVec3::Y),
+            ],
+            None,
+        ),
+        "seifert-weber-group" => seifert_weber_group(id),
+        "weeks" => census_space(id, 1),
+        _ => return family_member(id),
+    };
+    Some(built)
+}
+
+/// The members of the families with parameters.
+fn family_member(id: &str) -> Option<Result<Space, String>> {
+    if let Some(v) = numbers::<u32>(id, "lens", 2) {
+        return Some(lens(id, v[0], v[1]));
+    }
+    if let Some(v) = numbers::<u32>(id, "prism", 1) {
+        return Some(prism(id, v[0]));
+    }
+    if let Some(v) = numbers::<usize>(id, "census", 1) {
+        return Some(census_space(id, v[0]));
+    }
+    if let Some(v) = numbers::<f64>(id, "torus", 3) {
+        return Some(box_torus(id, v[0], v[1], v[2]));
+    }
+    None
+}
+
+fn lens(id: &str, p: u32, q: u32) -> Result<Space, String> {
+    if !(p >= 2 && p <= MAX_LENS_ORDER && q >= 1 && q < p) {
+        return Err(format!(
+            "{id}: a lens space lens-P-Q needs 1 ≤ Q < P ≤ {MAX_LENS_ORDER}"
+        ));
+    }
+    if gcd(p, q) != 1 {
+        return Err(format!(
+            "{id}: P = {p} and Q = {q} have the common factor {}, so the group does not act \
+             freely; choose coprime P and Q",
+            gcd(p, q)
+        ));
+    }
+    // (z₁, z₂) ↦ (ζ z₁, ζ^q z₂) for x = z₁ + z₂ j is x ↦ e^{iα} x e^{iβ} with α + β = 2π/p,
+    // α − β = 2πq/p.
+    let t = std::f64::consts::TAU / f64::from(p);
+    let alpha = 0.5 * t * f64::from(1 + q);
+    let beta = 0.5 * t * (1.0 - f64::from(q));
+    let g = quaternion_map(
+        DQuat::from_xyzw(alpha.sin(), 0.0, 0.0, alpha.cos()),
+        DQuat::from_xyzw(beta.sin(), 0.0, 0.0, beta.cos()),
+    );
+    // The basepoint with |z₁| = |z₂|: there the orbit is spread over both circles.
+    from_group(
+        id,
+        &format!(
+            "Lens space L({p},{q}): S³ by the cyclic group of order {p} generated by (z₁, z₂) ↦ (ζz₁, ζ^{q}z₂), ζ = e^(2πi/{p})."
+        ),
+        &[g],
+        Some(DVec3::new(0.0, 1.0, 0.0)),
+    )
+}
+
+fn prism(id: &str, n: u32) -> Result<Space, String> {
+    if !(2..=MAX_PRISM).contains(&n) {
+        return Err(format!(
+            "{id}: a prism space prism-N needs 2 ≤ N ≤ {MAX_PRISM}"
+        ));
+    }
+    let a = std::f64::consts::PI / f64::from(n);
+    from_group(
+        id,
+        &format!(
+            "Prism space S³/D*{}: the binary dihedral group of order {}, by left \
+             multiplication by e^(iπ/{n}) and j.",
+            4 * n,
+            4 * n
+        ),
+        &[left(a.sin(), 0.0, 0.0, a.cos()), left(0.0, 1.0, 0.0, 0.0)],
+        None,
+    )
+}
+
+fn box_torus(id: &str, a: f64, b: f64, c: f64) -> Result<Space, String> {
+    let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
+    if !(lo > 0.0 && hi.is_finite() && hi <= 1000.0 * lo) {
+        return Err(format!(
+            "{id}: a box torus torus-A-B-C needs positive finite sides at most 1000 to 1"
+        ));
+    }
+    from_group(
+        id,
+        &format!("3-torus of the {a}×{b}×{c} box lattice."),
+        &[
+            translation(DVec3::X * a),
+            translation(DVec3::Y * b),
+            translation(DVec3::Z * c),
+        ],
+        None,
+    )
+}
+
+fn census_space(id: &str, n: usize) -> Result<Space, String> {
+    let Some(m) = n.checked_sub(1).and_then(|i| CENSUS.get(i)) else {
+        return Err(format!(
+            "{id}: the library ships census-1 to census-{}; export others with \
+             scripts/snappy-export.py",
+            CENSUS.len()
+        ));
+    };
+    let file = parse_gen(m.generators).map_err(|e| format!("{id}: {e}"))?;
+    from_group(
+        id,
+        &format!(
+            "{}: closed orientable hyperbolic manifold no. {n} of SnapPy's census, from the \
+             face pairings of its Dirichlet domain.",
+            m.snappy_name
+        ),
+        &file.matrices,
+        None,
+    )
+}
+
+/// Seifert–Weber space from its definition: the six pairings of opposite faces of the
+/// regular dodecahedron with dihedral angle 2π/5, each a translation through the face by
+/// twice the inradius followed by a 3π/5 turn about the face's axis.
+fn seifert_weber_group(id: &str) -> Result<Space, String> {
+    let g = Geometry::Hyperbolic;
+    let normals = dodecahedron_normals();
+    let r = dodecahedron_offset(g, 0.4 * std::f64::consts::PI);
+    let inradius = g.distance_from_ratio(r, 1.0);
+    let gens: Vec<DMat4> = normals[..6]
+        .iter()
+        .map(|&n| g.translation(n, 2.0 * inradius) * g.rotation(n, 0.6 * std::f64::consts::PI))
+        .collect();
+    from_group(
+        id,
+        "Seifert–Weber space from its six generators: translation across opposite faces of \
+         the 72° hyperbolic dodecahedron with a 3π/5 twist.",
+        &gens,
+        None,
+    )
+}
+
+fn outer(a: DVec4, b: DVec4) -> DMat4 {
+    DMat4::from_cols(a * b.x, a * b.y, a * b.z, a * b.w)
 }
