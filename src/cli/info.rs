@@ -85,6 +85,7 @@ pub(super) fn info(space: &Space, as_json: bool) -> Result<(), String> {
     say!("  manifold            {}", inv.manifold);
     say!("  holonomy order      {}", opt_n(inv.holonomy_order));
     say!("  group order         {}", opt_n(inv.group_order));
+    say!("  first homology      {}", inv.homology);
     say!("  injectivity radius  {}", opt(inv.injectivity_radius));
     match &inv.closed_geodesics {
         None => say!("  closed geodesics    too many group elements to enumerate"),

@@ -26,13 +26,20 @@ use std::collections::HashMap;
 /// Orbit points closer than this (geodesic distance; for flat groups, relative to the
 /// largest generator translation) but not equal are taken as a sign that the group is not
 /// discrete.
-pub const SEPARATION: f64 = 1e-5;
+pub const SEPARATION: f64 = 1e-4;
 
-/// Orbit points closer than this are the same point.
-const SAME: f64 = 1e-8;
+/// Orbit points closer than this are the same point (in H³, times `cosh d(o, p)`: the
+/// rounding of a product of matrices grows with the size of their entries).
+const SAME: f64 = 1e-9;
 
 /// The most elements the enumeration keeps, by default.
 pub const DEFAULT_MAX_ELEMENTS: usize = 50_000;
+
+/// The largest enumeration radius: beyond it, orbit points of H³ (`cosh 10 ≈ 11000`) keep
+/// too few digits to tell apart from their neighbours; the Dirichlet domains of the census
+/// manifolds need about 6. Flat groups, scaled so that their largest generator translation
+/// is 1, have long closed up by then.
+const MAX_RADIUS: f64 = 10.0;
 
 /// How many times the enumeration radius may grow before the domain is declared not to
 /// close up.
@@ -56,6 +63,11 @@ pub struct DirichletOptions {
     pub basepoint: Option<DVec3>,
     /// The most group elements to enumerate before giving up.
     pub max_elements: usize,
+    /// Enumerate at least out to this distance from the basepoint (for flat groups, in units
+    /// of the largest generator translation): a check that the domain does not change when
+    /// more elements are tried. Ignored for the finite groups of S³, which are enumerated
+    /// whole.
+    pub min_radius: f64,
 }
 
 impl Default for DirichletOptions {
@@ -63,6 +75,7 @@ impl Default for DirichletOptions {
         Self {
             basepoint: None,
             max_elements: DEFAULT_MAX_ELEMENTS,
+            min_radius: 0.0,
         }
     }
 }
@@ -163,7 +176,7 @@ impl Orbit {
         let point = matrix.w_axis;
         let distance = self.geometry.distance(ORIGIN, point);
         if let Some((i, d)) = self.nearest(point, distance) {
-            if d >= SAME {
+            if d >= SAME * point.w.abs().max(1.0) {
                 return Err(GroupError::NotDiscrete {
                     distance: d,
                     limit: SEPARATION,
@@ -474,8 +487,24 @@ pub fn dirichlet_space(
         2.0 * reach + 1.0
     };
     let mut last_error = None;
+    // Whether some cut so far was bounded: if none was when the enumeration grows too
+    // large, the domain does not close up.
+    let mut ever_bounded = false;
     for _ in 0..MAX_ATTEMPTS {
-        let orbit = enumerate(geometry, &moves, radius, options.max_elements)?;
+        radius = radius.max(options.min_radius);
+        if !finite && radius > MAX_RADIUS {
+            return Err(GroupError::NotCocompact {
+                radius: MAX_RADIUS * scale,
+            });
+        }
+        let orbit = match enumerate(geometry, &moves, radius, options.max_elements) {
+            Err(GroupError::TooLarge { .. }) if !ever_bounded => {
+                return Err(GroupError::NotCocompact {
+                    radius: radius * scale,
+                });
+            }
+            other => other?,
+        };
         let cut = cut_domain(&orbit);
         let bounded = !cut.polyhedron.touches_box()
             && (geometry != Geometry::Hyperbolic || cut.circumradius.is_finite());
@@ -490,6 +519,7 @@ pub fn dirichlet_space(
             radius *= 1.6;
             continue;
         }
+        ever_bounded = true;
         // Every element whose bisector can be a face moves o at most 2R, and reaching them
         // by products may pass a little further out.
         let needed = 2.0 * cut.circumradius + reach;

@@ -79,7 +79,8 @@ pub enum GroupError {
     NotDiscrete { distance: f64, limit: f64 },
     #[error(
         "the group has more than {limit} elements within the distance {radius:.3} of the \
-         basepoint that the Dirichlet domain needs; it is too large to enumerate"
+         basepoint that its Dirichlet domain needs: too many to enumerate (the domain is very \
+         large, or long and thin)"
     )]
     TooLarge { limit: usize, radius: f64 },
     #[error(

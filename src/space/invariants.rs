@@ -521,6 +521,9 @@ pub struct Invariants {
     pub holonomy_order: Option<usize>,
     /// Order of the fundamental group (spherical spaces).
     pub group_order: Option<usize>,
+    /// The first homology group (the fundamental or orbifold group made abelian), in
+    /// SnapPy's notation (`Z/5 + Z/5`).
+    pub homology: String,
     /// `null` when the enumeration would be too large.
     pub closed_geodesics: Option<Vec<GeodesicLength>>,
     /// Half the shortest closed geodesic (manifolds).
@@ -560,6 +563,7 @@ impl Invariants {
             manifold: space.manifold,
             holonomy_order: holonomy_order(space),
             group_order: group_order(space),
+            homology: super::homology::first_homology(space).to_string(),
             closed_geodesics: closed_geodesics(space, GEODESIC_SPECTRUM_LENGTH),
             injectivity_radius: injectivity_radius(space),
         }

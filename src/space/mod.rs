@@ -7,6 +7,7 @@ pub mod dirichlet;
 mod error;
 pub mod file;
 pub mod group;
+pub mod homology;
 pub mod invariants;
 pub mod library;
 mod validate;
@@ -148,6 +149,9 @@ pub struct EdgeCycle {
     pub angle_sum: f64,
     /// `k` with `angle_sum = 2π/k` (1 in a manifold; the cone or mirror order otherwise).
     pub order: u32,
+    /// The faces crossed going once around the cycle, in order: the product of their
+    /// pairings, to the power `order`, is the identity (a relation of the group).
+    pub crossings: Vec<usize>,
 }
 
 /// A closed 3-manifold or orbifold of constant curvature, as a validated fundamental cell.

@@ -208,6 +208,7 @@ pub(super) fn find_edge_cycles(
         let mut visited = Vec::new();
         let mut angle_sum = 0.0;
         let mut holonomy = DMat4::IDENTITY;
+        let mut crossings = Vec::new();
         // Each state is visited once, so 2E steps always close the cycle.
         for _ in 0..2 * edges.len() {
             if !visited.contains(&e) {
@@ -215,6 +216,7 @@ pub(super) fn find_edge_cycles(
             }
             angle_sum += edges[e].dihedral;
             holonomy = faces[f].pairing * holonomy;
+            crossings.push(f);
             let [a, b] = edges[e].vertices;
             let partner = faces[f].partner;
             let Some(next) =
@@ -264,6 +266,7 @@ pub(super) fn find_edge_cycles(
             edges: visited,
             angle_sum,
             order,
+            crossings,
         });
     }
     for (edge, cycle) in edges.iter_mut().zip(cycle_of) {
