@@ -220,6 +220,12 @@ fn left(x: f64, y: f64, z: f64, w: f64) -> DMat4 {
     quaternion_map(q / q.length(), DQuat::IDENTITY)
 }
 
+/// Right multiplication by the unit quaternion `w + xi + yj + zk`.
+fn right(x: f64, y: f64, z: f64, w: f64) -> DMat4 {
+    let q = DQuat::from_xyzw(x, y, z, w);
+    quaternion_map(DQuat::IDENTITY, q / q.length())
+}
+
 fn translation(v: DVec3) -> DMat4 {
     affine(DMat3::IDENTITY, v)
 }
@@ -277,8 +283,9 @@ pub fn library_space(id: &str) -> Option<Result<Space, String>> {
             from_group(
                 id,
                 "Poincaré dodecahedral space S³/2I: the binary icosahedral group (order 120), \
-                 by left multiplication by (1 + i + j + k)/2 and (φ + φ⁻¹i + j)/2.",
-                &[left(0.5, 0.5, 0.5, 0.5), left(1.0 / phi, 1.0, 0.0, phi)],
+                 by right multiplication by (1 + i + j + k)/2 and (φ + φ⁻¹i + j)/2 (the \
+                 handedness of the seed space poincare).",
+                &[right(0.5, 0.5, 0.5, 0.5), right(1.0 / phi, 1.0, 0.0, phi)],
                 None,
             )
         }
@@ -503,7 +510,9 @@ fn census_space(id: &str, n: usize) -> Result<Space, String> {
 
 /// Seifert–Weber space from its definition: the six pairings of opposite faces of the
 /// regular dodecahedron with dihedral angle 2π/5, each a translation through the face by
-/// twice the inradius followed by a 3π/5 turn about the face's axis.
+/// twice the inradius after a 3π/5 turn about the face's axis (clockwise seen from outside
+/// the face, so that its inverse, the face pairing, turns counter-clockwise as the seed's
+/// does).
 fn seifert_weber_group(id: &str) -> Result<Space, String> {
     let g = Geometry::Hyperbolic;
     let normals = dodecahedron_normals();
@@ -511,7 +520,7 @@ fn seifert_weber_group(id: &str) -> Result<Space, String> {
     let inradius = g.distance_from_ratio(r, 1.0);
     let gens: Vec<DMat4> = normals[..6]
         .iter()
-        .map(|&n| g.translation(n, 2.0 * inradius) * g.rotation(n, 0.6 * std::f64::consts::PI))
+        .map(|&n| g.translation(n, 2.0 * inradius) * g.rotation(n, -0.6 * std::f64::consts::PI))
         .collect();
     from_group(
         id,

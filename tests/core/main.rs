@@ -11,6 +11,7 @@ mod culling;
 mod files;
 mod frame_rate;
 mod geometry;
+mod groups;
 mod hard_cases;
 mod headset;
 mod player;

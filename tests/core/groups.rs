@@ -1,0 +1,528 @@
+//! Spaces from groups: generator files read and written, Dirichlet domains against the seed
+//! cells and closed forms, the library against SnapPy's stored numbers, and every kind of
+//! bad generator refused with the right error.
+
+use bevy_curved_spaces::geometry::{Geometry, ORIGIN};
+use bevy_curved_spaces::space::dirichlet::{DirichletOptions, dirichlet_space};
+use bevy_curved_spaces::space::group::{
+    Generators, GroupError, parse_gen, space_from_matrices, write_gen,
+};
+use bevy_curved_spaces::space::homology::{Homology, first_homology};
+use bevy_curved_spaces::space::invariants::{circumradius, group_order, inradius, volume};
+use bevy_curved_spaces::space::library::{CENSUS, library_space, quaternion_map};
+use bevy_curved_spaces::space::{SEED_SPACES, Space, resolve_space, seed_space};
+use glam::{DMat3, DMat4, DQuat, DVec3, DVec4};
+use std::f64::consts::PI;
+use std::path::Path;
+
+fn library(id: &str) -> Space {
+    match library_space(id) {
+        Some(Ok(s)) => s,
+        Some(Err(e)) => panic!("{id}: {e}"),
+        None => panic!("{id} is no library id"),
+    }
+}
+
+fn max_entry(m: DMat4) -> f64 {
+    m.to_cols_array()
+        .iter()
+        .fold(0.0_f64, |a, x| a.max(x.abs()))
+}
+
+/// Whether two cells are the same up to a rotation about the centre (proper, so the
+/// handedness of twists counts) and a renumbering of faces: the rotation carries each face
+/// plane of `a` onto one of `b`, partners onto partners, and conjugates the pairings.
+fn congruent(a: &Space, b: &Space, tol: f64) -> bool {
+    if a.geometry() != b.geometry() || a.faces().len() != b.faces().len() {
+        return false;
+    }
+    let fa = a.faces();
+    let fb = b.faces();
+    // Two faces of `a` with independent normals fix the rotation.
+    let i0 = 0;
+    let Some(i1) = (1..fa.len()).find(|&i| fa[i].normal.cross(fa[i0].normal).length() > 0.1) else {
+        return false;
+    };
+    let frame = |x: DVec3, y: DVec3| {
+        let e0 = x.normalize();
+        let e1 = (y - e0 * y.dot(e0)).normalize();
+        DMat3::from_cols(e0, e1, e0.cross(e1))
+    };
+    let from = frame(fa[i0].normal, fa[i1].normal);
+    for j0 in 0..fb.len() {
+        for j1 in 0..fb.len() {
+            if j0 == j1
+                || (fb[j0].normal.dot(fb[j1].normal) - fa[i0].normal.dot(fa[i1].normal)).abs() > tol
+            {
+                continue;
+            }
+            let r3 = frame(fb[j0].normal, fb[j1].normal) * from.transpose();
+            let r = DMat4::from_mat3(r3);
+            let matched: Option<Vec<usize>> = fa
+                .iter()
+                .map(|f| {
+                    fb.iter().position(|g| {
+                        (r3 * f.normal - g.normal).length() < tol
+                            && (f.offset - g.offset).abs() < tol * f.offset.max(1.0)
+                    })
+                })
+                .collect();
+            let Some(m) = matched else { continue };
+            let ok = fa.iter().enumerate().all(|(i, f)| {
+                fb[m[i]].partner == m[f.partner]
+                    && max_entry(r * f.pairing * r.transpose() - fb[m[i]].pairing)
+                        < tol * max_entry(f.pairing).max(1.0)
+            });
+            if ok {
+                return true;
+            }
+        }
+    }
+    false
+}
+
+#[test]
+fn generator_files_parse_with_comments_and_byte_order_mark() {
+    let text = "\u{feff}# A torus\n#\tsecond line\n\
+                1 0 0 0  0 1 0 0  0 0 1 0  1 0 0 1 # along x\n\
+                1 0 0 0\n0 1 0 0\n0 0 1 0\n0 1 0 1\n\
+                1 0 0 0 0 1 0 0 0 0 1 0 0 0 1 1\n";
+    let file = parse_gen(text).unwrap();
+    assert_eq!(file.comments, ["A torus", "second line"]);
+    assert_eq!(file.matrices.len(), 3);
+    // The bottom row of a .gen matrix is the image of the basepoint.
+    assert_eq!(file.matrices[0] * ORIGIN, DVec4::new(1.0, 0.0, 0.0, 1.0));
+    let space = space_from_matrices("t", "", &file.matrices, &DirichletOptions::default()).unwrap();
+    assert_eq!(space.geometry(), Geometry::Euclidean);
+    assert!((volume(&space) - 1.0).abs() < 1e-12);
+}
+
+#[test]
+fn malformed_generator_files_name_the_problem() {
+    let cases: [(&str, fn(&GroupError) -> bool); 4] = [
+        (
+            "1 0 0 0\n0 1 0 0\n0 0 1 0\n1 0 zero 1\n",
+            |e| matches!(e, GroupError::NotANumber { line: 4, token } if token == "zero"),
+        ),
+        ("1 0 0 0\n0 1 0 0\n0 0 1 0\n1 0 nan 1\n", |e| {
+            matches!(e, GroupError::NotFinite { line: 4, .. })
+        }),
+        ("1 0 0 0\n0 1 0 0\n0 0 1 0\n1 0 0\n", |e| {
+            matches!(
+                e,
+                GroupError::PartialMatrix {
+                    count: 15,
+                    left: 15,
+                    matrices: 0
+                }
+            )
+        }),
+        (&"0 ".repeat(16 * 65), |e| {
+            matches!(e, GroupError::TooManyGenerators { max: 64, .. })
+        }),
+    ];
+    for (text, expected) in cases {
+        let e = parse_gen(text).unwrap_err();
+        assert!(expected(&e), "{text:.40}: {e}");
+    }
+}
+
+#[test]
+fn generators_that_do_not_fit_name_the_cause() {
+    let check = |matrices: &[DMat4], expected: fn(&GroupError) -> bool, what: &str| {
+        let e =
+            space_from_matrices("x", "", matrices, &DirichletOptions::default()).expect_err(what);
+        assert!(expected(&e), "{what}: {e}");
+        assert!(!e.to_string().is_empty());
+    };
+    let t = |v: DVec3| {
+        let mut m = DMat4::IDENTITY;
+        m.w_axis = v.extend(1.0);
+        m
+    };
+    let scaled = DMat4::from_diagonal(DVec4::new(2.0, 1.0, 1.0, 1.0));
+    check(
+        &[t(DVec3::X), scaled],
+        |e| matches!(e, GroupError::NotAnIsometry { matrix: 2, .. }),
+        "a scaling",
+    );
+    let rotation = quaternion_map(DQuat::from_rotation_z(0.5), DQuat::IDENTITY);
+    check(
+        &[t(DVec3::X), rotation],
+        |e| {
+            matches!(
+                e,
+                GroupError::MixedGeometries {
+                    first: 1,
+                    second: 2,
+                    ..
+                }
+            )
+        },
+        "a translation and a rotation of S³",
+    );
+    check(
+        &[DMat4::from_rotation_z(0.3)],
+        |e| matches!(e, GroupError::FixesBasepoint { .. }),
+        "a rotation about the basepoint",
+    );
+    // Two glides whose product is a rotation about the basepoint.
+    let a = DMat4::from_rotation_z(PI / 2.0) * t(DVec3::X);
+    let b = t(DVec3::X);
+    let e = space_from_matrices("x", "", &[a, b], &DirichletOptions::default());
+    assert!(
+        matches!(e, Err(GroupError::FixesBasepoint { .. })),
+        "a product fixing the basepoint: {e:?}"
+    );
+    check(
+        &[t(DVec3::X), t(DVec3::X * 1.00001), t(DVec3::Y), t(DVec3::Z)],
+        |e| matches!(e, GroupError::NotDiscrete { .. }),
+        "translations 1 and 1.00001",
+    );
+    let near_seventh = quaternion_map(
+        DQuat::from_rotation_z(2.0 * PI / 7.0 + 2e-5),
+        DQuat::IDENTITY,
+    );
+    check(
+        &[near_seventh],
+        |e| matches!(e, GroupError::NotDiscrete { .. }),
+        "almost a seventh turn of S³",
+    );
+    check(
+        &[t(DVec3::X), t(DVec3::Y)],
+        |e| matches!(e, GroupError::NotCocompact { .. }),
+        "two translations",
+    );
+    let g = Geometry::Hyperbolic;
+    check(
+        &[g.translation(DVec3::X, 1.0)],
+        |e| matches!(e, GroupError::NotCocompact { .. }),
+        "one loxodromic",
+    );
+    // A Lorentz matrix that swaps the sheets of the hyperboloid.
+    let swap = DMat4::from_diagonal(DVec4::new(1.0, 1.0, 1.0, -1.0)) * g.translation(DVec3::X, 1.0);
+    check(
+        &[swap],
+        |e| matches!(e, GroupError::NotAnIsometry { .. }),
+        "a sheet swap",
+    );
+    for (what, m) in [("no matrices", vec![]), ("−I", vec![-DMat4::IDENTITY])] {
+        let e = space_from_matrices("x", "", &m, &DirichletOptions::default()).unwrap_err();
+        assert!(
+            matches!(e, GroupError::ReachesEquator { .. }),
+            "{what}: {e}"
+        );
+    }
+    let bad_basepoint = DirichletOptions {
+        basepoint: Some(DVec3::new(2.0, 0.0, 0.0)),
+        ..DirichletOptions::default()
+    };
+    let weeks = parse_gen(CENSUS[0].generators).unwrap().matrices;
+    let e = space_from_matrices("x", "", &weeks, &bad_basepoint).unwrap_err();
+    assert!(matches!(e, GroupError::BadBasepoint { .. }), "{e}");
+}
+
+#[test]
+fn every_seed_space_round_trips_through_a_generator_file() {
+    for seed in SEED_SPACES {
+        let space = seed.build().unwrap();
+        let text = write_gen(&space);
+        let file = parse_gen(&text).unwrap();
+        let faces = space.faces().len();
+        let pairs = space
+            .faces()
+            .iter()
+            .enumerate()
+            .filter(|(i, f)| f.partner >= *i)
+            .count();
+        assert_eq!(file.matrices.len(), pairs, "{}", seed.id);
+        let back = space_from_matrices(seed.id, "", &file.matrices, &DirichletOptions::default())
+            .unwrap_or_else(|e| panic!("{}: {e}", seed.id));
+        assert_eq!(back.faces().len(), faces, "{}", seed.id);
+        assert!(
+            congruent(&space, &back, 1e-9),
+            "{}: the Dirichlet domain of its own pairings is not its cell",
+            seed.id
+        );
+        assert!((volume(&back) - volume(&space)).abs() < 1e-9 * volume(&space));
+    }
+}
+
+#[test]
+fn library_spaces_equal_the_seed_spaces_they_name() {
+    assert!(congruent(
+        &library("seifert-weber-group"),
+        &seed_space("seifert-weber").unwrap(),
+        1e-9
+    ));
+    let icosahedral = library("binary-icosahedral");
+    let poincare = seed_space("poincare").unwrap();
+    assert!(
+        congruent(&icosahedral, &poincare, 1e-9),
+        "the binary icosahedral group's Dirichlet domain is not the Poincaré dodecahedron"
+    );
+}
+
+#[test]
+fn spherical_volumes_are_two_pi_squared_over_the_group_order() {
+    let mut cases: Vec<(String, usize)> = vec![
+        ("binary-tetrahedral".into(), 24),
+        ("binary-octahedral".into(), 48),
+        ("binary-icosahedral".into(), 120),
+        ("mirrored-tetrahedron".into(), 16),
+    ];
+    for n in [2, 3, 5, 8] {
+        cases.push((format!("prism-{n}"), 4 * n));
+    }
+    for (p, q) in [(5, 2), (7, 2), (7, 3), (8, 3), (12, 5), (60, 7), (60, 11)] {
+        cases.push((format!("lens-{p}-{q}"), p));
+    }
+    for (id, order) in cases {
+        let s = library(&id);
+        let expected = 2.0 * PI * PI / order as f64;
+        assert!(
+            (volume(&s) - expected).abs() < 1e-9 * expected,
+            "{id}: volume {} against 2π²/{order}",
+            volume(&s)
+        );
+        assert_eq!(group_order(&s), Some(order), "{id}");
+    }
+}
+
+#[test]
+fn flat_volumes_are_lattice_covolumes_over_the_holonomy() {
+    use bevy_curved_spaces::space::invariants::holonomy_order;
+    let cases = [
+        ("torus-1-2-3", 6.0, 1),
+        ("torus-hexagonal", 0.75f64.sqrt(), 1),
+        ("torus-fcc", 2.0, 1),
+        ("torus-bcc", 4.0, 1),
+        // Glide² = (0, 0, 1): lattice covolume 1 (Pc) and ½ (Cc), holonomy 2.
+        ("first-amphicosm", 0.5, 2),
+        ("second-amphicosm", 0.25, 2),
+        // Screw² = (0, 0, 1), glide² = (1, 0, 0), and (0, 1, 0): covolume 1, holonomy 4.
+        ("first-amphidicosm", 0.25, 4),
+        ("second-amphidicosm", 0.25, 4),
+    ];
+    for (id, v, holonomy) in cases {
+        let s = library(id);
+        assert!((volume(&s) - v).abs() < 1e-12, "{id}: {}", volume(&s));
+        assert_eq!(holonomy_order(&s), Some(holonomy), "{id}");
+    }
+}
+
+#[test]
+fn the_ten_flat_manifolds_are_told_apart_by_orientability_and_homology() {
+    // (id, orientable, H₁) from Wolf's classification.
+    let cases = [
+        ("torus", true, "Z + Z + Z"),
+        ("half-turn", true, "Z/2 + Z/2 + Z"),
+        ("quarter-turn", true, "Z/2 + Z"),
+        ("third-turn", true, "Z/3 + Z"),
+        ("sixth-turn", true, "Z"),
+        ("hantzsche-wendt", true, "Z/4 + Z/4"),
+        ("first-amphicosm", false, "Z/2 + Z + Z"),
+        ("second-amphicosm", false, "Z + Z"),
+        ("first-amphidicosm", false, "Z/2 + Z/2 + Z"),
+        ("second-amphidicosm", false, "Z/4 + Z"),
+    ];
+    for (id, orientable, h1) in cases {
+        let s = resolve_space(id, Path::new(""), &DirichletOptions::default()).unwrap();
+        assert!(s.manifold(), "{id}");
+        assert_eq!(s.orientable(), orientable, "{id}");
+        assert_eq!(first_homology(&s), Homology::parse(h1).unwrap(), "{id}");
+    }
+}
+
+#[test]
+fn homology_of_spherical_spaces_is_the_abelianised_group() {
+    let cases = [
+        ("poincare", "0"),
+        ("binary-icosahedral", "0"),
+        ("binary-tetrahedral", "Z/3"),
+        ("binary-octahedral", "Z/2"),
+        ("prism-2", "Z/2 + Z/2"),
+        ("prism-3", "Z/4"),
+        ("prism-4", "Z/2 + Z/2"),
+        ("lens-7-2", "Z/7"),
+        ("lens-60-7", "Z/60"),
+        ("seifert-weber", "Z/5 + Z/5 + Z/5"),
+    ];
+    for (id, h1) in cases {
+        let s = resolve_space(id, Path::new(""), &DirichletOptions::default()).unwrap();
+        assert_eq!(first_homology(&s), Homology::parse(h1).unwrap(), "{id}");
+    }
+}
+
+/// SnapPy's numbers, stored beside each shipped census file.
+#[derive(serde::Deserialize)]
+struct Reference {
+    name: String,
+    volume: f64,
+    homology: String,
+    inradius: f64,
+    outradius: f64,
+}
+
+#[test]
+fn census_manifolds_match_snappy() {
+    for (i, m) in CENSUS.iter().enumerate() {
+        let id = format!("census-{}", i + 1);
+        let s = library(&id);
+        let r: Reference = serde_json::from_str(m.reference).unwrap();
+        assert_eq!(r.name, m.snappy_name);
+        assert!(s.manifold() && s.orientable(), "{id}");
+        let v = volume(&s);
+        assert!(
+            (v - r.volume).abs() < 1e-9 * r.volume,
+            "{id} ({}): volume {v} against SnapPy's {}",
+            r.name,
+            r.volume
+        );
+        assert_eq!(
+            first_homology(&s),
+            Homology::parse(&r.homology).unwrap(),
+            "{id}"
+        );
+        // The same basepoint as SnapPy's domain, so the same radii.
+        assert!((inradius(&s) - r.inradius).abs() < 1e-9, "{id} inradius");
+        assert!(
+            (circumradius(&s) - r.outradius).abs() < 1e-9,
+            "{id} circumradius"
+        );
+    }
+    assert!(congruent(&library("weeks"), &library("census-1"), 1e-12));
+}
+
+#[test]
+fn the_domain_does_not_change_when_more_elements_are_tried() {
+    for id in ["census-1", "census-10", "seifert-weber-group"] {
+        let s = library(id);
+        let text = write_gen(&s);
+        let generators = Generators::new(&parse_gen(&text).unwrap().matrices).unwrap();
+        let wide = DirichletOptions {
+            min_radius: 2.0 * circumradius(&s) + 2.5,
+            ..DirichletOptions::default()
+        };
+        let again = dirichlet_space(id, "", &generators, &wide).unwrap();
+        assert!(congruent(&s, &again, 1e-9), "{id}");
+    }
+}
+
+#[test]
+fn a_moved_basepoint_gives_another_domain_of_the_same_space() {
+    let s = resolve_space("half-turn", Path::new(""), &DirichletOptions::default()).unwrap();
+    let file = parse_gen(&write_gen(&s)).unwrap();
+    let moved = DirichletOptions {
+        basepoint: Some(DVec3::new(0.2, 0.1, 0.0)),
+        ..DirichletOptions::default()
+    };
+    let other = space_from_matrices("moved", "", &file.matrices, &moved).unwrap();
+    assert!((volume(&other) - volume(&s)).abs() < 1e-12);
+    assert_eq!(first_homology(&other), first_homology(&s));
+    assert!(!congruent(&other, &s, 1e-6), "the cell should change shape");
+}
+
+#[test]
+fn every_library_manifold_has_euler_characteristic_zero() {
+    let mut ids: Vec<String> = [
+        "binary-tetrahedral",
+        "binary-octahedral",
+        "binary-icosahedral",
+        "prism-2",
+        "prism-7",
+        "lens-5-2",
+        "lens-7-3",
+        "lens-60-7",
+        "torus-hexagonal",
+        "torus-fcc",
+        "torus-bcc",
+        "first-amphicosm",
+        "second-amphicosm",
+        "first-amphidicosm",
+        "second-amphidicosm",
+        "seifert-weber-group",
+    ]
+    .map(String::from)
+    .to_vec();
+    ids.extend((1..=CENSUS.len()).map(|n| format!("census-{n}")));
+    for id in ids {
+        let s = library(&id);
+        assert!(s.manifold(), "{id}");
+        let pairs = s
+            .faces()
+            .iter()
+            .enumerate()
+            .filter(|(i, f)| f.partner >= *i)
+            .count() as i64;
+        let chi = s.vertex_cycles().len() as i64 - s.edge_cycles().len() as i64 + pairs - 1;
+        assert_eq!(chi, 0, "{id}");
+        for cycle in s.edge_cycles() {
+            assert_eq!(cycle.order, 1, "{id}");
+            assert!((cycle.angle_sum - 2.0 * PI).abs() < 1e-9, "{id}");
+        }
+    }
+}
+
+#[test]
+fn bad_family_parameters_are_named() {
+    for (id, needle) in [
+        ("lens-6-3", "common factor 3"),
+        ("lens-5-5", "1 ≤ Q < P"),
+        ("lens-1001-2", "P ≤ 1000"),
+        ("prism-1", "2 ≤ N"),
+        ("census-11", "census-10"),
+        ("census-0", "census-10"),
+        ("torus-1-0-1", "positive"),
+        ("torus-1-1-1e9", "1000 to 1"),
+    ] {
+        match library_space(id) {
+            Some(Err(e)) => assert!(e.contains(needle), "{id}: {e}"),
+            other => panic!("{id}: {:?}", other.map(|r| r.map(|s| s.name().to_string()))),
+        }
+    }
+    assert!(library_space("lens-x-2").is_none());
+    assert!(library_space("prism").is_none());
+}
+
+/// A long random walk in the Weeks manifold and a lens space stays in the cell, with a
+/// valid frame.
+#[test]
+fn a_long_walk_stays_in_the_cell() {
+    use bevy_curved_spaces::components::{PlayerMotion, PlayerSettings};
+    use bevy_curved_spaces::player::step_frame;
+    use bevy_curved_spaces::space::wrap_into_cell;
+    use bevy_curved_spaces::trace::SplitMix64;
+    for id in ["weeks", "lens-7-2"] {
+        let space = library(id);
+        let g = space.geometry();
+        let r = inradius(&space);
+        let margin = PlayerSettings::default().wrap_margin;
+        let mut rng = SplitMix64(7);
+        let mut next = || 2.0 * rng.unit() - 1.0;
+        let mut frame = bevy_curved_spaces::view::TraceCamera::default_for(&space).frame;
+        let mut crossings = 0;
+        for step in 0..100_000 {
+            let motion = PlayerMotion {
+                translation: DVec3::new(next(), next(), next()) * 0.2 * r,
+                rotation: DVec3::new(next(), next(), next()) * 0.2,
+            };
+            let (wrapped, crossed) = wrap_into_cell(&space, step_frame(g, frame, &motion), margin);
+            frame = wrapped;
+            crossings += crossed.len();
+            if step % 1000 == 999 {
+                let outside = space.outside_by(frame.w_axis);
+                assert!(outside <= 2.0 * margin, "{id} step {step}: {outside:.3e}");
+                assert!(g.frame_defect(frame) < 1e-9, "{id} step {step}");
+            }
+        }
+        assert!(crossings > 1000, "{id}: only {crossings} crossings");
+    }
+}
+
+#[test]
+fn the_census_loads_from_its_shipped_files_as_from_the_library() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/spaces/census");
+    let from_file = resolve_space("m003_-3_1.gen", &dir, &DirichletOptions::default()).unwrap();
+    assert!(congruent(&from_file, &library("weeks"), 1e-12));
+}
