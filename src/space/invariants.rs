@@ -2,9 +2,7 @@
 //! groups, closed geodesics, injectivity radius.
 
 use super::Space;
-use crate::geometry::Ray;
 use crate::geometry::{Geometry, ORIGIN, max_abs_entry};
-use crate::space::{CellWalker, Limit};
 use glam::{DMat3, DMat4, DVec3, DVec4};
 use std::collections::{BTreeMap, HashMap, VecDeque};
 
@@ -371,25 +369,163 @@ fn attracting_point(h: DMat4) -> DVec3 {
 }
 
 /// The primitive closed geodesics of a hyperbolic manifold up to `max_length`, grouped by
-/// length (to 1e-6). Every closed geodesic is the axis of a deck element whose axis meets the
-/// cell, and such an element moves the cell by at most its length, so enumerating the
-/// elements near the cell finds them all. Each is traced through the cell by the reference
-/// tracer: its cyclic sequence of exit faces (up to orientation) tells distinct geodesics
-/// apart, and a periodic sequence marks a power of a shorter one.
+/// length (to 1e-6), computed from the group: closed geodesics are the conjugacy classes of
+/// primitive elements up to inversion, and their lengths the translation lengths of the
+/// elements (from the traces, [`displacement`]).
+///
+/// Every class has members whose axes meet the cell; such a member moves the cell by at
+/// most its length, so [`elements_near`] finds them all. The members whose axes meet the
+/// cell (or pass within 1e-7 of it) are joined into classes by conjugating with the face
+/// pairings (an axis leaving the cell through a face continues as the axis of the
+/// conjugate by that face's pairing) and with their inverses; a member that is the `k`-th
+/// power of another is not primitive. No ray is traced, so axes through edges and vertices
+/// count like any other.
 ///
 /// Empty for spaces other than hyperbolic manifolds; `None` when more than
 /// [`MAX_ENUMERATED`] elements would have to be enumerated (a cell with very short closed
 /// geodesics).
 #[must_use]
 pub fn closed_geodesics(space: &Space, max_length: f64) -> Option<Vec<GeodesicLength>> {
+    let axes = axes_meeting_cell(space, max_length)?;
+    let n = axes.elements.len();
+    let mut parent: Vec<usize> = (0..n).collect();
+    let find = |m: DMat4| axes.find(m);
+    let pairings: Vec<(DMat4, DMat4)> = space
+        .faces
+        .iter()
+        .map(|f| (f.pairing, space.faces[f.partner].pairing))
+        .collect();
+    let mut primitive = vec![true; n];
+    for i in 0..n {
+        let (h, length) = (axes.elements[i], axes.lengths[i]);
+        let mut join = |j: usize| {
+            let (a, b) = (
+                super::validate::union_find_root(&mut parent, i),
+                super::validate::union_find_root(&mut parent, j),
+            );
+            parent[a.max(b)] = a.min(b);
+        };
+        if let Some(j) = find(space.geometry.inverse(h)) {
+            join(j);
+        }
+        for &(p, p_inv) in &pairings {
+            if let Some(j) = find(p * h * p_inv) {
+                join(j);
+            }
+        }
+        let mut power = h;
+        for k in 2.. {
+            if k as f64 * length > max_length + 1e-6 {
+                break;
+            }
+            power *= h;
+            if let Some(j) = find(power) {
+                primitive[j] = false;
+            }
+        }
+    }
+    let mut class_length: BTreeMap<usize, f64> = BTreeMap::new();
+    for i in 0..n {
+        let root = super::validate::union_find_root(&mut parent, i);
+        if primitive[i] && axes.lengths[i] <= max_length + 1e-9 {
+            class_length.entry(root).or_insert(axes.lengths[i]);
+        }
+    }
+    let mut lengths: Vec<f64> = class_length.into_values().collect();
+    lengths.sort_by(f64::total_cmp);
+    Some(group_lengths(&lengths))
+}
+
+/// The same counts as [`closed_geodesics`] by an independent route, without conjugacy
+/// classes: the axes of the members of a class cut the closed geodesic into the pieces that
+/// lie in the cell, so their chords in the cell add up to its length `ℓ` (twice, counting
+/// each element's inverse). A chord in a face is shared by the two cells on its sides, and
+/// one along an edge by the cells around it, so each is weighted by one over that number.
+/// The powers `h^k` of a geodesic's element have the same axes; so, with `C(λ)` half the
+/// weighted chord sum of all elements of length `λ`, the primitive count is
+/// `n(λ) = (C(λ) − Σ_{k ≥ 2} (λ/k) n(λ/k)) / λ`. Returned as real numbers: that they are
+/// whole is part of the check.
+#[must_use]
+pub fn closed_geodesics_by_chords(space: &Space, max_length: f64) -> Option<Vec<(f64, f64)>> {
+    let axes = axes_meeting_cell(space, max_length)?;
+    let mut sums: Vec<(f64, f64)> = Vec::new();
+    let mut order: Vec<usize> = (0..axes.elements.len()).collect();
+    order.sort_by(|&a, &b| axes.lengths[a].total_cmp(&axes.lengths[b]));
+    for i in order {
+        let (l, chord) = (axes.lengths[i], axes.chords[i]);
+        match sums.last_mut() {
+            Some(last) if (l - last.0).abs() < 1e-6 => last.1 += chord / 2.0,
+            _ => sums.push((l, chord / 2.0)),
+        }
+    }
+    let mut primitive: Vec<(f64, f64)> = Vec::new();
+    for &(lambda, c) in &sums {
+        let mut rest = c;
+        for &(l, n) in &primitive {
+            let k = (lambda / l).round();
+            if k >= 2.0 && (lambda - k * l).abs() < 1e-6 {
+                rest -= l * n;
+            }
+        }
+        let n = rest / lambda;
+        if n.abs() > 1e-6 {
+            primitive.push((lambda, n));
+        }
+    }
+    Some(primitive)
+}
+
+/// Elements of translation length at most `max_length` whose axes meet the cell, with
+/// their lengths and the weighted lengths of their chords in the cell.
+struct Axes {
+    elements: Vec<DMat4>,
+    lengths: Vec<f64>,
+    chords: Vec<f64>,
+    lookup: HashMap<[i64; 4], Vec<usize>>,
+}
+
+impl Axes {
+    fn key(m: DMat4) -> [i64; 4] {
+        let p = m * ORIGIN;
+        (p / p.w).to_array().map(|x| (x * 1e6).floor() as i64)
+    }
+
+    /// The element equal to `m` (by where it moves the centre: a manifold's group acts
+    /// freely), if it is one of these.
+    fn find(&self, m: DMat4) -> Option<usize> {
+        let [a, b, c, _] = Self::key(m);
+        let p = m * ORIGIN;
+        for da in -1..=1 {
+            for db in -1..=1 {
+                for dc in -1..=1 {
+                    let Some(list) = self.lookup.get(&[a + da, b + db, c + dc, 1_000_000]) else {
+                        continue;
+                    };
+                    for &i in list {
+                        let q = self.elements[i] * ORIGIN;
+                        if Geometry::Hyperbolic.distance(p, q) < 1e-7 {
+                            return Some(i);
+                        }
+                    }
+                }
+            }
+        }
+        None
+    }
+}
+
+fn axes_meeting_cell(space: &Space, max_length: f64) -> Option<Axes> {
+    let mut axes = Axes {
+        elements: Vec::new(),
+        lengths: Vec::new(),
+        chords: Vec::new(),
+        lookup: HashMap::new(),
+    };
     if space.geometry != Geometry::Hyperbolic || !space.manifold {
-        return Some(Vec::new());
+        return Some(axes);
     }
     let g = space.geometry;
     let elements = elements_near(space, max_length + 1e-9, MAX_ENUMERATED)?;
-    let walker = CellWalker::<DVec4>::new(space);
-    let partners: Vec<usize> = space.faces.iter().map(|f| f.partner).collect();
-    let mut found: BTreeMap<Vec<usize>, f64> = BTreeMap::new();
     for &h in elements.iter().skip(1) {
         let length = displacement(g, h);
         if !(length <= max_length + 1e-9) {
@@ -397,41 +533,77 @@ pub fn closed_geodesics(space: &Space, max_length: f64) -> Option<Vec<GeodesicLe
         }
         let ahead = attracting_point(h);
         let behind = attracting_point(g.inverse(h));
-        let d = ahead - behind;
-        // Clip the axis (a chart segment between its ends at infinity) to the cell.
+        let Some((a, b, faces)) = chord(space, behind, ahead) else {
+            continue;
+        };
+        let weight = match faces.as_slice() {
+            [] => 1.0,
+            [_] => 0.5,
+            [f, h, ..] => {
+                // Along an edge: shared by the cells around its cycle.
+                let cycle = space
+                    .edges
+                    .iter()
+                    .find(|e| e.faces.contains(f) && e.faces.contains(h))
+                    .map_or(1, |e| space.edge_cycles[e.cycle].edges.len());
+                1.0 / cycle as f64
+            }
+        };
+        let i = axes.elements.len();
+        axes.elements.push(h);
+        axes.lengths.push(length);
+        axes.chords.push(weight * g.distance(a, b));
+        let [x, y, z, _] = Axes::key(h);
+        axes.lookup.entry([x, y, z, 1_000_000]).or_default().push(i);
+    }
+    Some(axes)
+}
+
+/// The part of the chart line from `behind` to `ahead` (points at infinity) in the cell,
+/// widened by 1e-7: its end points in the model and the faces it lies in (`None` if it
+/// misses the cell).
+fn chord(space: &Space, behind: DVec3, ahead: DVec3) -> Option<(DVec4, DVec4, Vec<usize>)> {
+    let d = ahead - behind;
+    // The parameter interval inside the cell widened by `slack`, over the faces not in
+    // `skip`.
+    let interval = |slack: f64, skip: &[usize]| {
         let (mut lo, mut hi) = (0.0_f64, 1.0_f64);
-        for f in &space.faces {
-            let (a, b) = (f.normal.dot(d), f.offset - f.normal.dot(behind));
+        for (i, f) in space.faces.iter().enumerate() {
+            if skip.contains(&i) {
+                continue;
+            }
+            let (a, b) = (f.normal.dot(d), f.offset + slack - f.normal.dot(behind));
             if a > 0.0 {
                 hi = hi.min(b / a);
             } else if a < 0.0 {
                 lo = lo.max(b / a);
             } else if b < 0.0 {
-                hi = -1.0;
+                return None;
             }
         }
-        if hi - lo < 1e-9 {
-            continue;
-        }
-        let mid = behind + d * ((lo + hi) / 2.0);
-        let point = g.project_point(mid.extend(1.0));
-        let Ok(tangent) = g.tangent_from_chart(point, d) else {
-            continue;
-        };
-        let trace = walker.trace(Ray { point, tangent }, Limit::Distance(length));
-        let closes = g.distance(trace.end.point, point) < 1e-6
-            && g.form(trace.end.tangent, tangent) > 1.0 - 1e-9;
-        let faces: Vec<usize> = trace.crossings.iter().map(|c| c.face).collect();
-        if !closes || faces.is_empty() || minimal_period(&faces) < faces.len() {
-            continue;
-        }
-        let reversed: Vec<usize> = faces.iter().rev().map(|&f| partners[f]).collect();
-        let key = canonical_rotation(&faces).min(canonical_rotation(&reversed));
-        found.entry(key).or_insert(length);
-    }
-    let mut lengths: Vec<f64> = found.into_values().collect();
-    lengths.sort_by(f64::total_cmp);
-    Some(group_lengths(&lengths))
+        (lo <= hi).then_some((lo, hi))
+    };
+    // Widened for membership: an axis along a face or an edge must not be lost to rounding.
+    let slack = 1e-7;
+    let (wide_lo, wide_hi) = interval(slack, &[])?;
+    let (pa, pb) = (behind + d * wide_lo, behind + d * wide_hi);
+    let lies_in: Vec<usize> = space
+        .faces
+        .iter()
+        .enumerate()
+        .filter(|(_, f)| {
+            f.normal.dot(d).abs() <= 1e-6 * d.length()
+                && (f.normal.dot(pa) - f.offset).abs() < 2.0 * slack
+                && (f.normal.dot(pb) - f.offset).abs() < 2.0 * slack
+        })
+        .map(|(i, _)| i)
+        .collect();
+    // The exact interval, leaving out the planes the line lies in (there the quotient of
+    // two roundings would cut it anywhere).
+    let (lo, hi) = interval(0.0, &lies_in).unwrap_or((wide_lo, wide_lo));
+    let g = space.geometry;
+    let point = |x: DVec3| g.project_point(x.extend(1.0));
+    Some((point(behind + d * lo), point(behind + d * hi), lies_in))
 }
 
 /// Sorted lengths grouped into (length, count) to 1e-6.
@@ -447,28 +619,6 @@ fn group_lengths(lengths: &[f64]) -> Vec<GeodesicLength> {
         }
     }
     out
-}
-
-fn minimal_period(seq: &[usize]) -> usize {
-    (1..=seq.len())
-        .find(|&p| {
-            seq.len().is_multiple_of(p)
-                && (0..seq.len()).all(|i| seq[i] == seq[(i + p) % seq.len()])
-        })
-        .unwrap_or(seq.len())
-}
-
-fn canonical_rotation(seq: &[usize]) -> Vec<usize> {
-    (0..seq.len())
-        .map(|r| {
-            seq[r..]
-                .iter()
-                .chain(&seq[..r])
-                .copied()
-                .collect::<Vec<_>>()
-        })
-        .min()
-        .unwrap_or_default()
 }
 
 /// Closed geodesics are listed up to this length.

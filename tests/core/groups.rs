@@ -526,3 +526,81 @@ fn the_census_loads_from_its_shipped_files_as_from_the_library() {
     let from_file = resolve_space("m003_-3_1.gen", &dir, &DirichletOptions::default()).unwrap();
     assert!(congruent(&from_file, &library("weeks"), 1e-12));
 }
+
+#[derive(serde::Deserialize)]
+struct SpectrumEntry {
+    length: f64,
+    multiplicity: usize,
+}
+
+#[derive(serde::Deserialize)]
+struct SpectrumReference {
+    length_spectrum_cutoff: f64,
+    length_spectrum: Vec<SpectrumEntry>,
+}
+
+/// SnapPy's length spectrum summed over torsion: (length, count), to 1e-6.
+fn snappy_spectrum(reference: &str) -> (f64, Vec<(f64, usize)>) {
+    let r: SpectrumReference = serde_json::from_str(reference).unwrap();
+    let mut out: Vec<(f64, usize)> = Vec::new();
+    let mut entries = r.length_spectrum;
+    entries.sort_by(|a, b| a.length.total_cmp(&b.length));
+    for e in entries {
+        match out.last_mut() {
+            Some(last) if (e.length - last.0).abs() < 1e-6 => last.1 += e.multiplicity,
+            _ => out.push((e.length, e.multiplicity)),
+        }
+    }
+    (r.length_spectrum_cutoff, out)
+}
+
+/// The length spectrum from conjugacy classes, against the chord sums (whole numbers, the
+/// same counts) and, for the census, against SnapPy.
+#[test]
+fn length_spectra_agree_by_two_routes_and_with_snappy() {
+    use bevy_curved_spaces::space::invariants::{closed_geodesics, closed_geodesics_by_chords};
+    let mut cases: Vec<(String, Option<&str>)> = CENSUS
+        .iter()
+        .enumerate()
+        .map(|(i, m)| (format!("census-{}", i + 1), Some(m.reference)))
+        .collect();
+    cases.push(("seifert-weber".into(), None));
+    for (id, reference) in cases {
+        let s = resolve_space(&id, Path::new(""), &DirichletOptions::default()).unwrap();
+        let cutoff = reference.map_or(2.5, |r| snappy_spectrum(r).0 - 1e-3);
+        let classes = closed_geodesics(&s, cutoff).unwrap();
+        let chords = closed_geodesics_by_chords(&s, cutoff).unwrap();
+        eprintln!("{id}: classes {classes:?}");
+        eprintln!("{id}: chords {chords:?}");
+        assert_eq!(classes.len(), chords.len(), "{id}: lengths differ");
+        for (c, (l, n)) in classes.iter().zip(&chords) {
+            assert!(
+                (c.length - l).abs() < 1e-9,
+                "{id}: {} against {l}",
+                c.length
+            );
+            assert!(
+                (n - c.count as f64).abs() < 1e-6,
+                "{id} at {l}: {} classes, chords say {n}",
+                c.count
+            );
+        }
+        if let Some(r) = reference {
+            let (_, snappy) = snappy_spectrum(r);
+            let snappy: Vec<(f64, usize)> =
+                snappy.into_iter().filter(|(l, _)| *l <= cutoff).collect();
+            let ours: Vec<(f64, usize)> = classes.iter().map(|c| (c.length, c.count)).collect();
+            assert_eq!(
+                ours.len(),
+                snappy.len(),
+                "{id}: {ours:?} against SnapPy's {snappy:?}"
+            );
+            for (a, b) in ours.iter().zip(&snappy) {
+                assert!(
+                    (a.0 - b.0).abs() < 1e-9 && a.1 == b.1,
+                    "{id}: {a:?} against {b:?}"
+                );
+            }
+        }
+    }
+}
