@@ -9,7 +9,9 @@ scripts/setup-system.sh
 cargo build --quiet
 bin=./target/debug/curved-spaces
 mkdir -p docs/images
-for space in $($bin list | awk 'NR > 1 { print $1 }'); do
+# The seed spaces (the first block of `list`), then a few spaces from groups.
+seeds=$($bin list | awk 'NR > 1 && NF == 0 { exit } NR > 1 { print $1 }')
+for space in $seeds weeks census-10 lens-7-2 prism-5 binary-octahedral second-amphidicosm; do
     $bin render "$space" --size "$size" --out "docs/images/$space.png"
 done
 # The app itself, panel shown, in a virtual X display when there is none.

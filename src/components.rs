@@ -123,6 +123,18 @@ impl ActiveSpace {
     pub fn seed(id: &str) -> Result<Self, SpaceError> {
         Ok(Self::new(id, seed_space(id)?))
     }
+
+    /// A space by name, as the command line takes it: a seed space, a library family member
+    /// (`lens-7-2`, `weeks`) or a path to a space file (`.gen` or JSON). Slow for spaces from
+    /// large groups (a census manifold takes a fraction of a second in a release build).
+    pub fn named(id: &str) -> Result<Self, String> {
+        let space = crate::space::resolve_space(
+            id,
+            std::path::Path::new(""),
+            &crate::space::dirichlet::DirichletOptions::default(),
+        )?;
+        Ok(Self::new(id, space))
+    }
 }
 
 /// The tracer's knobs, changeable at run time.

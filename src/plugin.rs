@@ -75,7 +75,7 @@ impl Plugin for CurvedSpacesPlugin {
     fn build(&self, app: &mut App) {
         // A space inserted before the plugin (e.g. from a file) wins over `self.space`.
         if !app.world().contains_resource::<ActiveSpace>() {
-            let active = ActiveSpace::seed(&self.space).unwrap_or_else(|e| {
+            let active = ActiveSpace::named(&self.space).unwrap_or_else(|e| {
                 error!("{e}; starting in {DEFAULT_SPACE} instead");
                 ActiveSpace::seed(DEFAULT_SPACE).expect("the default seed space is valid")
             });

@@ -4,7 +4,7 @@ use bevy::prelude::*;
 use bevy_curved_spaces::space::file::SpaceRecord;
 use bevy_curved_spaces::space::group::write_gen;
 use bevy_curved_spaces::space::invariants::Invariants;
-use bevy_curved_spaces::space::library::is_gen_path;
+use bevy_curved_spaces::space::library::{FAMILIES, is_gen_path};
 use bevy_curved_spaces::space::{SEED_SPACES, Space};
 use std::path::Path;
 
@@ -29,6 +29,26 @@ pub(super) fn list() {
             Err(e) => say!("{:<22} invalid: {e}", seed.id),
         }
     }
+    say!("");
+    say!("families built from groups (any member by its id, e.g. `curved-spaces walk lens-7-2`):");
+    say!("{:<22} {:<11}  description", "id", "geometry");
+    for family in FAMILIES {
+        say!(
+            "{:<22} {:<11}  {}",
+            family.pattern,
+            family.geometry.name(),
+            family.summary
+        );
+        if family.examples.len() > 1 || family.examples[0] != family.pattern {
+            say!("{:<22} {:<11}  e.g. {}", "", "", family.examples.join(", "));
+        }
+    }
+    say!("");
+    say!(
+        "SPACE may also be a space file: JSON (`curved-spaces export SPACE` writes one) or a \
+         Curved Spaces generator file (.gen); scripts/snappy-export.py writes .gen files of \
+         SnapPy's manifolds."
+    );
 }
 
 /// A number for people: fixed point where that is readable, scientific notation for the

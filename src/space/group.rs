@@ -171,7 +171,7 @@ pub fn parse_gen(text: &str) -> Result<GeneratorFile, GroupError> {
     let matrices = numbers
         .chunks_exact(16)
         // Row by row of the row-vector matrix M is column by column of Mᵀ.
-        .map(|c| DMat4::from_cols_slice(c))
+        .map(DMat4::from_cols_slice)
         .collect();
     Ok(GeneratorFile { matrices, comments })
 }

@@ -114,8 +114,9 @@ fn smith_diagonal(mut a: Vec<Vec<i128>>, columns: usize) -> Vec<i128> {
             for i in t + 1..rows {
                 let q = a[i][t] / p;
                 if q != 0 {
-                    for j in t..columns {
-                        a[i][j] -= q * a[t][j];
+                    let pivot_row = a[t].clone();
+                    for (x, y) in a[i][t..columns].iter_mut().zip(&pivot_row[t..columns]) {
+                        *x -= q * y;
                     }
                 }
                 clean &= a[i][t] == 0;
@@ -136,9 +137,9 @@ fn smith_diagonal(mut a: Vec<Vec<i128>>, columns: usize) -> Vec<i128> {
             let bad = (t + 1..rows).find(|&i| (t + 1..columns).any(|j| a[i][j] % p != 0));
             match bad {
                 Some(i) => {
-                    for j in t..columns {
-                        let x = a[i][j];
-                        a[t][j] += x;
+                    let row = a[i].clone();
+                    for (x, y) in a[t][t..columns].iter_mut().zip(&row[t..columns]) {
+                        *x += y;
                     }
                 }
                 None => break,

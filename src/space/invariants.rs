@@ -425,9 +425,9 @@ pub fn closed_geodesics(space: &Space, max_length: f64) -> Option<Vec<GeodesicLe
         }
     }
     let mut class_length: BTreeMap<usize, f64> = BTreeMap::new();
-    for i in 0..n {
+    for (i, &is_primitive) in primitive.iter().enumerate() {
         let root = super::validate::union_find_root(&mut parent, i);
-        if primitive[i] && axes.lengths[i] <= max_length + 1e-9 {
+        if is_primitive && axes.lengths[i] <= max_length + 1e-9 {
             class_length.entry(root).or_insert(axes.lengths[i]);
         }
     }

@@ -416,7 +416,7 @@ fn family_member(id: &str) -> Option<Result<Space, String>> {
 }
 
 fn lens(id: &str, p: u32, q: u32) -> Result<Space, String> {
-    if !(p >= 2 && p <= MAX_LENS_ORDER && q >= 1 && q < p) {
+    if !((2..=MAX_LENS_ORDER).contains(&p) && (1..p).contains(&q)) {
         return Err(format!(
             "{id}: a lens space lens-P-Q needs 1 ≤ Q < P ≤ {MAX_LENS_ORDER}"
         ));

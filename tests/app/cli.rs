@@ -840,3 +840,64 @@ fn bench_times_any_scene_file() {
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("unknown space"));
 }
+
+#[test]
+fn generator_files_load_export_and_name_their_mistakes() {
+    let dir = temp_dir("gen");
+    // Export a seed space as a .gen file and read it back: the same volume.
+    let path = dir.join("sw.gen");
+    let out = run(&["export", "seifert-weber", "--out", path.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(text.starts_with("#\tseifert-weber"));
+    let v = json(&["info", path.to_str().unwrap(), "--json"]);
+    assert!((v["volume"].as_f64().unwrap() - 11.199064740815).abs() < 1e-9);
+    assert_eq!(v["homology"], "Z/5 + Z/5 + Z/5");
+    // --gen-format writes the same to standard output.
+    let out = run(&["export", "poincare", "--gen-format"]);
+    assert!(String::from_utf8_lossy(&out.stdout).contains("#\tpoincare"));
+    // A library member by id, and a census manifold from its shipped file.
+    let v = json(&["info", "lens-7-2", "--json"]);
+    assert_eq!(v["group_order"], 7);
+    let census = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/spaces/census/m003_-3_1.gen"
+    );
+    let v = json(&["info", census, "--json"]);
+    assert_eq!(v["homology"], "Z/5 + Z/5");
+    // A moved basepoint gives another cell of the same space.
+    let moved = json(&["info", census, "--json", "--basepoint", "0.05,0,0"]);
+    assert!((moved["volume"].as_f64().unwrap() - 0.9427073627769).abs() < 1e-9);
+    // Mistakes.
+    let bad = dir.join("bad.gen");
+    std::fs::write(&bad, "1 0 0 0\n0 1 0 0\n0 0 1 0\n1 0 0 one\n").unwrap();
+    fails_with(
+        &["info", bad.to_str().unwrap()],
+        "line 4: `one` is not a number",
+    );
+    std::fs::write(
+        &bad,
+        "1 0 0 0 0 1 0 0 0 0 1 0 1 0 0 1  1 0 0 0 0 1 0 0 0 0 1 0 0 1 0 1\n",
+    )
+    .unwrap();
+    fails_with(&["info", bad.to_str().unwrap()], "not cocompact");
+    std::fs::write(&bad, "0 1 0 0 -1 0 0 0 0 0 1 0 0 0 0 1\n").unwrap();
+    fails_with(&["info", bad.to_str().unwrap()], "--basepoint");
+    fails_with(
+        &["info", "missing.gen"],
+        "cannot read generator file missing.gen",
+    );
+    fails_with(&["info", "lens-6-3"], "common factor 3");
+    fails_with(&["info", "census-99"], "census-10");
+    fails_with(&["info", census, "--basepoint", "2,0,0"], "basepoint");
+    fails_with(&["info", census, "--basepoint", "nan,0,0"], "");
+    let out = run(&["list"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    for family in bevy_curved_spaces::space::library::FAMILIES {
+        assert!(text.contains(family.pattern), "{} missing", family.pattern);
+    }
+}

@@ -10,7 +10,7 @@ use crate::common::{compare, gpu_lock};
 use bevy_curved_spaces::components::ActiveSpace;
 use bevy_curved_spaces::offscreen::{OffscreenRender, OffscreenRenderer};
 use bevy_curved_spaces::scene::{CurvedScene, SceneParts, Shading};
-use bevy_curved_spaces::space::SEED_SPACES;
+use bevy_curved_spaces::space::{SEED_SPACES, Space};
 use bevy_curved_spaces::trace::{RenderSettings, render};
 use bevy_curved_spaces::view::TraceCamera;
 use image::RgbImage;
@@ -25,6 +25,44 @@ const MAX_DIFFERING: f64 = 0.01;
 
 #[test]
 fn every_seed_space_renders_on_the_gpu_like_the_cpu_reference() {
+    let spaces: Vec<(String, Space)> = SEED_SPACES
+        .iter()
+        .map(|seed| {
+            (
+                seed.id.to_string(),
+                seed.build().expect("seed space builds"),
+            )
+        })
+        .collect();
+    spaces_render_alike(&spaces);
+}
+
+/// Spaces from groups (spherical, flat non-orientable, hyperbolic census) render alike.
+#[test]
+fn library_spaces_render_on_the_gpu_like_the_cpu_reference() {
+    let spaces: Vec<(String, Space)> = [
+        "lens-7-2",
+        "prism-5",
+        "binary-octahedral",
+        "second-amphidicosm",
+        "weeks",
+    ]
+    .iter()
+    .map(|id| {
+        let space = bevy_curved_spaces::space::resolve_space(
+            id,
+            std::path::Path::new(""),
+            &Default::default(),
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
+        (id.to_string(), space)
+    })
+    .collect();
+    spaces_render_alike(&spaces);
+}
+
+/// Each space's default view on the GPU against the CPU reference.
+fn spaces_render_alike(spaces: &[(String, Space)]) {
     let _gpu = gpu_lock();
     let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| {
         panic!("{e}\n(the GPU tests need a Vulkan driver: run scripts/setup-system.sh)")
@@ -32,13 +70,12 @@ fn every_seed_space_renders_on_the_gpu_like_the_cpu_reference() {
     let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("gpu-vs-cpu");
     let mut failures = Vec::new();
     let crossings = 24;
-    for seed in SEED_SPACES {
-        let space = seed.build().expect("seed space builds");
-        let fog = Shading::default_fog_distance(&space);
-        let camera = TraceCamera::default_for(&space);
-        let scene = CurvedScene::with_parts(&space, fog, SceneParts::default());
+    for (id, space) in spaces {
+        let fog = Shading::default_fog_distance(space);
+        let camera = TraceCamera::default_for(space);
+        let scene = CurvedScene::with_parts(space, fog, SceneParts::default());
         let cpu = render(
-            &space,
+            space,
             &scene,
             &camera,
             &RenderSettings {
@@ -51,17 +88,17 @@ fn every_seed_space_renders_on_the_gpu_like_the_cpu_reference() {
             .render(&OffscreenRender {
                 fog_distance: Some(fog),
                 ..OffscreenRender::new(
-                    ActiveSpace::new(seed.id, space.clone()),
+                    ActiveSpace::new(id.as_str(), space.clone()),
                     camera,
                     (WIDTH, HEIGHT),
                     crossings as u32,
                 )
             })
-            .unwrap_or_else(|e| panic!("{}: {e}", seed.id));
+            .unwrap_or_else(|e| panic!("{id}: {e}"));
         let (c, diff) = compare(&gpu, &cpu, TOLERANCE);
         println!(
             "{:<22} differing {:.3} %, mean error {:.3}/255, max {}",
-            seed.id,
+            id,
             100.0 * c.differing,
             c.mean_error,
             c.max_error
@@ -76,18 +113,16 @@ fn every_seed_space_renders_on_the_gpu_like_the_cpu_reference() {
         };
         assert!(
             distinct(&cpu) > 50,
-            "{}: the reference image is nearly flat",
-            seed.id
+            "{id}: the reference image is nearly flat"
         );
         if c.differing > MAX_DIFFERING || distinct(&gpu) < 50 {
             std::fs::create_dir_all(&out).expect("create output folder");
             for (name, img) in [("gpu", &gpu), ("cpu", &cpu), ("diff", &diff)] {
-                img.save(out.join(format!("{}-{name}.png", seed.id)))
+                img.save(out.join(format!("{id}-{name}.png")))
                     .expect("write image");
             }
             failures.push(format!(
-                "{}: {:.2} % of pixels differ by more than {TOLERANCE}/255 (bound {:.0} %)",
-                seed.id,
+                "{id}: {:.2} % of pixels differ by more than {TOLERANCE}/255 (bound {:.0} %)",
                 100.0 * c.differing,
                 100.0 * MAX_DIFFERING
             ));

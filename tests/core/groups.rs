@@ -99,7 +99,8 @@ fn generator_files_parse_with_comments_and_byte_order_mark() {
 
 #[test]
 fn malformed_generator_files_name_the_problem() {
-    let cases: [(&str, fn(&GroupError) -> bool); 4] = [
+    type Expected = fn(&GroupError) -> bool;
+    let cases: [(&str, Expected); 4] = [
         (
             "1 0 0 0\n0 1 0 0\n0 0 1 0\n1 0 zero 1\n",
             |e| matches!(e, GroupError::NotANumber { line: 4, token } if token == "zero"),
@@ -603,4 +604,131 @@ fn length_spectra_agree_by_two_routes_and_with_snappy() {
             }
         }
     }
+}
+
+/// The fuzz suite's share for generator files: shipped and exported `.gen` texts mutated
+/// (numbers made hostile, lines dropped, the text cut short, bytes flipped, matrices
+/// dropped or repeated). Every outcome is a space or a clear error, never a panic, and
+/// within a time bound; a space that loads has finite faces and pairings.
+#[test]
+fn mutated_generator_files_are_refused_cleanly_or_load() {
+    use bevy_curved_spaces::trace::SplitMix64;
+    const HOSTILE: [&str; 9] = [
+        "nan",
+        "inf",
+        "-inf",
+        "1e308",
+        "-1e308",
+        "1e-320",
+        "0",
+        "-1",
+        "123456789",
+    ];
+    let mut texts: Vec<String> = CENSUS[..2]
+        .iter()
+        .map(|m| m.generators.to_string())
+        .collect();
+    for id in [
+        "torus",
+        "hantzsche-wendt",
+        "poincare",
+        "mirrored-cube",
+        "seifert-weber",
+    ] {
+        texts.push(write_gen(&seed_space(id).unwrap()));
+    }
+    let mut rng = SplitMix64(0x6E6E);
+    let mut pick = |n: usize| ((rng.unit() * n as f64) as usize).min(n.saturating_sub(1));
+    let options = DirichletOptions {
+        max_elements: 20_000,
+        ..DirichletOptions::default()
+    };
+    let (mut loaded, mut refused) = (0, 0);
+    for case in 0..96 {
+        let base = &texts[case % texts.len()];
+        let mut lines: Vec<String> = base.lines().map(String::from).collect();
+        let mutation = case % 6;
+        match mutation {
+            0 => {
+                // A number made hostile.
+                let i = pick(lines.len());
+                let words: Vec<&str> = lines[i].split_whitespace().collect();
+                if !words.is_empty() && !lines[i].starts_with('#') {
+                    let k = pick(words.len());
+                    let mut w: Vec<String> = words.iter().map(|s| s.to_string()).collect();
+                    w[k] = HOSTILE[pick(HOSTILE.len())].to_string();
+                    lines[i] = w.join(" ");
+                }
+            }
+            1 => {
+                let i = pick(lines.len());
+                lines.remove(i);
+            }
+            2 => {
+                let keep = pick(lines.len());
+                lines.truncate(keep);
+            }
+            3 => {
+                // A matrix dropped (a subgroup, perhaps of infinite index).
+                let numbers: Vec<usize> = (0..lines.len())
+                    .filter(|&i| !lines[i].starts_with('#') && !lines[i].trim().is_empty())
+                    .collect();
+                if numbers.len() >= 4 {
+                    let start = 4 * pick(numbers.len() / 4);
+                    for &i in numbers[start..start + 4].iter().rev() {
+                        lines.remove(i);
+                    }
+                }
+            }
+            4 => {
+                // A matrix repeated (harmless: duplicates are the same element).
+                let body: Vec<String> = lines
+                    .iter()
+                    .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
+                    .take(4)
+                    .cloned()
+                    .collect();
+                lines.extend(body);
+            }
+            _ => {
+                // A byte flipped.
+                let mut bytes = lines.join("\n").into_bytes();
+                if !bytes.is_empty() {
+                    let i = pick(bytes.len());
+                    bytes[i] ^= 1 << pick(8);
+                }
+                lines = String::from_utf8_lossy(&bytes)
+                    .lines()
+                    .map(String::from)
+                    .collect();
+            }
+        }
+        let text = lines.join("\n");
+        let start = std::time::Instant::now();
+        let result = parse_gen(&text)
+            .and_then(|file| space_from_matrices("fuzz", "", &file.matrices, &options));
+        let took = start.elapsed().as_secs_f64();
+        assert!(
+            took < 30.0,
+            "case {case} (mutation {mutation}) took {took:.1} s"
+        );
+        match result {
+            Ok(space) => {
+                loaded += 1;
+                for f in space.faces() {
+                    assert!(
+                        f.covector.is_finite() && f.pairing.is_finite(),
+                        "case {case}"
+                    );
+                }
+                assert!(volume(&space).is_finite() && volume(&space) > 0.0);
+            }
+            Err(e) => {
+                refused += 1;
+                assert!(!e.to_string().is_empty());
+            }
+        }
+    }
+    eprintln!("generator fuzz: {loaded} loaded, {refused} refused");
+    assert!(loaded > 0 && refused > 0);
 }
