@@ -465,3 +465,21 @@ fn a_glb_written_by_the_generator_reads_back_with_its_texture() {
 fn tempdir() -> PathBuf {
     crate::common::scratch_dir("scenes")
 }
+
+/// A scene file's space may be a library id or a generator file beside it.
+#[test]
+fn scene_files_take_spaces_from_groups() {
+    let census = manifest().join("assets/spaces/census");
+    let text = "space = \"m003_-3_1.gen\"\n\n[[object]]\ntype = \"ball\"\nradius = 0.2\n";
+    let file = parse_scene(text, &census, "weeks.toml").unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(file.space.faces().len(), 18);
+    let text = "space = \"lens-7-2\"\n\n[[object]]\ntype = \"ball\"\nradius = 0.2\n";
+    let file = parse_scene(text, &census, "lens.toml").unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(
+        bevy_curved_spaces::space::invariants::group_order(&file.space),
+        Some(7)
+    );
+    let (line, message) = error_of("space = \"lens-6-3\"\n", &census);
+    assert_eq!(line, Some(1));
+    assert!(message.contains("common factor"), "{message}");
+}

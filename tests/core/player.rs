@@ -273,6 +273,22 @@ fn switching_space_at_run_time_resets_the_player() {
     let f = frame(&app, camera);
     assert!(active.space.outside_by(f.w_axis) < 0.0);
     assert!(Geometry::Spherical.frame_defect(f) < 1e-12);
+    // On to spaces from groups, walking through faces in each.
+    for id in ["weeks", "lens-7-2", "second-amphidicosm"] {
+        app.world_mut()
+            .insert_resource(ActiveSpace::named(id).expect("library space"));
+        app.update();
+        assert_eq!(holonomy(&app, camera).crossings, 0, "{id}");
+        hold(&mut app, KeyCode::KeyW, 60);
+        let active = app.world().resource::<ActiveSpace>();
+        let f = frame(&app, camera);
+        assert!(
+            holonomy(&app, camera).crossings > 0,
+            "{id}: no face crossed"
+        );
+        assert!(active.space.outside_by(f.w_axis) < 1e-3, "{id}");
+        assert!(active.space.geometry().frame_defect(f) < 1e-9, "{id}");
+    }
 }
 
 #[test]
