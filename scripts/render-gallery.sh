@@ -11,7 +11,8 @@ bin=./target/debug/curved-spaces
 mkdir -p docs/images
 # The seed spaces (the first block of `list`), then a few spaces from groups.
 seeds=$($bin list | awk 'NR > 1 && NF == 0 { exit } NR > 1 { print $1 }')
-for space in $seeds weeks census-10 lens-7-2 prism-5 binary-octahedral second-amphidicosm; do
+for space in $seeds weeks census-10 lens-7-2 prism-5 binary-octahedral second-amphidicosm lens-7-1 \
+    projective-space; do
     $bin render "$space" --size "$size" --out "docs/images/$space.png"
 done
 # The app itself, panel shown, in a virtual X display when there is none.

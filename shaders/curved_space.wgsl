@@ -7,6 +7,10 @@
 //   GENERAL                              (benchmark) all three geometries and CURVED are set,
 //                                        the geometry and counts are read at run time
 //   FACE_COUNT, PARTNER_VECS             faces of the cell (partners packed 4 to a vec4<u32>)
+//   FACE_SLOTS                           face array length: FACE_COUNT, at least 1 (the
+//                                        3-sphere has no face; its slot is never read)
+//   STEP_CAP                             a cell reaching π/2 in S³: rays step at most π/4
+//                                        (chart ratio 1) without crossing (NO_FACE)
 //   BALLS + BALL_COUNT, TUBES + TUBE_COUNT   the object kinds present and their numbers
 //   GLOBES + GLOBE_COUNT                 textured balls (equirectangular, spinning)
 //   DISCS + DISC_COUNT                   flat discs
@@ -127,11 +131,11 @@ struct SpaceUniform {
     lights: array<Light, #{LIGHT_COUNT}>,
 #endif
     // Face covectors N_f: the cell is N_f·X ≤ 0.
-    covectors: array<vec4<f32>, #{FACE_COUNT}>,
+    covectors: array<vec4<f32>, #{FACE_SLOTS}>,
     // Face pairings g_f: a ray leaving through f comes back through partner(f).
-    pairings: array<mat4x4<f32>, #{FACE_COUNT}>,
+    pairings: array<mat4x4<f32>, #{FACE_SLOTS}>,
     // What rounding g_f to f32 left out: the pairing is applied as hi + lo, compensated.
-    pairings_lo: array<mat4x4<f32>, #{FACE_COUNT}>,
+    pairings_lo: array<mat4x4<f32>, #{FACE_SLOTS}>,
     partners: array<vec4<u32>, #{PARTNER_VECS}>,
 #ifdef BALLS
     balls: array<Ball, #{BALL_COUNT}>,
@@ -724,6 +728,9 @@ fn shade(point: vec4<f32>, normal: vec4<f32>, albedo: vec3<f32>, emission: vec3<
     return w * surface + (1.0 - w) * space.shading.fog.rgb;
 }
 
+// The exit of a step without crossing (STEP_CAP).
+const NO_FACE: u32 = 0xfffffffeu;
+
 fn partner(face: u32) -> u32 {
     return space.partners[face / 4u][face % 4u];
 }
@@ -798,6 +805,12 @@ fn exit_face(ray: Ray, skip: u32) -> Exit {
             exit = Exit(f, nm, dn);
         }
     }
+#ifdef STEP_CAP
+    // No face within π/4: a step of π/4 without crossing (Rust: `CellWalker::step_cap`).
+    if exit.face == 0xffffffffu || exit.num > exit.den {
+        exit = Exit(NO_FACE, 1.0, 1.0);
+    }
+#endif
     return exit;
 }
 
@@ -839,6 +852,12 @@ fn transform_compensated(hi: mat4x4<f32>, lo: mat4x4<f32>, x: vec4<f32>) -> vec4
 fn cross_face(ray: Ray, exit: Exit) -> Ray {
     let at_face = ray.point * exit.den + ray.tangent * exit.num;
     let along = ray.point * (-kappa() * exit.num) + ray.tangent * exit.den;
+#ifdef STEP_CAP
+    if exit.face == NO_FACE {
+        let moved = project_point(at_face);
+        return Ray(moved, unit_tangent(moved, along));
+    }
+#endif
     let hi = space.pairings[exit.face];
     let lo = space.pairings_lo[exit.face];
     let point = project_point(transform_compensated(hi, lo, at_face));
@@ -1187,7 +1206,9 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
         travelled += distance_from_ratio(exit.num, exit.den);
         ray = cross_face(ray, exit);
 #ifdef HIT_ID
-        path = (path ^ (exit.face + 1u)) * FNV_PRIME;
+        if exit.face != NO_FACE {
+            path = (path ^ (exit.face + 1u)) * FNV_PRIME;
+        }
         hit_id = vec4<u32>(0u, crossings + 1u, path, 3u);
 #endif
         if travelled >= cutoff {
@@ -1196,7 +1217,7 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
 #endif
             return fog;
         }
-        skip = partner(exit.face);
+        skip = select(partner(exit.face), 0xffffffffu, exit.face == NO_FACE);
     }
     return fog;
 }

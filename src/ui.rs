@@ -389,6 +389,8 @@ impl Default for SpacePicker {
 
 /// The library members without parameters, as the picker lists them.
 const LIBRARY_FIXED: &[&str] = &[
+    "three-sphere",
+    "projective-space",
     "binary-tetrahedral",
     "binary-octahedral",
     "binary-icosahedral",

@@ -128,6 +128,13 @@ pub(super) fn export(space: &Space, out: Option<&Path>, gen_format: bool) -> Res
     let gen_format = gen_format || out.is_some_and(is_gen_path);
     let text = if gen_format {
         write_gen(space).trim_end().to_string()
+    } else if space.reaches_equator() {
+        return Err(format!(
+            "{} reaches distance π/2 from its centre, which a JSON space file (faces as chart \
+             planes) cannot hold; export it as a generator file (`--gen-format` or \
+             `--out FILE.gen`)",
+            space.name()
+        ));
     } else {
         serde_json::to_string_pretty(&SpaceRecord::from_space(space)).map_err(|e| e.to_string())?
     };

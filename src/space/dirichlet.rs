@@ -425,6 +425,96 @@ fn cut_domain(orbit: &Orbit) -> Cut {
     }
 }
 
+/// The dimension of the span of the orbit points (Gram–Schmidt with a tolerance).
+fn orbit_span(orbit: &Orbit) -> usize {
+    let mut basis: Vec<DVec4> = Vec::new();
+    for e in &orbit.elements {
+        let mut v = e.point;
+        for b in &basis {
+            v -= *b * v.dot(*b);
+        }
+        if v.length() > 1e-6 {
+            basis.push(v.normalize());
+        }
+    }
+    basis.len()
+}
+
+/// The Dirichlet domain of a finite group of S³ that reaches distance π/2 from the basepoint
+/// (the whole group is in `orbit`). A group acting freely has no fixed vector, so its orbit
+/// sums to zero and the domain lies in the closed hemisphere `w ≥ 0`; it reaches `w = 0`
+/// exactly where it is orthogonal to every orbit point. So with the orbit spanning R⁴ the
+/// domain is bounded in the chart, and otherwise it is one of three cells:
+/// - the trivial group (orbit `{o}`): the 3-sphere, no face;
+/// - `{±I}` (orbit spanning a line): projective space, the hemisphere `w ≥ 0` with the
+///   equator as one face, glued to itself by the antipodal map;
+/// - a cyclic group whose orbit lies on a great circle (a lens space about a point of a
+///   Hopf circle, every point of L(P, 1)): a lens between the bisectors of the two nearest
+///   orbit points, meeting in the great circle orthogonal to the orbit's.
+fn equator_space(name: &str, description: &str, orbit: &Orbit) -> Result<Space, GroupError> {
+    let order = orbit.elements.len();
+    let refuse = |what: String| Err(GroupError::ReachesEquator { what });
+    // A fixed vector (eigenvalue 1) of an element other than the identity: not free.
+    let free = orbit.elements[1..]
+        .iter()
+        .all(|e| (e.matrix - DMat4::IDENTITY).determinant().abs() > 1e-9);
+    if !free {
+        return refuse(format!(
+            "an orbifold group of order {order}, whose elements fix points"
+        ));
+    }
+    let span = orbit_span(orbit);
+    match (order, span) {
+        (1, _) => Ok(Space::equator_cell(name, description, Vec::new(), 1)),
+        (2, 1) => {
+            let g = orbit.elements[1].matrix;
+            Ok(Space::equator_cell(
+                name,
+                description,
+                vec![(DVec4::new(0.0, 0.0, 0.0, -1.0), 0, g)],
+                2,
+            ))
+        }
+        (_, 2) => {
+            // The two orbit points nearest o, one each way round the circle: g and g⁻¹.
+            let nearest = (1..order)
+                .min_by(|&a, &b| {
+                    orbit.elements[a]
+                        .distance
+                        .total_cmp(&orbit.elements[b].distance)
+                })
+                .expect("a group of order > 2 has elements besides the identity");
+            let g = orbit.elements[nearest].matrix;
+            let g_inv = polish_isometry(Geometry::Spherical, Geometry::Spherical.inverse(g));
+            // Cyclic: g generates the whole group.
+            let mut power = g;
+            let mut n = 1;
+            while n < order && max_abs_entry(&(power - DMat4::IDENTITY).to_cols_array()) > 1e-9 {
+                power *= g;
+                n += 1;
+            }
+            if n != order {
+                return refuse(format!(
+                    "a group of order {order} whose orbit lies on a circle but is not cyclic"
+                ));
+            }
+            let face = |m: DMat4| {
+                let p = m.w_axis;
+                let c = p - ORIGIN;
+                c / c.length()
+            };
+            // Face 0 is made by g (paired by g⁻¹), face 1 by g⁻¹ (paired by g).
+            Ok(Space::equator_cell(
+                name,
+                description,
+                vec![(face(g), 1, g_inv), (face(g_inv), 0, g)],
+                order,
+            ))
+        }
+        _ => refuse(format!("a group of order {order}")),
+    }
+}
+
 /// What stops a cut from becoming a space, before the validator sees it.
 enum Attempt {
     Space(Box<Space>),
@@ -510,11 +600,7 @@ pub fn dirichlet_space(
             && (geometry != Geometry::Hyperbolic || cut.circumradius.is_finite());
         if !bounded {
             if finite {
-                let what = match orbit.elements.len() {
-                    1 => "the group is trivial: the whole 3-sphere".to_string(),
-                    n => format!("a group of order {n}"),
-                };
-                return Err(GroupError::ReachesEquator { what });
+                return equator_space(name, description, &orbit);
             }
             radius *= 1.6;
             continue;

@@ -90,10 +90,10 @@ pub enum GroupError {
     )]
     NotCocompact { radius: f64 },
     #[error(
-        "the Dirichlet domain reaches distance π/2 from the basepoint (a lens, a hemisphere or \
-         all of S³: {what}); this release draws only spherical cells that lie within distance \
-         π/2 of their centre. Move the basepoint (`--basepoint X,Y,Z`) if the group has a \
-         point whose domain is smaller"
+        "the Dirichlet domain reaches distance π/2 from the basepoint, and the group is {what}; \
+         beyond the chart this release draws the 3-sphere, projective space and the lens \
+         spaces of groups acting freely. Move the basepoint (`--basepoint X,Y,Z`) if the \
+         group has a point whose domain is smaller"
     )]
     ReachesEquator { what: String },
     #[error(

@@ -10,6 +10,13 @@ use std::collections::{BTreeMap, HashMap, VecDeque};
 /// ball about the centre inside the cell.
 #[must_use]
 pub fn inradius(space: &Space) -> f64 {
+    if space.reaches_equator() {
+        // Faces as great spheres; the 3-sphere itself has none and contains the ball of
+        // radius π.
+        return (0..space.faces.len())
+            .map(|f| -space.face_distance(f, ORIGIN))
+            .fold(std::f64::consts::PI, f64::min);
+    }
     space
         .faces
         .iter()
@@ -20,6 +27,15 @@ pub fn inradius(space: &Space) -> f64 {
 /// Distance from the centre to the farthest vertex.
 #[must_use]
 pub fn circumradius(space: &Space) -> f64 {
+    if space.reaches_equator() {
+        // A lens or a hemisphere reaches the great circle or sphere at π/2; the 3-sphere,
+        // the antipode.
+        return if space.faces.is_empty() {
+            std::f64::consts::PI
+        } else {
+            std::f64::consts::FRAC_PI_2
+        };
+    }
     (0..space.vertices.len())
         .map(|v| space.geometry.distance(ORIGIN, space.vertex_point(v)))
         .fold(0.0, f64::max)
@@ -28,6 +44,9 @@ pub fn circumradius(space: &Space) -> f64 {
 /// The common length of all edges, if they have one (to 1e-9 relative).
 #[must_use]
 pub fn edge_length(space: &Space) -> Option<f64> {
+    if space.edges.is_empty() {
+        return None;
+    }
     let (lo, hi) = space
         .edges
         .iter()
@@ -72,6 +91,10 @@ fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
 /// about 1e-13 for the seed spaces (tested against exact volumes).
 #[must_use]
 pub fn volume(space: &Space) -> f64 {
+    if let Some(order) = space.equator_order {
+        // The cell is the Dirichlet domain of a group of that order (certified when built).
+        return 2.0 * std::f64::consts::PI * std::f64::consts::PI / order as f64;
+    }
     let g = space.geometry;
     if g == Geometry::Euclidean {
         return flat_volume(space);
@@ -226,6 +249,10 @@ impl Separation {
             Geometry::Euclidean => gap,
             Geometry::Hyperbolic => gap.sinh(),
         };
+        // A cell without vertices (one reaching π/2 in S³) has no separating planes to test.
+        if self.vertices.is_empty() {
+            return true;
+        }
         for m in [h, g.inverse(h)] {
             let images: Vec<DVec4> = self
                 .vertices
@@ -327,6 +354,10 @@ pub const MAX_ENUMERATED: usize = 500_000;
 pub fn injectivity_radius(space: &Space) -> Option<f64> {
     if !space.manifold {
         return None;
+    }
+    if space.equator_order == Some(1) {
+        // The 3-sphere: half its shortest closed geodesic, a great circle.
+        return Some(std::f64::consts::PI);
     }
     let g = space.geometry;
     // Any pairing bounds the systole from above; the shortest element's axis, moved to meet

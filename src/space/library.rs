@@ -53,16 +53,30 @@ pub struct Family {
 /// The families of the library beyond the seed spaces, in the order `list` shows them.
 pub const FAMILIES: &[Family] = &[
     Family {
+        pattern: "three-sphere",
+        geometry: Geometry::Spherical,
+        summary: "the 3-sphere itself: the trivial group, a cell with no face",
+        examples: &["three-sphere"],
+    },
+    Family {
+        pattern: "projective-space",
+        geometry: Geometry::Spherical,
+        summary: "projective space RP³ = L(2,1): a hemisphere, its equator glued to itself by \
+                  the antipodal map (group of order 2)",
+        examples: &["projective-space"],
+    },
+    Family {
         pattern: "lens-P-Q",
         geometry: Geometry::Spherical,
         summary: "lens space L(P,Q), P > Q ≥ 1 coprime, P ≤ 1000: the cyclic group \
-                  (z₁, z₂) ↦ (ζz₁, ζ^Q z₂), ζ = e^{2πi/P}, of order P",
-        examples: &["lens-5-2", "lens-7-2", "lens-7-3", "lens-12-5"],
+                  (z1, z2) -> (ζz1, ζ^Q z2), ζ = e^(2πi/P), of order P (L(P,1) is a lens \
+                  reaching π/2)",
+        examples: &["lens-5-1", "lens-5-2", "lens-7-2", "lens-12-5"],
     },
     Family {
         pattern: "prism-N",
         geometry: Geometry::Spherical,
-        summary: "prism space S³/D*₄ₙ, N ≥ 2: the binary dihedral group of order 4N",
+        summary: "prism space S³/D*4N, N ≥ 2: the binary dihedral group of order 4N",
         examples: &["prism-2", "prism-3", "prism-6"],
     },
     Family {
@@ -130,15 +144,15 @@ pub const FAMILIES: &[Family] = &[
     Family {
         pattern: "first-amphidicosm",
         geometry: Geometry::Euclidean,
-        summary: "non-orientable flat manifold with holonomy Z₂×Z₂: a screw and two glides \
-                  (Pca2₁)",
+        summary: "non-orientable flat manifold with holonomy Z2×Z2: a screw and two glides \
+                  (Pca2_1)",
         examples: &["first-amphidicosm"],
     },
     Family {
         pattern: "second-amphidicosm",
         geometry: Geometry::Euclidean,
-        summary: "non-orientable flat manifold with holonomy Z₂×Z₂: a screw and two glides \
-                  (Pna2₁)",
+        summary: "non-orientable flat manifold with holonomy Z2×Z2: a screw and two glides \
+                  (Pna2_1)",
         examples: &["second-amphidicosm"],
     },
     Family {
@@ -202,7 +216,7 @@ fn gcd(a: u32, b: u32) -> u32 {
     if b == 0 { a } else { gcd(b, a % b) }
 }
 
-/// The matrix of `x ↦ a·x·b` on quaternions `x = (x, y, z, w) = w + xi + yj + zk`.
+/// The matrix of `x -> a·x·b` on quaternions `x = (x, y, z, w) = w + xi + yj + zk`.
 #[must_use]
 pub fn quaternion_map(a: DQuat, b: DQuat) -> DMat4 {
     let col = |e: DQuat| DVec4::from(a * e * b);
@@ -283,7 +297,7 @@ pub fn library_space(id: &str) -> Option<Result<Space, String>> {
             from_group(
                 id,
                 "Poincaré dodecahedral space S³/2I: the binary icosahedral group (order 120), \
-                 by right multiplication by (1 + i + j + k)/2 and (φ + φ⁻¹i + j)/2 (the \
+                 by right multiplication by (1 + i + j + k)/2 and (φ + i/φ + j)/2 (the \
                  handedness of the seed space poincare).",
                 &[right(0.5, 0.5, 0.5, 0.5), right(1.0 / phi, 1.0, 0.0, phi)],
                 None,
@@ -343,11 +357,11 @@ pub fn library_space(id: &str) -> Option<Result<Space, String>> {
             ],
             None,
         ),
-        // Space group Pc: the glide (x, y, z) ↦ (x, −y, z + ½) over a rectangular lattice.
+        // Space group Pc: the glide (x, y, z) -> (x, −y, z + ½) over a rectangular lattice.
         "first-amphicosm" => from_group(
             id,
             "First amphicosm (Klein space, space group Pc): the glide reflection \
-             (x, y, z) ↦ (x, −y, z + ½) and the translations along x and y.",
+             (x, y, z) -> (x, −y, z + ½) and the translations along x and y.",
             &[
                 translation(DVec3::X),
                 translation(DVec3::Y),
@@ -358,7 +372,7 @@ pub fn library_space(id: &str) -> Option<Result<Space, String>> {
         // Cc: the same glide over the C-centred lattice.
         "second-amphicosm" => from_group(
             id,
-            "Second amphicosm (space group Cc): the glide reflection (x, y, z) ↦ \
+            "Second amphicosm (space group Cc): the glide reflection (x, y, z) -> \
              (x, −y, z + ½) and the centred lattice of (1, 0, 0) and (½, ½, 0).",
             &[
                 translation(DVec3::X),
@@ -367,11 +381,11 @@ pub fn library_space(id: &str) -> Option<Result<Space, String>> {
             ],
             None,
         ),
-        // Pca2₁: screw (−x, −y, z + ½), glides (x + ½, −y, z) and (½ − x, y, z + ½).
+        // Pca2_1: screw (−x, −y, z + ½), glides (x + ½, −y, z) and (½ − x, y, z + ½).
         "first-amphidicosm" => from_group(
             id,
-            "First amphidicosm (space group Pca2₁): the screw (x, y, z) ↦ (−x, −y, z + ½) \
-             and the glide (x, y, z) ↦ (x + ½, −y, z), with the translation along y.",
+            "First amphidicosm (space group Pca2_1): the screw (x, y, z) -> (−x, −y, z + ½) \
+             and the glide (x, y, z) -> (x + ½, −y, z), with the translation along y.",
             &[
                 affine(diag(-1.0, -1.0, 1.0), DVec3::new(0.0, 0.0, 0.5)),
                 affine(diag(1.0, -1.0, 1.0), DVec3::new(0.5, 0.0, 0.0)),
@@ -379,11 +393,11 @@ pub fn library_space(id: &str) -> Option<Result<Space, String>> {
             ],
             None,
         ),
-        // Pna2₁: screw (−x, −y, z + ½), glides (x + ½, ½ − y, z) and (½ − x, y + ½, z + ½).
+        // Pna2_1: screw (−x, −y, z + ½), glides (x + ½, ½ − y, z) and (½ − x, y + ½, z + ½).
         "second-amphidicosm" => from_group(
             id,
-            "Second amphidicosm (space group Pna2₁): the screw (x, y, z) ↦ (−x, −y, z + ½) \
-             and the glide (x, y, z) ↦ (x + ½, ½ − y, z), with the translation along y.",
+            "Second amphidicosm (space group Pna2_1): the screw (x, y, z) -> (−x, −y, z + ½) \
+             and the glide (x, y, z) -> (x + ½, ½ − y, z), with the translation along y.",
             &[
                 affine(diag(-1.0, -1.0, 1.0), DVec3::new(0.0, 0.0, 0.5)),
                 affine(diag(1.0, -1.0, 1.0), DVec3::new(0.5, 0.5, 0.0)),
@@ -392,6 +406,19 @@ pub fn library_space(id: &str) -> Option<Result<Space, String>> {
             None,
         ),
         "seifert-weber-group" => seifert_weber_group(id),
+        "three-sphere" => from_group(
+            id,
+            "The 3-sphere itself: the trivial group; light goes round and comes back.",
+            &[],
+            None,
+        ),
+        "projective-space" => from_group(
+            id,
+            "Projective space RP³ = L(2,1): S³ by the antipodal map −I; a hemisphere whose \
+             equator is glued to itself.",
+            &[-DMat4::IDENTITY],
+            None,
+        ),
         "weeks" => census_space(id, 1),
         _ => return family_member(id),
     };
@@ -416,9 +443,10 @@ fn family_member(id: &str) -> Option<Result<Space, String>> {
 }
 
 fn lens(id: &str, p: u32, q: u32) -> Result<Space, String> {
-    if !((2..=MAX_LENS_ORDER).contains(&p) && (1..p).contains(&q)) {
+    if !((2..=MAX_LENS_ORDER).contains(&p) && (1..p).contains(&q)) || p == 2 {
         return Err(format!(
-            "{id}: a lens space lens-P-Q needs 1 ≤ Q < P ≤ {MAX_LENS_ORDER}"
+            "{id}: a lens space lens-P-Q needs 1 ≤ Q < P ≤ {MAX_LENS_ORDER}, P ≥ 3 \
+             (L(2,1) is projective-space)"
         ));
     }
     if gcd(p, q) != 1 {
@@ -428,7 +456,7 @@ fn lens(id: &str, p: u32, q: u32) -> Result<Space, String> {
             gcd(p, q)
         ));
     }
-    // (z₁, z₂) ↦ (ζ z₁, ζ^q z₂) for x = z₁ + z₂ j is x ↦ e^{iα} x e^{iβ} with α + β = 2π/p,
+    // (z1, z2) -> (ζ z1, ζ^q z2) for x = z1 + z2 j is x -> e^{iα} x e^{iβ} with α + β = 2π/p,
     // α − β = 2πq/p.
     let t = std::f64::consts::TAU / f64::from(p);
     let alpha = 0.5 * t * f64::from(1 + q);
@@ -437,11 +465,11 @@ fn lens(id: &str, p: u32, q: u32) -> Result<Space, String> {
         DQuat::from_xyzw(alpha.sin(), 0.0, 0.0, alpha.cos()),
         DQuat::from_xyzw(beta.sin(), 0.0, 0.0, beta.cos()),
     );
-    // The basepoint with |z₁| = |z₂|: there the orbit is spread over both circles.
+    // The basepoint with |z1| = |z2|: there the orbit is spread over both circles.
     from_group(
         id,
         &format!(
-            "Lens space L({p},{q}): S³ by the cyclic group of order {p} generated by (z₁, z₂) ↦ (ζz₁, ζ^{q}z₂), ζ = e^(2πi/{p})."
+            "Lens space L({p},{q}): S³ by the cyclic group of order {p} generated by (z1, z2) -> (ζz1, ζ^{q}z2), ζ = e^(2πi/{p})."
         ),
         &[g],
         Some(DVec3::new(0.0, 1.0, 0.0)),

@@ -174,6 +174,9 @@ pub struct Space {
     pub(crate) orientable: bool,
     /// No mirrors, every edge cycle of order 1 and spherical vertex links.
     pub(crate) manifold: bool,
+    /// For a spherical cell that reaches distance π/2 from its centre (built from its
+    /// finite group, [`Space::reaches_equator`]): the group's order.
+    pub(crate) equator_order: Option<usize>,
 }
 
 impl Space {
@@ -236,6 +239,74 @@ impl Space {
     #[must_use]
     pub fn manifold(&self) -> bool {
         self.manifold
+    }
+
+    /// Whether the cell is a spherical one that reaches distance π/2 from its centre, beyond
+    /// the gnomonic chart: the 3-sphere itself (no face), projective space (a hemisphere with
+    /// one face) or a lens space L(P, 1) (a lens whose two faces meet in a great circle with no
+    /// vertex). Such a cell is built from its finite group ([`dirichlet`]) and certified by
+    /// it rather than by Poincaré's theorem; its faces are great spheres given by their
+    /// covectors, walks never divide by `w`, and rays are walked in steps of at most π/4
+    /// (`docs/groups.md`).
+    #[must_use]
+    pub fn reaches_equator(&self) -> bool {
+        self.equator_order.is_some()
+    }
+
+    /// A spherical cell that reaches distance π/2, from its faces' covectors (unit in R⁴,
+    /// the cell `N·X ≤ 0`), partners and pairings, and the order of its group (the only
+    /// constructor of such a cell; its callers have the whole group in hand).
+    pub(crate) fn equator_cell(
+        name: &str,
+        description: &str,
+        faces: Vec<(DVec4, usize, DMat4)>,
+        order: usize,
+    ) -> Self {
+        let faces: Vec<Face> = faces
+            .into_iter()
+            .map(|(covector, partner, pairing)| {
+                let n = covector.truncate();
+                let (normal, offset) = if n.length() > 1e-12 {
+                    (n / n.length(), -covector.w / n.length())
+                } else {
+                    (DVec3::ZERO, f64::INFINITY)
+                };
+                Face {
+                    normal,
+                    offset,
+                    covector,
+                    partner,
+                    pairing,
+                    vertices: Vec::new(),
+                }
+            })
+            .collect();
+        // A lens: the two faces meet in one great circle, glued to itself `order` times
+        // around (angle sum 2π); the relation is the pairing to the power `order`.
+        let edge_cycles = if faces.len() == 2 {
+            vec![EdgeCycle {
+                edges: Vec::new(),
+                angle_sum: std::f64::consts::TAU,
+                order: 1,
+                crossings: vec![0; order],
+            }]
+        } else {
+            Vec::new()
+        };
+        let orientable = faces.iter().all(|f| f.pairing.determinant() > 0.0);
+        Self {
+            name: name.to_string(),
+            description: description.to_string(),
+            geometry: Geometry::Spherical,
+            faces,
+            vertices: Vec::new(),
+            edges: Vec::new(),
+            edge_cycles,
+            vertex_cycles: Vec::new(),
+            orientable,
+            manifold: true,
+            equator_order: Some(order),
+        }
     }
 }
 
@@ -337,6 +408,7 @@ impl Space {
             vertex_cycles,
             orientable,
             manifold: !has_mirror && !cone_edges,
+            equator_order: None,
         })
     }
 
@@ -350,6 +422,15 @@ impl Space {
     /// (negative inside).
     #[must_use]
     pub fn outside_by(&self, p: DVec4) -> f64 {
+        if self.reaches_equator() {
+            // Beyond the chart: N·X of the unit point, the sine of the distance past the face.
+            let p = p / p.length();
+            return self
+                .faces
+                .iter()
+                .map(|f| f.covector.dot(p))
+                .fold(f64::NEG_INFINITY, f64::max);
+        }
         let p = p / p.w;
         self.faces
             .iter()
@@ -364,13 +445,20 @@ impl Space {
     pub fn face_distance(&self, f: usize, p: DVec4) -> f64 {
         let face = &self.faces[f];
         let (n, r) = (face.normal.length(), face.offset);
-        let p = self.geometry.project_point(p);
         match self.geometry {
-            Geometry::Euclidean => face.covector.dot(p / p.w) / n,
-            Geometry::Spherical => (face.covector.dot(p) / (n * n + r * r).sqrt())
+            Geometry::Euclidean => {
+                let p = self.geometry.project_point(p);
+                face.covector.dot(p / p.w) / n
+            }
+            // The covector's length in R⁴ (√(n² + r²) for a chart face; a face at π/2 has
+            // no chart offset). The point is normalised without the chart's sign flip.
+            Geometry::Spherical => (face.covector.dot(p / p.length()) / face.covector.length())
                 .clamp(-1.0, 1.0)
                 .asin(),
-            Geometry::Hyperbolic => (face.covector.dot(p) / (n * n - r * r).sqrt()).asinh(),
+            Geometry::Hyperbolic => {
+                let p = self.geometry.project_point(p);
+                (face.covector.dot(p) / (n * n - r * r).sqrt()).asinh()
+            }
         }
     }
 

@@ -45,7 +45,19 @@ pub struct CellWalker<V: Vector4> {
     /// Apply pairings compensated (the default); `false` gives the plain product, which
     /// loses up to a digit in curved cells, for comparison (the benchmark reports both).
     pub compensated: bool,
+    /// The longest step as a chart ratio, for cells that reach distance π/2 in S³
+    /// ([`Space::reaches_equator`]): a ray that meets no face within `T = 1` (π/4) takes a
+    /// step of π/4 without crossing ([`NO_FACE`]). `None` elsewhere, where every segment in
+    /// the cell is shorter than π/2.
+    pub step_cap: Option<f64>,
 }
+
+/// The face of an [`Exit`] that is a step without crossing (see [`CellWalker::step_cap`]).
+pub const NO_FACE: usize = usize::MAX;
+
+/// How many steps without crossing a walk by [`Limit::Crossings`] takes in a row before it
+/// stops: sixteen steps of π/4 go twice round S³.
+pub const MAX_STEPS_WITHOUT_CROSSING: usize = 16;
 
 /// One face crossing of a traced ray.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -85,7 +97,11 @@ impl<V: Vector4> CellWalker<V> {
         let covectors: Vec<_> = space.faces.iter().map(|f| f.covector).collect();
         let pairings: Vec<_> = space.faces.iter().map(|f| f.pairing).collect();
         let partners: Vec<_> = space.faces.iter().map(|f| f.partner).collect();
-        Self::from_parts(space.geometry, &covectors, &pairings, partners)
+        let mut walker = Self::from_parts(space.geometry, &covectors, &pairings, partners);
+        if space.reaches_equator() {
+            walker.step_cap = Some(1.0);
+        }
+        walker
     }
 
     /// A walker from faces given directly (`f64` covectors and pairings, each face's
@@ -107,7 +123,15 @@ impl<V: Vector4> CellWalker<V> {
                 .collect(),
             partners,
             compensated: true,
+            step_cap: None,
         }
+    }
+
+    /// The partner of the face an exit left through, to skip next; none after a step
+    /// without crossing.
+    #[must_use]
+    pub fn entered(&self, exit: &Exit<V::Real>) -> Option<usize> {
+        (exit.face != NO_FACE).then(|| self.partners[exit.face])
     }
 
     /// Applies face `face`'s pairing to `x`, compensated
@@ -149,6 +173,16 @@ impl<V: Vector4> CellWalker<V> {
                 best = Some(Exit { face: f, num, den });
             }
         }
+        if let Some(cap) = self.step_cap {
+            let cap = V::Real::from_f64(cap);
+            if best.is_none_or(|b| b.num > cap * b.den) {
+                return Some(Exit {
+                    face: NO_FACE,
+                    num: cap,
+                    den: V::Real::ONE,
+                });
+            }
+        }
         best
     }
 
@@ -165,6 +199,11 @@ impl<V: Vector4> CellWalker<V> {
         let (num, den) = (exit.num, exit.den);
         let at_face = ray.point.scale(den) + ray.tangent.scale(num);
         let tangent = ray.point.scale(-k * num) + ray.tangent.scale(den);
+        if exit.face == NO_FACE {
+            let point = g.project_point(at_face);
+            let tangent = g.unit_tangent(point, tangent);
+            return (Ray { point, tangent }, g.distance_from_ratio(num, den));
+        }
         let point = g.project_point(self.apply_pairing(exit.face, at_face));
         let tangent = g.unit_tangent(point, self.apply_pairing(exit.face, tangent));
         (Ray { point, tangent }, g.distance_from_ratio(num, den))
@@ -233,6 +272,7 @@ impl<V: Vector4> CellWalker<V> {
             Limit::Crossings(n) => n,
             Limit::Distance(_) => usize::MAX,
         };
+        let mut steps = 0usize;
         while count < max_crossings {
             let Some(exit) = self.exit(&ray, skip) else {
                 break;
@@ -246,7 +286,16 @@ impl<V: Vector4> CellWalker<V> {
             }
             distance += length;
             ray = next;
-            skip = Some(self.partners[exit.face]);
+            skip = self.entered(&exit);
+            if exit.face == NO_FACE {
+                // A step without crossing is no crossing to count or visit.
+                steps += 1;
+                if matches!(limit, Limit::Crossings(_)) && steps >= MAX_STEPS_WITHOUT_CROSSING {
+                    break;
+                }
+                continue;
+            }
+            steps = 0;
             count += 1;
             let crossing = Crossing {
                 face: exit.face,

@@ -16,7 +16,13 @@ pub fn wrap_into_cell(space: &Space, frame: DMat4, margin: f64) -> (DMat4, Vec<u
     let mut f = frame;
     let mut crossed = Vec::new();
     for _ in 0..MAX_WRAPS_PER_STEP {
-        let p = f.w_axis / f.w_axis.w;
+        // Beyond the chart (a cell reaching π/2 in S³) the point is not divided by `w`: its
+        // unit covectors give the sine of the distance past each face.
+        let p = if space.reaches_equator() {
+            f.w_axis / f.w_axis.length()
+        } else {
+            f.w_axis / f.w_axis.w
+        };
         let (face, outside) = space
             .faces
             .iter()

@@ -148,7 +148,9 @@ pub fn first_hit_culled(
         }
         let (next, length) = walker.cross(&ray, &exit);
         distance += length;
-        path = path_hash(path, exit.face);
+        if exit.face != crate::space::walk::NO_FACE {
+            path = path_hash(path, exit.face);
+        }
         if distance >= cutoff {
             return TracedRay {
                 end: RayEnd::Fog(crossings + 1),
@@ -156,7 +158,7 @@ pub fn first_hit_culled(
             };
         }
         ray = next;
-        skip = Some(walker.partners[exit.face]);
+        skip = walker.entered(&exit);
     }
     TracedRay {
         end: RayEnd::Budget(max_crossings),

@@ -892,6 +892,13 @@ fn generator_files_load_export_and_name_their_mistakes() {
         "cannot read generator file missing.gen",
     );
     fails_with(&["info", "lens-6-3"], "common factor 3");
+    // Projective space reaches π/2: a generator file holds it, a JSON space file cannot.
+    fails_with(&["export", "projective-space"], "--gen-format");
+    let out = run(&["export", "projective-space", "--gen-format"]);
+    assert!(out.status.success());
+    let v = json(&["info", "projective-space", "--json"]);
+    assert_eq!(v["group_order"], 2);
+    assert_eq!(v["homology"], "Z/2");
     fails_with(&["info", "census-99"], "census-10");
     fails_with(&["info", census, "--basepoint", "2,0,0"], "basepoint");
     fails_with(&["info", census, "--basepoint", "nan,0,0"], "");

@@ -41,6 +41,9 @@ fn every_seed_space_renders_on_the_gpu_like_the_cpu_reference() {
 #[test]
 fn library_spaces_render_on_the_gpu_like_the_cpu_reference() {
     let spaces: Vec<(String, Space)> = [
+        "three-sphere",
+        "projective-space",
+        "lens-7-1",
         "lens-7-2",
         "prism-5",
         "binary-octahedral",

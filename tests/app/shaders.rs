@@ -139,6 +139,28 @@ fn every_shader_def_combination_validates_and_matches_the_packed_layout() {
     assert_eq!(checked, 3 * 5 * (3 * 3 + 8));
 }
 
+/// The cells beyond the chart in S³: the 3-sphere (no face, one unused slot), projective
+/// space (one face) and a lens (two), with rays stepping at most π/4 (`STEP_CAP`), plain
+/// and with `HIT_ID`, with and without objects: each validates and matches the packer.
+#[test]
+fn cells_reaching_the_equator_validate_and_match_the_packed_layout() {
+    for faces in [0, 1, 2] {
+        for (balls, tubes) in [(0, 0), (1, 0), (2, 1)] {
+            let key = ShaderKey {
+                faces,
+                balls,
+                tubes,
+                lights: 1,
+                light_images: 2,
+                step_cap: true,
+                ..ShaderKey::empty(Geometry::Spherical)
+            };
+            assert_eq!(validate(&key), key.uniform_bytes(), "{key:?}");
+            hit_id_module(&key);
+        }
+    }
+}
+
 /// Globes, discs, meshes, the avatar, textures and several lights, alone and together, in
 /// every geometry: each combination validates (plain and with `HIT_ID`) and naga's layout
 /// of the uniform is the packer's.

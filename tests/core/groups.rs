@@ -207,13 +207,20 @@ fn generators_that_do_not_fit_name_the_cause() {
         |e| matches!(e, GroupError::NotAnIsometry { .. }),
         "a sheet swap",
     );
-    for (what, m) in [("no matrices", vec![]), ("−I", vec![-DMat4::IDENTITY])] {
-        let e = space_from_matrices("x", "", &m, &DirichletOptions::default()).unwrap_err();
-        assert!(
-            matches!(e, GroupError::ReachesEquator { .. }),
-            "{what}: {e}"
-        );
-    }
+    // A rotation fixing a great circle: its orbit of o lies on a circle, so the domain
+    // reaches π/2, and it is an orbifold group (not drawn there).
+    let p = 2.0 * PI / 5.0;
+    let rotation_zw = DMat4::from_cols(
+        DVec4::X,
+        DVec4::Y,
+        DVec4::new(0.0, 0.0, p.cos(), p.sin()),
+        DVec4::new(0.0, 0.0, -p.sin(), p.cos()),
+    );
+    let e = space_from_matrices("x", "", &[rotation_zw], &DirichletOptions::default()).unwrap_err();
+    assert!(
+        matches!(&e, GroupError::ReachesEquator { what } if what.contains("orbifold")),
+        "{e}"
+    );
     let bad_basepoint = DirichletOptions {
         basepoint: Some(DVec3::new(2.0, 0.0, 0.0)),
         ..DirichletOptions::default()
@@ -277,6 +284,13 @@ fn spherical_volumes_are_two_pi_squared_over_the_group_order() {
     }
     for (p, q) in [(5, 2), (7, 2), (7, 3), (8, 3), (12, 5), (60, 7), (60, 11)] {
         cases.push((format!("lens-{p}-{q}"), p));
+    }
+    // Cells reaching π/2: the 3-sphere, projective space, lenses L(P, 1) and L(P, P − 1).
+    cases.push(("three-sphere".into(), 1));
+    cases.push(("projective-space".into(), 2));
+    for p in [3, 7, 60] {
+        cases.push((format!("lens-{p}-1"), p));
+        cases.push((format!("lens-{p}-{}", p - 1), p));
     }
     for (id, order) in cases {
         let s = library(&id);
@@ -346,6 +360,9 @@ fn homology_of_spherical_spaces_is_the_abelianised_group() {
         ("prism-3", "Z/4"),
         ("prism-4", "Z/2 + Z/2"),
         ("lens-7-2", "Z/7"),
+        ("lens-7-1", "Z/7"),
+        ("projective-space", "Z/2"),
+        ("three-sphere", "0"),
         ("lens-60-7", "Z/60"),
         ("seifert-weber", "Z/5 + Z/5 + Z/5"),
     ];
@@ -470,6 +487,7 @@ fn bad_family_parameters_are_named() {
     for (id, needle) in [
         ("lens-6-3", "common factor 3"),
         ("lens-5-5", "1 ≤ Q < P"),
+        ("lens-2-1", "projective-space"),
         ("lens-1001-2", "P ≤ 1000"),
         ("prism-1", "2 ≤ N"),
         ("census-11", "census-10"),
@@ -494,7 +512,7 @@ fn a_long_walk_stays_in_the_cell() {
     use bevy_curved_spaces::player::step_frame;
     use bevy_curved_spaces::space::wrap_into_cell;
     use bevy_curved_spaces::trace::SplitMix64;
-    for id in ["weeks", "lens-7-2"] {
+    for id in ["weeks", "lens-7-2", "lens-7-1", "projective-space"] {
         let space = library(id);
         let g = space.geometry();
         let r = inradius(&space);
@@ -731,4 +749,50 @@ fn mutated_generator_files_are_refused_cleanly_or_load() {
     }
     eprintln!("generator fuzz: {loaded} loaded, {refused} refused");
     assert!(loaded > 0 && refused > 0);
+}
+
+/// The cells beyond the chart: what they are made of, their invariants, their round trip
+/// through a generator file, and walks through them that never divide by `w`.
+#[test]
+fn cells_reaching_the_equator_are_whole_spaces() {
+    use bevy_curved_spaces::space::invariants::injectivity_radius;
+    use bevy_curved_spaces::space::{CellWalker, Limit};
+    let sphere = library("three-sphere");
+    assert!(sphere.reaches_equator() && sphere.faces().is_empty());
+    assert!((inradius(&sphere) - PI).abs() < 1e-12);
+    assert_eq!(injectivity_radius(&sphere), Some(PI));
+    let rp3 = library("projective-space");
+    assert_eq!(rp3.faces().len(), 1);
+    assert_eq!(rp3.faces()[0].partner, 0);
+    assert!((circumradius(&rp3) - PI / 2.0).abs() < 1e-12);
+    let lens = library("lens-7-1");
+    assert_eq!(lens.faces().len(), 2);
+    assert!((inradius(&lens) - PI / 7.0).abs() < 1e-12);
+    assert!((injectivity_radius(&lens).unwrap() - PI / 7.0).abs() < 1e-9);
+    // Every lens L(P, Q) about a Hopf circle's point is such a lens too.
+    assert!(library("lens-9-8").reaches_equator());
+    assert!(!library("lens-9-2").reaches_equator());
+    // Round trips.
+    for s in [&rp3, &lens] {
+        let file = parse_gen(&write_gen(s)).unwrap();
+        let back =
+            space_from_matrices("back", "", &file.matrices, &DirichletOptions::default()).unwrap();
+        assert!(back.reaches_equator());
+        assert!((volume(&back) - volume(s)).abs() < 1e-12);
+        assert_eq!(first_homology(&back), first_homology(s));
+    }
+    // A walk by crossings ends in the 3-sphere although it never crosses (steps of π/4,
+    // at most 16 in a row), and a walk by distance goes round it.
+    let walker = CellWalker::<DVec4>::new(&sphere);
+    let camera = bevy_curved_spaces::view::TraceCamera::default_for(&sphere);
+    let ray = camera.ray(Geometry::Spherical, 10, 10, 20, 20);
+    let trace = walker.trace(ray, Limit::Crossings(5));
+    assert!(trace.crossings.is_empty());
+    let round = walker.trace(ray, Limit::Distance(2.0 * PI));
+    assert!(Geometry::Spherical.distance(round.end.point, ray.point) < 1e-9);
+    // In projective space a ray comes back to its start after π, turned round by −I.
+    let walker = CellWalker::<DVec4>::new(&rp3);
+    let trace = walker.trace(ray, Limit::Distance(PI));
+    assert_eq!(trace.crossings.len(), 1);
+    assert!(Geometry::Spherical.distance(trace.end.point, ray.point) < 1e-9);
 }

@@ -35,6 +35,9 @@ pub struct ShaderKey {
     /// Whether balls and tubes carry face masks ([`crate::scene::FaceCulling`]): a segment
     /// tests only those whose faces it comes near.
     pub culling: bool,
+    /// A spherical cell that reaches distance π/2 ([`crate::space::Space::reaches_equator`]):
+    /// rays step at most π/4 without crossing (shader def `STEP_CAP`).
+    pub step_cap: bool,
     /// The unspecialised variant (the benchmark's comparison): all geometries' formulas,
     /// arrays of [`GENERAL_CAPACITY`], geometry and counts read from the uniform.
     pub general: bool,
@@ -61,6 +64,7 @@ impl ShaderKey {
             avatar: false,
             textures: false,
             culling: false,
+            step_cap: false,
             general: false,
         }
     }
@@ -80,8 +84,12 @@ impl ShaderKey {
                 Geometry::Hyperbolic => vec!["HYPERBOLIC".into(), "CURVED".into()],
             }
         };
-        defs.push(ShaderDefVal::UInt("FACE_COUNT".into(), faces));
+        defs.push(ShaderDefVal::UInt("FACE_COUNT".into(), self.faces));
+        defs.push(ShaderDefVal::UInt("FACE_SLOTS".into(), faces));
         defs.push(ShaderDefVal::UInt("PARTNER_VECS".into(), faces.div_ceil(4)));
+        if self.step_cap {
+            defs.push("STEP_CAP".into());
+        }
         let mut counted = |flag: &str, count_def: &str, n: u32| {
             if n > 0 {
                 defs.push(flag.into());
@@ -130,7 +138,8 @@ impl ShaderKey {
         if self.general {
             GENERAL_CAPACITY
         } else {
-            (self.faces, self.balls, self.tubes)
+            // WGSL has no empty arrays: the 3-sphere's face slot is unused.
+            (self.faces.max(1), self.balls, self.tubes)
         }
     }
 

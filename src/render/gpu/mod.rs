@@ -279,6 +279,7 @@ impl GpuScene {
             avatar: scene.avatar.is_some(),
             textures: !scene.textures.is_empty(),
             culling: culling.is_some() && balls.len() + tubes.len() > 0,
+            step_cap: space.reaches_equator(),
             general: false,
         };
         let bytes = key.uniform_bytes();
@@ -315,21 +316,32 @@ impl GpuScene {
                 ));
             }
         }
-        for face in &space.faces {
-            out.push(&vec4(face.covector));
+        // The faces, or for the 3-sphere (no face) one unused slot: WGSL has no empty arrays.
+        let slot = [(DVec4::ZERO, DMat4::IDENTITY, 0)];
+        let faces: Vec<(DVec4, DMat4, usize)> = if space.faces.is_empty() {
+            slot.to_vec()
+        } else {
+            space
+                .faces
+                .iter()
+                .map(|f| (f.covector, f.pairing, f.partner))
+                .collect()
+        };
+        for (covector, _, _) in &faces {
+            out.push(&vec4(*covector));
         }
-        for face in &space.faces {
-            out.push(&mat4(face.pairing));
+        for (_, pairing, _) in &faces {
+            out.push(&mat4(*pairing));
         }
         // What rounding each pairing to f32 left out: the shader applies hi + lo compensated.
-        for face in &space.faces {
-            let hi = mat4(face.pairing).map(|c| DVec4::from_array(c.map(f64::from)));
+        for (_, pairing, _) in &faces {
+            let hi = mat4(*pairing).map(|c| DVec4::from_array(c.map(f64::from)));
             out.push(&mat4(
-                face.pairing - DMat4::from_cols(hi[0], hi[1], hi[2], hi[3]),
+                *pairing - DMat4::from_cols(hi[0], hi[1], hi[2], hi[3]),
             ));
         }
-        let mut partners: Vec<u32> = space.faces.iter().map(|f| f.partner as u32).collect();
-        partners.resize(4 * space.faces.len().div_ceil(4), 0);
+        let mut partners: Vec<u32> = faces.iter().map(|f| f.2 as u32).collect();
+        partners.resize(4 * faces.len().div_ceil(4), 0);
         out.words.extend(partners);
         pack_objects(
             &mut out,
@@ -535,7 +547,8 @@ impl GpuScene {
         {
             return None;
         }
-        let faces = k.faces as usize;
+        // The 3-sphere's one unused face slot counts as a face here.
+        let faces = k.faces.max(1) as usize;
         // (words per element, elements, capacity) of each array, in uniform order.
         let words_of = |bytes: usize| bytes / 4;
         let vec4_words = words_of(size_of::<Vec4F>());
