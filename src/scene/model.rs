@@ -466,6 +466,40 @@ impl CurvedScene {
                 ))
             })
             .collect();
+        // A lens beyond the chart (L(P, 1)): its one edge is the great circle where its two
+        // faces meet, at π/2 from the centre and without vertices, drawn as four quarters.
+        if parts.edges && space.reaches_equator() && space.faces.len() == 2 {
+            // Gram–Schmidt: the two covectors first, then the plane orthogonal to both.
+            let mut basis: Vec<DVec4> = Vec::new();
+            let candidates = [space.faces[0].covector, space.faces[1].covector];
+            for e in candidates
+                .into_iter()
+                .chain([DVec4::X, DVec4::Y, DVec4::Z, DVec4::W])
+            {
+                let mut v = e;
+                for b in &basis {
+                    v -= *b * v.dot(*b);
+                }
+                if v.length() > 1e-6 && basis.len() < 4 {
+                    basis.push(v.normalize());
+                }
+            }
+            if let [_, _, e1, e2] = basis[..] {
+                let at = |k: f64| {
+                    let t = k * std::f64::consts::FRAC_PI_2;
+                    e1 * t.cos() + e2 * t.sin()
+                };
+                objects.extend((0..4).map(|k| {
+                    Object::Tube(Tube::new(
+                        g,
+                        at(f64::from(k)),
+                        at(f64::from(k + 1)),
+                        tube,
+                        palette(0),
+                    ))
+                }));
+            }
+        }
         objects.extend((0..vertices).map(|v| {
             Object::Ball(Ball::new(
                 g,

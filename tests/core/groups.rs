@@ -796,3 +796,56 @@ fn cells_reaching_the_equator_are_whole_spaces() {
     assert_eq!(trace.crossings.len(), 1);
     assert!(Geometry::Spherical.distance(trace.end.point, ray.point) < 1e-9);
 }
+
+/// The lens L(7,1)'s edge is a great circle at π/2 without vertices: the default scene draws
+/// it as four quarter tubes, and a ray towards a point of it meets one of them.
+#[test]
+fn the_lens_edge_circle_is_drawn_and_hit() {
+    use bevy_curved_spaces::scene::{CurvedScene, Object, SceneParts, Shading};
+    use bevy_curved_spaces::space::CellWalker;
+    use bevy_curved_spaces::trace::{RayEnd, first_hit};
+    let lens = library("lens-7-1");
+    let scene = CurvedScene::with_parts(
+        &lens,
+        Shading::default_fog_distance(&lens),
+        SceneParts::default(),
+    );
+    let tubes: Vec<_> = scene
+        .objects
+        .iter()
+        .filter_map(|o| match o {
+            Object::Tube(t) => Some(t),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(tubes.len(), 4);
+    for t in &tubes {
+        // On both faces' great spheres, at π/2 from the centre, a quarter circle long.
+        for p in [t.a, t.b] {
+            assert!(lens.faces().iter().all(|f| f.covector.dot(p).abs() < 1e-12));
+            assert!((Geometry::Spherical.distance(ORIGIN, p) - PI / 2.0).abs() < 1e-12);
+        }
+        assert!((Geometry::Spherical.distance(t.a, t.b) - PI / 2.0).abs() < 1e-12);
+    }
+    // From beside the centre ball towards the middle of the first quarter.
+    let g = Geometry::Spherical;
+    let target = g.project_point(tubes[0].a + tubes[0].b);
+    let eye = g.project_point(DVec4::new(0.0, 0.0, 0.0, 1.0) + 0.2 * (tubes[0].a - tubes[0].b));
+    let point = eye;
+    let tangent = g.tangent_towards(point, target);
+    let walker = CellWalker::<DVec4>::new(&lens);
+    let end = first_hit(
+        &walker,
+        &scene,
+        bevy_curved_spaces::geometry::Ray { point, tangent },
+        16,
+    );
+    match end {
+        RayEnd::Hit(hit) => assert!(
+            matches!(scene.objects[hit.object], Object::Tube(_)),
+            "hit object {} instead of a tube",
+            hit.object
+        ),
+        other => panic!("the ray towards the circle met nothing: {other:?}"),
+    }
+}
