@@ -111,6 +111,16 @@ pub const FAMILIES: &[Family] = &[
         examples: &["torus-1-1-2", "torus-1-2-3"],
     },
     Family {
+        pattern: "half-turn-A-B-C",
+        geometry: Geometry::Euclidean,
+        summary: "a flat manifold with its lattice stretched to A×B×C (any sides, at most 1000 \
+                  to 1): half-turn, hantzsche-wendt, first-amphicosm, second-amphicosm, \
+                  first-amphidicosm and second-amphidicosm take -A-B-C; quarter-turn, \
+                  third-turn and sixth-turn take -A-C (side of the square or hexagonal \
+                  lattice, and height)",
+        examples: &["half-turn-1-2-3", "hantzsche-wendt-1-1-2", "third-turn-1-3"],
+    },
+    Family {
         pattern: "torus-hexagonal",
         geometry: Geometry::Euclidean,
         summary: "3-torus of the hexagonal lattice: a hexagonal prism",
@@ -438,6 +448,101 @@ fn family_member(id: &str) -> Option<Result<Space, String>> {
     }
     if let Some(v) = numbers::<f64>(id, "torus", 3) {
         return Some(box_torus(id, v[0], v[1], v[2]));
+    }
+    flat_member(id)
+}
+
+/// The generators of a flat manifold's group at unit lattice size: each family's linear
+/// parts are diagonal, or rotations about z, so stretching the axes conjugates the group
+/// into another of the same kind.
+fn flat_base(name: &str) -> Option<Vec<DMat4>> {
+    let s3 = 0.5 * 3f64.sqrt();
+    let screw = |turn: f64, rise: f64| {
+        affine(
+            DMat3::from_rotation_z(std::f64::consts::TAU * turn),
+            DVec3::Z * rise,
+        )
+    };
+    let square = [translation(DVec3::X), translation(DVec3::Y)];
+    let hexagonal = [translation(DVec3::X), translation(DVec3::new(0.5, s3, 0.0))];
+    Some(match name {
+        "half-turn" => vec![square[0], square[1], screw(0.5, 0.5)],
+        "quarter-turn" => vec![square[0], square[1], screw(0.25, 0.25)],
+        "third-turn" => vec![hexagonal[0], hexagonal[1], screw(1.0 / 3.0, 1.0 / 3.0)],
+        "sixth-turn" => vec![hexagonal[0], hexagonal[1], screw(1.0 / 6.0, 1.0 / 6.0)],
+        // P2₁2₁2₁: three screws along parallels of the axes that do not meet.
+        "hantzsche-wendt" => vec![
+            affine(diag(1.0, -1.0, -1.0), DVec3::new(0.5, 0.5, 0.0)),
+            affine(diag(-1.0, 1.0, -1.0), DVec3::new(0.0, 0.5, 0.5)),
+            affine(diag(-1.0, -1.0, 1.0), DVec3::new(0.5, 0.0, 0.5)),
+        ],
+        "first-amphicosm" => vec![
+            square[0],
+            square[1],
+            affine(diag(1.0, -1.0, 1.0), DVec3::Z * 0.5),
+        ],
+        "second-amphicosm" => vec![
+            square[0],
+            translation(DVec3::new(0.5, 0.5, 0.0)),
+            affine(diag(1.0, -1.0, 1.0), DVec3::Z * 0.5),
+        ],
+        "first-amphidicosm" => vec![
+            affine(diag(-1.0, -1.0, 1.0), DVec3::Z * 0.5),
+            affine(diag(1.0, -1.0, 1.0), DVec3::X * 0.5),
+            square[1],
+        ],
+        "second-amphidicosm" => vec![
+            affine(diag(-1.0, -1.0, 1.0), DVec3::Z * 0.5),
+            affine(diag(1.0, -1.0, 1.0), DVec3::new(0.5, 0.5, 0.0)),
+            square[1],
+        ],
+        _ => return None,
+    })
+}
+
+/// A flat manifold with a stretched lattice: `NAME-A-B-C` (axes stretched by A, B, C) or,
+/// for the screws of order 3, 4 and 6 about z, `NAME-A-C` (the plane lattice by A, the
+/// height by C).
+fn flat_member(id: &str) -> Option<Result<Space, String>> {
+    for name in [
+        "half-turn",
+        "hantzsche-wendt",
+        "first-amphicosm",
+        "second-amphicosm",
+        "first-amphidicosm",
+        "second-amphidicosm",
+        "quarter-turn",
+        "third-turn",
+        "sixth-turn",
+    ] {
+        let planar = matches!(name, "quarter-turn" | "third-turn" | "sixth-turn");
+        let sides = if planar {
+            numbers::<f64>(id, name, 2).map(|v| [v[0], v[0], v[1]])
+        } else {
+            numbers::<f64>(id, name, 3).map(|v| [v[0], v[1], v[2]])
+        };
+        let Some([a, b, c]) = sides else {
+            continue;
+        };
+        let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
+        if !(lo > 0.0 && hi.is_finite() && hi <= 1000.0 * lo) {
+            let form = if planar { "A-C" } else { "A-B-C" };
+            return Some(Err(format!(
+                "{id}: {name}-{form} needs positive finite sizes at most 1000 to 1"
+            )));
+        }
+        let stretch = affine(diag(a, b, c), DVec3::ZERO);
+        let squeeze = affine(diag(1.0 / a, 1.0 / b, 1.0 / c), DVec3::ZERO);
+        let gens: Vec<DMat4> = flat_base(name)?
+            .into_iter()
+            .map(|g| stretch * g * squeeze)
+            .collect();
+        return Some(from_group(
+            id,
+            &format!("The {name} flat manifold, its lattice stretched to {a}×{b}×{c}."),
+            &gens,
+            None,
+        ));
     }
     None
 }

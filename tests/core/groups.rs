@@ -849,3 +849,82 @@ fn the_lens_edge_circle_is_drawn_and_hit() {
         other => panic!("the ray towards the circle met nothing: {other:?}"),
     }
 }
+
+/// The flat families with a stretched lattice keep their kind (orientability, H₁) and
+/// their volume is the stretched lattice's covolume over the holonomy order.
+#[test]
+fn flat_manifolds_take_their_lattice_shape_as_parameters() {
+    use bevy_curved_spaces::space::invariants::holonomy_order;
+    let s3 = 0.75f64.sqrt();
+    // (family, id with sizes, unit-cell covolume per unit of A·B·C, orientable, H₁).
+    let cases = [
+        ("half-turn", "half-turn-1-2-3", 1.0, true, "Z/2 + Z/2 + Z"),
+        (
+            "hantzsche-wendt",
+            "hantzsche-wendt-1-2-3",
+            1.0,
+            true,
+            "Z/4 + Z/4",
+        ),
+        (
+            "first-amphicosm",
+            "first-amphicosm-1-2-3",
+            1.0,
+            false,
+            "Z/2 + Z + Z",
+        ),
+        (
+            "second-amphicosm",
+            "second-amphicosm-1-2-3",
+            0.5,
+            false,
+            "Z + Z",
+        ),
+        (
+            "first-amphidicosm",
+            "first-amphidicosm-1-2-3",
+            1.0,
+            false,
+            "Z/2 + Z/2 + Z",
+        ),
+        (
+            "second-amphidicosm",
+            "second-amphidicosm-1-2-3",
+            1.0,
+            false,
+            "Z/4 + Z",
+        ),
+        ("quarter-turn", "quarter-turn-2-3", 1.0, true, "Z/2 + Z"),
+        ("third-turn", "third-turn-2-3", s3, true, "Z/3 + Z"),
+        ("sixth-turn", "sixth-turn-2-3", s3, true, "Z"),
+    ];
+    for (family, id, covolume, orientable, h1) in cases {
+        let s = library(id);
+        let holonomy = holonomy_order(&s).unwrap() as f64;
+        // A·B·C = 6 for 1-2-3; 2·2·3 = 12 for A-C = 2-3.
+        let abc = if id.matches('-').count() - family.matches('-').count() == 3 {
+            6.0
+        } else {
+            12.0
+        };
+        let expected = covolume * abc / holonomy;
+        assert!(
+            (volume(&s) - expected).abs() < 1e-9 * expected,
+            "{id}: volume {} against {expected}",
+            volume(&s)
+        );
+        assert!(s.manifold(), "{id}");
+        assert_eq!(s.orientable(), orientable, "{id}");
+        assert_eq!(first_homology(&s), Homology::parse(h1).unwrap(), "{id}");
+    }
+    for bad in [
+        "half-turn-0-1-1",
+        "quarter-turn-1-2000",
+        "hantzsche-wendt-1-1-inf",
+    ] {
+        assert!(
+            matches!(library_space(bad), Some(Err(ref e)) if e.contains("1000 to 1")),
+            "{bad}"
+        );
+    }
+}
