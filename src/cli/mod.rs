@@ -2,6 +2,7 @@
 //! layer over library calls.
 
 mod bench;
+mod flight;
 mod info;
 mod parse;
 mod render;
@@ -63,6 +64,10 @@ enum Command {
     /// Measure speed against error: GPU frame times against a trivial material, accuracy
     /// against the f64 reference, f32 drift, the fog cut-off; writes JSON, CSV and charts.
     Bench(BenchArgs),
+    /// Render a flight file (keyframes through a space) to PNG frames, and to
+    /// FLIGHT_DIR/flight.mp4 where ffmpeg is installed; resumable, and sliceable with
+    /// --frames A..B for several machines.
+    Flight(FlightArgs),
     /// Write a space as a space file (JSON, a template for your own spaces) or as a
     /// generator file (`.gen`).
     Export {
@@ -270,6 +275,47 @@ impl From<QualityArg> for Quality {
     }
 }
 
+/// `flight`'s arguments.
+#[derive(Args)]
+pub struct FlightArgs {
+    /// The flight file (TOML: `space` or `scene`, `fov`, and `[[key]]`s with `time`,
+    /// `position` and `look_at`).
+    file: PathBuf,
+    /// Frame size WIDTHxHEIGHT.
+    #[arg(long, default_value = "640x360", value_parser = parse_size)]
+    size: (u32, u32),
+    /// Frames per second.
+    #[arg(long, default_value_t = 30.0, value_parser = parse_flight_fps)]
+    fps: f64,
+    /// Folder of the frames (frame-00001.png, …) and the video.
+    #[arg(long, default_value = "flight")]
+    out: PathBuf,
+    /// Render with the f64 CPU reference instead of the GPU tracer.
+    #[arg(long)]
+    cpu: bool,
+    /// Crossing budget per ray (default: chosen by sampling rays, as `render` does).
+    #[arg(long, value_parser = parse_crossings)]
+    crossings: Option<usize>,
+    /// Render only frames A to B (1-based, inclusive): the same files and pixels as a whole
+    /// run, for splitting a flight across machines.
+    #[arg(long, value_parser = flight::parse_frames)]
+    frames: Option<(usize, usize)>,
+}
+
+/// A flight's frame rate: 1 to 240 frames per second.
+fn parse_flight_fps(s: &str) -> Result<f64, String> {
+    let fps: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("expected frames per second (1 to 240), got `{s}`"))?;
+    if !(1.0..=240.0).contains(&fps) {
+        return Err(format!(
+            "expected frames per second from 1 to 240, got {fps}"
+        ));
+    }
+    Ok(fps)
+}
+
 /// The basepoint given by `--basepoint`, for every space made from a generator file.
 static BASEPOINT: std::sync::OnceLock<Option<DVec3>> = std::sync::OnceLock::new();
 
@@ -342,6 +388,7 @@ pub fn run(cli: Cli) -> Result<(), String> {
         Some(Command::Trace(args)) => trace::trace(&args),
         Some(Command::Render(args)) => render::render_command(&args),
         Some(Command::Bench(args)) => bench::bench(&args),
+        Some(Command::Flight(args)) => flight::flight(&args),
         Some(Command::Export {
             space,
             out,

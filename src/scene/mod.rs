@@ -10,6 +10,8 @@ pub mod avatar;
 pub mod culling;
 #[cfg(feature = "scene-files")]
 pub mod file;
+#[cfg(feature = "scene-files")]
+pub mod flight;
 #[cfg(feature = "gltf")]
 pub mod gltf;
 pub mod mesh;

@@ -908,3 +908,86 @@ fn generator_files_load_export_and_name_their_mistakes() {
         assert!(text.contains(family.pattern), "{} missing", family.pattern);
     }
 }
+
+#[test]
+fn flights_render_every_frame_resume_and_slice_alike() {
+    let dir = temp_dir("flight");
+    let file = dir.join("f.toml");
+    std::fs::write(
+        &file,
+        "space = \"torus\"\n\n[[key]]\ntime = 0.0\nposition = [0.3, 0.2, 0.5]\nlook_at = [0.0, 0.0, -1.0]\n\n\
+         [[key]]\ntime = 3.0\nposition = [0.3, 0.2, -1.5]\nlook_at = [0.0, 0.0, -3.0]\n",
+    )
+    .unwrap();
+    let (f, whole, part) = (file.to_str().unwrap(), dir.join("whole"), dir.join("part"));
+    let args = |out: &std::path::Path| {
+        vec![
+            "flight".to_string(),
+            f.to_string(),
+            "--cpu".into(),
+            "--size".into(),
+            "32x18".into(),
+            "--fps".into(),
+            "10".into(),
+            "--crossings".into(),
+            "8".into(),
+            "--out".into(),
+            out.to_str().unwrap().to_string(),
+        ]
+    };
+    let run_args = |v: Vec<String>| {
+        let refs: Vec<&str> = v.iter().map(String::as_str).collect();
+        run(&refs)
+    };
+    let out = run_args(args(&whole));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let frames: Vec<_> = (1..=30)
+        .map(|n| whole.join(format!("frame-{n:05}.png")))
+        .collect();
+    assert!(frames.iter().all(|p| p.exists()), "30 frames");
+    assert!(!whole.join("frame-00031.png").exists());
+    // Resumed: nothing left to do.
+    let out = run_args(args(&whole));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("rendered 0 frames"));
+    // A slice on another "machine" gives the same files, pixel for pixel.
+    let mut sliced = args(&part);
+    sliced.extend(["--frames".to_string(), "11..20".to_string()]);
+    let out = run_args(sliced);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for n in 1..=30 {
+        let p = part.join(format!("frame-{n:05}.png"));
+        assert_eq!(p.exists(), (11..=20).contains(&n), "frame {n}");
+        if p.exists() {
+            assert_eq!(
+                std::fs::read(&p).unwrap(),
+                std::fs::read(&frames[n - 1]).unwrap()
+            );
+        }
+    }
+    // The camera moves: the first and last frames differ.
+    assert_ne!(
+        std::fs::read(&frames[0]).unwrap(),
+        std::fs::read(&frames[29]).unwrap()
+    );
+    // Mistakes.
+    fails_with(&["flight", "missing.toml"], "cannot read flight file");
+    std::fs::write(&file, "space = \"torus\"\n").unwrap();
+    fails_with(&["flight", f], "at least one [[key]]");
+    std::fs::write(
+        &file,
+        "space = \"torus\"\n[[key]]\ntime = 1.0\nposition = [0,0,0]\nlook_at = [0,0,-1]\n\
+         [[key]]\ntime = 0.5\nposition = [0,0,0]\nlook_at = [0,0,-1]\n",
+    )
+    .unwrap();
+    fails_with(&["flight", f], "key 2: time 0.5 does not come after");
+    fails_with(&["flight", f, "--fps", "0"], "frames per second");
+    fails_with(&["flight", f, "--frames", "5..2"], "frames A..B");
+}

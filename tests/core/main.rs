@@ -9,6 +9,7 @@ mod common;
 mod accuracy;
 mod culling;
 mod files;
+mod flight;
 mod frame_rate;
 mod geometry;
 mod groups;

@@ -1,0 +1,105 @@
+//! Flights: keyframes through the universal cover, brought back into the cell.
+
+use bevy_curved_spaces::geometry::Geometry;
+use bevy_curved_spaces::scene::flight::{Flight, load_flight_file, parse_flight};
+use bevy_curved_spaces::space::seed_space;
+use glam::DMat4;
+
+fn max_entry(m: DMat4) -> f64 {
+    m.to_cols_array()
+        .iter()
+        .fold(0.0_f64, |a, x| a.max(x.abs()))
+}
+
+/// A flight through a face arrives turned by that face's pairing: the frame in the cell is
+/// the pairing times the frame in the cover.
+#[test]
+fn a_flight_through_a_face_arrives_turned_by_its_pairing() {
+    let space = seed_space("seifert-weber").unwrap();
+    let text = "space = \"seifert-weber\"\n[[key]]\ntime = 0.0\nposition = [0.45, 0.1, 0.5]\n\
+                look_at = [0.45, 0.1, -1.0]\n[[key]]\ntime = 2.0\nposition = [0.45, 0.1, -2.0]\n\
+                look_at = [0.45, 0.1, -3.0]\n";
+    let flight = Flight::new(&space, &parse_flight(text, "t.toml").unwrap()).unwrap();
+    let (before, after) = (flight.frame(&space, 0.0), flight.frame(&space, 2.0));
+    assert!(space.outside_by(before.w_axis) <= 0.0 && space.outside_by(after.w_axis) <= 1e-12);
+    let cover = flight.cover_frame(2.0);
+    assert!(
+        space.outside_by(cover.w_axis) > 0.0,
+        "the last key lies beyond a face"
+    );
+    let (wrapped, crossed) = bevy_curved_spaces::space::wrap_into_cell(&space, cover, 0.0);
+    assert!(!crossed.is_empty());
+    let holonomy = crossed
+        .iter()
+        .fold(DMat4::IDENTITY, |h, &f| space.faces()[f].pairing * h);
+    let expected = Geometry::Hyperbolic.orthonormalize_frame(holonomy * cover);
+    assert!(max_entry(after - expected) < 1e-9 && max_entry(wrapped - after) < 1e-12);
+    assert_eq!(flight.frame_count(10.0), 20);
+}
+
+/// Every shipped flight file loads and flies in its space, each frame inside the cell.
+#[test]
+fn every_example_flight_file_flies_inside_its_cell() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/flights");
+    let mut n = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_none_or(|e| e != "toml") {
+            continue;
+        }
+        let file = load_flight_file(&path).unwrap_or_else(|e| panic!("{e}"));
+        let space = seed_space(file.space.as_deref().unwrap()).unwrap();
+        let flight = Flight::new(&space, &file).unwrap_or_else(|e| panic!("{e}"));
+        for k in 0..flight.frame_count(10.0) {
+            let f = flight.frame(&space, k as f64 / 10.0);
+            assert!(
+                space.outside_by(f.w_axis) <= 1e-9,
+                "{}: frame {k}",
+                path.display()
+            );
+            assert!(space.geometry().frame_defect(f) < 1e-9);
+        }
+        n += 1;
+    }
+    assert!(n >= 1);
+}
+
+#[test]
+fn flight_files_with_mistakes_are_named() {
+    for (text, needle) in [
+        (
+            "[[key]]\ntime = 0\nposition = [0,0,0]\nlook_at = [0,0,-1]\n",
+            "name a space",
+        ),
+        (
+            "space = \"torus\"\nscene = \"x.toml\"\n",
+            "either space or scene",
+        ),
+        ("space = \"torus\"\nfov = 200\n", "fov"),
+        (
+            "space = \"torus\"\n[[key]]\ntime = -1\nposition = [0,0,0]\nlook_at = [0,0,-1]\n",
+            "key 1: time",
+        ),
+        (
+            "space = \"torus\"\n[[key]]\ntime = 0\nposition = [0,0,0]\nlook_at = [0,0,0]\n",
+            "look_at is the position",
+        ),
+        (
+            "space = \"torus\"\n[[key]]\ntime = 0\nposition = [nan,0,0]\nlook_at = [0,0,-1]\n",
+            "finite",
+        ),
+        ("space = \"torus\"\nspeed = 3\n", "unknown field"),
+    ] {
+        let e = parse_flight(text, "f.toml").unwrap_err();
+        assert!(e.starts_with("f.toml") && e.contains(needle), "{text}: {e}");
+    }
+    // In S³ a key must stay within the hemisphere of the cell's centre.
+    let poincare = seed_space("poincare").unwrap();
+    let file = parse_flight(
+        "space = \"poincare\"\n[[key]]\ntime = 0\nposition = [0,0,9]\nlook_at = [0,0,-1]\n",
+        "f.toml",
+    )
+    .unwrap();
+    let e = Flight::new(&poincare, &file).unwrap_err();
+    assert!(e.contains("hemisphere"), "{e}");
+}
