@@ -127,6 +127,10 @@ impl Plugin for CurvedSpacesPlugin {
                     .chain()
                     .in_set(CurvedSpacesSystems::Move),
                 player::wrap_players.in_set(CurvedSpacesSystems::Wrap),
+                #[cfg(feature = "scene-files")]
+                crate::scene::flight::replay_flight
+                    .after(CurvedSpacesSystems::Wrap)
+                    .before(CurvedSpacesSystems::Upload),
                 (upload_scene, check_stereo_settings).in_set(CurvedSpacesSystems::Upload),
                 hold_frame_rate.before(CurvedSpacesSystems::Upload),
             ),

@@ -214,7 +214,7 @@ struct BenchArgs {
     scene: Option<PathBuf>,
 }
 
-#[derive(Args)]
+#[derive(Args, Clone)]
 struct WalkArgs {
     /// Seed space id or space file.
     #[arg(default_value = DEFAULT_SPACE)]
@@ -253,6 +253,10 @@ struct WalkArgs {
     /// quality's range (0: keep the quality's resolution). Off for --screenshot.
     #[arg(long, default_value_t = DEFAULT_WALK_FPS, value_parser = parse_fps, allow_negative_numbers = true)]
     fps: f64,
+    /// Replay a flight file in the window, looping (its space or scene replaces SPACE; the
+    /// keys do not move you while it plays).
+    #[arg(long, conflicts_with_all = ["space", "scene"])]
+    replay: Option<PathBuf>,
 }
 
 /// The frame rate `walk` holds unless told otherwise.
@@ -370,6 +374,7 @@ impl Default for WalkArgs {
             scene: None,
             no_avatar: false,
             fps: DEFAULT_WALK_FPS,
+            replay: None,
         }
     }
 }

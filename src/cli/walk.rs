@@ -10,9 +10,10 @@ use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
 use bevy_curved_spaces::components::StereoSettings;
 use bevy_curved_spaces::offscreen::gpu_available;
 use bevy_curved_spaces::render::FramesTraced;
+use bevy_curved_spaces::scene::flight::{Flight, FlightReplay, load_flight_file};
 use bevy_curved_spaces::view::StereoMode;
 use bevy_curved_spaces::{ActiveSpace, CurvedSpaceCamera, CurvedSpacesPlugin};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// `walk --screenshot`: where to save, and whether it was requested.
 #[derive(Resource)]
@@ -80,7 +81,33 @@ pub(super) fn xr_runtime() -> Result<(), String> {
 }
 
 pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
+    // A replayed flight names its own space or scene.
+    let replay = match &args.replay {
+        Some(path) => Some(load_flight_file(path)?),
+        None => None,
+    };
+    let mut args_for_flight;
+    let args = match &replay {
+        Some(file) => {
+            args_for_flight = args.clone();
+            let base = args
+                .replay
+                .as_deref()
+                .and_then(Path::parent)
+                .unwrap_or(Path::new(""));
+            args_for_flight.scene = file.scene.as_ref().map(|s| base.join(s));
+            if let Some(space) = &file.space {
+                args_for_flight.space = space.clone();
+            }
+            &args_for_flight
+        }
+        None => args,
+    };
     let chosen = choose_scene(&args.space, args.scene.as_deref(), args.fog)?;
+    let flight = match &replay {
+        Some(file) => Some(Flight::new(&chosen.space, file)?),
+        None => None,
+    };
     let space = chosen.space.clone();
     let mut stereo_args = args.stereo;
     if args.xr {
@@ -131,6 +158,10 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
             commands.spawn((Camera3d::default(), CurvedSpaceCamera::default()));
         },
     );
+    if let Some(flight) = flight {
+        eprintln!("replaying the flight ({:.1} s, looping)", flight.duration());
+        app.insert_resource(FlightReplay::new(flight, true));
+    }
     if let Some(path) = &args.screenshot {
         app.insert_resource(ScreenshotThenExit {
             path: path.clone(),

@@ -244,3 +244,65 @@ pub fn load_flight_file(path: &std::path::Path) -> Result<FlightFile, String> {
         .map_err(|e| format!("cannot read flight file {name}: {e}"))?;
     parse_flight(&text, &name)
 }
+
+/// A flight replayed on every curved-space camera (`walk --replay FILE`): while this
+/// resource exists, [`replay_flight`] sets each camera's frame to the flight's frame at the
+/// time since the replay began (looping when `looped`), after the player's own motion.
+#[derive(bevy::prelude::Resource, Clone, Debug)]
+pub struct FlightReplay {
+    /// The flight, made for the active space.
+    pub flight: Flight,
+    /// Start again at the end.
+    pub looped: bool,
+    /// The clock's time when the replay began (set by the first run).
+    pub started: Option<f64>,
+}
+
+impl FlightReplay {
+    /// A replay of `flight` from the next frame on.
+    #[must_use]
+    pub fn new(flight: Flight, looped: bool) -> Self {
+        Self {
+            flight,
+            looped,
+            started: None,
+        }
+    }
+
+    /// The flight's time at clock time `now`.
+    #[must_use]
+    pub fn flight_time(&mut self, now: f64) -> f64 {
+        let start = *self.started.get_or_insert(now);
+        let t = (now - start).max(0.0);
+        let duration = self.flight.duration();
+        if duration <= 0.0 {
+            0.0
+        } else if self.looped {
+            t % duration
+        } else {
+            t.min(duration)
+        }
+    }
+}
+
+/// Drives the cameras along a [`FlightReplay`] (registered by the plugin; does nothing
+/// without the resource). Runs after the frames are wrapped, so it wins over the player's
+/// own motion.
+pub fn replay_flight(
+    time: bevy::prelude::Res<bevy::prelude::Time>,
+    active: bevy::prelude::Res<crate::components::ActiveSpace>,
+    replay: Option<bevy::prelude::ResMut<FlightReplay>>,
+    mut cameras: bevy::prelude::Query<
+        &mut crate::components::PlayerFrame,
+        bevy::prelude::With<crate::components::CurvedSpaceCamera>,
+    >,
+) {
+    let Some(mut replay) = replay else {
+        return;
+    };
+    let t = replay.flight_time(time.elapsed_secs_f64());
+    let frame = replay.flight.frame(&active.space, t);
+    for mut f in &mut cameras {
+        f.0 = frame;
+    }
+}

@@ -990,4 +990,9 @@ fn flights_render_every_frame_resume_and_slice_alike() {
     fails_with(&["flight", f], "key 2: time 0.5 does not come after");
     fails_with(&["flight", f, "--fps", "0"], "frames per second");
     fails_with(&["flight", f, "--frames", "5..2"], "frames A..B");
+    fails_with(
+        &["walk", "--replay", "missing.toml"],
+        "cannot read flight file",
+    );
+    fails_with(&["walk", "torus", "--replay", f], "cannot be used with");
 }

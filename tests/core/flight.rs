@@ -103,3 +103,43 @@ fn flight_files_with_mistakes_are_named() {
     let e = Flight::new(&poincare, &file).unwrap_err();
     assert!(e.contains("hemisphere"), "{e}");
 }
+
+/// `walk --replay`: with a [`FlightReplay`] the plugin drives the camera along the flight,
+/// frame for frame, looping at the end; the player's keys do not move it.
+#[test]
+fn a_replayed_flight_drives_the_camera_frame_for_frame() {
+    use bevy::input::InputPlugin;
+    use bevy::prelude::*;
+    use bevy::time::TimeUpdateStrategy;
+    use bevy_curved_spaces::prelude::*;
+    use bevy_curved_spaces::scene::flight::FlightReplay;
+    use std::time::Duration;
+    const DT: f64 = 0.25;
+    let space = seed_space("seifert-weber").unwrap();
+    let text = "space = \"seifert-weber\"\n[[key]]\ntime = 0.0\nposition = [0.45, 0.1, 0.5]\n\
+                look_at = [0.45, 0.1, -1.0]\n[[key]]\ntime = 2.0\nposition = [0.45, 0.1, -2.0]\n\
+                look_at = [0.45, 0.1, -3.0]\n";
+    let flight = Flight::new(&space, &parse_flight(text, "t.toml").unwrap()).unwrap();
+    let mut app = App::new();
+    app.add_plugins((MinimalPlugins, InputPlugin))
+        .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f64(
+            DT,
+        )))
+        .add_plugins(CurvedSpacesPlugin {
+            space: "seifert-weber".into(),
+            ..default()
+        })
+        .insert_resource(FlightReplay::new(flight.clone(), true));
+    let camera = app.world_mut().spawn(CurvedSpaceCamera::default()).id();
+    app.update();
+    app.world_mut()
+        .resource_mut::<ButtonInput<KeyCode>>()
+        .press(KeyCode::KeyW);
+    for n in 0..12 {
+        app.update();
+        let t = ((n + 1) as f64 * DT) % flight.duration();
+        let f = app.world().get::<PlayerFrame>(camera).unwrap().0;
+        let expected = flight.frame(&space, t);
+        assert!(max_entry(f - expected) < 1e-9, "update {n}: t = {t}");
+    }
+}

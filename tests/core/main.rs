@@ -9,6 +9,7 @@ mod common;
 mod accuracy;
 mod culling;
 mod files;
+#[cfg(feature = "scene-files")]
 mod flight;
 mod frame_rate;
 mod geometry;
