@@ -190,7 +190,14 @@ impl OffscreenRenderer {
         crate::render::gpu::GpuScene::new(space, &scene, settings.max_crossings.unwrap_or(1))
             .map_err(|e| OffscreenError::Scene(e.to_string()))?;
         let world = self.app.world_mut();
-        world.insert_resource(request.space.clone());
+        // The same space again (a flight's frames) is not inserted anew: that would count as
+        // a change of space.
+        let same_space = world.get_resource::<ActiveSpace>().is_some_and(|a| {
+            a.id == request.space.id && Arc::ptr_eq(&a.space, &request.space.space)
+        });
+        if !same_space {
+            world.insert_resource(request.space.clone());
+        }
         world.insert_resource(settings);
         world.insert_resource(request.base.clone());
         world.insert_resource(SceneObjects(request.objects.clone()));

@@ -106,6 +106,8 @@ pub(super) fn flight(args: &FlightArgs) -> Result<(), String> {
         )
         .map_err(|e| e.to_string())?,
     );
+    // One active space for every frame: its invariants are computed once.
+    let active = ActiveSpace::new(&chosen.id, space.clone());
     let started = Instant::now();
     for &n in &todo {
         let t = (n - 1) as f64 / args.fps;
@@ -140,12 +142,7 @@ pub(super) fn flight(args: &FlightArgs) -> Result<(), String> {
                     parts: chosen.parts,
                     base: chosen.base.clone(),
                     time: t,
-                    ..OffscreenRender::new(
-                        ActiveSpace::new(&chosen.id, space.clone()),
-                        camera,
-                        args.size,
-                        budget as u32,
-                    )
+                    ..OffscreenRender::new(active.clone(), camera, args.size, budget as u32)
                 })
                 .map_err(|e| format!("frame {n}: {e}"))?,
         };
