@@ -212,15 +212,24 @@ impl Flight {
     /// faces it passed, turned by their pairings.
     #[must_use]
     pub fn frame(&self, space: &Space, t: f64) -> DMat4 {
+        self.frame_and_crossings(space, t).0
+    }
+
+    /// [`Flight::frame`] with the faces the way from the first key's cell crossed, in order
+    /// (the camera's holonomy).
+    #[must_use]
+    pub fn frame_and_crossings(&self, space: &Space, t: f64) -> (DMat4, Vec<usize>) {
         let mut frame = self.cover_frame(t);
+        let mut faces = Vec::new();
         for _ in 0..64 {
             let (wrapped, crossed) = wrap_into_cell(space, frame, 0.0);
             frame = wrapped;
             if crossed.is_empty() {
                 break;
             }
+            faces.extend(crossed);
         }
-        frame
+        (frame, faces)
     }
 }
 
@@ -293,7 +302,10 @@ pub fn replay_flight(
     active: bevy::prelude::Res<crate::components::ActiveSpace>,
     replay: Option<bevy::prelude::ResMut<FlightReplay>>,
     mut cameras: bevy::prelude::Query<
-        &mut crate::components::PlayerFrame,
+        (
+            &mut crate::components::PlayerFrame,
+            Option<&mut crate::space::Holonomy>,
+        ),
         bevy::prelude::With<crate::components::CurvedSpaceCamera>,
     >,
 ) {
@@ -301,8 +313,17 @@ pub fn replay_flight(
         return;
     };
     let t = replay.flight_time(time.elapsed_secs_f64());
-    let frame = replay.flight.frame(&active.space, t);
-    for mut f in &mut cameras {
+    let (frame, crossed) = replay.flight.frame_and_crossings(&active.space, t);
+    for (mut f, holonomy) in &mut cameras {
         f.0 = frame;
+        // The holonomy of the way from the first key, so the panel's crossings are the
+        // flight's.
+        if let Some(mut h) = holonomy {
+            let mut way = crate::space::Holonomy::default();
+            for &face in &crossed {
+                way.record(face, active.space.faces()[face].pairing);
+            }
+            *h = way;
+        }
     }
 }

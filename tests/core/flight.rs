@@ -141,5 +141,15 @@ fn a_replayed_flight_drives_the_camera_frame_for_frame() {
         let f = app.world().get::<PlayerFrame>(camera).unwrap().0;
         let expected = flight.frame(&space, t);
         assert!(max_entry(f - expected) < 1e-9, "update {n}: t = {t}");
+        // The camera's holonomy is the way's: crossings and the product of their pairings.
+        let h = *app
+            .world()
+            .get::<bevy_curved_spaces::space::Holonomy>(camera)
+            .unwrap();
+        let (_, crossed) = flight.frame_and_crossings(&space, t);
+        assert_eq!(h.crossings, crossed.len() as u64);
+        let cover = flight.cover_frame(t);
+        let turned = Geometry::Hyperbolic.orthonormalize_frame(h.matrix * cover);
+        assert!(max_entry(turned - f) < 1e-9, "update {n}");
     }
 }
