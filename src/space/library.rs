@@ -324,10 +324,7 @@ pub fn library_space(id: &str) -> Option<Result<Space, String>> {
             ];
             let gens: Vec<DMat4> = normals
                 .iter()
-                .map(|&n| {
-                    let n = n / n.length();
-                    DMat4::IDENTITY - 2.0 * outer(n, n)
-                })
+                .map(|&n| Geometry::Spherical.reflection(n / n.length()))
                 .collect();
             from_group(
                 id,
@@ -372,11 +369,7 @@ pub fn library_space(id: &str) -> Option<Result<Space, String>> {
             id,
             "First amphicosm (Klein space, space group Pc): the glide reflection \
              (x, y, z) -> (x, −y, z + ½) and the translations along x and y.",
-            &[
-                translation(DVec3::X),
-                translation(DVec3::Y),
-                affine(diag(1.0, -1.0, 1.0), DVec3::new(0.0, 0.0, 0.5)),
-            ],
+            &flat_base("first-amphicosm").expect("a flat family"),
             None,
         ),
         // Cc: the same glide over the C-centred lattice.
@@ -384,11 +377,7 @@ pub fn library_space(id: &str) -> Option<Result<Space, String>> {
             id,
             "Second amphicosm (space group Cc): the glide reflection (x, y, z) -> \
              (x, −y, z + ½) and the centred lattice of (1, 0, 0) and (½, ½, 0).",
-            &[
-                translation(DVec3::X),
-                translation(DVec3::new(0.5, 0.5, 0.0)),
-                affine(diag(1.0, -1.0, 1.0), DVec3::new(0.0, 0.0, 0.5)),
-            ],
+            &flat_base("second-amphicosm").expect("a flat family"),
             None,
         ),
         // Pca2_1: screw (−x, −y, z + ½), glides (x + ½, −y, z) and (½ − x, y, z + ½).
@@ -396,11 +385,7 @@ pub fn library_space(id: &str) -> Option<Result<Space, String>> {
             id,
             "First amphidicosm (space group Pca2_1): the screw (x, y, z) -> (−x, −y, z + ½) \
              and the glide (x, y, z) -> (x + ½, −y, z), with the translation along y.",
-            &[
-                affine(diag(-1.0, -1.0, 1.0), DVec3::new(0.0, 0.0, 0.5)),
-                affine(diag(1.0, -1.0, 1.0), DVec3::new(0.5, 0.0, 0.0)),
-                translation(DVec3::Y),
-            ],
+            &flat_base("first-amphidicosm").expect("a flat family"),
             None,
         ),
         // Pna2_1: screw (−x, −y, z + ½), glides (x + ½, ½ − y, z) and (½ − x, y + ½, z + ½).
@@ -408,11 +393,7 @@ pub fn library_space(id: &str) -> Option<Result<Space, String>> {
             id,
             "Second amphidicosm (space group Pna2_1): the screw (x, y, z) -> (−x, −y, z + ½) \
              and the glide (x, y, z) -> (x + ½, ½ − y, z), with the translation along y.",
-            &[
-                affine(diag(-1.0, -1.0, 1.0), DVec3::new(0.0, 0.0, 0.5)),
-                affine(diag(1.0, -1.0, 1.0), DVec3::new(0.5, 0.5, 0.0)),
-                translation(DVec3::Y),
-            ],
+            &flat_base("second-amphidicosm").expect("a flat family"),
             None,
         ),
         "seifert-weber-group" => seifert_weber_group(id),
@@ -662,8 +643,4 @@ fn seifert_weber_group(id: &str) -> Result<Space, String> {
         &gens,
         None,
     )
-}
-
-fn outer(a: DVec4, b: DVec4) -> DMat4 {
-    DMat4::from_cols(a * b.x, a * b.y, a * b.z, a * b.w)
 }

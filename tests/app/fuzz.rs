@@ -18,19 +18,7 @@ fn manifest() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
-/// The number literals a mutation puts in place of a number.
-const HOSTILE: [&str; 10] = [
-    "nan",
-    "inf",
-    "-inf",
-    "1e308",
-    "-1e308",
-    "1e-320",
-    "0",
-    "-1",
-    "123456789",
-    "-0.0",
-];
+use crate::common::HOSTILE;
 
 fn scene_texts() -> Vec<(PathBuf, String)> {
     let dir = manifest().join("assets/scenes");

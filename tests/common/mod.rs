@@ -72,3 +72,18 @@ pub fn scratch_dir(name: &str) -> PathBuf {
     std::fs::create_dir_all(&dir).expect("create a scratch folder");
     dir
 }
+
+/// The number literals a fuzz mutation puts in place of a number (scene files, glTF,
+/// generator files).
+pub const HOSTILE: [&str; 10] = [
+    "nan",
+    "inf",
+    "-inf",
+    "1e308",
+    "-1e308",
+    "1e-320",
+    "0",
+    "-1",
+    "123456789",
+    "-0.0",
+];

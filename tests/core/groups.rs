@@ -630,18 +630,8 @@ fn length_spectra_agree_by_two_routes_and_with_snappy() {
 /// within a time bound; a space that loads has finite faces and pairings.
 #[test]
 fn mutated_generator_files_are_refused_cleanly_or_load() {
+    use crate::common::HOSTILE;
     use bevy_curved_spaces::trace::SplitMix64;
-    const HOSTILE: [&str; 9] = [
-        "nan",
-        "inf",
-        "-inf",
-        "1e308",
-        "-1e308",
-        "1e-320",
-        "0",
-        "-1",
-        "123456789",
-    ];
     let mut texts: Vec<String> = CENSUS[..2]
         .iter()
         .map(|m| m.generators.to_string())
