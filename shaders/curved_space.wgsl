@@ -106,7 +106,7 @@ struct Disc {
 struct Instance {
     frame: mat4x4<f32>,
     inverse: mat4x4<f32>,
-    // Root node, material override (or 0xffffffff), unused, unused.
+    // Root node, material override (or 0xffffffff), material base (added to the mesh's own), unused.
     info: vec4<u32>,
 }
 
@@ -663,7 +663,7 @@ fn hit_mesh(root: u32, inverse: mat4x4<f32>, p: vec4<f32>, v: vec4<f32>, hi: f32
 }
 
 // The normal and the material's colour and emission of a mesh hit (CurvedScene::intersect_mesh).
-fn mesh_surface(hit: MeshHit, frame: mat4x4<f32>, material_override: u32, point: vec4<f32>, v: vec4<f32>) -> Surface {
+fn mesh_surface(hit: MeshHit, frame: mat4x4<f32>, material_override: u32, material_base: u32, point: vec4<f32>, v: vec4<f32>) -> Surface {
     let b = space.data.x + 8u * hit.triangle;
     let w = vec3<f32>(1.0 - hit.uv.x - hit.uv.y, hit.uv.x, hit.uv.y);
     let n = normalize(fdata(b + 3u).xyz * w.x + fdata(b + 4u).xyz * w.y + fdata(b + 5u).xyz * w.z);
@@ -675,7 +675,7 @@ fn mesh_surface(hit: MeshHit, frame: mat4x4<f32>, material_override: u32, point:
     if form(normal, v) > 0.0 {
         normal = -normal;
     }
-    var material = scene_data[b].w;
+    var material = scene_data[b].w + material_base;
     if material_override != 0xffffffffu {
         material = material_override;
     }
@@ -1151,12 +1151,12 @@ fn surface_at(hit: SceneHit, point: vec4<f32>, v: vec4<f32>) -> Surface {
 #ifdef INSTANCES
     if hit.kind == 5u {
         let instance = space.instances[hit.index];
-        surface = mesh_surface(hit.mesh, instance.frame, instance.info.y, point, v);
+        surface = mesh_surface(hit.mesh, instance.frame, instance.info.y, instance.info.z, point, v);
     }
 #endif
 #ifdef AVATAR
     if hit.kind == 6u {
-        surface = mesh_surface(hit.mesh, space.view.avatar[2u * hit.index], 0xffffffffu, point, v);
+        surface = mesh_surface(hit.mesh, space.view.avatar[2u * hit.index], 0xffffffffu, 0u, point, v);
     }
 #endif
     return surface;

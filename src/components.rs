@@ -193,6 +193,10 @@ pub struct BaseScene {
     pub fov: Option<f64>,
     /// The parts the plugin starts [`TracerSettings::parts`] with, if the scene says.
     pub parts: Option<SceneParts>,
+    /// Objects that move (a scene file's objects with a `velocity`): while the scene is in
+    /// use the plugin spawns each as an entity ([`crate::objects`]) that flies from its
+    /// start through the faces.
+    pub moving: Vec<crate::scene::MovingObject>,
 }
 
 impl BaseScene {
@@ -206,7 +210,25 @@ impl BaseScene {
             start: file.start,
             fov: file.start_fov,
             parts: Some(file.parts),
+            moving: file.moving.clone(),
         }
+    }
+
+    /// This base scene with its moving objects fixed where they are at `time` seconds (a
+    /// still picture, or a flight's frame): no entities are spawned for them.
+    pub fn at_time(&self, space: &Space, time: f64) -> Result<Self, crate::scene::MovingError> {
+        if self.moving.is_empty() {
+            return Ok(self.clone());
+        }
+        let scene = match &self.scene {
+            Some(s) => Some(Arc::new(s.with_moving_at(space, &self.moving, time)?)),
+            None => None,
+        };
+        Ok(Self {
+            scene,
+            moving: Vec::new(),
+            ..self.clone()
+        })
     }
 
     /// The base scene for the active space, if it is the one the scene was made for.

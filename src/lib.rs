@@ -73,6 +73,7 @@ pub mod files;
 pub mod frame_rate;
 pub mod geometry;
 pub mod headset;
+pub mod objects;
 pub mod offscreen;
 pub mod player;
 pub mod plugin;

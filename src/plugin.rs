@@ -136,6 +136,7 @@ impl Plugin for CurvedSpacesPlugin {
             ),
         )
         .add_observer(start_camera);
+        crate::objects::add_systems(app);
         if self.controls {
             app.add_systems(
                 Update,
@@ -155,6 +156,10 @@ impl Plugin for CurvedSpacesPlugin {
         if app.is_plugin_added::<bevy::render::RenderPlugin>() {
             app.add_plugins(TracerRenderPlugin);
         }
+    }
+
+    fn finish(&self, app: &mut App) {
+        crate::objects::finish(app);
     }
 }
 

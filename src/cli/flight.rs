@@ -116,7 +116,9 @@ pub(super) fn flight(args: &FlightArgs) -> Result<(), String> {
             frame,
             fov_y_degrees: flight.fov,
         };
-        let mut scene = chosen.scene.clone();
+        // Moving objects where they are at the frame's time.
+        let at = chosen.at(t).map_err(|e| format!("frame {n}: {e}"))?;
+        let mut scene = at.scene.clone();
         scene.time = t;
         scene.set_avatar_frame(space, frame);
         let image = match renderer.as_mut() {
@@ -140,7 +142,7 @@ pub(super) fn flight(args: &FlightArgs) -> Result<(), String> {
                 .render(&OffscreenRender {
                     fog_distance: Some(chosen.scene.shading.fog_distance),
                     parts: chosen.parts,
-                    base: chosen.base.clone(),
+                    base: at.base.clone(),
                     time: t,
                     ..OffscreenRender::new(active.clone(), camera, args.size, budget as u32)
                 })

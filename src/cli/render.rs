@@ -32,6 +32,28 @@ pub(super) struct Chosen {
     pub(super) parts: SceneParts,
 }
 
+impl Chosen {
+    /// The scene with its moving objects where they are at `time` seconds (unchanged
+    /// without any).
+    pub(super) fn at(&self, time: f64) -> Result<Chosen, String> {
+        let base = self
+            .base
+            .at_time(&self.space, time)
+            .map_err(|e| format!("at time {time} s: {e}"))?;
+        let scene = match (&base.scene, self.base.moving.is_empty()) {
+            (Some(b), false) => b.adding_parts(&self.space, self.parts),
+            _ => self.scene.clone(),
+        };
+        Ok(Chosen {
+            id: self.id.clone(),
+            space: self.space.clone(),
+            scene,
+            base,
+            parts: self.parts,
+        })
+    }
+}
+
 pub(super) fn choose_scene(
     space_arg: &str,
     scene: Option<&Path>,
@@ -76,7 +98,7 @@ struct View {
 }
 
 pub(super) fn render_command(args: &RenderArgs) -> Result<(), String> {
-    let chosen = choose_scene(&args.space, args.scene.as_deref(), args.fog)?;
+    let chosen = choose_scene(&args.space, args.scene.as_deref(), args.fog)?.at(args.time)?;
     let view = view(args, &chosen)?;
     let started = Instant::now();
     let image = if args.cpu {

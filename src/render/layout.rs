@@ -135,7 +135,7 @@ pub struct GpuInstance {
     pub frame: Mat4F,
     /// Its inverse.
     pub inverse: Mat4F,
-    /// Root node, material override (or `u32::MAX`), unused ×2.
+    /// Root node, material override (or `u32::MAX`), material base, unused.
     pub info: [u32; 4],
 }
 

@@ -53,7 +53,7 @@ pub(crate) const UPSCALE_SHADER: Handle<Shader> =
 /// The scene the GPU draws, shared by all curved-space cameras (rebuilt when the space or
 /// the tracer settings change).
 #[derive(Resource, Clone, Debug)]
-pub(crate) struct PreparedScene(pub(crate) Arc<GpuScene>);
+pub struct PreparedScene(pub Arc<GpuScene>);
 
 /// Frames the tracer has drawn so far (all views), readable from the main world: headless
 /// renders wait for it before they capture a picture.
@@ -299,8 +299,10 @@ fn init_tracer_pipeline(mut commands: Commands, device: Res<RenderDevice>) {
 pub(crate) struct TracerBindings {
     buffer: Buffer,
     bytes: usize,
-    /// The scene whose data buffer the bind group holds.
+    /// The scene whose words the uniform holds.
     scene: Arc<GpuScene>,
+    /// The scene data buffer and what it holds: kept while only objects move.
+    scene_data: (Buffer, Arc<Vec<u32>>),
     bind_group: BindGroup,
     pipeline: CachedRenderPipelineId,
     /// The reduced-resolution target, its upscaling bind group and pipeline.
@@ -413,29 +415,47 @@ fn prepare_tracer_views(
                 b.pipeline = pipeline;
                 b.reduced = reduced;
             }
-            _ => {
+            // Only the objects moved: the same mesh data, a new uniform of the same size.
+            Some(mut b)
+                if b.bytes == data.len() && Arc::ptr_eq(&b.scene_data.1, &curved.scene.data) =>
+            {
+                queue.write_buffer(&b.buffer, 0, data);
+                b.scene = curved.scene.clone();
+                b.pipeline = pipeline;
+                b.reduced = reduced;
+            }
+            b => {
                 let buffer = device.create_buffer_with_data(&BufferInitDescriptor {
                     label: Some("curved_space_uniform"),
                     contents: data,
                     usage: BufferUsages::UNIFORM | BufferUsages::COPY_DST,
                 });
-                let scene_data = device.create_buffer_with_data(&BufferInitDescriptor {
-                    label: Some("curved_space_scene_data"),
-                    contents: bytemuck::cast_slice(&curved.scene.data),
-                    usage: BufferUsages::STORAGE,
-                });
+                let scene_data = match b {
+                    Some(b) if Arc::ptr_eq(&b.scene_data.1, &curved.scene.data) => {
+                        b.scene_data.clone()
+                    }
+                    _ => (
+                        device.create_buffer_with_data(&BufferInitDescriptor {
+                            label: Some("curved_space_scene_data"),
+                            contents: bytemuck::cast_slice(&curved.scene.data),
+                            usage: BufferUsages::STORAGE,
+                        }),
+                        curved.scene.data.clone(),
+                    ),
+                };
                 let bind_group = device.create_bind_group(
                     "curved_space_bind_group",
                     &cache.get_bind_group_layout(&tracer.layout),
                     &BindGroupEntries::sequential((
                         buffer.as_entire_binding(),
-                        scene_data.as_entire_binding(),
+                        scene_data.0.as_entire_binding(),
                     )),
                 );
                 commands.entity(entity).insert(TracerBindings {
                     buffer,
                     bytes: data.len(),
                     scene: curved.scene.clone(),
+                    scene_data,
                     bind_group,
                     pipeline,
                     reduced,

@@ -7,6 +7,7 @@ use crate::components::{
     AUTO_BUDGET_SAMPLES, ActiveSpace, BaseScene, Quality, SceneObjects, TracerSettings,
     TracerStatus,
 };
+use crate::objects::{EntityObjects, add_entity_objects};
 use crate::scene::{CurvedScene, Object};
 use crate::space::Space;
 use crate::trace::{BudgetChoice, auto_budget};
@@ -45,43 +46,73 @@ pub fn build_scene(
     (scene, (!problems.is_empty()).then(|| problems.join("; ")))
 }
 
-/// Packs the scene for the GPU when the space, the settings or the objects changed.
+/// Packs the scene for the GPU when the space, the settings, the objects or the entities'
+/// objects changed. The part without the entities is kept between frames, and while only
+/// entities move the automatic budget and the scene data (meshes, textures) are kept too:
+/// a moved object costs its images' placing and the uniform's words.
 // A Bevy system takes its resources as arguments.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn upload_scene(
     active: Res<ActiveSpace>,
     settings: Res<TracerSettings>,
     objects: Res<SceneObjects>,
+    entities: Res<EntityObjects>,
     base: Res<BaseScene>,
     mut status: ResMut<TracerStatus>,
     prepared: Option<Res<PreparedScene>>,
-    mut last_choice: Local<Option<BudgetCache>>,
+    mut cache: Local<UploadCache>,
     mut commands: Commands,
 ) {
-    if prepared.is_some()
-        && !active.is_changed()
-        && !settings.is_changed()
-        && !objects.is_changed()
-        && !base.is_changed()
-    {
+    let static_changed = prepared.is_none()
+        || active.is_changed()
+        || settings.is_changed()
+        || objects.is_changed()
+        || base.is_changed()
+        || cache.fixed.is_none();
+    if !static_changed && !entities.is_changed() {
         return;
     }
     let space = &active.space;
-    let (scene, problems) = build_scene(space, &settings, &objects.0, base.for_space(&active));
+    if static_changed {
+        cache.fixed = Some(build_scene(
+            space,
+            &settings,
+            &objects.0,
+            base.for_space(&active),
+        ));
+    }
+    let cache = &mut *cache;
+    let Some((fixed, fixed_problems)) = cache.fixed.as_ref() else {
+        return;
+    };
+    let mut scene = fixed.clone();
+    let mut problems: Vec<String> = fixed_problems.iter().cloned().collect();
+    problems.extend(entities.problems.iter().cloned());
+    problems.extend(add_entity_objects(&mut scene, space, &entities.objects));
+    let problems = (!problems.is_empty()).then(|| problems.join("; "));
     // The automatic budget depends on the space, the scene and the quality only: a change
-    // of the resolution scale or a fixed budget's toggling does not sample rays again.
+    // of the resolution scale or a fixed budget's toggling does not sample rays again, and
+    // neither do entities that only moved.
     let auto = settings.max_crossings.is_none().then(|| {
         let quality = settings.quality;
-        match last_choice.as_ref() {
-            Some(c) if Arc::ptr_eq(&c.space, space) && c.scene == scene && c.quality == quality => {
+        let count = entities.objects.len();
+        let last = &mut cache.budget;
+        match last.as_ref() {
+            Some(c)
+                if Arc::ptr_eq(&c.space, space)
+                    && c.scene == *fixed
+                    && c.entities == count
+                    && c.quality == quality =>
+            {
                 c.choice
             }
             _ => {
                 let choice =
                     auto_budget(space, &scene, quality.miss_fraction(), AUTO_BUDGET_SAMPLES);
-                *last_choice = Some(BudgetCache {
+                *last = Some(BudgetCache {
                     space: space.clone(),
-                    scene: scene.clone(),
+                    scene: fixed.clone(),
+                    entities: count,
                     quality,
                     choice,
                 });
@@ -93,7 +124,12 @@ pub(crate) fn upload_scene(
         .max_crossings
         .or(auto.map(|a| a.budget))
         .unwrap_or(1);
-    match GpuScene::new(space, &scene, budget) {
+    let gpu = if entities.objects.is_empty() {
+        GpuScene::new(space, &scene, budget)
+    } else {
+        GpuScene::reusing(space, &scene, budget, prepared.as_deref().map(|p| &*p.0))
+    };
+    match gpu {
         Ok(gpu) => {
             commands.insert_resource(PreparedScene(Arc::new(gpu)));
             status.error = problems;
@@ -108,10 +144,20 @@ pub(crate) fn upload_scene(
     }
 }
 
+/// What [`upload_scene`] keeps between frames.
+#[derive(Default)]
+pub(crate) struct UploadCache {
+    /// The scene without the entities, and its problems.
+    fixed: Option<(CurvedScene, Option<String>)>,
+    /// The automatic budget last chosen and what for.
+    budget: Option<BudgetCache>,
+}
+
 /// The automatic budget last chosen and what it was chosen for.
 pub(crate) struct BudgetCache {
     space: Arc<Space>,
     scene: CurvedScene,
+    entities: usize,
     quality: Quality,
     choice: BudgetChoice,
 }

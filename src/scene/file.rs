@@ -16,11 +16,12 @@ use super::gltf;
 use super::texture::Texture;
 use crate::geometry::Geometry;
 use crate::scene::{
-    Ball, BallTexture, CurvedScene, Disc, Light, MeshInstance, Object, SceneParts, Shading,
-    SurfaceMaterial, Tube,
+    Ball, BallTexture, CurvedScene, Disc, Light, MeshInstance, MovingError, MovingObject, Object,
+    SceneParts, Shading, SurfaceMaterial, Tube,
 };
 use crate::space::Space;
 use crate::space::invariants::inradius;
+use crate::space::motion::Velocity;
 use glam::{DMat4, DVec3, DVec4};
 use serde::Deserialize;
 use std::path::Path;
@@ -59,13 +60,29 @@ pub struct SceneFile {
     /// The default scene's parts the file asks for (the cell's edges, the centre ball, the
     /// avatar).
     pub parts: SceneParts,
+    /// The objects with a `velocity`, as they start (not in `base`).
+    pub moving: Vec<MovingObject>,
 }
 
 impl SceneFile {
-    /// The whole scene: the base with the parts the file asks for.
+    /// The whole scene at time 0: the base with the moving objects at their start and the
+    /// parts the file asks for.
     #[must_use]
     pub fn scene(&self) -> CurvedScene {
-        self.base.adding_parts(&self.space, self.parts)
+        // At time 0 the moving objects are where the file placed them: placing cannot fail.
+        self.scene_at(0.0)
+            .unwrap_or_else(|_| self.base.adding_parts(&self.space, self.parts))
+    }
+
+    /// The whole scene at `time` seconds: each moving object where its motion has taken it
+    /// (through the faces, turned by the pairings crossed).
+    pub fn scene_at(&self, time: f64) -> Result<CurvedScene, MovingError> {
+        Ok(self.base_at(time)?.adding_parts(&self.space, self.parts))
+    }
+
+    /// The base scene (without the parts) at `time` seconds.
+    pub fn base_at(&self, time: f64) -> Result<CurvedScene, MovingError> {
+        self.base.with_moving_at(&self.space, &self.moving, time)
     }
 }
 
@@ -128,6 +145,8 @@ enum ObjectSpec {
     Ball {
         #[serde(flatten)]
         at: Place,
+        /// Inradii per second along the object's own axes at its start.
+        velocity: Option<[f64; 3]>,
         radius: f64,
         #[serde(default = "white")]
         colour: [f64; 3],
@@ -137,6 +156,8 @@ enum ObjectSpec {
     Globe {
         #[serde(flatten)]
         at: Place,
+        /// Inradii per second along the object's own axes at its start.
+        velocity: Option<[f64; 3]>,
         radius: f64,
         texture: String,
         /// Radians per second.
@@ -159,6 +180,8 @@ enum ObjectSpec {
     Disc {
         #[serde(flatten)]
         at: Place,
+        /// Inradii per second along the object's own axes at its start.
+        velocity: Option<[f64; 3]>,
         normal: [f64; 3],
         radius: f64,
         #[serde(default = "white")]
@@ -169,6 +192,8 @@ enum ObjectSpec {
     Mesh {
         #[serde(flatten)]
         at: Place,
+        /// Inradii per second along the object's own axes at its start.
+        velocity: Option<[f64; 3]>,
         path: String,
         /// The mesh's radius (farthest vertex from its origin) in inradii.
         size: f64,
@@ -291,10 +316,37 @@ pub fn parse_scene(text: &str, base: &Path, file: &str) -> Result<SceneFile, Sce
             l.intensity * g.s(r).powi(2),
         ));
     }
+    let mut moving = Vec::new();
     for object in &spec.objects {
         let at = |m: String| fail(Some(object.span()), m);
-        let o = build_object(&space, &mut scene, object.get_ref(), base).map_err(at)?;
-        scene.place(&space, o).map_err(|e| at(format!("{e}")))?;
+        let (o, frame) = build_object(&space, &mut scene, object.get_ref(), base).map_err(at)?;
+        match object.get_ref().velocity() {
+            None => {
+                scene.place(&space, o).map_err(|e| at(format!("{e}")))?;
+            }
+            Some(v) => {
+                let v = DVec3::from_array(v);
+                if !v.is_finite() {
+                    return Err(at(format!(
+                        "velocity must be finite inradii per second, got {:?}",
+                        v.to_array()
+                    )));
+                }
+                // Checked as a still object would be: inside the cell, not too large.
+                scene
+                    .clone()
+                    .place(&space, o)
+                    .map_err(|e| at(format!("{e}")))?;
+                moving.push(MovingObject {
+                    object: o,
+                    frame,
+                    velocity: Velocity {
+                        linear: v * r,
+                        angular: DVec3::ZERO,
+                    },
+                });
+            }
+        }
     }
     let start = match &spec.start {
         Some(s) => Some(start_frame(&space, s.get_ref()).map_err(|m| fail(Some(s.span()), m))?),
@@ -325,6 +377,7 @@ pub fn parse_scene(text: &str, base: &Path, file: &str) -> Result<SceneFile, Sce
             centre_ball: spec.centre_ball,
             avatar: spec.avatar,
         },
+        moving,
     })
 }
 
@@ -359,6 +412,7 @@ const KEYS: &[&str] = &[
     "path",
     "size",
     "intensity",
+    "velocity",
 ];
 
 /// An unknown-field message with the nearest known key, if one is close (`color` →
@@ -506,12 +560,26 @@ fn start_frame(space: &Space, start: &StartSpec) -> Result<DMat4, String> {
     }
 }
 
+impl ObjectSpec {
+    /// The velocity the object was given, if any.
+    fn velocity(&self) -> Option<[f64; 3]> {
+        match self {
+            ObjectSpec::Ball { velocity, .. }
+            | ObjectSpec::Globe { velocity, .. }
+            | ObjectSpec::Disc { velocity, .. }
+            | ObjectSpec::Mesh { velocity, .. } => *velocity,
+            ObjectSpec::Tube { .. } => None,
+        }
+    }
+}
+
+/// The object of a spec and its frame (a tube's: the translation to its midpoint).
 fn build_object(
     space: &Space,
     scene: &mut CurvedScene,
     spec: &ObjectSpec,
     base: &Path,
-) -> Result<Object, String> {
+) -> Result<(Object, DMat4), String> {
     let g = space.geometry;
     let r = inradius(space);
     Ok(match spec {
@@ -520,11 +588,16 @@ fn build_object(
             radius,
             colour: c,
             emission,
+            ..
         } => {
             let radius = positive("radius", *radius)? * r;
-            Object::Ball(
-                Ball::new(g, point_of(space, at)?, radius, colour(*c)?)
-                    .with_emission(colour(*emission)?),
+            let frame = frame_of(space, at)?;
+            (
+                Object::Ball(
+                    Ball::new(g, g.project_point(frame.w_axis), radius, colour(*c)?)
+                        .with_emission(colour(*emission)?),
+                ),
+                frame,
             )
         }
         ObjectSpec::Globe {
@@ -534,6 +607,7 @@ fn build_object(
             spin,
             colour: c,
             emission,
+            ..
         } => {
             let radius = positive("radius", *radius)? * r;
             let frame = frame_of(space, at)?;
@@ -544,14 +618,17 @@ fn build_object(
             if !spin.is_finite() {
                 return Err(format!("spin must be finite, got {spin}"));
             }
-            Object::Ball(
-                Ball::new(g, centre, radius, colour(*c)?)
-                    .with_emission(colour(*emission)?)
-                    .with_texture(BallTexture {
-                        texture: scene.textures.len() as u32 - 1,
-                        frame,
-                        spin: *spin,
-                    }),
+            (
+                Object::Ball(
+                    Ball::new(g, centre, radius, colour(*c)?)
+                        .with_emission(colour(*emission)?)
+                        .with_texture(BallTexture {
+                            texture: scene.textures.len() as u32 - 1,
+                            frame,
+                            spin: *spin,
+                        }),
+                ),
+                frame,
             )
         }
         ObjectSpec::Tube {
@@ -575,7 +652,8 @@ fn build_object(
             if g.distance(a, b) < 1e-9 {
                 return Err("the tube's ends are the same point".into());
             }
-            Object::Tube(Tube::new(g, a, b, radius, colour(*c)?).with_emission(colour(*emission)?))
+            let tube = Tube::new(g, a, b, radius, colour(*c)?).with_emission(colour(*emission)?);
+            (Object::Tube(tube), g.translation_to(a))
         }
         ObjectSpec::Disc {
             at,
@@ -583,14 +661,19 @@ fn build_object(
             radius,
             colour: c,
             emission,
+            ..
         } => {
             let radius = positive("radius", *radius)? * r;
-            let centre = point_of(space, at)?;
+            let frame = frame_of(space, at)?;
+            let centre = g.project_point(frame.w_axis);
             let n = g
                 .tangent_from_chart(centre, DVec3::from_array(*normal))
                 .map_err(|e| format!("normal: {e}"))?;
-            Object::Disc(
-                Disc::new(g, centre, n, radius, colour(*c)?).with_emission(colour(*emission)?),
+            (
+                Object::Disc(
+                    Disc::new(g, centre, n, radius, colour(*c)?).with_emission(colour(*emission)?),
+                ),
+                frame,
             )
         }
         ObjectSpec::Mesh {
@@ -599,6 +682,7 @@ fn build_object(
             size,
             colour: c,
             emission,
+            ..
         } => {
             let size = positive("size", *size)? * r;
             let frame = frame_of(space, at)?;
@@ -632,7 +716,7 @@ fn build_object(
                 });
                 instance.material = Some(scene.materials.len() as u32 - 1);
             }
-            Object::Mesh(instance)
+            (Object::Mesh(instance), frame)
         }
     })
 }

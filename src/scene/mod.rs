@@ -16,6 +16,7 @@ pub mod flight;
 pub mod gltf;
 pub mod mesh;
 pub mod model;
+pub mod moving;
 pub mod object;
 pub mod shading;
 pub mod texture;
@@ -24,7 +25,8 @@ pub use culling::FaceCulling;
 pub use mesh::Model;
 pub use model::{
     Avatar, CurvedScene, MAX_AVATAR_IMAGES, MAX_IMAGES, PlaceError, SceneParts, SegmentHit,
-    avatar_instances, avatar_size, palette,
+    TracedModel, avatar_instances, avatar_size, palette,
 };
+pub use moving::{MovingError, MovingObject};
 pub use object::{Ball, BallTexture, Disc, Hit, MeshInstance, Object, Tube};
 pub use shading::{DEFAULT_CUTOFF_WEIGHT, Light, Shading, SurfaceMaterial};

@@ -236,7 +236,7 @@ impl CurvedScene {
         }
         let material = m
             .material
-            .unwrap_or(tri.material)
+            .unwrap_or(tri.material.saturating_add(m.material_base))
             .min(self.materials.len().saturating_sub(1) as u32);
         let mat = self
             .materials
@@ -567,4 +567,64 @@ impl CurvedScene {
 #[must_use]
 pub fn avatar_size(inradius: f64) -> f64 {
     0.3 * inradius
+}
+
+/// A mesh ready to be placed in any scene of one geometry: its hierarchy (built once, at a
+/// size), its materials and textures. Scenes share it (an [`Arc`]): adding it to a scene
+/// ([`CurvedScene::add_traced`]) appends its materials and textures, not its triangles.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TracedModel {
+    /// The geometry its chart triangles are for.
+    pub geometry: Geometry,
+    /// The triangles and their hierarchy; material indices count from 0 in `materials`.
+    pub mesh: Arc<Mesh>,
+    /// Its materials; their texture indices count from 0 in `textures`.
+    pub materials: Vec<SurfaceMaterial>,
+    /// Its textures.
+    pub textures: Vec<Arc<Texture>>,
+}
+
+impl TracedModel {
+    /// A model scaled so that its farthest vertex from its origin is `size` (geodesic) away
+    /// from the frame's origin, as scene files' `size` does.
+    pub fn new(geometry: Geometry, model: &Model, size: f64) -> Result<Self, mesh::MeshError> {
+        let model_radius = model
+            .source
+            .positions
+            .iter()
+            .map(|p| p.length())
+            .fold(0.0, f64::max);
+        if model.source.indices.is_empty() {
+            return Err(mesh::MeshError::Empty);
+        }
+        if !(model_radius > 0.0 && model_radius.is_finite()) {
+            return Err(mesh::MeshError::Scale(model_radius));
+        }
+        let mesh = model.source.place(geometry, size / model_radius)?;
+        Ok(Self {
+            geometry,
+            mesh: Arc::new(mesh),
+            materials: model.materials.clone(),
+            textures: model.textures.iter().cloned().map(Arc::new).collect(),
+        })
+    }
+}
+
+impl CurvedScene {
+    /// Adds a shared model's mesh (the same [`Arc`], no copy of its triangles), its
+    /// materials and its textures; returns the mesh's index and the material base for its
+    /// [`MeshInstance::material_base`]. Each call appends: add a model once per scene and
+    /// give every instance of it the same pair.
+    pub fn add_traced(&mut self, model: &TracedModel) -> (u32, u32) {
+        let textures = self.textures.len() as u32;
+        let base = self.materials.len() as u32;
+        self.materials
+            .extend(model.materials.iter().map(|m| SurfaceMaterial {
+                texture: m.texture.map(|t| t + textures),
+                ..*m
+            }));
+        self.textures.extend(model.textures.iter().cloned());
+        self.meshes.push(model.mesh.clone());
+        (self.meshes.len() as u32 - 1, base)
+    }
 }

@@ -242,6 +242,10 @@ pub struct MeshInstance {
     pub radius: f64,
     /// A material used instead of the mesh's own (index into [`CurvedScene::materials`](crate::scene::CurvedScene::materials)).
     pub material: Option<u32>,
+    /// Added to the mesh's own material indices: a mesh shared between scenes
+    /// ([`crate::scene::TracedModel`]) keeps indices from 0, and each scene appends its
+    /// materials where it has room (0 for meshes added by [`crate::scene::CurvedScene::add_model`]).
+    pub material_base: u32,
 }
 
 impl MeshInstance {
@@ -254,6 +258,7 @@ impl MeshInstance {
             inverse: geometry.inverse(frame),
             radius,
             material: None,
+            material_base: 0,
         }
     }
 
@@ -319,6 +324,7 @@ impl Object {
             }
             Object::Mesh(i) => Object::Mesh(MeshInstance {
                 material: i.material,
+                material_base: i.material_base,
                 ..MeshInstance::new(geometry, i.mesh, m * i.frame, i.radius)
             }),
         }
@@ -366,6 +372,7 @@ impl Object {
             (Object::Mesh(a), Object::Mesh(b)) => {
                 a.mesh == b.mesh
                     && a.material == b.material
+                    && a.material_base == b.material_base
                     && crate::geometry::max_abs_entry(&(a.frame - b.frame).to_cols_array())
                         <= tolerance
             }

@@ -10,6 +10,7 @@ pub mod group;
 pub mod homology;
 pub mod invariants;
 pub mod library;
+pub mod motion;
 mod validate;
 pub mod walk;
 mod wrap;

@@ -578,6 +578,7 @@ fn compare_scene(
                 start: None,
                 parts: None,
                 fov: None,
+                moving: Vec::new(),
             },
             time,
             ..OffscreenRender::new(
@@ -736,6 +737,7 @@ fn an_offscreen_render_of_a_scene_too_large_for_the_gpu_says_why() {
             start: None,
             parts: None,
             fov: None,
+            moving: Vec::new(),
         },
         ..OffscreenRender::new(
             ActiveSpace::new("torus", space.clone()),

@@ -388,6 +388,7 @@ fn the_fog_in_use_is_the_setting_then_the_scene_files_then_the_default() {
         start: None,
         parts: None,
         fov: None,
+        moving: Vec::new(),
     });
     app.update();
     assert_eq!(status_fog(&app), 1.234, "the base scene's own fog");

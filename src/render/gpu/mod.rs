@@ -16,6 +16,7 @@ use crate::space::Space;
 use crate::view::{ViewKind, ViewLayout};
 use bevy::shader::ShaderDefVal;
 use glam::{DMat4, DVec4};
+use std::sync::Arc;
 
 mod key;
 
@@ -138,10 +139,89 @@ pub struct GpuScene {
     /// The words of `SpaceUniform` after `view`.
     pub words: Vec<u32>,
     /// The scene data buffer (`scene_data`): hierarchy nodes, triangles, materials, the
-    /// texture table and texels. At least one vec4, so it can always be bound.
-    pub data: Vec<u32>,
+    /// texture table and texels. At least one vec4, so it can always be bound. Shared
+    /// with the scene it was packed for when only objects moved ([`GpuScene::reusing`]):
+    /// the GPU keeps its buffer then.
+    pub data: Arc<Vec<u32>>,
     /// The player's ship, if the scene draws it.
     pub avatar: Option<GpuAvatar>,
+    /// What `data` was packed from and each mesh's root node.
+    sources: DataSources,
+}
+
+/// What the scene data buffer was packed from: the meshes and textures (by identity) and
+/// the materials (by value), and the root node of each mesh.
+#[derive(Clone, Debug, Default, PartialEq)]
+struct DataSources {
+    meshes: Vec<usize>,
+    textures: Vec<usize>,
+    materials: Vec<crate::scene::SurfaceMaterial>,
+    roots: Vec<u32>,
+}
+
+impl DataSources {
+    fn of(scene: &CurvedScene, roots: Vec<u32>) -> Self {
+        Self {
+            meshes: scene
+                .meshes
+                .iter()
+                .map(|m| Arc::as_ptr(m) as usize)
+                .collect(),
+            textures: scene
+                .textures
+                .iter()
+                .map(|t| Arc::as_ptr(t) as usize)
+                .collect(),
+            materials: scene.materials.clone(),
+            roots,
+        }
+    }
+
+    /// Whether `scene` would pack to the same data.
+    fn same_as(&self, scene: &CurvedScene) -> bool {
+        self.meshes.len() == scene.meshes.len()
+            && self.textures.len() == scene.textures.len()
+            && self.materials == scene.materials
+            && scene
+                .meshes
+                .iter()
+                .zip(&self.meshes)
+                .all(|(m, &p)| Arc::as_ptr(m) as usize == p)
+            && scene
+                .textures
+                .iter()
+                .zip(&self.textures)
+                .all(|(t, &p)| Arc::as_ptr(t) as usize == p)
+    }
+}
+
+/// The object lists of each kind as the GPU holds them: indices into the scene's objects,
+/// balls, tubes, globes, discs, mesh instances.
+fn kind_lists(scene: &CurvedScene, padded: bool) -> [Vec<usize>; 5] {
+    let mut lists: [Vec<usize>; 5] = Default::default();
+    for (i, o) in scene.objects.iter().enumerate() {
+        lists[gpu_kind(o) as usize].push(i);
+    }
+    if padded {
+        for list in &mut lists {
+            if let Some(&last) = list.last() {
+                list.resize(padded_count(list.len()), last);
+            }
+        }
+    }
+    lists
+}
+
+/// The count a padded list of `n` objects is given: the next power of two, at least 4.
+/// The shader is specialised on the counts, so a scene whose moving objects gain and lose
+/// images near the faces keeps its compiled pipeline while its counts stay within one step.
+#[must_use]
+pub fn padded_count(n: usize) -> usize {
+    if n == 0 {
+        0
+    } else {
+        n.next_power_of_two().max(4)
+    }
 }
 
 /// `x` rounded to an f32 no larger (`down`) or no smaller than it: node boxes stay
@@ -234,6 +314,30 @@ impl GpuScene {
         scene: &CurvedScene,
         max_crossings: u32,
     ) -> Result<Self, GpuSceneError> {
+        Self::build(space, scene, max_crossings, None, false)
+    }
+
+    /// Packs a scene whose objects move (the plugin's entities): the scene data of
+    /// `previous` is shared when the meshes, materials and textures are the same ones
+    /// (moving an object rewrites its instance, not its mesh), and each object list is
+    /// padded to [`padded_count`] with copies of its last object (never the nearest hit:
+    /// the original comes first), so that the shader's counts change rarely.
+    pub fn reusing(
+        space: &Space,
+        scene: &CurvedScene,
+        max_crossings: u32,
+        previous: Option<&GpuScene>,
+    ) -> Result<Self, GpuSceneError> {
+        Self::build(space, scene, max_crossings, previous, true)
+    }
+
+    fn build(
+        space: &Space,
+        scene: &CurvedScene,
+        max_crossings: u32,
+        previous: Option<&GpuScene>,
+        padded: bool,
+    ) -> Result<Self, GpuSceneError> {
         if max_crossings == 0 {
             return Err(GpuSceneError::NoCrossings(max_crossings));
         }
@@ -241,8 +345,12 @@ impl GpuScene {
             return Err(GpuSceneError::BudgetTooLarge(max_crossings));
         }
         let g = space.geometry;
+        let lists = kind_lists(scene, padded);
         let of_kind = |k: GpuKind| -> Vec<&Object> {
-            scene.objects.iter().filter(|o| gpu_kind(o) == k).collect()
+            lists[k as usize]
+                .iter()
+                .map(|&i| &scene.objects[i])
+                .collect()
         };
         let (balls, tubes, globes, discs, instances) = (
             of_kind(GpuKind::Ball),
@@ -251,7 +359,14 @@ impl GpuScene {
             of_kind(GpuKind::Disc),
             of_kind(GpuKind::Instance),
         );
-        let (data, offsets, roots) = pack_scene_data(scene);
+        let (data, offsets, sources) = match previous {
+            Some(p) if p.sources.same_as(scene) => (p.data.clone(), p.offsets(), p.sources.clone()),
+            _ => {
+                let (data, offsets, roots) = pack_scene_data(scene);
+                (Arc::new(data), offsets, DataSources::of(scene, roots))
+            }
+        };
+        let roots = &sources.roots;
         if 4 * data.len() > MAX_SCENE_DATA_BYTES {
             return Err(GpuSceneError::DataTooLarge {
                 bytes: 4 * data.len(),
@@ -347,12 +462,12 @@ impl GpuScene {
             &mut out,
             g,
             [&balls, &tubes, &globes, &discs, &instances],
-            &roots,
+            roots,
         );
         if key.culling
             && let Some(culling) = &culling
         {
-            pack_culling(&mut out, scene, culling, space.faces.len());
+            pack_culling(&mut out, [&lists[0], &lists[1]], culling, space.faces.len());
         }
         let words = out.words;
         debug_assert_eq!(words.len() * 4 + VIEW_WORDS * 4, bytes);
@@ -367,13 +482,26 @@ impl GpuScene {
             words,
             data,
             avatar,
+            sources,
         })
+    }
+
+    /// The offsets of the scene data's parts (triangles, materials, texture table,
+    /// texels), as the uniform holds them after the shading.
+    fn offsets(&self) -> [u32; 4] {
+        let at = size_of::<GpuShading>() / 4;
+        [0, 1, 2, 3].map(|k| self.words[at + k])
     }
 }
 
 /// Appends the culling's per-face thresholds (rounded up to f32, four to a `vec4`) and the
 /// masks of the balls, then the tubes (a `u32` each, four to a `vec4`), in the GPU's order.
-fn pack_culling(out: &mut UniformWriter, scene: &CurvedScene, culling: &FaceCulling, faces: usize) {
+fn pack_culling(
+    out: &mut UniformWriter,
+    lists: [&[usize]; 2],
+    culling: &FaceCulling,
+    faces: usize,
+) {
     let mut thresholds: Vec<u32> = (0..4 * faces.div_ceil(4))
         .map(|f| {
             culling
@@ -383,16 +511,8 @@ fn pack_culling(out: &mut UniformWriter, scene: &CurvedScene, culling: &FaceCull
         })
         .collect();
     out.words.append(&mut thresholds);
-    let of_kind = |kind: GpuKind| -> Vec<u32> {
-        scene
-            .objects
-            .iter()
-            .enumerate()
-            .filter(|(_, o)| gpu_kind(o) == kind)
-            .map(|(i, _)| culling.masks[i])
-            .collect()
-    };
-    let (balls, tubes) = (of_kind(GpuKind::Ball), of_kind(GpuKind::Tube));
+    let of_kind = |list: &[usize]| -> Vec<u32> { list.iter().map(|&i| culling.masks[i]).collect() };
+    let (balls, tubes) = (of_kind(lists[0]), of_kind(lists[1]));
     let mut masks: Vec<u32> = balls.iter().chain(&tubes).copied().collect();
     masks.resize(4 * masks.len().div_ceil(4), 0);
     out.words.append(&mut masks);
@@ -403,9 +523,17 @@ fn pack_culling(out: &mut UniformWriter, scene: &CurvedScene, culling: &FaceCull
     // leaves by is visited alone.
     let culled = faces.min(MAX_CULLED_FACES);
     let buckets = cull_buckets(faces);
-    let bucketed = |masks: &[u32]| -> Vec<Vec<u32>> {
+    // A padding copy of an object (the same scene index again) goes in its original's
+    // bucket, after it: the original is tested first and stays the nearest hit.
+    let bucketed = |masks: &[u32], objects: &[usize]| -> Vec<Vec<u32>> {
         let mut lists: Vec<Vec<u32>> = vec![Vec::new(); buckets];
+        let mut first: Option<usize> = None;
         for (i, &m) in masks.iter().enumerate() {
+            if i > 0 && objects[i] == objects[i - 1] {
+                let b = first.unwrap_or(buckets - 1);
+                lists[b].push(i as u32);
+                continue;
+            }
             let bits: Vec<usize> = (0..culled).filter(|&f| m & (1 << f) != 0).collect();
             let b = bits
                 .iter()
@@ -414,10 +542,11 @@ fn pack_culling(out: &mut UniformWriter, scene: &CurvedScene, culling: &FaceCull
                 .min_by_key(|&pair| lists[pair].len())
                 .unwrap_or(buckets - 1);
             lists[b].push(i as u32);
+            first = Some(b);
         }
         lists
     };
-    let lists = [bucketed(&balls), bucketed(&tubes)];
+    let lists = [bucketed(&balls, lists[0]), bucketed(&tubes, lists[1])];
     let mut words: Vec<u32> = Vec::new();
     let mut at = 2 * (buckets as u32 + 1);
     for kind in &lists {
@@ -503,7 +632,7 @@ fn pack_objects(out: &mut UniformWriter, g: Geometry, kinds: [&[&Object]; 5], ro
                 info: [
                     roots.get(m.mesh as usize).copied().unwrap_or(0),
                     m.material.unwrap_or(u32::MAX),
-                    0,
+                    m.material_base,
                     0,
                 ],
             });
@@ -526,6 +655,7 @@ impl GpuScene {
             words,
             data: self.data.clone(),
             avatar: self.avatar,
+            sources: self.sources.clone(),
         }
     }
 
@@ -595,6 +725,7 @@ impl GpuScene {
             words,
             data: self.data.clone(),
             avatar: None,
+            sources: self.sources.clone(),
         })
     }
 }

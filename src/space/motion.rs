@@ -1,0 +1,235 @@
+//! Things that move through the faces: a frame with a constant velocity in its own axes,
+//! stepped along geodesics and wrapped into the cell like the player ([`fly`]), and the
+//! shortest geodesic between two points of the manifold, through any faces ([`Sightlines`]).
+//!
+//! One step moves the frame by `F ← F · T(v dt) · R(ω dt)`: a translation along its own
+//! direction `v` (a geodesic: steps along the same local direction compose exactly), then
+//! a turn about its own axis `ω`. After every step the frame is wrapped into the cell by
+//! [`wrap_into_cell`], so its numbers stay those of a point in the cell however long it
+//! flies (a frame carried along in the cover would lose digits as `cosh d` grows in H³).
+//! The plugin's fixed-step systems and a scene file's `velocity` at a time `T` use the same
+//! steps of [`MOTION_STEP`], so they agree.
+
+use super::invariants::circumradius;
+use super::{Holonomy, Space, wrap_into_cell};
+use crate::geometry::{Geometry, translate_local};
+use glam::{DMat4, DVec3, DVec4};
+
+/// The length of one motion step in seconds: Bevy's default fixed time step (64 Hz).
+pub const MOTION_STEP: f64 = 1.0 / 64.0;
+
+/// The most steps [`fly`] takes (about 43 hours of motion at [`MOTION_STEP`]).
+pub const MAX_MOTION_STEPS: u64 = 10_000_000;
+
+/// A velocity in a frame's own axes (right, up, back).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Velocity {
+    /// Distance per second along the frame's own axes (geodesic units).
+    pub linear: DVec3,
+    /// Radians per second about the frame's own axes (the turn's axis times its rate).
+    pub angular: DVec3,
+}
+
+impl Velocity {
+    /// Whether it moves or turns at all.
+    #[must_use]
+    pub fn is_zero(&self) -> bool {
+        self.linear == DVec3::ZERO && self.angular == DVec3::ZERO
+    }
+
+    /// Whether every component is a finite number.
+    #[must_use]
+    pub fn is_finite(&self) -> bool {
+        self.linear.is_finite() && self.angular.is_finite()
+    }
+
+    /// The frame after `dt` seconds of this velocity: translated along its own direction,
+    /// then turned about its own axis. A non-finite velocity leaves the frame where it is.
+    #[must_use]
+    pub fn step(&self, geometry: Geometry, frame: DMat4, dt: f64) -> DMat4 {
+        if !self.is_finite() || !dt.is_finite() {
+            return frame;
+        }
+        let mut f = translate_local(geometry, frame, self.linear * dt);
+        let rate = self.angular.length();
+        if rate > 0.0 {
+            f *= geometry.rotation(self.angular / rate, rate * dt);
+        }
+        f
+    }
+}
+
+/// Why a motion cannot be followed.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum MotionError {
+    /// The time or a velocity component is not a finite number.
+    #[error("the time and the velocity must be finite numbers")]
+    NotFinite,
+    /// The time is negative.
+    #[error("the time must be 0 or more, got {0}")]
+    NegativeTime(f64),
+    /// Following the motion would take more than [`MAX_MOTION_STEPS`] steps.
+    #[error(
+        "{steps} motion steps of {MOTION_STEP} s are needed for that time; at most {MAX_MOTION_STEPS} are taken"
+    )]
+    TooLong {
+        /// The steps that would be needed.
+        steps: u64,
+    },
+}
+
+/// The frame `frame` (in the cell) after `time` seconds at `velocity`: stepped by
+/// [`MOTION_STEP`] (the last step shorter) and wrapped into the cell after each step with
+/// margin `margin`, every crossing recorded in `holonomy`.
+pub fn fly(
+    space: &Space,
+    frame: DMat4,
+    velocity: &Velocity,
+    time: f64,
+    margin: f64,
+    holonomy: &mut Holonomy,
+) -> Result<DMat4, MotionError> {
+    if !(time.is_finite() && velocity.is_finite()) {
+        return Err(MotionError::NotFinite);
+    }
+    if time < 0.0 {
+        return Err(MotionError::NegativeTime(time));
+    }
+    if velocity.is_zero() || time == 0.0 {
+        return Ok(frame);
+    }
+    let steps = (time / MOTION_STEP).ceil();
+    if steps > MAX_MOTION_STEPS as f64 {
+        return Err(MotionError::TooLong {
+            steps: steps as u64,
+        });
+    }
+    let whole = (time / MOTION_STEP).floor() as u64;
+    let rest = time - whole as f64 * MOTION_STEP;
+    let g = space.geometry;
+    let mut f = frame;
+    let mut advance = |f: DMat4, dt: f64| {
+        let (wrapped, crossed) = wrap_into_cell(space, velocity.step(g, f, dt), margin);
+        for face in crossed {
+            holonomy.record(face, space.faces[face].pairing);
+        }
+        wrapped
+    };
+    for _ in 0..whole {
+        f = advance(f, MOTION_STEP);
+    }
+    if rest > 0.0 {
+        f = advance(f, rest);
+    }
+    Ok(f)
+}
+
+/// The shortest geodesic from one point of the manifold to another, through any faces.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sightline {
+    /// Its length.
+    pub distance: f64,
+    /// The unit direction it leaves in, in the axes of the frame it starts from (right,
+    /// up, back); zero where the two points are the same.
+    pub direction: DVec3,
+    /// The deck transformation `h` with the target seen at `h · target`: the copy of the
+    /// target the geodesic runs to.
+    pub element: DMat4,
+}
+
+/// The shortest geodesics between points of a space's manifold: a best-first search over
+/// the copies of the cell near the starting point.
+///
+/// The geodesic from `a` to the nearest copy `h·b` of `b` crosses a chain of face-adjacent
+/// copies of the cell, each within `d(a, h·b) + R` of `a` (`R` the cell's circumradius about
+/// its centre). The search visits copies `g·D` (neighbours by the face pairings) in order of
+/// `d(a, g·c)` and stops once that exceeds the best distance found plus `R`: every copy the
+/// chain needs is visited. In H³ that is a few hundred copies for a cell like
+/// Seifert–Weber's, in microseconds.
+#[derive(Clone, Debug)]
+pub struct Sightlines {
+    geometry: Geometry,
+    centre: DVec4,
+    radius: f64,
+    pairings: Vec<DMat4>,
+}
+
+/// The most copies of the cell one [`Sightlines::between`] visits (a guard: far more than
+/// any seed space or census manifold needs).
+pub const MAX_SIGHTLINE_COPIES: usize = 200_000;
+
+/// A cell copy's key: its centre's coordinates, rounded.
+fn copy_key(p: DVec4) -> [i64; 4] {
+    (p * 1e7).round().to_array().map(|x| x as i64)
+}
+
+impl Sightlines {
+    /// The search for `space`.
+    #[must_use]
+    pub fn new(space: &Space) -> Self {
+        Self {
+            geometry: space.geometry,
+            centre: space.centre(),
+            radius: circumradius(space),
+            pairings: space.faces.iter().map(|f| f.pairing).collect(),
+        }
+    }
+
+    /// The shortest geodesic from the origin of `from` (a frame in the cell) to `to` (a
+    /// point in the cell).
+    #[must_use]
+    pub fn between(&self, from: DMat4, to: DVec4) -> Sightline {
+        use std::cmp::Reverse;
+        use std::collections::{BinaryHeap, HashSet};
+        let g = self.geometry;
+        let a = g.project_point(from.w_axis);
+        let to = g.project_point(to);
+        // Ordered by the distance from `a` to the copy's centre (f64 bits order like the
+        // numbers for non-negative values).
+        let mut queue = BinaryHeap::new();
+        let mut seen = HashSet::new();
+        seen.insert(copy_key(self.centre));
+        queue.push((Reverse(g.distance(a, self.centre).to_bits()), 0usize));
+        let mut elements = vec![DMat4::IDENTITY];
+        let (mut best, mut element) = (g.distance(a, to), DMat4::IDENTITY);
+        while let Some((Reverse(bits), i)) = queue.pop() {
+            if f64::from_bits(bits) > best + self.radius + 1e-9 {
+                break;
+            }
+            let h = elements[i];
+            let d = g.distance(a, g.project_point(h * to));
+            if d < best {
+                (best, element) = (d, h);
+            }
+            if elements.len() >= MAX_SIGHTLINE_COPIES {
+                continue;
+            }
+            for pairing in &self.pairings {
+                let next = h * *pairing;
+                let c = g.project_point(next * self.centre);
+                if seen.insert(copy_key(c)) {
+                    elements.push(next);
+                    queue.push((Reverse(g.distance(a, c).to_bits()), elements.len() - 1));
+                }
+            }
+        }
+        let direction = if best > 1e-12 {
+            let v = g.tangent_towards(a, g.project_point(element * to));
+            // The frame's columns are orthonormal in the form: a tangent's coordinates in
+            // them are its forms with the columns.
+            DVec3::new(
+                g.form(v, from.x_axis),
+                g.form(v, from.y_axis),
+                g.form(v, from.z_axis),
+            )
+            .normalize_or_zero()
+        } else {
+            DVec3::ZERO
+        };
+        Sightline {
+            distance: best,
+            direction,
+            element,
+        }
+    }
+}
