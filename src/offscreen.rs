@@ -49,6 +49,9 @@ pub struct OffscreenRender {
     pub base: BaseScene,
     /// The scene's clock in seconds (the globes' spin).
     pub time: f64,
+    /// Entities to spawn for the picture ([`crate::objects`]): objects at their frames,
+    /// drawn the way a game's are (padded lists, shared scene data).
+    pub entities: Vec<(crate::objects::CurvedObject, DMat4)>,
 }
 
 impl OffscreenRender {
@@ -76,6 +79,7 @@ impl OffscreenRender {
             stereo: StereoSettings::default(),
             base: BaseScene::default(),
             time: 0.0,
+            entities: Vec::new(),
         }
     }
 }
@@ -202,6 +206,15 @@ impl OffscreenRenderer {
         world.insert_resource(request.base.clone());
         world.insert_resource(SceneObjects(request.objects.clone()));
         world.insert_resource(request.stereo);
+        let spawned: Vec<Entity> = request
+            .entities
+            .iter()
+            .map(|(object, frame)| {
+                world
+                    .spawn((object.clone(), crate::objects::CurvedTransform(*frame)))
+                    .id()
+            })
+            .collect();
         // A changed space puts every player back at its start view in the next update:
         // let that happen before the camera exists, so the requested frame is kept.
         self.app.update();
@@ -224,6 +237,9 @@ impl OffscreenRenderer {
             .id();
         let result = self.capture(&handle);
         self.app.world_mut().despawn(camera);
+        for e in spawned {
+            self.app.world_mut().despawn(e);
+        }
         self.app
             .world_mut()
             .resource_mut::<Assets<Image>>()

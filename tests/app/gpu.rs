@@ -755,3 +755,143 @@ fn an_offscreen_render_of_a_scene_too_large_for_the_gpu_says_why() {
     }
     assert!(started.elapsed().as_secs() < 30);
 }
+
+/// Entities ([`bevy_curved_spaces::objects`]) as a game spawns them: balls, a tube, a disc and
+/// two meshes (shared traced models, so material bases and padded lists are exercised) in
+/// Seifert–Weber with its edges (culled lists) and in the torus, one ball straddling a face.
+/// The GPU draws them as the CPU reference draws the same objects.
+#[test]
+fn entities_render_alike_on_gpu_and_cpu() {
+    let _gpu = gpu_lock();
+    use bevy_curved_spaces::objects::{
+        CurvedObject, CurvedTransform, ReadyObject, ReadyShape, add_entity_objects,
+    };
+    use bevy_curved_spaces::scene::mesh::cube_source;
+    use bevy_curved_spaces::scene::{Model, SurfaceMaterial, TracedModel};
+    use glam::DVec3;
+    use std::sync::Arc;
+    let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
+    for id in ["seifert-weber", "torus"] {
+        let space = bevy_curved_spaces::space::seed_space(id).expect("builds");
+        let g = space.geometry();
+        let r = bevy_curved_spaces::space::invariants::inradius(&space);
+        let model = |colour: DVec3| {
+            Arc::new(
+                TracedModel::new(
+                    g,
+                    &Model {
+                        source: cube_source(0.5, 0),
+                        materials: vec![SurfaceMaterial {
+                            colour,
+                            ..SurfaceMaterial::default()
+                        }],
+                        textures: Vec::new(),
+                    },
+                    0.2 * r,
+                )
+                .expect("cube"),
+            )
+        };
+        let (green, blue) = (
+            model(DVec3::new(0.2, 0.9, 0.3)),
+            model(DVec3::new(0.2, 0.3, 0.9)),
+        );
+        let at = |x: f64, y: f64, z: f64| {
+            CurvedTransform::from_geodesic(&space, DVec3::new(x, y, z) * r).0
+        };
+        let objects: Vec<(CurvedObject, glam::DMat4)> = vec![
+            (
+                CurvedObject::ball(0.15 * r, DVec3::new(0.9, 0.3, 0.2)),
+                at(0.3, 0.1, -0.6),
+            ),
+            // Over a face: drawn through its images too.
+            (
+                CurvedObject::ball(0.3 * r, DVec3::new(0.9, 0.8, 0.2)),
+                at(0.0, 0.3, -0.9),
+            ),
+            (
+                CurvedObject::tube(0.6 * r, 0.05 * r, DVec3::new(0.8, 0.2, 0.8)),
+                at(-0.4, 0.0, -0.5),
+            ),
+            (
+                CurvedObject::disc(0.2 * r, DVec3::new(0.3, 0.8, 0.8)),
+                at(0.0, -0.4, -0.5),
+            ),
+            (CurvedObject::traced(green.clone()), at(0.4, -0.3, -0.4)),
+            (CurvedObject::traced(blue.clone()), at(-0.4, 0.35, -0.45)),
+            (CurvedObject::traced(green), at(-0.2, -0.35, -0.7)),
+        ];
+        let parts = SceneParts {
+            edges: true,
+            centre_ball: false,
+            avatar: false,
+        };
+        let mut scene =
+            CurvedScene::with_parts(&space, Shading::default_fog_distance(&space), parts);
+        let ready: Vec<ReadyObject> = objects
+            .iter()
+            .enumerate()
+            .map(|(i, (o, frame))| ReadyObject {
+                entity: bevy::prelude::Entity::from_raw_u32(i as u32 + 1).unwrap(),
+                shape: match &o.shape {
+                    bevy_curved_spaces::objects::CurvedShape::Ball { radius } => {
+                        ReadyShape::Ball(*radius)
+                    }
+                    bevy_curved_spaces::objects::CurvedShape::Tube { length, radius } => {
+                        ReadyShape::Tube(*length, *radius)
+                    }
+                    bevy_curved_spaces::objects::CurvedShape::Disc { radius } => {
+                        ReadyShape::Disc(*radius)
+                    }
+                    bevy_curved_spaces::objects::CurvedShape::Traced(m) => {
+                        ReadyShape::Mesh(m.clone())
+                    }
+                    other => panic!("{other:?}"),
+                },
+                frame: *frame,
+                colour: o.colour,
+                emission: o.emission,
+            })
+            .collect();
+        let problems = add_entity_objects(&mut scene, &space, &ready);
+        assert!(problems.is_empty(), "{id}: {problems:?}");
+        let camera = TraceCamera::default_for(&space);
+        let cpu = render(
+            &space,
+            &scene,
+            &camera,
+            &RenderSettings {
+                width: WIDTH,
+                height: HEIGHT,
+                max_crossings: 16,
+            },
+        );
+        let gpu = renderer
+            .render(&OffscreenRender {
+                parts,
+                entities: objects,
+                ..OffscreenRender::new(
+                    ActiveSpace::new(id, space.clone()),
+                    camera,
+                    (WIDTH, HEIGHT),
+                    16,
+                )
+            })
+            .expect("renders");
+        let (c, _) = compare(&gpu, &cpu, TOLERANCE);
+        println!(
+            "{id} with entities: differing {:.3} %, mean error {:.3}/255",
+            100.0 * c.differing,
+            c.mean_error
+        );
+        let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("gpu-vs-cpu");
+        let _ = std::fs::create_dir_all(&out);
+        let _ = gpu.save(out.join(format!("entities-{id}-gpu.png")));
+        let _ = cpu.save(out.join(format!("entities-{id}-cpu.png")));
+        assert!(
+            c.differing <= MAX_DIFFERING,
+            "{id}: {:.3} % differ",
+            100.0 * c.differing
+        );
+    }
+}

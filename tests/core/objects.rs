@@ -486,3 +486,86 @@ fn a_scene_files_moving_object_is_where_its_motion_took_it() {
         max_diff(transform.0, expected)
     );
 }
+
+/// A Bevy mesh asset is drawn once it is loaded and again, anew, when the asset changes (hot
+/// reloading); a mesh the tracer cannot take is reported by its entity.
+#[test]
+fn bevy_mesh_assets_are_traced_when_loaded_and_when_changed() {
+    use bevy::asset::AssetPlugin;
+    use bevy::mesh::Mesh;
+    use bevy_curved_spaces::objects::ReadyShape;
+    let mut app = App::new();
+    app.add_plugins((MinimalPlugins, AssetPlugin::default()))
+        .init_asset::<Mesh>()
+        .init_asset::<Image>()
+        .add_plugins(CurvedSpacesPlugin {
+            space: "torus".into(),
+            controls: false,
+            ..default()
+        });
+    app.finish();
+    app.update();
+    let active = app.world().resource::<ActiveSpace>().clone();
+    let r = active.inradius;
+    let cube = bevy_curved_spaces::scene::Model {
+        source: cube_source(0.5, 0),
+        materials: vec![SurfaceMaterial::default()],
+        textures: Vec::new(),
+    };
+    // A mesh still loading: the object waits.
+    let handle = app.world().resource::<Assets<Mesh>>().reserve_handle();
+    let entity = app
+        .world_mut()
+        .spawn((
+            CurvedObject::mesh(handle.clone(), 0.3 * r),
+            CurvedTransform::from_geodesic(&active.space, DVec3::ZERO),
+        ))
+        .id();
+    app.update();
+    assert_eq!(app.world().resource::<EntityObjects>().pending, 1);
+    assert!(app.world().resource::<EntityObjects>().objects.is_empty());
+    let triangles = |app: &App| -> usize {
+        let objects = &app.world().resource::<EntityObjects>().objects;
+        match &objects[0].shape {
+            ReadyShape::Mesh(m) => m.mesh.triangles.len(),
+            other => panic!("not a mesh: {other:?}"),
+        }
+    };
+    // Loaded: drawn.
+    app.world_mut()
+        .resource_mut::<Assets<Mesh>>()
+        .insert(handle.id(), bevy_mesh_from_model(&cube))
+        .unwrap();
+    app.update();
+    app.update();
+    assert_eq!(app.world().resource::<EntityObjects>().pending, 0);
+    assert_eq!(triangles(&app), 12);
+    // Changed: half the cube's triangles now.
+    let mut half = cube.clone();
+    half.source.indices.truncate(6);
+    half.source.materials.truncate(6);
+    app.world_mut()
+        .resource_mut::<Assets<Mesh>>()
+        .insert(handle.id(), bevy_mesh_from_model(&half))
+        .unwrap();
+    app.update();
+    app.update();
+    assert_eq!(triangles(&app), 6);
+    // A point list is not a triangle mesh: named as the entity's problem.
+    let points = Mesh::new(
+        bevy::mesh::PrimitiveTopology::PointList,
+        bevy::asset::RenderAssetUsages::default(),
+    );
+    let bad = app.world_mut().resource_mut::<Assets<Mesh>>().add(points);
+    app.world_mut()
+        .entity_mut(entity)
+        .insert(CurvedObject::mesh(bad, 0.3 * r));
+    app.update();
+    let problems = &app.world().resource::<EntityObjects>().problems;
+    assert!(
+        problems
+            .iter()
+            .any(|p| p.contains(&entity.to_string()) && p.contains("triangle lists")),
+        "{problems:?}"
+    );
+}
