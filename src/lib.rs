@@ -28,8 +28,10 @@
 //!
 //! The camera's place in the space is its [`prelude::PlayerFrame`], its face crossings are in
 //! [`prelude::Holonomy`]; [`ActiveSpace`] switches spaces, [`TracerSettings`] holds the fog,
-//! crossing budget and resolution, [`SceneObjects`] and [`BaseScene`] add your objects,
-//! meshes and lights, and [`TracerStatus`] reports what the tracer chose and any problem.
+//! crossing budget and resolution, and [`TracerStatus`] reports what the tracer chose and
+//! any problem. Your game's things are entities: a [`prelude::CurvedObject`] at a
+//! [`prelude::CurvedTransform`], moving with a [`prelude::CurvedVelocity`] through the faces
+//! ([`objects`]); [`SceneObjects`] and [`BaseScene`] add still objects, meshes and lights.
 //! Our systems run in the sets [`CurvedSpacesSystems`].
 //!
 //! ## Without Bevy
@@ -101,6 +103,10 @@ pub mod prelude {
         TracerSettings, TracerStatus,
     };
     pub use crate::geometry::{Geometry, GeometryError, ORIGIN, Ray, chart_ray};
+    pub use crate::objects::{
+        ActiveSightlines, CurvedObject, CurvedShape, CurvedTransform, CurvedVelocity,
+        ObjectCrossedFace,
+    };
     pub use crate::plugin::CurvedSpacesPlugin;
     #[cfg(feature = "scene-files")]
     pub use crate::scene::file::{SceneFile, load_scene_file};

@@ -60,6 +60,8 @@ pub const ASYNC_MESH_TRIANGLES: usize = 4096;
 
 /// What an object looks like: its shape about its own origin (sizes are geodesic lengths in
 /// the space's units; [`ActiveSpace::inradius`] gives the scale of the cell).
+// One per entity: the carried object's size costs less than a box per shape.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Debug, PartialEq)]
 pub enum CurvedShape {
     /// A metric ball.
@@ -332,6 +334,8 @@ fn update_sightlines(active: Res<ActiveSpace>, mut sightlines: ResMut<ActiveSigh
 }
 
 /// A drawn object's shape with its mesh or texture ready.
+// Gathered anew each frame objects change: no box per object.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Debug)]
 pub enum ReadyShape {
     /// A ball.
@@ -746,6 +750,10 @@ pub fn wrap_objects(
     }
 }
 
+/// The objects whose shape or frame changed since the last run.
+type ChangedObjects<'w, 's> =
+    Query<'w, 's, (), Or<(Changed<CurvedObject>, Changed<CurvedTransform>)>>;
+
 /// The scale of a size as a key (sizes are compared exactly).
 fn size_key(size: f64) -> u64 {
     size.to_bits()
@@ -758,7 +766,7 @@ fn size_key(size: f64) -> u64 {
 pub fn collect_objects(
     active: Res<ActiveSpace>,
     objects: Query<(Entity, &CurvedObject, &CurvedTransform)>,
-    changed: Query<(), Or<(Changed<CurvedObject>, Changed<CurvedTransform>)>>,
+    changed: ChangedObjects,
     mut removed: RemovedComponents<CurvedObject>,
     meshes: Option<Res<Assets<Mesh>>>,
     images: Option<Res<Assets<Image>>>,
@@ -869,10 +877,18 @@ pub fn collect_objects(
         match shape {
             Ok(Some(shape)) => {
                 if transform.0.is_finite() {
+                    // A frame the game set past a face this frame (wrapped in the next
+                    // update) is drawn where it is: at its image in the cell.
+                    let frame =
+                        if active.space.outside_by(g.project_point(transform.0.w_axis)) > 0.0 {
+                            wrap_into_cell(&active.space, transform.0, 0.0).0
+                        } else {
+                            transform.0
+                        };
                     ready.push(ReadyObject {
                         entity,
                         shape,
-                        frame: transform.0,
+                        frame,
                         colour: object.colour,
                         emission: object.emission,
                     });
@@ -979,8 +995,8 @@ pub(crate) fn add_systems(app: &mut App) {
             (
                 wrap_objects.in_set(CurvedSpacesSystems::Wrap),
                 collect_objects
-                    .after(CurvedSpacesSystems::Wrap)
-                    .before(CurvedSpacesSystems::Upload),
+                    .in_set(CurvedSpacesSystems::Upload)
+                    .before(crate::render::upload::upload_scene),
                 update_sightlines.before(CurvedSpacesSystems::Upload),
                 spawn_scene_movers.before(CurvedSpacesSystems::Move),
             ),

@@ -7,6 +7,7 @@
 //! f32 drift of long rays, and the error of the fog cut-off against its stated bound. The
 //! figures go to JSON and CSV files and charts (PNG and SVG) in one folder.
 
+pub mod entities;
 pub mod harness;
 
 mod accuracy;

@@ -16,6 +16,26 @@ pub(super) fn bench(args: &BenchArgs) -> Result<(), String> {
         say!("wrote {} files to {}", written.len(), args.out.display());
         return Ok(());
     }
+    if args.entities {
+        if cfg!(debug_assertions) {
+            eprintln!(
+                "note: this is a debug build; for representative timings run `cargo run --release -- bench --entities`"
+            );
+        }
+        eprintln!("timing updates with moving objects as entities…");
+        let started = Instant::now();
+        let (timings, builds) = bevy_curved_spaces::bench::entities::run_entities(args.quick);
+        let summary =
+            bevy_curved_spaces::bench::entities::write_entities(&timings, &builds, &args.out)
+                .map_err(|e| format!("cannot write to {}: {e}", args.out.display()))?;
+        say!("{summary}");
+        say!(
+            "wrote entities.csv, new_meshes.csv and entities.md to {} in {:.1} s",
+            args.out.display(),
+            started.elapsed().as_secs_f64()
+        );
+        return Ok(());
+    }
     let mut config = if args.quick {
         BenchConfig::quick()
     } else {

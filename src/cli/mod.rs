@@ -212,6 +212,10 @@ struct BenchArgs {
     /// budget and size; writes timings.csv and the summary.
     #[arg(long, conflicts_with_all = ["spaces", "cpu_only", "from"])]
     scene: Option<PathBuf>,
+    /// Measure the CPU cost of moving objects as entities instead (per update and per
+    /// object, and a new mesh's build); writes entities.csv, new_meshes.csv, entities.md.
+    #[arg(long, conflicts_with_all = ["spaces", "budgets", "sizes", "cpu_only", "from", "scene"])]
+    entities: bool,
 }
 
 #[derive(Args, Clone)]
