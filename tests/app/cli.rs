@@ -996,3 +996,85 @@ fn flights_render_every_frame_resume_and_slice_alike() {
     );
     fails_with(&["walk", "torus", "--replay", f], "cannot be used with");
 }
+
+/// A scene file's moving object: `render --time` draws it where its motion has taken it (a
+/// different picture at 0 and 3 s, and the same as the library's scene at that time), and a
+/// velocity that cannot be used is named.
+#[test]
+fn render_shows_moving_objects_at_their_time() {
+    use bevy_curved_spaces::scene::file::load_scene_file;
+    use bevy_curved_spaces::trace::{RenderSettings, render};
+    use bevy_curved_spaces::view::TraceCamera;
+    let dir = temp_dir("moving");
+    let scene = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/scenes/seifert_weber_knot.toml"
+    );
+    let mut pictures = Vec::new();
+    for time in ["0", "3"] {
+        let out = dir.join(format!("t{time}.png"));
+        let o = run(&[
+            "render",
+            "--scene",
+            scene,
+            "--cpu",
+            "--size",
+            "64x36",
+            "--crossings",
+            "6",
+            "--time",
+            time,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        pictures.push(image::open(&out).unwrap().to_rgb8());
+    }
+    assert_ne!(pictures[0], pictures[1], "the globe moved");
+    // The library's scene at 3 s, from the same start view: the same picture.
+    let file = load_scene_file(std::path::Path::new(scene)).unwrap();
+    let mut at = file.scene_at(3.0).unwrap();
+    at.time = 3.0;
+    let camera = TraceCamera {
+        frame: file.start.unwrap(),
+        fov_y_degrees: file.start_fov.unwrap_or(70.0),
+    };
+    at.set_avatar_frame(&file.space, camera.frame);
+    let cpu = render(
+        &file.space,
+        &at,
+        &camera,
+        &RenderSettings {
+            width: 64,
+            height: 36,
+            max_crossings: 6,
+        },
+    );
+    assert_eq!(cpu, pictures[1]);
+
+    let bad = dir.join("bad.toml");
+    for (object, message) in [
+        (
+            "type = \"tube\"\nfrom = [0, 0, 0]\nto = [0.2, 0, 0]\nradius = 0.1\nvelocity = [1, 0, 0]",
+            "velocity",
+        ),
+        (
+            "type = \"ball\"\nradius = 0.1\nvelocity = [nan, 0, 0]",
+            "velocity must be finite",
+        ),
+    ] {
+        std::fs::write(&bad, format!("space = \"torus\"\n\n[[object]]\n{object}\n")).unwrap();
+        fails_with(
+            &[
+                "render",
+                "--scene",
+                bad.to_str().unwrap(),
+                "--cpu",
+                "--size",
+                "8x8",
+            ],
+            message,
+        );
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

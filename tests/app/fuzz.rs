@@ -98,6 +98,19 @@ fn outcome(text: &str, base: &Path) -> bool {
     match result {
         Ok(file) => {
             assert!(scene_is_finite(&file), "a non-finite scene from:\n{text}");
+            // Moving objects later on: a scene or an error, never a panic or a hang.
+            for t in [2.5, 1e3] {
+                if let Ok(scene) = file.scene_at(t) {
+                    assert!(scene.objects.iter().all(|o| {
+                        let (c, r) = o.bounding_ball(file.space.geometry());
+                        c.is_finite() && r.is_finite()
+                    }));
+                }
+            }
+            assert!(
+                started.elapsed().as_secs_f64() < 20.0,
+                "moving objects took too long:\n{text}"
+            );
             true
         }
         Err(e) => {
@@ -308,9 +321,26 @@ fn the_regression_corpus_is_refused_cleanly() {
 fn hostile_numbers_on_the_command_line() {
     let values = ["0", "-1", "nan", "inf", "-inf", "1e308", "1e-320", "-0"];
     let mut outcomes = (0, 0);
+    let moving = format!(
+        "{}/assets/scenes/seifert_weber_knot.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
     for value in values {
         let vec3 = format!("{value},0,0");
         let cases: Vec<Vec<&str>> = vec![
+            // A scene with a moving object at a hostile time.
+            vec![
+                "render",
+                "--scene",
+                &moving,
+                "--cpu",
+                "--size",
+                "16x9",
+                "--crossings",
+                "4",
+                "--time",
+                value,
+            ],
             vec![
                 "render",
                 "torus",
