@@ -196,6 +196,7 @@ fn panel(
     mut cameras: Query<(&mut CurvedSpaceCamera, &PlayerFrame, &Holonomy)>,
     mut frame_rate: ResMut<FrameRateTarget>,
     mut picker: Local<SpacePicker>,
+    entities: Res<crate::objects::EntityObjects>,
 ) -> Result {
     let ctx = contexts.ctx_mut()?;
     if !shown.0 {
@@ -348,6 +349,13 @@ fn panel(
                 Some(r) => ui.label(format!("injectivity radius {r:.6}")),
                 None => ui.label("injectivity radius: not enumerated"),
             };
+            if !entities.objects.is_empty() || entities.pending > 0 {
+                ui.label(format!(
+                    "objects: {} drawn, {} meshes loading",
+                    entities.objects.len(),
+                    entities.pending
+                ));
+            }
             for e in [&status.error, &status.stereo_error].into_iter().flatten() {
                 ui.colored_label(egui::Color32::LIGHT_RED, e);
             }
