@@ -153,6 +153,8 @@ pub struct TracerSettings {
     /// The scene's clock in seconds (spinning globes); `None` follows the app's [`Time`].
     /// Fixed for still pictures that must match a CPU render.
     pub time: Option<f64>,
+    /// What surfaces are coloured by over their shading (the teaching views).
+    pub colour_by: crate::scene::ColourBy,
 }
 
 impl TracerSettings {

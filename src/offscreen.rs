@@ -52,6 +52,8 @@ pub struct OffscreenRender {
     /// Entities to spawn for the picture ([`crate::objects`]): objects at their frames,
     /// drawn the way a game's are (padded lists, shared scene data).
     pub entities: Vec<(crate::objects::CurvedObject, DMat4)>,
+    /// The teaching view ([`crate::scene::ColourBy`]).
+    pub colour_by: crate::scene::ColourBy,
 }
 
 impl OffscreenRender {
@@ -80,6 +82,7 @@ impl OffscreenRender {
             base: BaseScene::default(),
             time: 0.0,
             entities: Vec::new(),
+            colour_by: crate::scene::ColourBy::Shading,
         }
     }
 }
@@ -182,6 +185,7 @@ impl OffscreenRenderer {
             resolution_scale: request.resolution_scale,
             parts: request.parts,
             time: Some(request.time),
+            colour_by: request.colour_by,
         };
         // A scene the GPU cannot take would only time out below: say why now.
         let space = &request.space.space;

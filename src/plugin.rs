@@ -53,6 +53,9 @@ pub struct CurvedSpacesPlugin {
     /// ([`crate::frame_rate`]); `None` keeps the quality's scale (changeable at run time in
     /// [`FrameRateTarget`]).
     pub target_fps: Option<f64>,
+    /// The teaching view to start with (changeable at run time in
+    /// [`TracerSettings::colour_by`]).
+    pub colour_by: crate::scene::ColourBy,
 }
 
 impl Default for CurvedSpacesPlugin {
@@ -67,6 +70,7 @@ impl Default for CurvedSpacesPlugin {
             stereo: StereoSettings::default(),
             avatar: true,
             target_fps: None,
+            colour_by: crate::scene::ColourBy::Shading,
         }
     }
 }
@@ -101,6 +105,7 @@ impl Plugin for CurvedSpacesPlugin {
                     },
                 ),
             time: None,
+            colour_by: self.colour_by,
         })
         .insert_resource(self.stereo)
         .insert_resource(FrameRateTarget::fps(self.target_fps))

@@ -106,6 +106,57 @@ fn next_stereo_mode(
     }
 }
 
+/// The teaching view and its legend: what each tint means.
+fn colour_by_controls(ui: &mut egui::Ui, settings: &mut ResMut<TracerSettings>, faces: usize) {
+    use crate::scene::{ColourBy, palette};
+    let mut by = settings.colour_by;
+    egui::ComboBox::from_label("colour by")
+        .selected_text(by.name())
+        .show_ui(ui, |ui| {
+            for m in ColourBy::ALL {
+                ui.selectable_value(&mut by, m, m.name());
+            }
+        });
+    if by != settings.colour_by {
+        settings.colour_by = by;
+    }
+    let swatch = |ui: &mut egui::Ui, c: glam::DVec3, text: String| {
+        let [r, g, b] = c
+            .to_array()
+            .map(|x| (x.clamp(0.0, 1.0) * 255.0).round() as u8);
+        ui.colored_label(egui::Color32::from_rgb(r, g, b), text);
+    };
+    let (entries, what): (Vec<(glam::DVec3, String)>, &str) = match by {
+        ColourBy::Shading => return,
+        ColourBy::Crossings => (
+            (0..8).map(|k| (palette(k), k.to_string())).collect(),
+            "faces crossed:",
+        ),
+        ColourBy::Face => (
+            std::iter::once((glam::DVec3::ONE, "none".to_string()))
+                .chain((0..faces.min(16)).map(|f| (palette(f), f.to_string())))
+                .collect(),
+            "last face crossed:",
+        ),
+        ColourBy::Holonomy => (
+            (0..7)
+                .map(|k| {
+                    let c = if k == 0 { glam::DVec3::ONE } else { palette(k) };
+                    (c, format!("{}", 30 * k))
+                })
+                .chain((7..14).map(|k| (palette(k), format!("m{}", 30 * (k - 7)))))
+                .collect(),
+            "turn of the copy (degrees; m: mirrored):",
+        ),
+    };
+    ui.label(what);
+    ui.horizontal_wrapped(|ui| {
+        for (c, text) in entries {
+            swatch(ui, c, text);
+        }
+    });
+}
+
 /// The stereo mode, the eye distance (with the world scale it gives) and the eye swap.
 fn stereo_controls(ui: &mut egui::Ui, stereo: &mut ResMut<StereoSettings>, inradius: f64) {
     let mut mode = stereo.mode;
@@ -316,6 +367,7 @@ fn panel(
             }
             ui.separator();
             stereo_controls(ui, &mut stereo, active.inradius);
+            colour_by_controls(ui, &mut settings, active.space.faces.len());
             ui.separator();
             let fps = diagnostics
                 .get(&FrameTimeDiagnosticsPlugin::FPS)

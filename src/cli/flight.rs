@@ -120,6 +120,7 @@ pub(super) fn flight(args: &FlightArgs) -> Result<(), String> {
         let at = chosen.at(t).map_err(|e| format!("frame {n}: {e}"))?;
         let mut scene = at.scene.clone();
         scene.time = t;
+        scene.shading.colour_by = args.colour_by.into();
         scene.set_avatar_frame(space, frame);
         let image = match renderer.as_mut() {
             None => {
@@ -144,6 +145,7 @@ pub(super) fn flight(args: &FlightArgs) -> Result<(), String> {
                     parts: chosen.parts,
                     base: at.base.clone(),
                     time: t,
+                    colour_by: args.colour_by.into(),
                     ..OffscreenRender::new(active.clone(), camera, args.size, budget as u32)
                 })
                 .map_err(|e| format!("frame {n}: {e}"))?,

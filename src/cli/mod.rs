@@ -153,6 +153,10 @@ struct RenderArgs {
     /// The scene's clock in seconds (turns spinning globes).
     #[arg(long, default_value_t = 0.0, value_parser = parse_time, allow_negative_numbers = true)]
     time: f64,
+    /// A teaching view: colour surfaces by the faces crossed to see them, by the last face
+    /// crossed, or by the rotation of the copy of the cell they are in.
+    #[arg(long, value_enum, default_value_t = ColourByArg::Shading)]
+    colour_by: ColourByArg,
 }
 
 /// Stereo options shared by `walk` and `render`.
@@ -261,6 +265,35 @@ struct WalkArgs {
     /// keys do not move you while it plays).
     #[arg(long, conflicts_with_all = ["space", "scene"])]
     replay: Option<PathBuf>,
+    /// A teaching view to start with (the panel changes it): colour surfaces by crossings,
+    /// by the last face crossed, or by holonomy.
+    #[arg(long, value_enum, default_value_t = ColourByArg::Shading)]
+    colour_by: ColourByArg,
+}
+
+/// `--colour-by`'s values.
+#[derive(Clone, Copy, ValueEnum)]
+enum ColourByArg {
+    /// The plain picture.
+    Shading,
+    /// Faces crossed before the surface.
+    Crossings,
+    /// The last face crossed.
+    Face,
+    /// The rotation of the copy of the cell (30° bins; mirrored copies apart).
+    Holonomy,
+}
+
+impl From<ColourByArg> for bevy_curved_spaces::scene::ColourBy {
+    fn from(c: ColourByArg) -> Self {
+        use bevy_curved_spaces::scene::ColourBy;
+        match c {
+            ColourByArg::Shading => ColourBy::Shading,
+            ColourByArg::Crossings => ColourBy::Crossings,
+            ColourByArg::Face => ColourBy::Face,
+            ColourByArg::Holonomy => ColourBy::Holonomy,
+        }
+    }
 }
 
 /// The frame rate `walk` holds unless told otherwise.
@@ -308,6 +341,10 @@ pub struct FlightArgs {
     /// run, for splitting a flight across machines.
     #[arg(long, value_parser = flight::parse_frames)]
     frames: Option<(usize, usize)>,
+    /// A teaching view: colour surfaces by crossings, by the last face crossed, or by
+    /// holonomy.
+    #[arg(long, value_enum, default_value_t = ColourByArg::Shading)]
+    colour_by: ColourByArg,
 }
 
 /// A flight's frame rate: 1 to 240 frames per second.
@@ -359,6 +396,7 @@ impl RenderArgs {
             stereo: StereoArgs::default(),
             scene: None,
             time: 0.0,
+            colour_by: ColourByArg::Shading,
         }
     }
 }
@@ -379,6 +417,7 @@ impl Default for WalkArgs {
             no_avatar: false,
             fps: DEFAULT_WALK_FPS,
             replay: None,
+            colour_by: ColourByArg::Shading,
         }
     }
 }

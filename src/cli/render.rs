@@ -123,6 +123,7 @@ fn view(args: &RenderArgs, chosen: &Chosen) -> Result<View, String> {
     let space = &chosen.space;
     let mut scene = chosen.scene.clone();
     scene.time = args.time;
+    scene.shading.colour_by = args.colour_by.into();
     let camera = camera(args, chosen)?;
     scene.set_avatar_frame(space, camera.frame);
     let max_crossings = match args.crossings {
@@ -271,6 +272,7 @@ fn render_gpu(args: &RenderArgs, chosen: &Chosen, view: &View) -> Result<RgbImag
         base: chosen.base.clone(),
         time: args.time,
         stereo: view.stereo,
+        colour_by: args.colour_by.into(),
         ..OffscreenRender::new(
             ActiveSpace::new(&chosen.id, space.clone()),
             view.camera,

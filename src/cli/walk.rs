@@ -197,6 +197,7 @@ pub(super) fn add_walk_plugins<'a>(
             avatar: !args.no_avatar,
             // A screenshot shows the quality's resolution, not one chosen by timing.
             target_fps: (args.screenshot.is_none() && args.fps > 0.0).then_some(args.fps),
+            colour_by: args.colour_by.into(),
             ..default()
         })
         .insert_resource(bevy_curved_spaces::ui::PanelVisible(!args.no_ui))

@@ -30,6 +30,7 @@ pub fn build_scene(
         None => CurvedScene::with_parts(space, fog, settings.parts),
     };
     scene.shading.fog_distance = fog;
+    scene.shading.colour_by = settings.colour_by;
     let problems: Vec<String> = objects
         .iter()
         .enumerate()

@@ -29,4 +29,4 @@ pub use model::{
 };
 pub use moving::{MovingError, MovingObject};
 pub use object::{Ball, BallTexture, Disc, Hit, MeshInstance, Object, Tube};
-pub use shading::{DEFAULT_CUTOFF_WEIGHT, Light, Shading, SurfaceMaterial};
+pub use shading::{ColourBy, DEFAULT_CUTOFF_WEIGHT, Light, Shading, SurfaceMaterial, holonomy_bin};

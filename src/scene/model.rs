@@ -418,6 +418,7 @@ impl CurvedScene {
                 fog_distance,
                 near_light: 0.05 * inradius,
                 cutoff_weight: DEFAULT_CUTOFF_WEIGHT,
+                colour_by: super::ColourBy::Shading,
             },
         )
         .adding_parts(space, parts)

@@ -81,6 +81,117 @@ pub struct Shading {
     pub near_light: f64,
     /// Fog weight at which a ray stops (the cut-off's error bound per channel).
     pub cutoff_weight: f64,
+    /// What surfaces are coloured by over their shading (the teaching views).
+    pub colour_by: ColourBy,
+}
+
+/// What a teaching view colours each surface by, over its shading: the surface's lit
+/// brightness times a tint ([`ColourBy::tint`]), then the fog as usual.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum ColourBy {
+    /// The plain picture.
+    #[default]
+    Shading,
+    /// How many faces the ray crossed before it met the surface: tint `palette(k)`.
+    Crossings,
+    /// The last face the ray crossed: tint `palette(face)`, white where it crossed none.
+    Face,
+    /// The rotation of the copy of the cell the surface was seen in (its deck
+    /// transformation, with the translation from the centre taken off), in bins of 30°:
+    /// white for none, a colour per bin, other colours where the copy is mirrored.
+    Holonomy,
+}
+
+impl ColourBy {
+    /// Every mode, the plain picture first.
+    pub const ALL: [ColourBy; 4] = [
+        ColourBy::Shading,
+        ColourBy::Crossings,
+        ColourBy::Face,
+        ColourBy::Holonomy,
+    ];
+
+    /// Its name on the command line and in the panel.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            ColourBy::Shading => "shading",
+            ColourBy::Crossings => "crossings",
+            ColourBy::Face => "face",
+            ColourBy::Holonomy => "holonomy",
+        }
+    }
+
+    /// The mode of a name.
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|m| m.name() == name)
+    }
+
+    /// The shader's number for it (0 for the plain picture).
+    #[must_use]
+    pub fn index(self) -> u32 {
+        self as u32
+    }
+
+    /// The tint of a surface seen after `crossings` crossings, the last through
+    /// `last_face`, in the copy `h·D` of the cell (`h` the product of the pairings
+    /// applied to the ray, [`holonomy_bin`]).
+    #[must_use]
+    pub fn tint(
+        self,
+        geometry: Geometry,
+        crossings: usize,
+        last_face: Option<usize>,
+        h: glam::DMat4,
+    ) -> DVec3 {
+        match self {
+            ColourBy::Shading => DVec3::ONE,
+            ColourBy::Crossings => crate::scene::palette(crossings),
+            ColourBy::Face => last_face.map_or(DVec3::ONE, crate::scene::palette),
+            ColourBy::Holonomy => match holonomy_bin(geometry, h) {
+                0 => DVec3::ONE,
+                k => crate::scene::palette(k),
+            },
+        }
+    }
+
+    /// A surface's lit colour recoloured: its brightness times the tint.
+    #[must_use]
+    pub fn recolour(tint: DVec3, surface: DVec3) -> DVec3 {
+        let lum = surface.dot(DVec3::new(0.2126, 0.7152, 0.0722)).min(1.0);
+        tint * (0.25 + 0.75 * lum)
+    }
+}
+
+/// The bin of a deck transformation's rotation: its rotation about the centre after the
+/// translation taking the origin to `h·origin` is taken off, its angle in bins of 30° (0 to
+/// 6), plus 7 for a mirrored (orientation-reversing) copy. The origin is the model's (the
+/// cell's centre for spaces centred there, as the seeds and the library are).
+#[must_use]
+pub fn holonomy_bin(geometry: Geometry, h: glam::DMat4) -> usize {
+    let q = h.w_axis;
+    let k = geometry.kappa();
+    let qs = q.truncate();
+    // T_q⁻¹ h, upper-left block: (I − κ qs qsᵀ/(1 + q.w)) A₃ − qs bᵀ.
+    let a3 = glam::DMat3::from_cols(
+        h.x_axis.truncate(),
+        h.y_axis.truncate(),
+        h.z_axis.truncate(),
+    );
+    let b = DVec3::new(h.x_axis.w, h.y_axis.w, h.z_axis.w);
+    let outer = |u: DVec3, v: DVec3| glam::DMat3::from_cols(u * v.x, u * v.y, u * v.z);
+    let m = if k == 0.0 {
+        a3
+    } else {
+        (glam::DMat3::IDENTITY - outer(qs, qs) * (k / (1.0 + q.w))) * a3 - outer(qs, b)
+    };
+    let mirrored = m.determinant() < 0.0;
+    let r = if mirrored { -m } else { m };
+    let trace = r.x_axis.x + r.y_axis.y + r.z_axis.z;
+    let angle = ((trace - 1.0) / 2.0).clamp(-1.0, 1.0).acos();
+    let bin = (angle / (std::f64::consts::PI / 6.0)).round() as usize;
+    bin.min(6) + if mirrored { 7 } else { 0 }
 }
 
 impl Default for Shading {
@@ -93,6 +204,7 @@ impl Default for Shading {
             fog_distance: 1.0,
             near_light: 0.05,
             cutoff_weight: DEFAULT_CUTOFF_WEIGHT,
+            colour_by: ColourBy::Shading,
         }
     }
 }
@@ -116,6 +228,20 @@ impl Shading {
     /// The colour of a surface point seen at distance `d`.
     #[must_use]
     pub fn shade(&self, geometry: Geometry, lights: &[Light], hit: &Hit, d: f64) -> DVec3 {
+        self.shade_tinted(geometry, lights, hit, d, None)
+    }
+
+    /// [`Shading::shade`] with the surface recoloured by `tint` ([`ColourBy::recolour`])
+    /// before the fog, where given.
+    #[must_use]
+    pub fn shade_tinted(
+        &self,
+        geometry: Geometry,
+        lights: &[Light],
+        hit: &Hit,
+        d: f64,
+        tint: Option<DVec3>,
+    ) -> DVec3 {
         let mut lit = DVec3::splat(self.ambient);
         for light in lights {
             let (at, dl) = light.nearest(geometry, hit.point);
@@ -126,7 +252,10 @@ impl Shading {
                 lit += (1.0 - self.ambient) * light.colour * (light.power * lambert / (s * s));
             }
         }
-        let surface = (hit.colour * lit + hit.emission).min(DVec3::ONE);
+        let mut surface = (hit.colour * lit + hit.emission).min(DVec3::ONE);
+        if let Some(t) = tint {
+            surface = ColourBy::recolour(t, surface);
+        }
         let w = (-d / self.fog_distance).exp();
         w * surface + (1.0 - w) * self.fog_colour
     }

@@ -3,7 +3,7 @@
 //! crossing budget.
 
 use crate::geometry::{Geometry, Ray};
-use crate::scene::{CurvedScene, FaceCulling, Hit};
+use crate::scene::{ColourBy, CurvedScene, FaceCulling, Hit};
 use crate::space::{CellWalker, Space};
 use crate::view::{PixelRays, TraceCamera, ViewLayout};
 use glam::{DVec3, DVec4};
@@ -66,6 +66,11 @@ pub struct TracedRay {
     pub end: RayEnd,
     /// FNV-1a-style hash of the crossed faces' indices + 1, in order (see [`path_hash`]).
     pub path: u32,
+    /// The face it crossed last, if any.
+    pub last_face: Option<usize>,
+    /// The product of the pairings applied to it, latest on the left (kept only where the
+    /// scene is coloured by holonomy, [`ColourBy::Holonomy`]; the identity otherwise).
+    pub holonomy: glam::DMat4,
 }
 
 /// The start of a face path hash.
@@ -120,11 +125,16 @@ pub fn first_hit_culled(
     let mut distance = 0.0;
     let mut skip = None;
     let mut path = PATH_HASH_START;
+    let mut last_face = None;
+    let mut holonomy = glam::DMat4::IDENTITY;
+    let keep_holonomy = scene.shading.colour_by == ColourBy::Holonomy;
     for crossings in 0..=max_crossings {
         let Some(exit) = walker.exit(&ray, skip) else {
             return TracedRay {
                 end: RayEnd::Budget(crossings),
                 path,
+                last_face,
+                holonomy,
             };
         };
         let s_exit = exit.ratio();
@@ -141,7 +151,12 @@ pub fn first_hit_culled(
                     crossings,
                 })
             };
-            return TracedRay { end, path };
+            return TracedRay {
+                end,
+                path,
+                last_face,
+                holonomy,
+            };
         }
         if crossings == max_crossings {
             break;
@@ -150,11 +165,17 @@ pub fn first_hit_culled(
         distance += length;
         if exit.face != crate::space::walk::NO_FACE {
             path = path_hash(path, exit.face);
+            last_face = Some(exit.face);
+            if keep_holonomy {
+                holonomy = walker.pairings[exit.face] * holonomy;
+            }
         }
         if distance >= cutoff {
             return TracedRay {
                 end: RayEnd::Fog(crossings + 1),
                 path,
+                last_face,
+                holonomy,
             };
         }
         ray = next;
@@ -163,6 +184,8 @@ pub fn first_hit_culled(
     TracedRay {
         end: RayEnd::Budget(max_crossings),
         path,
+        last_face,
+        holonomy,
     }
 }
 
@@ -174,11 +197,28 @@ pub fn trace_pixel(
     start: Ray<DVec4>,
     max_crossings: usize,
 ) -> DVec3 {
-    colour_of(
+    colour_of_traced(
         walker.geometry,
         scene,
-        &first_hit(walker, scene, start, max_crossings),
+        &first_hit_traced(walker, scene, start, max_crossings),
     )
+}
+
+/// The colour of a traced ray, recoloured as the scene's [`ColourBy`] says (fog where it
+/// met nothing).
+#[must_use]
+pub fn colour_of_traced(geometry: Geometry, scene: &CurvedScene, traced: &TracedRay) -> DVec3 {
+    let by = scene.shading.colour_by;
+    match &traced.end {
+        RayEnd::Hit(h) if by != ColourBy::Shading => scene.shading.shade_tinted(
+            geometry,
+            &scene.lights,
+            &h.hit,
+            h.distance,
+            Some(by.tint(geometry, h.crossings, traced.last_face, traced.holonomy)),
+        ),
+        end => colour_of(geometry, scene, end),
+    }
 }
 
 /// The colour of a ray that ended as `end` (fog where it met nothing).
@@ -252,7 +292,7 @@ pub fn render_view(
                         ray,
                         settings.max_crossings,
                     );
-                    colour_of(g, scene, &traced.end).clamp(DVec3::ZERO, DVec3::ONE)
+                    colour_of_traced(g, scene, &traced).clamp(DVec3::ZERO, DVec3::ONE)
                 };
                 let c = match layout.rays_at(g, i, j) {
                     PixelRays::One(ray) => colour(ray),

@@ -1052,6 +1052,10 @@ fn render_shows_moving_objects_at_their_time() {
     );
     assert_eq!(cpu, pictures[1]);
 
+    fails_with(
+        &["render", "torus", "--cpu", "--colour-by", "purple"],
+        "invalid value 'purple'",
+    );
     let bad = dir.join("bad.toml");
     for (object, message) in [
         (

@@ -202,6 +202,7 @@ fn placed_objects_straddling_faces_render_alike_on_gpu_and_cpu() {
             resolution_scale: 1.0,
             parts,
             time: None,
+            colour_by: Default::default(),
         };
         let (scene, problems) = build_scene(&space, &settings, &[ball], None);
         assert_eq!(problems, None, "{id}");
@@ -261,6 +262,7 @@ fn placed_objects_straddling_faces_render_alike_on_gpu_and_cpu() {
         resolution_scale: 1.0,
         parts: SceneParts::default(),
         time: None,
+        colour_by: Default::default(),
     };
     let outside = Object::Ball(Ball::new(space.geometry(), far, 0.1, DVec3::ONE));
     let (scene, problems) = build_scene(&space, &settings, &[outside], None);
@@ -893,5 +895,69 @@ fn entities_render_alike_on_gpu_and_cpu() {
             "{id}: {:.3} % differ",
             100.0 * c.differing
         );
+    }
+}
+
+/// The teaching views (`--colour-by crossings|face|holonomy`) on the GPU as on the CPU
+/// reference, in a space of each geometry (a flat one with rotations, a spherical one and
+/// the twisted hyperbolic Seifert–Weber space), and each differs from the plain picture.
+#[test]
+fn colour_by_views_render_alike_on_gpu_and_cpu() {
+    let _gpu = gpu_lock();
+    use bevy_curved_spaces::scene::ColourBy;
+    let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
+    for id in ["quarter-turn", "poincare", "seifert-weber"] {
+        let space = bevy_curved_spaces::space::seed_space(id).expect("builds");
+        let camera = TraceCamera::default_for(&space);
+        let plain_scene = CurvedScene::with_parts(
+            &space,
+            Shading::default_fog_distance(&space),
+            SceneParts::default(),
+        );
+        let settings = RenderSettings {
+            width: WIDTH,
+            height: HEIGHT,
+            max_crossings: 12,
+        };
+        let plain = render(&space, &plain_scene, &camera, &settings);
+        for by in [ColourBy::Crossings, ColourBy::Face, ColourBy::Holonomy] {
+            let mut scene = plain_scene.clone();
+            scene.shading.colour_by = by;
+            let cpu = render(&space, &scene, &camera, &settings);
+            let gpu = renderer
+                .render(&OffscreenRender {
+                    colour_by: by,
+                    ..OffscreenRender::new(
+                        ActiveSpace::new(id, space.clone()),
+                        camera,
+                        (WIDTH, HEIGHT),
+                        12,
+                    )
+                })
+                .expect("renders");
+            let (c, _) = compare(&gpu, &cpu, TOLERANCE);
+            println!(
+                "{id} coloured by {}: differing {:.3} %, mean error {:.3}/255",
+                by.name(),
+                100.0 * c.differing,
+                c.mean_error
+            );
+            let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("gpu-vs-cpu");
+            let _ = std::fs::create_dir_all(&out);
+            let _ = gpu.save(out.join(format!("colour-by-{}-{id}-gpu.png", by.name())));
+            let _ = cpu.save(out.join(format!("colour-by-{}-{id}-cpu.png", by.name())));
+            assert!(
+                c.differing <= MAX_DIFFERING,
+                "{id} by {}: {:.3} % differ",
+                by.name(),
+                100.0 * c.differing
+            );
+            let (d, _) = compare(&cpu, &plain, TOLERANCE);
+            assert!(
+                d.differing > 0.05,
+                "{id} by {}: like the plain picture",
+                by.name()
+            );
+        }
     }
 }

@@ -498,3 +498,28 @@ fn stereo_variants_validate_with_the_same_layout() {
         assert!(view_shader_defs(ViewKind::Mono).is_empty());
     }
 }
+
+/// The teaching views (`COLOUR_BY` 1 to 3, `COLOUR_HOLONOMY`) in every geometry, with and
+/// without objects and culling, plain and with `HIT_ID`: each validates and keeps the
+/// packer's layout.
+#[test]
+fn colour_by_variants_validate_and_match_the_packed_layout() {
+    for geometry in Geometry::ALL {
+        for colour_by in 1..=3 {
+            for (balls, tubes, culling) in [(0, 0, false), (2, 3, true), (1, 0, false)] {
+                let key = ShaderKey {
+                    faces: 6,
+                    balls,
+                    tubes,
+                    culling,
+                    lights: 1,
+                    light_images: 2,
+                    colour_by,
+                    ..ShaderKey::empty(geometry)
+                };
+                assert_eq!(validate(&key), key.uniform_bytes(), "{key:?}");
+                hit_id_module(&key);
+            }
+        }
+    }
+}

@@ -19,6 +19,7 @@ fn app(fps: f64, quality: Quality) -> App {
             resolution_scale: quality.resolution_scale(),
             parts: SceneParts::default(),
             time: None,
+            colour_by: Default::default(),
         })
         .insert_resource(FrameRateTarget::fps(Some(fps)))
         .add_systems(Update, hold_frame_rate);

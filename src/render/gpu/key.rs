@@ -38,6 +38,9 @@ pub struct ShaderKey {
     /// A spherical cell that reaches distance π/2 ([`crate::space::Space::reaches_equator`]):
     /// rays step at most π/4 without crossing (shader def `STEP_CAP`).
     pub step_cap: bool,
+    /// What surfaces are coloured by over their shading ([`crate::scene::ColourBy::index`]; 0
+    /// for the plain picture): shader def `COLOUR_BY`, and `COLOUR_HOLONOMY` for 3.
+    pub colour_by: u32,
     /// The unspecialised variant (the benchmark's comparison): all geometries' formulas,
     /// arrays of [`GENERAL_CAPACITY`], geometry and counts read from the uniform.
     pub general: bool,
@@ -65,6 +68,7 @@ impl ShaderKey {
             textures: false,
             culling: false,
             step_cap: false,
+            colour_by: 0,
             general: false,
         }
     }
@@ -89,6 +93,12 @@ impl ShaderKey {
         defs.push(ShaderDefVal::UInt("PARTNER_VECS".into(), faces.div_ceil(4)));
         if self.step_cap {
             defs.push("STEP_CAP".into());
+        }
+        if self.colour_by > 0 {
+            defs.push(ShaderDefVal::UInt("COLOUR_BY".into(), self.colour_by));
+            if self.colour_by == crate::scene::ColourBy::Holonomy.index() {
+                defs.push("COLOUR_HOLONOMY".into());
+            }
         }
         let mut counted = |flag: &str, count_def: &str, n: u32| {
             if n > 0 {

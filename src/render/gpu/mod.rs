@@ -395,6 +395,7 @@ impl GpuScene {
             textures: !scene.textures.is_empty(),
             culling: culling.is_some() && balls.len() + tubes.len() > 0,
             step_cap: space.reaches_equator(),
+            colour_by: scene.shading.colour_by.index(),
             general: false,
         };
         let bytes = key.uniform_bytes();
