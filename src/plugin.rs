@@ -133,7 +133,11 @@ impl Plugin for CurvedSpacesPlugin {
                     .in_set(CurvedSpacesSystems::Move),
                 player::wrap_players.in_set(CurvedSpacesSystems::Wrap),
                 #[cfg(feature = "scene-files")]
-                crate::scene::flight::replay_flight
+                (
+                    crate::scene::flight::replay_flight,
+                    crate::scene::flight::record_flight,
+                )
+                    .chain()
                     .after(CurvedSpacesSystems::Wrap)
                     .before(CurvedSpacesSystems::Upload),
                 (upload_scene, check_stereo_settings).in_set(CurvedSpacesSystems::Upload),
@@ -141,6 +145,8 @@ impl Plugin for CurvedSpacesPlugin {
             ),
         )
         .add_observer(start_camera);
+        #[cfg(feature = "scene-files")]
+        app.add_systems(Last, crate::scene::flight::finish_recording);
         crate::objects::add_systems(app);
         if self.controls {
             app.add_systems(

@@ -265,6 +265,13 @@ struct WalkArgs {
     /// keys do not move you while it plays).
     #[arg(long, conflicts_with_all = ["space", "scene"])]
     replay: Option<PathBuf>,
+    /// Record the walk as a flight file (TOML): replay it with --replay, render it with
+    /// `flight`. Written every second and when the window closes.
+    #[arg(long, conflicts_with = "replay")]
+    record: Option<PathBuf>,
+    /// Seconds between the recorded keys (0.01 to 10).
+    #[arg(long, default_value_t = 0.1, value_parser = parse_record_interval)]
+    record_interval: f64,
     /// A teaching view to start with (the panel changes it): colour surfaces by crossings,
     /// by the last face crossed, or by holonomy.
     #[arg(long, value_enum, default_value_t = ColourByArg::Shading)]
@@ -347,6 +354,20 @@ pub struct FlightArgs {
     colour_by: ColourByArg,
 }
 
+/// Seconds between recorded keys: 0.01 to 10.
+fn parse_record_interval(s: &str) -> Result<f64, String> {
+    let t: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("expected seconds between keys (0.01 to 10), got `{s}`"))?;
+    if !(0.01..=10.0).contains(&t) {
+        return Err(format!(
+            "the interval between keys must be 0.01 to 10 seconds, got {t}"
+        ));
+    }
+    Ok(t)
+}
+
 /// A flight's frame rate: 1 to 240 frames per second.
 fn parse_flight_fps(s: &str) -> Result<f64, String> {
     let fps: f64 = s
@@ -417,6 +438,8 @@ impl Default for WalkArgs {
             no_avatar: false,
             fps: DEFAULT_WALK_FPS,
             replay: None,
+            record: None,
+            record_interval: 0.1,
             colour_by: ColourByArg::Shading,
         }
     }

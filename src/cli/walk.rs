@@ -162,6 +162,31 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
         eprintln!("replaying the flight ({:.1} s, looping)", flight.duration());
         app.insert_resource(FlightReplay::new(flight, true));
     }
+    if let Some(path) = &args.record {
+        use bevy_curved_spaces::scene::flight::{FlightRecorder, FlightSource};
+        let source = match &args.scene {
+            Some(scene) => FlightSource::Scene(
+                std::fs::canonicalize(scene)
+                    .unwrap_or_else(|_| scene.clone())
+                    .display()
+                    .to_string(),
+            ),
+            None => FlightSource::Space(args.space.clone()),
+        };
+        // Fail now, not after the walk, where the file cannot be written.
+        bevy_curved_spaces::files::write_atomic(path, b"")
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        eprintln!(
+            "recording the walk to {} (a key every {} s; replay it with walk --replay)",
+            path.display(),
+            args.record_interval
+        );
+        app.insert_resource(FlightRecorder::new(
+            path.clone(),
+            source,
+            args.record_interval,
+        ));
+    }
     if let Some(path) = &args.screenshot {
         app.insert_resource(ScreenshotThenExit {
             path: path.clone(),

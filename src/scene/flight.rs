@@ -53,6 +53,9 @@ struct KeySpec {
     time: f64,
     position: [f64; 3],
     look_at: [f64; 3],
+    /// A point above the camera (geodesic coordinates in inradii): the view's up; without
+    /// it, up is the chart's +y.
+    up: Option<[f64; 3]>,
 }
 
 /// A flight file as written: where its space comes from, and its keys.
@@ -66,6 +69,9 @@ pub struct FlightFile {
     pub fov: f64,
     /// The keys: time (seconds), position and target (geodesic coordinates in inradii).
     pub keys: Vec<(f64, DVec3, DVec3)>,
+    /// Each key's point above the camera (`up`), where given (recorded walks give it, so
+    /// the replay keeps the walker's roll).
+    pub ups: Vec<Option<DVec3>>,
 }
 
 /// Parses a flight file's text; `file` names it in errors.
@@ -91,6 +97,7 @@ pub fn parse_flight(text: &str, file: &str) -> Result<FlightFile, String> {
         ));
     }
     let mut keys = Vec::with_capacity(spec.key.len());
+    let mut ups = Vec::with_capacity(spec.key.len());
     let mut last = f64::NEG_INFINITY;
     for (i, k) in spec.key.iter().enumerate() {
         let n = i + 1;
@@ -114,13 +121,24 @@ pub fn parse_flight(text: &str, file: &str) -> Result<FlightFile, String> {
         if (p - t).length() < 1e-9 {
             return fail(format!("key {n}: look_at is the position itself"));
         }
+        let up = k.up.map(DVec3::from_array);
+        if let Some(u) = up {
+            if !u.is_finite() {
+                return fail(format!("key {n}: up must be finite"));
+            }
+            if (u - p).length() < 1e-9 {
+                return fail(format!("key {n}: up is the position itself"));
+            }
+        }
         keys.push((k.time, p, t));
+        ups.push(up);
     }
     Ok(FlightFile {
         space: spec.space,
         scene: spec.scene,
         fov,
         keys,
+        ups,
     })
 }
 
@@ -130,6 +148,8 @@ pub struct Flight {
     geometry: Geometry,
     /// Time, position and target of each key (model points).
     keys: Vec<(f64, DVec4, DVec4)>,
+    /// Each key's point above the camera, where every key has one.
+    ups: Option<Vec<DVec4>>,
     /// Vertical field of view in degrees.
     pub fov: f64,
 }
@@ -168,9 +188,20 @@ impl Flight {
             let t = point_at(space, target, &format!("key {}: look_at", i + 1))?;
             keys.push((time, p, t));
         }
+        // Up points are used where every key has one (interpolated like the targets).
+        let ups = if !file.ups.is_empty() && file.ups.iter().all(Option::is_some) {
+            let mut ups = Vec::with_capacity(file.ups.len());
+            for (i, u) in file.ups.iter().flatten().enumerate() {
+                ups.push(point_at(space, *u, &format!("key {}: up", i + 1))?);
+            }
+            Some(ups)
+        } else {
+            None
+        };
         Ok(Self {
             geometry: space.geometry(),
             keys,
+            ups,
             fov: file.fov,
         })
     }
@@ -193,16 +224,27 @@ impl Flight {
     pub fn cover_frame(&self, t: f64) -> DMat4 {
         let g = self.geometry;
         let i = self.keys.partition_point(|k| k.0 <= t);
-        let (p, target) = if i == 0 {
-            (self.keys[0].1, self.keys[0].2)
+        let (p, target, up) = if i == 0 {
+            (
+                self.keys[0].1,
+                self.keys[0].2,
+                self.ups.as_ref().map(|u| u[0]),
+            )
         } else if i == self.keys.len() {
             let k = self.keys[i - 1];
-            (k.1, k.2)
+            (k.1, k.2, self.ups.as_ref().map(|u| u[i - 1]))
         } else {
             let (a, b) = (self.keys[i - 1], self.keys[i]);
             let s = (t - a.0) / (b.0 - a.0);
-            (along(g, a.1, b.1, s), along(g, a.2, b.2, s))
+            (
+                along(g, a.1, b.1, s),
+                along(g, a.2, b.2, s),
+                self.ups.as_ref().map(|u| along(g, u[i - 1], u[i], s)),
+            )
         };
+        if let Some(frame) = up.and_then(|u| frame_towards(g, p, target, u)) {
+            return frame;
+        }
         g.look_at(g.to_chart(p), g.to_chart(target), DVec3::Y)
             .or_else(|_| g.look_at(g.to_chart(p), g.to_chart(target), DVec3::X))
             .unwrap_or_else(|_| g.translation_to(p))
@@ -231,6 +273,48 @@ impl Flight {
         }
         (frame, faces)
     }
+}
+
+/// The frame at `p` looking at `target` with its up towards the point `up` (right-handed):
+/// `None` where up is along the view.
+fn frame_towards(g: Geometry, p: DVec4, target: DVec4, up: DVec4) -> Option<DMat4> {
+    let back = -g.tangent_towards(p, target);
+    let u = g.tangent_towards(p, up);
+    let u = u - g.form(u, back) * back;
+    let n = g.form(u, u);
+    if !(n > 1e-12) {
+        return None;
+    }
+    let u = u / n.sqrt();
+    // right = up × back in the tangent space: transport to the origin, cross, transport back.
+    let a = g.translation_to(p);
+    let a_inv = g.inverse(a);
+    let right = a
+        * (a_inv * u)
+            .truncate()
+            .cross((a_inv * back).truncate())
+            .extend(0.0);
+    Some(g.orthonormalize_frame(DMat4::from_cols(right, u, back, p)))
+}
+
+/// Geodesic coordinates in inradii of a point of the model (the inverse of a flight key's
+/// and a scene file's `position`), for cells centred at the origin; `None` for other
+/// cells, and in S³ for points π/2 or more from the centre.
+#[must_use]
+pub fn coordinates_of(space: &Space, x: DVec4) -> Option<DVec3> {
+    let g = space.geometry();
+    let centre = space.centre();
+    if (centre - crate::geometry::ORIGIN).abs().max_element() > 1e-12 {
+        return None;
+    }
+    let x = g.project_point(x);
+    let d = g.distance(crate::geometry::ORIGIN, x);
+    if g == Geometry::Spherical && d >= 0.999 * std::f64::consts::FRAC_PI_2 {
+        return None;
+    }
+    let scale = inradius(space).min(std::f64::consts::FRAC_PI_2);
+    let dir = x.truncate().normalize_or_zero();
+    Some(dir * (d / scale))
 }
 
 /// The point a fraction `s` of the way along the geodesic from `a` to `b`.
@@ -324,6 +408,213 @@ pub fn replay_flight(
                 way.record(face, active.space.faces()[face].pairing);
             }
             *h = way;
+        }
+    }
+}
+
+/// Where a recorded flight's space comes from: a space's id or path, or a scene file.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum FlightSource {
+    /// `space = "…"`.
+    Space(String),
+    /// `scene = "…"` (written as given; make it absolute, or relative to the flight file).
+    Scene(String),
+}
+
+/// Records the first curved-space camera's path as a flight file (`walk --record FILE`):
+/// while this resource exists, [`record_flight`] adds a key every `interval` seconds — the
+/// camera's frame carried back through the faces it crossed into the universal cover, as
+/// `position`, `look_at` and `up` — and writes the file at most once a second and when the
+/// app exits. `walk --replay FILE` and `flight FILE` play it back; at the keys' times the
+/// replay's frames are the walk's.
+#[derive(bevy::prelude::Resource, Clone, Debug)]
+pub struct FlightRecorder {
+    /// The file written.
+    pub path: std::path::PathBuf,
+    /// The space or scene named in it.
+    pub source: FlightSource,
+    /// Seconds between keys.
+    pub interval: f64,
+    /// Keys so far: time, position, look_at, up (geodesic coordinates in inradii).
+    pub keys: Vec<(f64, DVec3, DVec3, DVec3)>,
+    /// The camera's vertical field of view.
+    pub fov: f64,
+    /// Why recording stopped early, if it did (the keys so far are kept).
+    pub stopped: Option<String>,
+    started: Option<f64>,
+    space: Option<String>,
+    last_write: Option<f64>,
+    unwritten: bool,
+}
+
+impl FlightRecorder {
+    /// A recorder writing to `path`, a key every `interval` seconds.
+    #[must_use]
+    pub fn new(path: std::path::PathBuf, source: FlightSource, interval: f64) -> Self {
+        Self {
+            path,
+            source,
+            interval: interval.max(1e-3),
+            keys: Vec::new(),
+            fov: DEFAULT_FLIGHT_FOV,
+            stopped: None,
+            started: None,
+            space: None,
+            last_write: None,
+            unwritten: false,
+        }
+    }
+
+    /// The flight file's text.
+    #[must_use]
+    pub fn text(&self) -> String {
+        use std::fmt::Write as _;
+        let mut out = String::from(
+            "# A recorded walk (curved-spaces walk --record): replay it with\n\
+             #   curved-spaces walk --replay FILE, or render it with curved-spaces flight FILE\n",
+        );
+        let quoted = |s: &str| toml::Value::String(s.to_string()).to_string();
+        match &self.source {
+            FlightSource::Space(id) => {
+                let _ = writeln!(out, "space = {}", quoted(id));
+            }
+            FlightSource::Scene(path) => {
+                let _ = writeln!(out, "scene = {}", quoted(path));
+            }
+        }
+        let _ = writeln!(out, "fov = {}", self.fov);
+        let v = |x: DVec3| format!("[{:?}, {:?}, {:?}]", x.x, x.y, x.z);
+        for (t, p, look, up) in &self.keys {
+            let _ = write!(
+                out,
+                "\n[[key]]\ntime = {t:?}\nposition = {}\nlook_at = {}\nup = {}\n",
+                v(*p),
+                v(*look),
+                v(*up)
+            );
+        }
+        out
+    }
+
+    /// Writes the file (whole or not at all).
+    pub fn write(&mut self) -> Result<(), String> {
+        if self.keys.is_empty() {
+            return Ok(());
+        }
+        crate::files::write_atomic(&self.path, self.text().as_bytes())
+            .map_err(|e| format!("cannot write {}: {e}", self.path.display()))?;
+        self.unwritten = false;
+        Ok(())
+    }
+
+    /// Adds the key of a camera at clock time `now`, if one is due.
+    pub fn record(
+        &mut self,
+        space: &Space,
+        space_id: &str,
+        now: f64,
+        frame: DMat4,
+        holonomy: &crate::space::Holonomy,
+        fov: f64,
+    ) {
+        if self.stopped.is_some() {
+            return;
+        }
+        if self.space.get_or_insert_with(|| space_id.to_string()) != space_id {
+            self.stop("the space changed; the keys so far are kept".into());
+            return;
+        }
+        let start = *self.started.get_or_insert(now);
+        let t = now - start;
+        if let Some(last) = self.keys.last()
+            && t - last.0 < self.interval - 1e-9
+        {
+            return;
+        }
+        if self.keys.len() >= MAX_KEYS || t > MAX_FLIGHT_SECONDS {
+            self.stop(format!(
+                "a flight holds at most {MAX_KEYS} keys and {MAX_FLIGHT_SECONDS} s"
+            ));
+            return;
+        }
+        let g = space.geometry();
+        // The frame in the universal cover: F_now = H · F_cover.
+        let cover = g.inverse(holonomy.matrix) * frame;
+        let r = 0.5 * inradius(space).min(std::f64::consts::FRAC_PI_4);
+        let at = |local: DMat4| coordinates_of(space, g.project_point((cover * local).w_axis));
+        let keys = (
+            at(DMat4::IDENTITY),
+            at(g.translation(DVec3::NEG_Z, r)),
+            at(g.translation(DVec3::Y, r)),
+        );
+        match keys {
+            (Some(p), Some(look), Some(up)) => {
+                self.keys.push((t, p, look, up));
+                self.fov = fov;
+                self.unwritten = true;
+            }
+            _ => self.stop(format!(
+                "at {t:.2} s the walk left what a flight file can hold (in S³ the hemisphere about the centre; a cell centred off the origin); the keys so far are kept"
+            )),
+        }
+    }
+
+    fn stop(&mut self, why: String) {
+        bevy::log::warn!("recording stopped: {why}");
+        self.stopped = Some(why);
+    }
+}
+
+/// Adds a key of the first curved-space camera to the [`FlightRecorder`] when one is due,
+/// and writes the file at most once a second (registered by the plugin; does nothing
+/// without the resource).
+pub fn record_flight(
+    time: bevy::prelude::Res<bevy::prelude::Time>,
+    active: bevy::prelude::Res<crate::components::ActiveSpace>,
+    recorder: Option<bevy::prelude::ResMut<FlightRecorder>>,
+    cameras: bevy::prelude::Query<(
+        &crate::components::PlayerFrame,
+        &crate::space::Holonomy,
+        &crate::components::CurvedSpaceCamera,
+    )>,
+) {
+    let Some(mut recorder) = recorder else {
+        return;
+    };
+    let Some((frame, holonomy, camera)) = cameras.iter().next() else {
+        return;
+    };
+    let now = time.elapsed_secs_f64();
+    recorder.record(
+        &active.space,
+        &active.id,
+        now,
+        frame.0,
+        holonomy,
+        camera.fov_y_degrees,
+    );
+    if recorder.unwritten && recorder.last_write.is_none_or(|w| now - w >= 1.0) {
+        recorder.last_write = Some(now);
+        if let Err(e) = recorder.write() {
+            recorder.stop(e);
+        }
+    }
+}
+
+/// Writes the recorded flight when the app exits.
+pub fn finish_recording(
+    mut exits: bevy::prelude::MessageReader<bevy::prelude::AppExit>,
+    recorder: Option<bevy::prelude::ResMut<FlightRecorder>>,
+) {
+    if exits.read().next().is_none() {
+        return;
+    }
+    if let Some(mut r) = recorder
+        && r.unwritten
+    {
+        match r.write() {
+            Ok(()) => bevy::log::info!("wrote the recorded flight to {}", r.path.display()),
+            Err(e) => bevy::log::error!("{e}"),
         }
     }
 }

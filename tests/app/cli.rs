@@ -1056,6 +1056,17 @@ fn render_shows_moving_objects_at_their_time() {
         &["render", "torus", "--cpu", "--colour-by", "purple"],
         "invalid value 'purple'",
     );
+    fails_with(
+        &[
+            "walk",
+            "torus",
+            "--record",
+            "w.toml",
+            "--record-interval",
+            "0",
+        ],
+        "0.01 to 10 seconds",
+    );
     let bad = dir.join("bad.toml");
     for (object, message) in [
         (

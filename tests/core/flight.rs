@@ -153,3 +153,75 @@ fn a_replayed_flight_drives_the_camera_frame_for_frame() {
         assert!(max_entry(turned - f) < 1e-9, "update {n}");
     }
 }
+
+/// A walk recorded as a flight (`walk --record`) replays to the walk's own frames: through
+/// faces (turned by their pairings), with pitch and roll, at every recorded key.
+#[test]
+fn a_recorded_walk_replays_to_the_same_frames() {
+    use bevy::prelude::*;
+    use bevy::time::TimeUpdateStrategy;
+    use bevy_curved_spaces::components::{PlayerFrame, PlayerMotion};
+    use bevy_curved_spaces::prelude::{
+        ActiveSpace, CurvedSpaceCamera, CurvedSpacesPlugin, Holonomy,
+    };
+    use bevy_curved_spaces::scene::flight::{FlightRecorder, FlightSource};
+    const DT: f64 = 0.05;
+    for id in ["seifert-weber", "half-turn", "mirrored-cube"] {
+        let dir = crate::common::scratch_dir(&format!("record-{id}"));
+        let path = dir.join("walk.toml");
+        let mut app = App::new();
+        app.add_plugins(MinimalPlugins)
+            .insert_resource(TimeUpdateStrategy::ManualDuration(
+                std::time::Duration::from_secs_f64(DT),
+            ))
+            .add_plugins(CurvedSpacesPlugin {
+                space: id.into(),
+                controls: false,
+                ..default()
+            })
+            .insert_resource(FlightRecorder::new(
+                path.clone(),
+                FlightSource::Space(id.into()),
+                DT,
+            ));
+        app.finish();
+        let camera = app.world_mut().spawn(CurvedSpaceCamera::default()).id();
+        app.update();
+        let r = app.world().resource::<ActiveSpace>().inradius;
+        // Forward, turning and rolling: through several faces in 6 s.
+        *app.world_mut().get_mut::<PlayerMotion>(camera).unwrap() = PlayerMotion {
+            translation: glam::DVec3::new(0.1, 0.0, -0.8) * r * DT,
+            rotation: glam::DVec3::new(0.15, 0.25, 0.3) * DT,
+        };
+        // The first update recorded the start already.
+        let mut frames = vec![app.world().get::<PlayerFrame>(camera).unwrap().0];
+        for _ in 0..120 {
+            app.update();
+            frames.push(app.world().get::<PlayerFrame>(camera).unwrap().0);
+        }
+        let crossings = app.world().get::<Holonomy>(camera).unwrap().crossings;
+        assert!(crossings >= 2, "{id}: {crossings} crossings");
+        app.world_mut()
+            .resource_mut::<FlightRecorder>()
+            .write()
+            .unwrap();
+        let recorder = app.world().resource::<FlightRecorder>().clone();
+        assert!(recorder.stopped.is_none(), "{id}: {:?}", recorder.stopped);
+        let file = load_flight_file(&path).unwrap();
+        assert!(file.keys.len() >= 110, "{id}: {} keys", file.keys.len());
+        let space = app.world().resource::<ActiveSpace>().space.clone();
+        let flight = Flight::new(&space, &file).unwrap();
+        // The keys are the frames from the first recorded one on, DT apart.
+        let first = frames.len() - file.keys.len();
+        for (k, &(t, _, _)) in file.keys.iter().enumerate() {
+            let walked = frames[first + k];
+            let replayed = flight.frame(&space, t);
+            assert!(
+                max_entry(replayed - walked) < 1e-9,
+                "{id}: key {k} at {t} s differs by {:e}",
+                max_entry(replayed - walked)
+            );
+        }
+        std::fs::remove_dir_all(&dir).ok();
+    }
+}
