@@ -46,6 +46,7 @@ fn main() -> ExitCode {
             edges: true,
             centre_ball: false,
             avatar: false,
+            clifford: false,
         },
         objects: vec![ball],
         ..OffscreenRender::new(ActiveSpace::new(&id, space.clone()), camera, (640, 360), 32)

@@ -362,6 +362,9 @@ fn panel(
             ui.checkbox(&mut parts.edges, "cell edges");
             ui.checkbox(&mut parts.centre_ball, "centre ball");
             ui.checkbox(&mut parts.avatar, "your ship (seen round the space)");
+            if active.space.geometry == crate::geometry::Geometry::Spherical {
+                ui.checkbox(&mut parts.clifford, "Clifford parallels");
+            }
             if parts != settings.parts {
                 settings.parts = parts;
             }

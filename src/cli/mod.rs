@@ -157,6 +157,9 @@ struct RenderArgs {
     /// crossed, or by the rotation of the copy of the cell they are in.
     #[arg(long, value_enum, default_value_t = ColourByArg::Shading)]
     colour_by: ColourByArg,
+    /// In spherical spaces, show Clifford parallels (great circles of a Hopf fibration).
+    #[arg(long)]
+    clifford: bool,
 }
 
 /// Stereo options shared by `walk` and `render`.
@@ -276,6 +279,10 @@ struct WalkArgs {
     /// by the last face crossed, or by holonomy.
     #[arg(long, value_enum, default_value_t = ColourByArg::Shading)]
     colour_by: ColourByArg,
+    /// In spherical spaces, show Clifford parallels (great circles of a Hopf fibration; the
+    /// panel toggles them).
+    #[arg(long)]
+    clifford: bool,
 }
 
 /// `--colour-by`'s values.
@@ -418,6 +425,7 @@ impl RenderArgs {
             scene: None,
             time: 0.0,
             colour_by: ColourByArg::Shading,
+            clifford: false,
         }
     }
 }
@@ -441,6 +449,7 @@ impl Default for WalkArgs {
             record: None,
             record_interval: 0.1,
             colour_by: ColourByArg::Shading,
+            clifford: false,
         }
     }
 }

@@ -33,6 +33,24 @@ pub(super) struct Chosen {
 }
 
 impl Chosen {
+    /// The scene with Clifford parallels added (spherical spaces; others are unchanged).
+    pub(super) fn with_clifford(mut self) -> Chosen {
+        if self.parts.clifford
+            || self.space.geometry() != bevy_curved_spaces::geometry::Geometry::Spherical
+        {
+            return self;
+        }
+        self.parts.clifford = true;
+        self.base.parts = self.base.parts.map(|p| SceneParts {
+            clifford: true,
+            ..p
+        });
+        for tube in bevy_curved_spaces::scene::clifford_parallels(&self.space) {
+            let _ = self.scene.place(&self.space, tube);
+        }
+        self
+    }
+
     /// The scene with its moving objects where they are at `time` seconds (unchanged
     /// without any).
     pub(super) fn at(&self, time: f64) -> Result<Chosen, String> {
@@ -98,7 +116,10 @@ struct View {
 }
 
 pub(super) fn render_command(args: &RenderArgs) -> Result<(), String> {
-    let chosen = choose_scene(&args.space, args.scene.as_deref(), args.fog)?.at(args.time)?;
+    let mut chosen = choose_scene(&args.space, args.scene.as_deref(), args.fog)?.at(args.time)?;
+    if args.clifford {
+        chosen = chosen.with_clifford();
+    }
     let view = view(args, &chosen)?;
     let started = Instant::now();
     let image = if args.cpu {

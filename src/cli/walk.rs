@@ -162,6 +162,12 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
         eprintln!("replaying the flight ({:.1} s, looping)", flight.duration());
         app.insert_resource(FlightReplay::new(flight, true));
     }
+    if args.clifford {
+        app.world_mut()
+            .resource_mut::<bevy_curved_spaces::components::TracerSettings>()
+            .parts
+            .clifford = true;
+    }
     if let Some(path) = &args.record {
         use bevy_curved_spaces::scene::flight::{FlightRecorder, FlightSource};
         let source = match &args.scene {

@@ -102,6 +102,9 @@ struct FileSpec {
     centre_ball: bool,
     #[serde(default = "default_true")]
     avatar: bool,
+    /// Clifford parallels (spherical spaces).
+    #[serde(default)]
+    clifford: bool,
     ambient: Option<Spanned<f64>>,
     fog_colour: Option<[f64; 3]>,
     start: Option<Spanned<StartSpec>>,
@@ -272,6 +275,7 @@ pub fn parse_scene(text: &str, base: &Path, file: &str) -> Result<SceneFile, Sce
             edges: false,
             centre_ball: false,
             avatar: false,
+            clifford: false,
         },
     );
     if let Some(a) = &spec.ambient {
@@ -376,6 +380,7 @@ pub fn parse_scene(text: &str, base: &Path, file: &str) -> Result<SceneFile, Sce
             edges: spec.edges,
             centre_ball: spec.centre_ball,
             avatar: spec.avatar,
+            clifford: spec.clifford,
         },
         moving,
     })
@@ -413,6 +418,7 @@ const KEYS: &[&str] = &[
     "size",
     "intensity",
     "velocity",
+    "clifford",
 ];
 
 /// An unknown-field message with the nearest known key, if one is close (`color` →

@@ -297,6 +297,10 @@ pub struct SceneParts {
     /// The player's ship ([`crate::scene::avatar`]), seen where rays come back round the
     /// space; put it at the player with [`CurvedScene::set_avatar_frame`].
     pub avatar: bool,
+    /// In spherical spaces, Clifford parallels: great circles of one Hopf fibration (the
+    /// one the space's pairings preserve, where one does) as thin tubes, through the
+    /// centre and round it ([`clifford_parallels`]).
+    pub clifford: bool,
 }
 
 impl Default for SceneParts {
@@ -306,6 +310,7 @@ impl Default for SceneParts {
             edges: true,
             centre_ball: true,
             avatar: false,
+            clifford: false,
         }
     }
 }
@@ -431,6 +436,12 @@ impl CurvedScene {
     pub fn adding_parts(&self, space: &Space, parts: SceneParts) -> CurvedScene {
         let mut scene = self.clone();
         scene.objects.splice(0..0, Self::part_objects(space, parts));
+        if parts.clifford {
+            for tube in clifford_parallels(space) {
+                // A segment too large to place is left out (it never is for these sizes).
+                let _ = scene.place(space, tube);
+            }
+        }
         if !parts.avatar {
             scene.avatar = None;
         } else if scene.avatar.is_none() {
@@ -628,4 +639,86 @@ impl CurvedScene {
         self.meshes.push(model.mesh.clone());
         (self.meshes.len() as u32 - 1, base)
     }
+}
+
+/// Fibres of the Hopf fibrations: `J₊(x, y, z, w) = (−y, x, −w, z)` and `J₋` with the
+/// second pair turned the other way. A great circle through `p` is `cos t·p + sin t·J p`.
+fn hopf_structures() -> [DMat4; 2] {
+    let j = |sign: f64| {
+        DMat4::from_cols(
+            DVec4::new(0.0, 1.0, 0.0, 0.0),
+            DVec4::new(-1.0, 0.0, 0.0, 0.0),
+            DVec4::new(0.0, 0.0, 0.0, sign),
+            DVec4::new(0.0, 0.0, -sign, 0.0),
+        )
+    };
+    [j(1.0), j(-1.0)]
+}
+
+/// Clifford parallels for a spherical space (none for other geometries): six great circles
+/// of the Hopf fibration that commutes with most of the space's pairings (so that in lens
+/// spaces and the Poincaré space they are the fibres the space is made of), through points
+/// half an inradius round the centre, twisting about the fibre through the centre (the
+/// default view's axis); each cut into segments no longer than the
+/// inradius, every segment brought into the cell through the faces, as thin pink tubes. Place them with [`CurvedScene::place`] (their images through the faces).
+#[must_use]
+pub fn clifford_parallels(space: &Space) -> Vec<Object> {
+    let g = space.geometry;
+    if g != Geometry::Spherical {
+        return Vec::new();
+    }
+    let commuting = |j: &DMat4| {
+        space
+            .faces
+            .iter()
+            .filter(|f| {
+                crate::geometry::max_abs_entry(&(f.pairing * *j - *j * f.pairing).to_cols_array())
+                    < 1e-9
+            })
+            .count()
+    };
+    let [plus, minus] = hopf_structures();
+    let j = if commuting(&minus) > commuting(&plus) {
+        minus
+    } else {
+        plus
+    };
+    let inradius = crate::space::invariants::inradius(space).min(std::f64::consts::FRAC_PI_2);
+    let c = space.centre();
+    // A unit vector orthogonal to c and J c, and its partner J e1.
+    let jc = j * c;
+    let e1 = [DVec4::X, DVec4::Y, DVec4::Z, DVec4::W]
+        .into_iter()
+        .map(|e| e - c * e.dot(c) - jc * e.dot(jc))
+        .max_by(|a, b| a.length().total_cmp(&b.length()))
+        .map_or(DVec4::X, |v| v.normalize());
+    let e2 = j * e1;
+    let rho = 0.5 * inradius;
+    let through: Vec<DVec4> = (0..6)
+        .map(|k| {
+            let phi = f64::from(k) * std::f64::consts::FRAC_PI_3;
+            c * rho.cos() + (e1 * phi.cos() + e2 * phi.sin()) * rho.sin()
+        })
+        .collect();
+    let segments = ((std::f64::consts::TAU / inradius).ceil() as usize).clamp(4, 64);
+    let radius = 0.02 * inradius;
+    let mut tubes = Vec::new();
+    for p in &through {
+        let jp = j * *p;
+        let at = |t: f64| *p * t.cos() + jp * t.sin();
+        // One colour for all: circles that are one circle of the quotient overlap, and
+        // overlapping tubes of one colour look the same whichever a ray meets first.
+        let colour = DVec3::new(0.95, 0.55, 0.85);
+        for k in 0..segments {
+            let t0 = std::f64::consts::TAU * k as f64 / segments as f64;
+            let t1 = std::f64::consts::TAU * (k + 1) as f64 / segments as f64;
+            let tube = Object::Tube(Tube::new(g, at(t0), at(t1), radius, colour));
+            // The segment moved by the pairings that bring its midpoint into the cell.
+            let mid = g.translation_to(at(0.5 * (t0 + t1)));
+            let (wrapped, _) = crate::space::wrap_into_cell(space, mid, 0.0);
+            let h = wrapped * g.inverse(mid);
+            tubes.push(tube.transformed(g, h));
+        }
+    }
+    tubes
 }

@@ -194,6 +194,7 @@ fn placed_objects_straddling_faces_render_alike_on_gpu_and_cpu() {
             edges: true,
             centre_ball: false,
             avatar: false,
+            clifford: false,
         };
         let settings = TracerSettings {
             fog_distance: None,
@@ -407,6 +408,7 @@ fn gpu_disparity_in_the_torus_matches_the_geometry() {
                 edges: false,
                 centre_ball: false,
                 avatar: false,
+                clifford: false,
             },
             objects: vec![ball],
             stereo: StereoSettings {
@@ -573,6 +575,7 @@ fn compare_scene(
                 edges: false,
                 centre_ball: false,
                 avatar: scene.avatar.is_some(),
+                clifford: false,
             },
             base: BaseScene {
                 space_id: id.to_string(),
@@ -641,6 +644,7 @@ fn a_gltf_from_assets_renders_alike_on_gpu_and_cpu_in_three_geometries() {
                 edges: true,
                 centre_ball: false,
                 avatar: false,
+                clifford: false,
             },
         );
         let mesh = scene
@@ -827,6 +831,7 @@ fn entities_render_alike_on_gpu_and_cpu() {
             edges: true,
             centre_ball: false,
             avatar: false,
+            clifford: false,
         };
         let mut scene =
             CurvedScene::with_parts(&space, Shading::default_fog_distance(&space), parts);
@@ -960,4 +965,67 @@ fn colour_by_views_render_alike_on_gpu_and_cpu() {
             );
         }
     }
+}
+
+/// Clifford parallels (spherical spaces) on the GPU as on the CPU, and absent elsewhere.
+#[test]
+fn clifford_parallels_render_alike_on_gpu_and_cpu() {
+    let _gpu = gpu_lock();
+    let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
+    let parts = SceneParts {
+        clifford: true,
+        ..SceneParts::default()
+    };
+    for id in ["poincare", "lens-7-1"] {
+        let space = bevy_curved_spaces::space::resolve_space(
+            id,
+            std::path::Path::new(""),
+            &Default::default(),
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
+        let plain = CurvedScene::with_parts(
+            &space,
+            Shading::default_fog_distance(&space),
+            SceneParts::default(),
+        );
+        let scene = CurvedScene::with_parts(&space, Shading::default_fog_distance(&space), parts);
+        assert!(
+            scene.objects.len() >= plain.objects.len() + 6,
+            "{id}: the parallels are there"
+        );
+        let camera = TraceCamera::default_for(&space);
+        let cpu = render(
+            &space,
+            &scene,
+            &camera,
+            &RenderSettings {
+                width: WIDTH,
+                height: HEIGHT,
+                max_crossings: 12,
+            },
+        );
+        let gpu = renderer
+            .render(&OffscreenRender {
+                parts,
+                ..OffscreenRender::new(
+                    ActiveSpace::new(id, space.clone()),
+                    camera,
+                    (WIDTH, HEIGHT),
+                    12,
+                )
+            })
+            .expect("renders");
+        let (c, _) = compare(&gpu, &cpu, TOLERANCE);
+        println!(
+            "{id} with Clifford parallels: differing {:.3} %",
+            100.0 * c.differing
+        );
+        assert!(
+            c.differing <= MAX_DIFFERING,
+            "{id}: {:.3} % differ",
+            100.0 * c.differing
+        );
+    }
+    let torus = bevy_curved_spaces::space::seed_space("torus").unwrap();
+    assert!(bevy_curved_spaces::scene::clifford_parallels(&torus).is_empty());
 }

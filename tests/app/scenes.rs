@@ -184,6 +184,7 @@ fn the_avatar_is_seen_round_the_space_and_not_from_inside() {
                 edges: false,
                 centre_ball: false,
                 avatar: true,
+                clifford: false,
             },
         )
     };

@@ -272,11 +272,13 @@ fn every_seed_scene_packs_to_the_shader_layout() {
                 edges: false,
                 centre_ball: true,
                 avatar: false,
+                clifford: false,
             },
             SceneParts {
                 edges: true,
                 centre_ball: false,
                 avatar: false,
+                clifford: false,
             },
         ] {
             let scene =
@@ -319,6 +321,7 @@ fn a_scene_without_objects_and_a_zero_budget_are_refused_or_handled() {
             edges: false,
             centre_ball: false,
             avatar: false,
+            clifford: false,
         },
     );
     let gpu = GpuScene::new(&space, &scene, 8).expect("an empty scene shows fog");

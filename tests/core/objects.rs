@@ -263,6 +263,7 @@ fn centre_pixel(app: &App) -> DVec3 {
             edges: false,
             centre_ball: false,
             avatar: false,
+            clifford: false,
         },
     );
     let problems = add_entity_objects(

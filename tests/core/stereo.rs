@@ -25,6 +25,7 @@ fn lone_ball(space: &Space, centre: DVec4, radius: f64) -> CurvedScene {
             edges: false,
             centre_ball: false,
             avatar: false,
+            clifford: false,
         },
     );
     let ball = Ball::new(space.geometry(), centre, radius, DVec3::ONE);

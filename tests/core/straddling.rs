@@ -26,6 +26,7 @@ fn placing_the_default_scene_changes_no_pixel() {
                 edges: false,
                 centre_ball: false,
                 avatar: false,
+                clifford: false,
             },
         );
         for o in &default.objects {
@@ -70,6 +71,7 @@ fn ambient_scene(space: &bevy_curved_spaces::space::Space) -> CurvedScene {
             edges: false,
             centre_ball: false,
             avatar: false,
+            clifford: false,
         },
     );
     scene.shading.ambient = 1.0;
