@@ -106,6 +106,111 @@ fn next_stereo_mode(
     }
 }
 
+/// The story of the ray through the pointer (or the screen centre while the mouse looks
+/// round): the faces it crossed with the distance at each, the word of pairings, and what
+/// it met. Traced on the CPU in f64, the reference the GPU is tested against.
+#[allow(clippy::too_many_arguments)]
+fn inspector(
+    ui: &mut egui::Ui,
+    active: &ActiveSpace,
+    scene: &crate::scene::CurvedScene,
+    camera: &CurvedSpaceCamera,
+    frame: &PlayerFrame,
+    window: Option<&Window>,
+    grabbed: bool,
+    budget: u32,
+) {
+    use crate::scene::Object;
+    use crate::trace::{RayEnd, ray_story};
+    let Some(window) = window else {
+        return;
+    };
+    let (w, h) = (window.width().max(1.0), window.height().max(1.0));
+    let at = window
+        .cursor_position()
+        .filter(|_| !grabbed)
+        .unwrap_or(Vec2::new(w / 2.0, h / 2.0));
+    let view = crate::view::TraceCamera {
+        frame: frame.0,
+        fov_y_degrees: camera.fov_y_degrees,
+    };
+    let (pw, ph) = (w.round() as u32, h.round() as u32);
+    let (i, j) = (
+        (at.x.max(0.0) as u32).min(pw - 1),
+        (at.y.max(0.0) as u32).min(ph - 1),
+    );
+    let space = &active.space;
+    let ray = view.ray(space.geometry, i, j, pw, ph);
+    let walker = crate::space::CellWalker::<glam::DVec4>::new(space);
+    let story = ray_story(&walker, scene, ray, budget.max(1) as usize);
+    ui.label(format!(
+        "the ray through {} ({i}, {j})",
+        if grabbed {
+            "the screen centre"
+        } else {
+            "the pointer"
+        }
+    ));
+    let shown: Vec<String> = story
+        .crossings
+        .iter()
+        .take(12)
+        .map(|(f, d)| format!("{f} at {d:.3}"))
+        .collect();
+    let more = story.crossings.len().saturating_sub(12);
+    ui.label(format!(
+        "faces crossed ({}): {}{}",
+        story.crossings.len(),
+        if shown.is_empty() {
+            "none".to_string()
+        } else {
+            shown.join(", ")
+        },
+        if more > 0 {
+            format!(" and {more} more")
+        } else {
+            String::new()
+        }
+    ));
+    if !story.crossings.is_empty() {
+        let word: Vec<String> = story
+            .crossings
+            .iter()
+            .rev()
+            .take(16)
+            .map(|(f, _)| format!("g{f}"))
+            .collect();
+        ui.label(format!(
+            "holonomy word (latest first): {}{}",
+            word.join(" "),
+            if story.crossings.len() > 16 {
+                " ..."
+            } else {
+                ""
+            }
+        ));
+    }
+    let ended = match &story.end {
+        RayEnd::Hit(hit) => {
+            let what = match scene.objects.get(hit.object) {
+                Some(Object::Ball(b)) if b.texture.is_some() => "a globe".to_string(),
+                Some(Object::Ball(_)) => "a ball".to_string(),
+                Some(Object::Tube(_)) => "a tube".to_string(),
+                Some(Object::Disc(_)) => "a disc".to_string(),
+                Some(Object::Mesh(_)) => "a mesh".to_string(),
+                None => "your ship".to_string(),
+            };
+            format!(
+                "met {what} (object {}) at distance {:.4}",
+                hit.object, hit.distance
+            )
+        }
+        RayEnd::Fog(_) => "faded into the fog".to_string(),
+        RayEnd::Budget(k) => format!("stopped at the crossing budget ({k})"),
+    };
+    ui.label(ended);
+}
+
 /// The teaching view and its legend: what each tint means.
 fn colour_by_controls(ui: &mut egui::Ui, settings: &mut ResMut<TracerSettings>, faces: usize) {
     use crate::scene::{ColourBy, palette};
@@ -248,6 +353,9 @@ fn panel(
     mut frame_rate: ResMut<FrameRateTarget>,
     mut picker: Local<SpacePicker>,
     entities: Res<crate::objects::EntityObjects>,
+    shown_scene: Option<Res<crate::render::upload::ShownScene>>,
+    windows: Query<&Window, With<bevy::window::PrimaryWindow>>,
+    look: Res<crate::components::MouseLook>,
 ) -> Result {
     let ctx = contexts.ctx_mut()?;
     if !shown.0 {
@@ -404,6 +512,14 @@ fn panel(
                 Some(r) => ui.label(format!("injectivity radius {r:.6}")),
                 None => ui.label("injectivity radius: not enumerated"),
             };
+            if let (Some(scene), Some((camera, frame, _))) =
+                (shown_scene.as_deref(), cameras.iter().next())
+            {
+                egui::CollapsingHeader::new("inspector").default_open(true).show(ui, |ui| {
+                    let window = windows.iter().next();
+                    inspector(ui, &active, &scene.0, camera, frame, window, look.grabbed, status.budget);
+                });
+            }
             if !entities.objects.is_empty() || entities.pending > 0 {
                 ui.label(format!(
                     "objects: {} drawn, {} meshes loading",

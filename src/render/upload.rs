@@ -136,6 +136,7 @@ pub(crate) fn upload_scene(
             status.error = problems;
             status.budget = budget;
             status.fog_distance = scene.shading.fog_distance;
+            commands.insert_resource(ShownScene(Arc::new(scene)));
             status.auto_budget = auto;
         }
         Err(e) => {
@@ -144,6 +145,11 @@ pub(crate) fn upload_scene(
         }
     }
 }
+
+/// The scene the tracer shows now (with the entities' objects and every image), for the
+/// CPU side: the panel's ray inspector traces it.
+#[derive(Resource, Clone, Debug)]
+pub struct ShownScene(pub Arc<CurvedScene>);
 
 /// What [`upload_scene`] keeps between frames.
 #[derive(Default)]

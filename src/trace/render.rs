@@ -306,3 +306,73 @@ pub fn render_view(
         .collect();
     RgbImage::from_raw(w, h, rows.concat()).expect("buffer has width × height pixels")
 }
+
+/// What one ray did, for the inspector: the faces it crossed with the distance travelled at
+/// each, and how it ended.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RayStory {
+    /// Each crossing: the face left by and the distance travelled to it.
+    pub crossings: Vec<(usize, f64)>,
+    /// How the ray ended.
+    pub end: RayEnd,
+}
+
+/// Traces one ray as [`first_hit_traced`] does and tells its story.
+#[must_use]
+pub fn ray_story(
+    walker: &CellWalker<DVec4>,
+    scene: &CurvedScene,
+    start: Ray<DVec4>,
+    max_crossings: usize,
+) -> RayStory {
+    let g = walker.geometry;
+    let cutoff = scene.shading.cutoff_distance();
+    let mut ray = walker.normalized(start);
+    let mut distance = 0.0;
+    let mut skip = None;
+    let mut crossings = Vec::new();
+    for k in 0..=max_crossings {
+        let Some(exit) = walker.exit(&ray, skip) else {
+            return RayStory {
+                crossings,
+                end: RayEnd::Budget(k),
+            };
+        };
+        if let Some((object, hit)) =
+            scene.intersect(g, ray.point, ray.tangent, exit.ratio(), distance)
+        {
+            let d = distance + g.distance_from_ratio(hit.s, 1.0);
+            let end = if d >= cutoff {
+                RayEnd::Fog(k)
+            } else {
+                RayEnd::Hit(SceneHit {
+                    object,
+                    hit,
+                    distance: d,
+                    crossings: k,
+                })
+            };
+            return RayStory { crossings, end };
+        }
+        if k == max_crossings {
+            break;
+        }
+        let (next, length) = walker.cross(&ray, &exit);
+        distance += length;
+        if exit.face != crate::space::walk::NO_FACE {
+            crossings.push((exit.face, distance));
+        }
+        if distance >= cutoff {
+            return RayStory {
+                crossings,
+                end: RayEnd::Fog(k + 1),
+            };
+        }
+        ray = next;
+        skip = walker.entered(&exit);
+    }
+    RayStory {
+        crossings,
+        end: RayEnd::Budget(max_crossings),
+    }
+}

@@ -188,3 +188,31 @@ fn every_seed_space_renders() {
         assert!(sees_ball, "{}: the centre ball is not in view", seed.id);
     }
 }
+
+/// The inspector's story of a ray is the ray the renderer traces: the same end, and its
+/// faces hash to the same path, with distances that grow.
+#[test]
+fn a_rays_story_is_the_traced_ray() {
+    use bevy_curved_spaces::trace::{
+        PATH_HASH_START, first_hit_traced, path_hash, ray_story, sample_rays,
+    };
+    for id in ["seifert-weber", "quarter-turn", "poincare"] {
+        let space = bevy_curved_spaces::space::seed_space(id).unwrap();
+        let scene = bevy_curved_spaces::scene::CurvedScene::default_for(
+            &space,
+            bevy_curved_spaces::scene::Shading::default_fog_distance(&space),
+        );
+        let walker = bevy_curved_spaces::space::CellWalker::<glam::DVec4>::new(&space);
+        for ray in sample_rays(&space, 200, 5) {
+            let traced = first_hit_traced(&walker, &scene, ray, 16);
+            let story = ray_story(&walker, &scene, ray, 16);
+            assert_eq!(story.end, traced.end, "{id}");
+            let path = story
+                .crossings
+                .iter()
+                .fold(PATH_HASH_START, |h, (f, _)| path_hash(h, *f));
+            assert_eq!(path, traced.path, "{id}");
+            assert!(story.crossings.windows(2).all(|w| w[0].1 < w[1].1));
+        }
+    }
+}
