@@ -47,6 +47,7 @@ fn main() -> ExitCode {
             centre_ball: false,
             avatar: false,
             clifford: false,
+            gyroscope: false,
         },
         objects: vec![ball],
         ..OffscreenRender::new(ActiveSpace::new(&id, space.clone()), camera, (640, 360), 32)

@@ -470,6 +470,7 @@ fn panel(
             ui.checkbox(&mut parts.edges, "cell edges");
             ui.checkbox(&mut parts.centre_ball, "centre ball");
             ui.checkbox(&mut parts.avatar, "your ship (seen round the space)");
+            ui.checkbox(&mut parts.gyroscope, "gyroscope at the centre");
             if active.space.geometry == crate::geometry::Geometry::Spherical {
                 ui.checkbox(&mut parts.clifford, "Clifford parallels");
             }

@@ -160,6 +160,9 @@ struct RenderArgs {
     /// In spherical spaces, show Clifford parallels (great circles of a Hopf fibration).
     #[arg(long)]
     clifford: bool,
+    /// Put a gyroscope at the cell's centre (a ring, its axis and two coloured markers).
+    #[arg(long)]
+    gyroscope: bool,
 }
 
 /// Stereo options shared by `walk` and `render`.
@@ -283,6 +286,9 @@ struct WalkArgs {
     /// panel toggles them).
     #[arg(long)]
     clifford: bool,
+    /// Put a gyroscope at the cell's centre (the panel toggles it).
+    #[arg(long)]
+    gyroscope: bool,
 }
 
 /// `--colour-by`'s values.
@@ -426,6 +432,7 @@ impl RenderArgs {
             time: 0.0,
             colour_by: ColourByArg::Shading,
             clifford: false,
+            gyroscope: false,
         }
     }
 }
@@ -450,6 +457,7 @@ impl Default for WalkArgs {
             record_interval: 0.1,
             colour_by: ColourByArg::Shading,
             clifford: false,
+            gyroscope: false,
         }
     }
 }

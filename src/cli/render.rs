@@ -33,21 +33,15 @@ pub(super) struct Chosen {
 }
 
 impl Chosen {
-    /// The scene with Clifford parallels added (spherical spaces; others are unchanged).
-    pub(super) fn with_clifford(mut self) -> Chosen {
-        if self.parts.clifford
-            || self.space.geometry() != bevy_curved_spaces::geometry::Geometry::Spherical
-        {
-            return self;
-        }
-        self.parts.clifford = true;
-        self.base.parts = self.base.parts.map(|p| SceneParts {
-            clifford: true,
-            ..p
-        });
-        for tube in bevy_curved_spaces::scene::clifford_parallels(&self.space) {
-            let _ = self.scene.place(&self.space, tube);
-        }
+    /// The scene with other default parts (rebuilt from the base scene or the space).
+    pub(super) fn with_parts(mut self, parts: SceneParts) -> Chosen {
+        self.parts = parts;
+        self.base.parts = self.base.parts.map(|_| parts);
+        let fog = self.scene.shading.fog_distance;
+        self.scene = match &self.base.scene {
+            Some(base) => base.adding_parts(&self.space, parts),
+            None => CurvedScene::with_parts(&self.space, fog, parts),
+        };
         self
     }
 
@@ -117,8 +111,15 @@ struct View {
 
 pub(super) fn render_command(args: &RenderArgs) -> Result<(), String> {
     let mut chosen = choose_scene(&args.space, args.scene.as_deref(), args.fog)?.at(args.time)?;
-    if args.clifford {
-        chosen = chosen.with_clifford();
+    if args.clifford || args.gyroscope {
+        // The gyroscope is the centrepiece: the centre ball makes way for it.
+        let parts = SceneParts {
+            clifford: chosen.parts.clifford || args.clifford,
+            gyroscope: chosen.parts.gyroscope || args.gyroscope,
+            centre_ball: chosen.parts.centre_ball && !args.gyroscope,
+            ..chosen.parts
+        };
+        chosen = chosen.with_parts(parts);
     }
     let view = view(args, &chosen)?;
     let started = Instant::now();

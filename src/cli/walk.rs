@@ -162,11 +162,14 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
         eprintln!("replaying the flight ({:.1} s, looping)", flight.duration());
         app.insert_resource(FlightReplay::new(flight, true));
     }
-    if args.clifford {
-        app.world_mut()
-            .resource_mut::<bevy_curved_spaces::components::TracerSettings>()
-            .parts
-            .clifford = true;
+    {
+        let mut settings = app
+            .world_mut()
+            .resource_mut::<bevy_curved_spaces::components::TracerSettings>();
+        settings.parts.clifford |= args.clifford;
+        settings.parts.gyroscope |= args.gyroscope;
+        // The gyroscope is the centrepiece: the centre ball makes way for it.
+        settings.parts.centre_ball &= !args.gyroscope;
     }
     if let Some(path) = &args.record {
         use bevy_curved_spaces::scene::flight::{FlightRecorder, FlightSource};

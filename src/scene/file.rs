@@ -105,6 +105,9 @@ struct FileSpec {
     /// Clifford parallels (spherical spaces).
     #[serde(default)]
     clifford: bool,
+    /// A gyroscope at the centre.
+    #[serde(default)]
+    gyroscope: bool,
     ambient: Option<Spanned<f64>>,
     fog_colour: Option<[f64; 3]>,
     start: Option<Spanned<StartSpec>>,
@@ -276,6 +279,7 @@ pub fn parse_scene(text: &str, base: &Path, file: &str) -> Result<SceneFile, Sce
             centre_ball: false,
             avatar: false,
             clifford: false,
+            gyroscope: false,
         },
     );
     if let Some(a) = &spec.ambient {
@@ -381,6 +385,7 @@ pub fn parse_scene(text: &str, base: &Path, file: &str) -> Result<SceneFile, Sce
             centre_ball: spec.centre_ball,
             avatar: spec.avatar,
             clifford: spec.clifford,
+            gyroscope: spec.gyroscope,
         },
         moving,
     })
@@ -419,6 +424,7 @@ const KEYS: &[&str] = &[
     "intensity",
     "velocity",
     "clifford",
+    "gyroscope",
 ];
 
 /// An unknown-field message with the nearest known key, if one is close (`color` →

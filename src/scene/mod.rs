@@ -25,7 +25,7 @@ pub use culling::FaceCulling;
 pub use mesh::Model;
 pub use model::{
     Avatar, CurvedScene, MAX_AVATAR_IMAGES, MAX_IMAGES, PlaceError, SceneParts, SegmentHit,
-    TracedModel, avatar_instances, avatar_size, clifford_parallels, palette,
+    TracedModel, avatar_instances, avatar_size, clifford_parallels, gyroscope, palette,
 };
 pub use moving::{MovingError, MovingObject};
 pub use object::{Ball, BallTexture, Disc, Hit, MeshInstance, Object, Tube};

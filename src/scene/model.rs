@@ -301,6 +301,9 @@ pub struct SceneParts {
     /// one the space's pairings preserve, where one does) as thin tubes, through the
     /// centre and round it ([`clifford_parallels`]).
     pub clifford: bool,
+    /// A gyroscope at the cell's centre: a ring, an axis through it and two coloured
+    /// markers, so that a copy seen round a twisted space shows how it is turned.
+    pub gyroscope: bool,
 }
 
 impl Default for SceneParts {
@@ -311,6 +314,7 @@ impl Default for SceneParts {
             centre_ball: true,
             avatar: false,
             clifford: false,
+            gyroscope: false,
         }
     }
 }
@@ -520,6 +524,9 @@ impl CurvedScene {
                 DVec3::splat(0.9),
             ))
         }));
+        if parts.gyroscope {
+            objects.extend(gyroscope(space));
+        }
         if parts.centre_ball {
             objects.push(Object::Ball(Ball::new(
                 g,
@@ -721,4 +728,48 @@ pub fn clifford_parallels(space: &Space) -> Vec<Object> {
         }
     }
     tubes
+}
+
+/// A gyroscope at the cell's centre, in the centre's axes: a ring of radius 0.45 inradii
+/// about the `y` axis (24 tube segments), the axis itself (a tube 1.1 inradii long), a red
+/// ball at the axis's `+y` end and a green one on the ring at `+x`. Its chirality makes
+/// every turn and mirror of a copy visible.
+#[must_use]
+pub fn gyroscope(space: &Space) -> Vec<Object> {
+    let g = space.geometry;
+    let r = crate::space::invariants::inradius(space).min(std::f64::consts::FRAC_PI_4);
+    let centre = g.translation_to(space.centre());
+    let point = |local: DMat4| g.project_point((centre * local).w_axis);
+    let ring_radius = 0.45 * r;
+    let tube = 0.03 * r;
+    let ring_at = |a: f64| point(g.translation(DVec3::new(a.cos(), 0.0, a.sin()), ring_radius));
+    let gold = DVec3::new(0.95, 0.75, 0.3);
+    let mut objects: Vec<Object> = (0..24)
+        .map(|k| {
+            let a = std::f64::consts::TAU * f64::from(k) / 24.0;
+            let b = std::f64::consts::TAU * f64::from(k + 1) / 24.0;
+            Object::Tube(Tube::new(g, ring_at(a), ring_at(b), tube, gold))
+        })
+        .collect();
+    let axis = |t: f64| point(g.translation(DVec3::Y, t));
+    objects.push(Object::Tube(Tube::new(
+        g,
+        axis(-0.55 * r),
+        axis(0.55 * r),
+        0.7 * tube,
+        DVec3::splat(0.85),
+    )));
+    objects.push(Object::Ball(Ball::new(
+        g,
+        axis(0.55 * r),
+        2.5 * tube,
+        DVec3::new(0.9, 0.15, 0.1),
+    )));
+    objects.push(Object::Ball(Ball::new(
+        g,
+        ring_at(0.0),
+        2.5 * tube,
+        DVec3::new(0.15, 0.85, 0.2),
+    )));
+    objects
 }

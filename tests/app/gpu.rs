@@ -195,6 +195,7 @@ fn placed_objects_straddling_faces_render_alike_on_gpu_and_cpu() {
             centre_ball: false,
             avatar: false,
             clifford: false,
+            gyroscope: false,
         };
         let settings = TracerSettings {
             fog_distance: None,
@@ -409,6 +410,7 @@ fn gpu_disparity_in_the_torus_matches_the_geometry() {
                 centre_ball: false,
                 avatar: false,
                 clifford: false,
+                gyroscope: false,
             },
             objects: vec![ball],
             stereo: StereoSettings {
@@ -576,6 +578,7 @@ fn compare_scene(
                 centre_ball: false,
                 avatar: scene.avatar.is_some(),
                 clifford: false,
+                gyroscope: false,
             },
             base: BaseScene {
                 space_id: id.to_string(),
@@ -645,6 +648,7 @@ fn a_gltf_from_assets_renders_alike_on_gpu_and_cpu_in_three_geometries() {
                 centre_ball: false,
                 avatar: false,
                 clifford: false,
+                gyroscope: false,
             },
         );
         let mesh = scene
@@ -832,6 +836,7 @@ fn entities_render_alike_on_gpu_and_cpu() {
             centre_ball: false,
             avatar: false,
             clifford: false,
+            gyroscope: false,
         };
         let mut scene =
             CurvedScene::with_parts(&space, Shading::default_fog_distance(&space), parts);
@@ -967,13 +972,15 @@ fn colour_by_views_render_alike_on_gpu_and_cpu() {
     }
 }
 
-/// Clifford parallels (spherical spaces) on the GPU as on the CPU, and absent elsewhere.
+/// Clifford parallels (spherical spaces; absent elsewhere) and the gyroscope on the GPU as
+/// on the CPU.
 #[test]
-fn clifford_parallels_render_alike_on_gpu_and_cpu() {
+fn clifford_parallels_and_the_gyroscope_render_alike_on_gpu_and_cpu() {
     let _gpu = gpu_lock();
     let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
     let parts = SceneParts {
         clifford: true,
+        gyroscope: false,
         ..SceneParts::default()
     };
     for id in ["poincare", "lens-7-1"] {
@@ -1028,4 +1035,46 @@ fn clifford_parallels_render_alike_on_gpu_and_cpu() {
     }
     let torus = bevy_curved_spaces::space::seed_space("torus").unwrap();
     assert!(bevy_curved_spaces::scene::clifford_parallels(&torus).is_empty());
+    // The gyroscope centrepiece, in a twisted hyperbolic space and a mirrored flat one.
+    let parts = SceneParts {
+        gyroscope: true,
+        centre_ball: false,
+        ..SceneParts::default()
+    };
+    for id in ["seifert-weber", "mirrored-cube"] {
+        let space = bevy_curved_spaces::space::seed_space(id).unwrap();
+        let scene = CurvedScene::with_parts(&space, Shading::default_fog_distance(&space), parts);
+        let camera = TraceCamera::default_for(&space);
+        let cpu = render(
+            &space,
+            &scene,
+            &camera,
+            &RenderSettings {
+                width: WIDTH,
+                height: HEIGHT,
+                max_crossings: 12,
+            },
+        );
+        let gpu = renderer
+            .render(&OffscreenRender {
+                parts,
+                ..OffscreenRender::new(
+                    ActiveSpace::new(id, space.clone()),
+                    camera,
+                    (WIDTH, HEIGHT),
+                    12,
+                )
+            })
+            .expect("renders");
+        let (c, _) = compare(&gpu, &cpu, TOLERANCE);
+        println!(
+            "{id} with the gyroscope: differing {:.3} %",
+            100.0 * c.differing
+        );
+        assert!(
+            c.differing <= MAX_DIFFERING,
+            "{id}: {:.3} % differ",
+            100.0 * c.differing
+        );
+    }
 }

@@ -185,6 +185,7 @@ fn the_avatar_is_seen_round_the_space_and_not_from_inside() {
                 centre_ball: false,
                 avatar: true,
                 clifford: false,
+                gyroscope: false,
             },
         )
     };

@@ -273,12 +273,14 @@ fn every_seed_scene_packs_to_the_shader_layout() {
                 centre_ball: true,
                 avatar: false,
                 clifford: false,
+                gyroscope: false,
             },
             SceneParts {
                 edges: true,
                 centre_ball: false,
                 avatar: false,
                 clifford: false,
+                gyroscope: false,
             },
         ] {
             let scene =
@@ -322,6 +324,7 @@ fn a_scene_without_objects_and_a_zero_budget_are_refused_or_handled() {
             centre_ball: false,
             avatar: false,
             clifford: false,
+            gyroscope: false,
         },
     );
     let gpu = GpuScene::new(&space, &scene, 8).expect("an empty scene shows fog");

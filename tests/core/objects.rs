@@ -264,6 +264,7 @@ fn centre_pixel(app: &App) -> DVec3 {
             centre_ball: false,
             avatar: false,
             clifford: false,
+            gyroscope: false,
         },
     );
     let problems = add_entity_objects(

@@ -26,6 +26,7 @@ fn lone_ball(space: &Space, centre: DVec4, radius: f64) -> CurvedScene {
             centre_ball: false,
             avatar: false,
             clifford: false,
+            gyroscope: false,
         },
     );
     let ball = Ball::new(space.geometry(), centre, radius, DVec3::ONE);

@@ -27,6 +27,7 @@ fn placing_the_default_scene_changes_no_pixel() {
                 centre_ball: false,
                 avatar: false,
                 clifford: false,
+                gyroscope: false,
             },
         );
         for o in &default.objects {
@@ -72,6 +73,7 @@ fn ambient_scene(space: &bevy_curved_spaces::space::Space) -> CurvedScene {
             centre_ball: false,
             avatar: false,
             clifford: false,
+            gyroscope: false,
         },
     );
     scene.shading.ambient = 1.0;
