@@ -106,6 +106,66 @@ fn next_stereo_mode(
     }
 }
 
+/// The cell seen from outside: its edges in the chart (coloured by edge cycle, as the
+/// default scene draws them), each face's number at its nearest point to the centre in
+/// that face's colour (the colours of `--colour-by face`), and the player: a white dot and
+/// the direction it looks in. An oblique view of the chart, fixed so that it reads the
+/// same as you move.
+fn minimap(ui: &mut egui::Ui, active: &ActiveSpace, frame: &PlayerFrame) {
+    use crate::scene::palette;
+    let space = &active.space;
+    let g = space.geometry;
+    let colour = |c: glam::DVec3| {
+        let [r, gr, b] = c
+            .to_array()
+            .map(|x| (x.clamp(0.0, 1.0) * 255.0).round() as u8);
+        egui::Color32::from_rgb(r, gr, b)
+    };
+    let vertices: Vec<glam::DVec3> = (0..space.vertices.len())
+        .map(|v| g.to_chart(space.vertex_point(v)))
+        .collect();
+    let extent = vertices.iter().map(|v| v.length()).fold(1e-9, f64::max);
+    // An oblique view: turned 35° about y, then tipped 25° about x.
+    let turn = glam::DMat3::from_rotation_x(25f64.to_radians())
+        * glam::DMat3::from_rotation_y(35f64.to_radians());
+    let side = 200.0;
+    let (response, painter) = ui.allocate_painter(egui::vec2(side, side), egui::Sense::hover());
+    let rect = response.rect;
+    painter.rect_filled(rect, 4.0, egui::Color32::from_rgb(12, 14, 20));
+    let to_screen = |x: glam::DVec3| {
+        let p = turn * (x / extent);
+        rect.center() + egui::vec2(0.45 * side * p.x as f32, -0.45 * side * p.y as f32)
+    };
+    for e in &space.edges {
+        let [a, b] = e.vertices;
+        painter.line_segment(
+            [to_screen(vertices[a]), to_screen(vertices[b])],
+            egui::Stroke::new(1.5, colour(palette(e.cycle))),
+        );
+    }
+    for (f, face) in space.faces.iter().enumerate() {
+        let n = face.covector;
+        let normal = n.truncate();
+        if normal.length_squared() < 1e-18 {
+            continue;
+        }
+        let foot = -n.w * normal / normal.length_squared();
+        painter.text(
+            to_screen(foot),
+            egui::Align2::CENTER_CENTER,
+            f.to_string(),
+            egui::FontId::proportional(11.0),
+            colour(palette(f)),
+        );
+    }
+    let here = g.to_chart(frame.0.w_axis);
+    let ahead =
+        g.to_chart((frame.0 * g.translation(glam::DVec3::NEG_Z, 0.3 * active.inradius)).w_axis);
+    let (p, q) = (to_screen(here), to_screen(ahead));
+    painter.line_segment([p, q], egui::Stroke::new(2.0, egui::Color32::WHITE));
+    painter.circle_filled(p, 4.0, egui::Color32::WHITE);
+}
+
 /// The story of the ray through the pointer (or the screen centre while the mouse looks
 /// round): the faces it crossed with the distance at each, the word of pairings, and what
 /// it met. Traced on the CPU in f64, the reference the GPU is tested against.
@@ -365,6 +425,8 @@ fn panel(
     egui::Window::new("Curved spaces")
         .default_pos((12.0, 12.0))
         .default_width(300.0)
+        .vscroll(true)
+        .default_height(690.0)
         .show(ctx, |ui| {
             if let Some(id) = space_picker(ui, &active, &mut picker)
                 && id != active.id
@@ -513,6 +575,13 @@ fn panel(
                 Some(r) => ui.label(format!("injectivity radius {r:.6}")),
                 None => ui.label("injectivity radius: not enumerated"),
             };
+            if let Some((_, frame, _)) = cameras.iter().next()
+                && !active.space.vertices.is_empty()
+            {
+                egui::CollapsingHeader::new("mini-map").default_open(true).show(ui, |ui| {
+                    minimap(ui, &active, frame);
+                });
+            }
             if let (Some(scene), Some((camera, frame, _))) =
                 (shown_scene.as_deref(), cameras.iter().next())
             {
