@@ -367,32 +367,31 @@ pub struct FlightArgs {
     colour_by: ColourByArg,
 }
 
-/// Seconds between recorded keys: 0.01 to 10.
-fn parse_record_interval(s: &str) -> Result<f64, String> {
-    let t: f64 = s
+/// A number in `range`, described as `what` in the error.
+fn parse_in_range(
+    s: &str,
+    what: &str,
+    range: std::ops::RangeInclusive<f64>,
+) -> Result<f64, String> {
+    let (lo, hi) = (range.start(), range.end());
+    let x: f64 = s
         .trim()
         .parse()
-        .map_err(|_| format!("expected seconds between keys (0.01 to 10), got `{s}`"))?;
-    if !(0.01..=10.0).contains(&t) {
-        return Err(format!(
-            "the interval between keys must be 0.01 to 10 seconds, got {t}"
-        ));
+        .map_err(|_| format!("expected {what} ({lo} to {hi}), got `{s}`"))?;
+    if !range.contains(&x) {
+        return Err(format!("expected {what} from {lo} to {hi}, got {x}"));
     }
-    Ok(t)
+    Ok(x)
+}
+
+/// Seconds between recorded keys: 0.01 to 10.
+fn parse_record_interval(s: &str) -> Result<f64, String> {
+    parse_in_range(s, "seconds between keys", 0.01..=10.0)
 }
 
 /// A flight's frame rate: 1 to 240 frames per second.
 fn parse_flight_fps(s: &str) -> Result<f64, String> {
-    let fps: f64 = s
-        .trim()
-        .parse()
-        .map_err(|_| format!("expected frames per second (1 to 240), got `{s}`"))?;
-    if !(1.0..=240.0).contains(&fps) {
-        return Err(format!(
-            "expected frames per second from 1 to 240, got {fps}"
-        ));
-    }
-    Ok(fps)
+    parse_in_range(s, "frames per second", 1.0..=240.0)
 }
 
 /// The basepoint given by `--basepoint`, for every space made from a generator file.

@@ -703,12 +703,7 @@ fn build_object(
                 return Err(format!("mesh not found: {}", file.display()));
             }
             let model = gltf::load(&file).map_err(|e| e.to_string())?;
-            let model_radius = model
-                .source
-                .positions
-                .iter()
-                .map(|p| p.length())
-                .fold(0.0, f64::max);
+            let model_radius = model.source.radius();
             if !(model_radius > 0.0) {
                 return Err(format!(
                     "the mesh {} has all its vertices at its origin",

@@ -244,6 +244,15 @@ impl MeshSource {
         self.materials.extend(other.materials);
     }
 
+    /// The distance of the farthest vertex from the model's origin (0 for none).
+    #[must_use]
+    pub fn radius(&self) -> f64 {
+        self.positions
+            .iter()
+            .map(|p| p.length())
+            .fold(0.0, f64::max)
+    }
+
     /// The mesh placed by the scale rule (module docs) in a geometry.
     pub fn place(&self, geometry: Geometry, scale: f64) -> Result<Mesh, MeshError> {
         if !(scale > 0.0 && scale.is_finite()) {

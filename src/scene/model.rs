@@ -607,12 +607,7 @@ impl TracedModel {
     /// A model scaled so that its farthest vertex from its origin is `size` (geodesic) away
     /// from the frame's origin, as scene files' `size` does.
     pub fn new(geometry: Geometry, model: &Model, size: f64) -> Result<Self, mesh::MeshError> {
-        let model_radius = model
-            .source
-            .positions
-            .iter()
-            .map(|p| p.length())
-            .fold(0.0, f64::max);
+        let model_radius = model.source.radius();
         if model.source.indices.is_empty() {
             return Err(mesh::MeshError::Empty);
         }

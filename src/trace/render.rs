@@ -119,6 +119,19 @@ pub fn first_hit_culled(
     start: Ray<DVec4>,
     max_crossings: usize,
 ) -> TracedRay {
+    trace_ray(walker, scene, culling, start, max_crossings, |_, _| {})
+}
+
+/// The one walk of the CPU tracer: [`first_hit_culled`], calling `crossed(face, distance)`
+/// at each face crossed (the distance travelled to it).
+fn trace_ray(
+    walker: &CellWalker<DVec4>,
+    scene: &CurvedScene,
+    culling: Option<&FaceCulling>,
+    start: Ray<DVec4>,
+    max_crossings: usize,
+    mut crossed: impl FnMut(usize, f64),
+) -> TracedRay {
     let g = walker.geometry;
     let cutoff = scene.shading.cutoff_distance();
     let mut ray = walker.normalized(start);
@@ -166,6 +179,7 @@ pub fn first_hit_culled(
         if exit.face != crate::space::walk::NO_FACE {
             path = path_hash(path, exit.face);
             last_face = Some(exit.face);
+            crossed(exit.face, distance);
             if keep_holonomy {
                 holonomy = walker.pairings[exit.face] * holonomy;
             }
@@ -325,54 +339,12 @@ pub fn ray_story(
     start: Ray<DVec4>,
     max_crossings: usize,
 ) -> RayStory {
-    let g = walker.geometry;
-    let cutoff = scene.shading.cutoff_distance();
-    let mut ray = walker.normalized(start);
-    let mut distance = 0.0;
-    let mut skip = None;
     let mut crossings = Vec::new();
-    for k in 0..=max_crossings {
-        let Some(exit) = walker.exit(&ray, skip) else {
-            return RayStory {
-                crossings,
-                end: RayEnd::Budget(k),
-            };
-        };
-        if let Some((object, hit)) =
-            scene.intersect(g, ray.point, ray.tangent, exit.ratio(), distance)
-        {
-            let d = distance + g.distance_from_ratio(hit.s, 1.0);
-            let end = if d >= cutoff {
-                RayEnd::Fog(k)
-            } else {
-                RayEnd::Hit(SceneHit {
-                    object,
-                    hit,
-                    distance: d,
-                    crossings: k,
-                })
-            };
-            return RayStory { crossings, end };
-        }
-        if k == max_crossings {
-            break;
-        }
-        let (next, length) = walker.cross(&ray, &exit);
-        distance += length;
-        if exit.face != crate::space::walk::NO_FACE {
-            crossings.push((exit.face, distance));
-        }
-        if distance >= cutoff {
-            return RayStory {
-                crossings,
-                end: RayEnd::Fog(k + 1),
-            };
-        }
-        ray = next;
-        skip = walker.entered(&exit);
-    }
+    let traced = trace_ray(walker, scene, None, start, max_crossings, |face, d| {
+        crossings.push((face, d));
+    });
     RayStory {
         crossings,
-        end: RayEnd::Budget(max_crossings),
+        end: traced.end,
     }
 }

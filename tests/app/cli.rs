@@ -1065,7 +1065,7 @@ fn render_shows_moving_objects_at_their_time() {
             "--record-interval",
             "0",
         ],
-        "0.01 to 10 seconds",
+        "seconds between keys from 0.01 to 10",
     );
     let bad = dir.join("bad.toml");
     for (object, message) in [

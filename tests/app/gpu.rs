@@ -972,18 +972,61 @@ fn colour_by_views_render_alike_on_gpu_and_cpu() {
     }
 }
 
+/// The default scene with `parts` in `space`, GPU against CPU (12 crossings): the
+/// fraction of pixels differing.
+fn parts_render_alike(
+    renderer: &mut OffscreenRenderer,
+    id: &str,
+    space: &Space,
+    parts: SceneParts,
+) -> f64 {
+    let scene = CurvedScene::with_parts(space, Shading::default_fog_distance(space), parts);
+    let camera = TraceCamera::default_for(space);
+    let cpu = render(
+        space,
+        &scene,
+        &camera,
+        &RenderSettings {
+            width: WIDTH,
+            height: HEIGHT,
+            max_crossings: 12,
+        },
+    );
+    let gpu = renderer
+        .render(&OffscreenRender {
+            parts,
+            ..OffscreenRender::new(
+                ActiveSpace::new(id, space.clone()),
+                camera,
+                (WIDTH, HEIGHT),
+                12,
+            )
+        })
+        .expect("renders");
+    compare(&gpu, &cpu, TOLERANCE).0.differing
+}
+
 /// Clifford parallels (spherical spaces; absent elsewhere) and the gyroscope on the GPU as
 /// on the CPU.
 #[test]
 fn clifford_parallels_and_the_gyroscope_render_alike_on_gpu_and_cpu() {
     let _gpu = gpu_lock();
     let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
-    let parts = SceneParts {
+    let clifford = SceneParts {
         clifford: true,
-        gyroscope: false,
         ..SceneParts::default()
     };
-    for id in ["poincare", "lens-7-1"] {
+    let gyroscope = SceneParts {
+        gyroscope: true,
+        centre_ball: false,
+        ..SceneParts::default()
+    };
+    for (id, parts) in [
+        ("poincare", clifford),
+        ("lens-7-1", clifford),
+        ("seifert-weber", gyroscope),
+        ("mirrored-cube", gyroscope),
+    ] {
         let space = bevy_curved_spaces::space::resolve_space(
             id,
             std::path::Path::new(""),
@@ -995,86 +1038,19 @@ fn clifford_parallels_and_the_gyroscope_render_alike_on_gpu_and_cpu() {
             Shading::default_fog_distance(&space),
             SceneParts::default(),
         );
-        let scene = CurvedScene::with_parts(&space, Shading::default_fog_distance(&space), parts);
+        let with = CurvedScene::with_parts(&space, Shading::default_fog_distance(&space), parts);
         assert!(
-            scene.objects.len() >= plain.objects.len() + 6,
-            "{id}: the parallels are there"
+            with.objects.len() >= plain.objects.len() + 6,
+            "{id}: the parts are there"
         );
-        let camera = TraceCamera::default_for(&space);
-        let cpu = render(
-            &space,
-            &scene,
-            &camera,
-            &RenderSettings {
-                width: WIDTH,
-                height: HEIGHT,
-                max_crossings: 12,
-            },
-        );
-        let gpu = renderer
-            .render(&OffscreenRender {
-                parts,
-                ..OffscreenRender::new(
-                    ActiveSpace::new(id, space.clone()),
-                    camera,
-                    (WIDTH, HEIGHT),
-                    12,
-                )
-            })
-            .expect("renders");
-        let (c, _) = compare(&gpu, &cpu, TOLERANCE);
-        println!(
-            "{id} with Clifford parallels: differing {:.3} %",
-            100.0 * c.differing
-        );
+        let differing = parts_render_alike(&mut renderer, id, &space, parts);
+        println!("{id} with {parts:?}: differing {:.3} %", 100.0 * differing);
         assert!(
-            c.differing <= MAX_DIFFERING,
+            differing <= MAX_DIFFERING,
             "{id}: {:.3} % differ",
-            100.0 * c.differing
+            100.0 * differing
         );
     }
     let torus = bevy_curved_spaces::space::seed_space("torus").unwrap();
     assert!(bevy_curved_spaces::scene::clifford_parallels(&torus).is_empty());
-    // The gyroscope centrepiece, in a twisted hyperbolic space and a mirrored flat one.
-    let parts = SceneParts {
-        gyroscope: true,
-        centre_ball: false,
-        ..SceneParts::default()
-    };
-    for id in ["seifert-weber", "mirrored-cube"] {
-        let space = bevy_curved_spaces::space::seed_space(id).unwrap();
-        let scene = CurvedScene::with_parts(&space, Shading::default_fog_distance(&space), parts);
-        let camera = TraceCamera::default_for(&space);
-        let cpu = render(
-            &space,
-            &scene,
-            &camera,
-            &RenderSettings {
-                width: WIDTH,
-                height: HEIGHT,
-                max_crossings: 12,
-            },
-        );
-        let gpu = renderer
-            .render(&OffscreenRender {
-                parts,
-                ..OffscreenRender::new(
-                    ActiveSpace::new(id, space.clone()),
-                    camera,
-                    (WIDTH, HEIGHT),
-                    12,
-                )
-            })
-            .expect("renders");
-        let (c, _) = compare(&gpu, &cpu, TOLERANCE);
-        println!(
-            "{id} with the gyroscope: differing {:.3} %",
-            100.0 * c.differing
-        );
-        assert!(
-            c.differing <= MAX_DIFFERING,
-            "{id}: {:.3} % differ",
-            100.0 * c.differing
-        );
-    }
 }
