@@ -12,6 +12,7 @@ mod walk;
 use bevy::prelude::*;
 use bevy_curved_spaces::components::Quality;
 use bevy_curved_spaces::components::StereoSettings;
+use bevy_curved_spaces::scene::SceneParts;
 use bevy_curved_spaces::space::DEFAULT_SPACE;
 use bevy_curved_spaces::space::Space;
 use bevy_curved_spaces::space::dirichlet::DirichletOptions;
@@ -153,6 +154,14 @@ struct RenderArgs {
     /// The scene's clock in seconds (turns spinning globes).
     #[arg(long, default_value_t = 0.0, value_parser = parse_time, allow_negative_numbers = true)]
     time: f64,
+    #[command(flatten)]
+    view: ViewArgs,
+}
+
+/// The teaching view and the extra scene parts `walk` and `render` share (in `walk` the
+/// panel changes them).
+#[derive(Args, Clone, Copy, Default)]
+struct ViewArgs {
     /// A teaching view: colour surfaces by the faces crossed to see them, by the last face
     /// crossed, or by the rotation of the copy of the cell they are in.
     #[arg(long, value_enum, default_value_t = ColourByArg::Shading)]
@@ -163,6 +172,19 @@ struct RenderArgs {
     /// Put a gyroscope at the cell's centre (a ring, its axis and two coloured markers).
     #[arg(long)]
     gyroscope: bool,
+}
+
+impl ViewArgs {
+    /// `parts` with the parallels and the gyroscope asked for; the gyroscope is the
+    /// centrepiece, so the centre ball makes way for it.
+    fn parts(&self, parts: SceneParts) -> SceneParts {
+        SceneParts {
+            clifford: parts.clifford || self.clifford,
+            gyroscope: parts.gyroscope || self.gyroscope,
+            centre_ball: parts.centre_ball && !self.gyroscope,
+            ..parts
+        }
+    }
 }
 
 /// Stereo options shared by `walk` and `render`.
@@ -278,23 +300,15 @@ struct WalkArgs {
     /// Seconds between the recorded keys (0.01 to 10).
     #[arg(long, default_value_t = 0.1, value_parser = parse_record_interval)]
     record_interval: f64,
-    /// A teaching view to start with (the panel changes it): colour surfaces by crossings,
-    /// by the last face crossed, or by holonomy.
-    #[arg(long, value_enum, default_value_t = ColourByArg::Shading)]
-    colour_by: ColourByArg,
-    /// In spherical spaces, show Clifford parallels (great circles of a Hopf fibration; the
-    /// panel toggles them).
-    #[arg(long)]
-    clifford: bool,
-    /// Put a gyroscope at the cell's centre (the panel toggles it).
-    #[arg(long)]
-    gyroscope: bool,
+    #[command(flatten)]
+    view: ViewArgs,
 }
 
 /// `--colour-by`'s values.
-#[derive(Clone, Copy, ValueEnum)]
+#[derive(Clone, Copy, Default, ValueEnum)]
 enum ColourByArg {
     /// The plain picture.
+    #[default]
     Shading,
     /// Faces crossed before the surface.
     Crossings,
@@ -429,9 +443,7 @@ impl RenderArgs {
             stereo: StereoArgs::default(),
             scene: None,
             time: 0.0,
-            colour_by: ColourByArg::Shading,
-            clifford: false,
-            gyroscope: false,
+            view: ViewArgs::default(),
         }
     }
 }
@@ -454,9 +466,7 @@ impl Default for WalkArgs {
             replay: None,
             record: None,
             record_interval: 0.1,
-            colour_by: ColourByArg::Shading,
-            clifford: false,
-            gyroscope: false,
+            view: ViewArgs::default(),
         }
     }
 }

@@ -111,14 +111,8 @@ struct View {
 
 pub(super) fn render_command(args: &RenderArgs) -> Result<(), String> {
     let mut chosen = choose_scene(&args.space, args.scene.as_deref(), args.fog)?.at(args.time)?;
-    if args.clifford || args.gyroscope {
-        // The gyroscope is the centrepiece: the centre ball makes way for it.
-        let parts = SceneParts {
-            clifford: chosen.parts.clifford || args.clifford,
-            gyroscope: chosen.parts.gyroscope || args.gyroscope,
-            centre_ball: chosen.parts.centre_ball && !args.gyroscope,
-            ..chosen.parts
-        };
+    if args.view.clifford || args.view.gyroscope {
+        let parts = args.view.parts(chosen.parts);
         chosen = chosen.with_parts(parts);
     }
     let view = view(args, &chosen)?;
@@ -145,7 +139,7 @@ fn view(args: &RenderArgs, chosen: &Chosen) -> Result<View, String> {
     let space = &chosen.space;
     let mut scene = chosen.scene.clone();
     scene.time = args.time;
-    scene.shading.colour_by = args.colour_by.into();
+    scene.shading.colour_by = args.view.colour_by.into();
     let camera = camera(args, chosen)?;
     scene.set_avatar_frame(space, camera.frame);
     let max_crossings = match args.crossings {
@@ -294,7 +288,7 @@ fn render_gpu(args: &RenderArgs, chosen: &Chosen, view: &View) -> Result<RgbImag
         base: chosen.base.clone(),
         time: args.time,
         stereo: view.stereo,
-        colour_by: args.colour_by.into(),
+        colour_by: args.view.colour_by.into(),
         ..OffscreenRender::new(
             ActiveSpace::new(&chosen.id, space.clone()),
             view.camera,

@@ -166,10 +166,7 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
         let mut settings = app
             .world_mut()
             .resource_mut::<bevy_curved_spaces::components::TracerSettings>();
-        settings.parts.clifford |= args.clifford;
-        settings.parts.gyroscope |= args.gyroscope;
-        // The gyroscope is the centrepiece: the centre ball makes way for it.
-        settings.parts.centre_ball &= !args.gyroscope;
+        settings.parts = args.view.parts(settings.parts);
     }
     if let Some(path) = &args.record {
         use bevy_curved_spaces::scene::flight::{FlightRecorder, FlightSource};
@@ -231,7 +228,7 @@ pub(super) fn add_walk_plugins<'a>(
             avatar: !args.no_avatar,
             // A screenshot shows the quality's resolution, not one chosen by timing.
             target_fps: (args.screenshot.is_none() && args.fps > 0.0).then_some(args.fps),
-            colour_by: args.colour_by.into(),
+            colour_by: args.view.colour_by.into(),
             ..default()
         })
         .insert_resource(bevy_curved_spaces::ui::PanelVisible(!args.no_ui))

@@ -186,12 +186,19 @@ impl Geometry {
             .find(|u| self.form(*u, *u) > 1e-12)
             .ok_or(super::GeometryError::ZeroDirection(up.x, up.y, up.z))?;
         let up = up / self.form(up, up).sqrt();
-        // right = up × back in the tangent space: transport to the origin, cross, transport back.
+        Ok(self.frame_from(p, up, back))
+    }
+
+    /// The right-handed frame at `p` with unit tangents `up` and `back` (orthogonal):
+    /// right = up × back in the tangent space (transported to the origin, crossed, and
+    /// transported back), re-orthonormalized.
+    #[must_use]
+    pub fn frame_from(self, p: DVec4, up: DVec4, back: DVec4) -> DMat4 {
         let a = self.translation_to(p);
         let a_inv = self.inverse(a);
         let r0 = (a_inv * up).truncate().cross((a_inv * back).truncate());
         let right = a * r0.extend(0.0);
-        Ok(self.orthonormalize_frame(DMat4::from_cols(right, up, back, p)))
+        self.orthonormalize_frame(DMat4::from_cols(right, up, back, p))
     }
 }
 

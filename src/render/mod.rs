@@ -410,12 +410,8 @@ fn prepare_tracer_views(
         let words: Vec<u32> = head.iter().chain(&curved.scene.words).copied().collect();
         let data: &[u8] = bytemuck::cast_slice(&words);
         match bindings {
-            Some(mut b) if b.bytes == data.len() && Arc::ptr_eq(&b.scene, &curved.scene) => {
-                queue.write_buffer(&b.buffer, 0, data);
-                b.pipeline = pipeline;
-                b.reduced = reduced;
-            }
-            // Only the objects moved: the same mesh data, a new uniform of the same size.
+            // The same scene, or only its objects moved: the same mesh data, a uniform of
+            // the same size.
             Some(mut b)
                 if b.bytes == data.len() && Arc::ptr_eq(&b.scene_data.1, &curved.scene.data) =>
             {

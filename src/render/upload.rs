@@ -98,10 +98,12 @@ pub(crate) fn upload_scene(
         let quality = settings.quality;
         let count = entities.objects.len();
         let last = &mut cache.budget;
+        // An unchanged fixed scene is the one the last upload checked the cache against:
+        // compare it (meshes and all) only when it was built anew.
         match last.as_ref() {
             Some(c)
                 if Arc::ptr_eq(&c.space, space)
-                    && c.scene == *fixed
+                    && (!static_changed || c.scene == *fixed)
                     && c.entities == count
                     && c.quality == quality =>
             {

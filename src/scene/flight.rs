@@ -285,16 +285,7 @@ fn frame_towards(g: Geometry, p: DVec4, target: DVec4, up: DVec4) -> Option<DMat
     if !(n > 1e-12) {
         return None;
     }
-    let u = u / n.sqrt();
-    // right = up × back in the tangent space: transport to the origin, cross, transport back.
-    let a = g.translation_to(p);
-    let a_inv = g.inverse(a);
-    let right = a
-        * (a_inv * u)
-            .truncate()
-            .cross((a_inv * back).truncate())
-            .extend(0.0);
-    Some(g.orthonormalize_frame(DMat4::from_cols(right, u, back, p)))
+    Some(g.frame_from(p, u / n.sqrt(), back))
 }
 
 /// Geodesic coordinates in inradii of a point of the model (the inverse of a flight key's
