@@ -27,6 +27,7 @@
 //   CULLING + MASK_VECS                  balls and tubes carry face masks: a segment tests
 //                                        only those whose faces it comes near
 //                                        (src/scene/culling.rs)
+//   WALLS                                the cell's walls with windows (src/scene/walls.rs)
 //   STEREO_SPLIT                         two eyes in two halves of the view (src/stereo.rs)
 //   ANAGLYPH                             two eyes traced per pixel and mixed by two matrices
 //
@@ -138,6 +139,16 @@ struct SpaceUniform {
     // What rounding g_f to f32 left out: the pairing is applied as hi + lo, compensated.
     pairings_lo: array<mat4x4<f32>, #{FACE_SLOTS}>,
     partners: array<vec4<u32>, #{PARTNER_VECS}>,
+#ifdef WALLS
+    // Per face: the covector scaled to a unit normal (N̂·X̂ = S(signed distance)).
+    wall_units: array<vec4<f32>, #{FACE_SLOTS}>,
+    // Per face: the panel's colour (rgb) and S(w) of the margin round its window.
+    wall_colours: array<vec4<f32>, #{FACE_SLOTS}>,
+    // Per face: the panel's opacity, 1 for a mirror (else 0), unused ×2.
+    wall_looks: array<vec4<f32>, #{FACE_SLOTS}>,
+    // The share of light below which a ray stops, unused ×3.
+    wall_style: vec4<f32>,
+#endif
 #ifdef BALLS
     balls: array<Ball, #{BALL_COUNT}>,
 #endif
@@ -1242,6 +1253,50 @@ fn surface_at(hit: SceneHit, point: vec4<f32>, v: vec4<f32>) -> Surface {
     return surface;
 }
 
+#ifdef WALLS
+// What the walls crossed so far added and let through (Rust: `scene::Veil`).
+var<private> veil_colour: vec3<f32>;
+var<private> veil_through: f32;
+
+// The wall a ray meets leaving through `exit` at distance `d` from the eye, added to the veil
+// (Rust: `WallPanels::cross`): on the panel where some other face g is nearer than
+// S(w)·sin θ_fg, lit by the angle of incidence, fogged, blended by its opacity.
+fn cross_wall(ray: Ray, exit: Exit, d: f32) {
+    let f = exit.face;
+    let at_face = ray.point * exit.den + ray.tangent * exit.num;
+    var x = at_face / length(at_face);
+#ifdef EUCLIDEAN
+    x = at_face / at_face.w;
+#endif
+#ifdef HYPERBOLIC
+    x = at_face / sqrt(-form(at_face, at_face));
+#endif
+    let unit = space.wall_units[f];
+    let margin = space.wall_colours[f].w;
+    var on_panel = false;
+    for (var g = 0u; g < face_count(); g += 1u) {
+        let other = space.wall_units[g];
+        let c = form(unit, other);
+        let sine = sqrt(max(1.0 - c * c, 0.0));
+        if g != f && -dot(other, x) < margin * sine {
+            on_panel = true;
+        }
+    }
+    if !on_panel {
+        return;
+    }
+    let along = ray.point * (-kappa() * exit.num) + ray.tangent * exit.den;
+    let facing = min(abs(dot(unit, along)) / sqrt(form(along, along)), 1.0);
+    let look = space.wall_looks[f];
+    let light = select(0.55 + 0.45 * facing, 0.55 + 0.45 * (1.0 - facing), look.y > 0.5);
+    let lit = min(space.wall_colours[f].rgb * light, vec3<f32>(1.0));
+    let w = exp(-d / space.shading.params.x);
+    let seen = w * lit + (1.0 - w) * space.shading.fog.rgb;
+    veil_colour += veil_through * look.x * seen;
+    veil_through *= 1.0 - look.x;
+}
+#endif
+
 // One camera ray's colour: walk the cell, nearest object hit against exit face, cross by
 // pairings until the fog cut-off or the crossing budget (Rust: `trace::first_hit` and
 // `colour_of`).
@@ -1296,6 +1351,17 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
             break;
         }
         travelled += distance_from_ratio(exit.num, exit.den);
+#ifdef WALLS
+        if exit.face != NO_FACE {
+            cross_wall(ray, exit, travelled);
+            if veil_through < space.wall_style.x {
+#ifdef HIT_ID
+                hit_id = vec4<u32>(0u, crossings + 1u, (path ^ (exit.face + 1u)) * FNV_PRIME, 2u);
+#endif
+                return fog;
+            }
+        }
+#endif
         ray = cross_face(ray, exit);
 #ifdef COLOUR_BY
         if exit.face != NO_FACE {
@@ -1351,7 +1417,14 @@ fn eye_colour(eye: u32, uv: vec2<f32>) -> vec3<f32> {
     let f = space.view.frames[eye];
     let p = f[3];
     let v = unit_tangent(p, px * f[0] + py * f[1] - f[2]);
+#ifdef WALLS
+    veil_colour = vec3<f32>(0.0);
+    veil_through = 1.0;
+    let behind = trace(p, v);
+    return clamp(veil_colour + veil_through * behind, vec3<f32>(0.0), vec3<f32>(1.0));
+#else
     return clamp(trace(p, v), vec3<f32>(0.0), vec3<f32>(1.0));
+#endif
 }
 
 // The linear colour seen through a fragment of the viewport (ViewLayout::eye_at and

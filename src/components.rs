@@ -155,6 +155,8 @@ pub struct TracerSettings {
     pub time: Option<f64>,
     /// What surfaces are coloured by over their shading (the teaching views).
     pub colour_by: crate::scene::ColourBy,
+    /// The cell's walls with windows ([`crate::scene::walls`]); `None`: no walls.
+    pub walls: Option<crate::scene::WallStyle>,
 }
 
 impl TracerSettings {

@@ -54,6 +54,8 @@ pub struct OffscreenRender {
     pub entities: Vec<(crate::objects::CurvedObject, DMat4)>,
     /// The teaching view ([`crate::scene::ColourBy`]).
     pub colour_by: crate::scene::ColourBy,
+    /// The cell's walls with windows.
+    pub walls: Option<crate::scene::WallStyle>,
 }
 
 impl OffscreenRender {
@@ -83,6 +85,7 @@ impl OffscreenRender {
             time: 0.0,
             entities: Vec::new(),
             colour_by: crate::scene::ColourBy::Shading,
+            walls: None,
         }
     }
 }
@@ -186,6 +189,7 @@ impl OffscreenRenderer {
             parts: request.parts,
             time: Some(request.time),
             colour_by: request.colour_by,
+            walls: request.walls,
         };
         // A scene the GPU cannot take would only time out below: say why now.
         let space = &request.space.space;

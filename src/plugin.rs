@@ -56,6 +56,8 @@ pub struct CurvedSpacesPlugin {
     /// The teaching view to start with (changeable at run time in
     /// [`TracerSettings::colour_by`]).
     pub colour_by: crate::scene::ColourBy,
+    /// The cell's walls to start with (changeable at run time in [`TracerSettings::walls`]).
+    pub walls: Option<crate::scene::WallStyle>,
 }
 
 impl Default for CurvedSpacesPlugin {
@@ -71,6 +73,7 @@ impl Default for CurvedSpacesPlugin {
             avatar: true,
             target_fps: None,
             colour_by: crate::scene::ColourBy::Shading,
+            walls: None,
         }
     }
 }
@@ -106,6 +109,7 @@ impl Plugin for CurvedSpacesPlugin {
                 ),
             time: None,
             colour_by: self.colour_by,
+            walls: self.walls,
         })
         .insert_resource(self.stereo)
         .insert_resource(FrameRateTarget::fps(self.target_fps))

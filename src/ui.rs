@@ -271,6 +271,25 @@ fn inspector(
     ui.label(ended);
 }
 
+/// The cell's walls: on or off, how far their windows are open, how much light they stop.
+fn wall_controls(ui: &mut egui::Ui, settings: &mut ResMut<TracerSettings>) {
+    use crate::scene::WallStyle;
+    let mut on = settings.walls.is_some();
+    let mut style = settings.walls.unwrap_or(WallStyle {
+        opening: 0.5,
+        opacity: crate::scene::walls::DEFAULT_WALL_OPACITY,
+    });
+    ui.checkbox(&mut on, "walls (glued faces share a colour)");
+    if on {
+        ui.add(egui::Slider::new(&mut style.opening, 0.0..=1.0).text("window opening"));
+        ui.add(egui::Slider::new(&mut style.opacity, 0.05..=1.0).text("wall opacity"));
+    }
+    let walls = on.then_some(style);
+    if walls != settings.walls {
+        settings.walls = walls;
+    }
+}
+
 /// The teaching view and its legend: what each tint means.
 fn colour_by_controls(ui: &mut egui::Ui, settings: &mut ResMut<TracerSettings>, faces: usize) {
     use crate::scene::{ColourBy, palette};
@@ -539,6 +558,7 @@ fn panel(
             if parts != settings.parts {
                 settings.parts = parts;
             }
+            wall_controls(ui, &mut settings);
             ui.separator();
             stereo_controls(ui, &mut stereo, active.inradius);
             colour_by_controls(ui, &mut settings, active.space.faces.len());

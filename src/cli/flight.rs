@@ -108,6 +108,7 @@ pub(super) fn flight(args: &FlightArgs) -> Result<(), String> {
     );
     // One active space for every frame: its invariants are computed once.
     let active = ActiveSpace::new(&chosen.id, space.clone());
+    let walls = args.walls.style(chosen.scene.shading.walls)?;
     let started = Instant::now();
     for &n in &todo {
         let t = (n - 1) as f64 / args.fps;
@@ -121,6 +122,7 @@ pub(super) fn flight(args: &FlightArgs) -> Result<(), String> {
         let mut scene = at.scene.clone();
         scene.time = t;
         scene.shading.colour_by = args.colour_by.into();
+        scene.shading.walls = walls;
         scene.set_avatar_frame(space, frame);
         let image = match renderer.as_mut() {
             None => {
@@ -146,6 +148,7 @@ pub(super) fn flight(args: &FlightArgs) -> Result<(), String> {
                     base: at.base.clone(),
                     time: t,
                     colour_by: args.colour_by.into(),
+                    walls,
                     ..OffscreenRender::new(active.clone(), camera, args.size, budget as u32)
                 })
                 .map_err(|e| format!("frame {n}: {e}"))?,

@@ -12,7 +12,8 @@ mod walk;
 use bevy::prelude::*;
 use bevy_curved_spaces::components::Quality;
 use bevy_curved_spaces::components::StereoSettings;
-use bevy_curved_spaces::scene::SceneParts;
+use bevy_curved_spaces::scene::walls::DEFAULT_WALL_OPACITY;
+use bevy_curved_spaces::scene::{SceneParts, WallStyle};
 use bevy_curved_spaces::space::DEFAULT_SPACE;
 use bevy_curved_spaces::space::Space;
 use bevy_curved_spaces::space::dirichlet::DirichletOptions;
@@ -172,6 +173,21 @@ struct ViewArgs {
     /// Put a gyroscope at the cell's centre (a ring, its axis and two coloured markers).
     #[arg(long)]
     gyroscope: bool,
+    #[command(flatten)]
+    walls: WallArgs,
+}
+
+/// The cell's walls with windows (`render`, `walk`, `flight`).
+#[derive(Args, Clone, Copy, Default)]
+struct WallArgs {
+    /// Draw the cell's walls as see-through panels with windows, glued faces in one colour
+    /// and mirrors in silver: OPENING 0 gives solid walls, 1 no walls (a scene file's
+    /// `walls` otherwise).
+    #[arg(long, value_name = "OPENING", value_parser = parse_opening, allow_negative_numbers = true)]
+    walls: Option<f64>,
+    /// The share of light a wall stops, above 0 and at most 1 (default 0.45).
+    #[arg(long, value_parser = parse_opacity, allow_negative_numbers = true, requires = "walls")]
+    wall_opacity: Option<f64>,
 }
 
 impl ViewArgs {
@@ -183,6 +199,20 @@ impl ViewArgs {
             gyroscope: parts.gyroscope || self.gyroscope,
             centre_ball: parts.centre_ball && !self.gyroscope,
             ..parts
+        }
+    }
+}
+
+impl WallArgs {
+    /// The walls asked for, else those of the scene (file).
+    fn style(&self, scene: Option<WallStyle>) -> Result<Option<WallStyle>, String> {
+        match self.walls {
+            Some(opening) => {
+                WallStyle::with_opacity(opening, self.wall_opacity.unwrap_or(DEFAULT_WALL_OPACITY))
+                    .map(Some)
+                    .map_err(|e| e.to_string())
+            }
+            None => Ok(scene),
         }
     }
 }
@@ -379,6 +409,8 @@ pub struct FlightArgs {
     /// holonomy.
     #[arg(long, value_enum, default_value_t = ColourByArg::Shading)]
     colour_by: ColourByArg,
+    #[command(flatten)]
+    walls: WallArgs,
 }
 
 /// A number in `range`, described as `what` in the error.

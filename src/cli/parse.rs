@@ -77,6 +77,26 @@ pub(super) fn parse_distance(s: &str) -> Result<f64, String> {
     }
 }
 
+/// How far the walls' windows are open: 0 (solid walls) to 1 (no walls).
+pub(super) fn parse_opening(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(x) if (0.0..=1.0).contains(&x) => Ok(x),
+        _ => Err(format!(
+            "expected an opening from 0 (solid walls) to 1 (no walls), got `{s}`"
+        )),
+    }
+}
+
+/// The share of light a wall stops: above 0, at most 1.
+pub(super) fn parse_opacity(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(x) if x > 0.0 && x <= 1.0 => Ok(x),
+        _ => Err(format!(
+            "expected an opacity above 0 and at most 1, got `{s}`"
+        )),
+    }
+}
+
 pub(super) fn parse_fov(s: &str) -> Result<f64, String> {
     match s.parse::<f64>() {
         Ok(x) if x > 0.0 && x < 180.0 => Ok(x),

@@ -140,6 +140,7 @@ fn view(args: &RenderArgs, chosen: &Chosen) -> Result<View, String> {
     let mut scene = chosen.scene.clone();
     scene.time = args.time;
     scene.shading.colour_by = args.view.colour_by.into();
+    scene.shading.walls = args.view.walls.style(scene.shading.walls)?;
     let camera = camera(args, chosen)?;
     scene.set_avatar_frame(space, camera.frame);
     let max_crossings = match args.crossings {
@@ -289,6 +290,7 @@ fn render_gpu(args: &RenderArgs, chosen: &Chosen, view: &View) -> Result<RgbImag
         time: args.time,
         stereo: view.stereo,
         colour_by: args.view.colour_by.into(),
+        walls: view.scene.shading.walls,
         ..OffscreenRender::new(
             ActiveSpace::new(&chosen.id, space.clone()),
             view.camera,

@@ -134,6 +134,7 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
         render.fog = args.fog;
         render.scene = args.scene.clone();
         render.stereo = stereo_args;
+        render.view = args.view;
         if !gpu_available() {
             eprintln!("no GPU adapter found: using the CPU reference renderer");
             render.cpu = true;
@@ -141,6 +142,7 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
         return render_command(&render);
     }
     let stereo = stereo_args.settings(&space)?;
+    let walls = args.view.walls.style(chosen.scene.shading.walls)?;
     let active = ActiveSpace::new(&chosen.id, space);
     eprintln!(
         "walking in {}: click to look around, WASD to move, Esc releases the mouse, F1 the panel",
@@ -152,7 +154,7 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
         active.space.name()
     ))));
     app.insert_resource(chosen.base.clone());
-    add_walk_plugins(&mut app, args, active, stereo).add_systems(
+    add_walk_plugins(&mut app, args, active, stereo, walls).add_systems(
         Startup,
         |mut commands: Commands| {
             commands.spawn((Camera3d::default(), CurvedSpaceCamera::default()));
@@ -217,6 +219,7 @@ pub(super) fn add_walk_plugins<'a>(
     args: &WalkArgs,
     active: ActiveSpace,
     stereo: StereoSettings,
+    walls: Option<bevy_curved_spaces::scene::WallStyle>,
 ) -> &'a mut App {
     app.insert_resource(active)
         .add_plugins(CurvedSpacesPlugin {
@@ -229,6 +232,7 @@ pub(super) fn add_walk_plugins<'a>(
             // A screenshot shows the quality's resolution, not one chosen by timing.
             target_fps: (args.screenshot.is_none() && args.fps > 0.0).then_some(args.fps),
             colour_by: args.view.colour_by.into(),
+            walls,
             ..default()
         })
         .insert_resource(bevy_curved_spaces::ui::PanelVisible(!args.no_ui))
@@ -246,6 +250,7 @@ pub(super) fn exit_result(exit: AppExit) -> Result<(), String> {
 pub(super) fn walk_xr(args: &WalkArgs, chosen: &Chosen) -> Result<(), String> {
     use bevy_curved_spaces::xr::{CurvedSpacesXrPlugin, add_xr_plugins, xr_available};
     let stereo = args.stereo.settings(&chosen.space)?;
+    let walls = args.view.walls.style(chosen.scene.shading.walls)?;
     let active = ActiveSpace::new(&chosen.id, chosen.space.clone());
     eprintln!(
         "walking in {} with a headset: left thumbstick walks, right thumbstick turns; the window mirrors the head",
@@ -256,7 +261,7 @@ pub(super) fn walk_xr(args: &WalkArgs, chosen: &Chosen) -> Result<(), String> {
         "curved spaces (XR mirror): {}",
         active.space.name()
     ))));
-    add_walk_plugins(&mut app, args, active, stereo);
+    add_walk_plugins(&mut app, args, active, stereo, walls);
     if xr_available(app.world()) {
         app.add_plugins(CurvedSpacesXrPlugin::default());
     } else {

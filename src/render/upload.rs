@@ -31,6 +31,7 @@ pub fn build_scene(
     };
     scene.shading.fog_distance = fog;
     scene.shading.colour_by = settings.colour_by;
+    scene.shading.walls = settings.walls;
     let problems: Vec<String> = objects
         .iter()
         .enumerate()

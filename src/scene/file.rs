@@ -108,6 +108,10 @@ struct FileSpec {
     /// A gyroscope at the centre.
     #[serde(default)]
     gyroscope: bool,
+    /// The cell's walls with windows: how far open (0 solid, 1 none).
+    walls: Option<Spanned<f64>>,
+    /// The share of light a wall stops.
+    wall_opacity: Option<Spanned<f64>>,
     ambient: Option<Spanned<f64>>,
     fog_colour: Option<[f64; 3]>,
     start: Option<Spanned<StartSpec>>,
@@ -291,6 +295,30 @@ pub fn parse_scene(text: &str, base: &Path, file: &str) -> Result<SceneFile, Sce
         }
         scene.shading.ambient = *a.get_ref();
     }
+    scene.shading.walls = match (&spec.walls, &spec.wall_opacity) {
+        (Some(opening), opacity) => Some(
+            crate::scene::WallStyle::with_opacity(
+                *opening.get_ref(),
+                opacity
+                    .as_ref()
+                    .map_or(crate::scene::walls::DEFAULT_WALL_OPACITY, |o| *o.get_ref()),
+            )
+            .map_err(|e| {
+                let span = match (&e, opacity) {
+                    (crate::scene::WallError::Opacity(_), Some(o)) => o.span(),
+                    _ => opening.span(),
+                };
+                fail(Some(span), e.to_string())
+            })?,
+        ),
+        (None, Some(o)) => {
+            return Err(fail(
+                Some(o.span()),
+                "wall_opacity needs walls = OPENING (0 solid to 1 none) beside it".into(),
+            ));
+        }
+        (None, None) => None,
+    };
     if let Some(c) = spec.fog_colour {
         scene.shading.fog_colour = colour(c)
             .map_err(|m| fail(None, format!("fog_colour: {m}")))?
@@ -425,6 +453,8 @@ const KEYS: &[&str] = &[
     "velocity",
     "clifford",
     "gyroscope",
+    "walls",
+    "wall_opacity",
 ];
 
 /// An unknown-field message with the nearest known key, if one is close (`color` →

@@ -20,6 +20,7 @@ pub mod moving;
 pub mod object;
 pub mod shading;
 pub mod texture;
+pub mod walls;
 
 pub use culling::FaceCulling;
 pub use mesh::Model;
@@ -30,3 +31,4 @@ pub use model::{
 pub use moving::{MovingError, MovingObject};
 pub use object::{Ball, BallTexture, Disc, Hit, MeshInstance, Object, Tube};
 pub use shading::{ColourBy, DEFAULT_CUTOFF_WEIGHT, Light, Shading, SurfaceMaterial, holonomy_bin};
+pub use walls::{Veil, WallError, WallPanels, WallStyle};

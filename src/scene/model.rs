@@ -428,6 +428,7 @@ impl CurvedScene {
                 near_light: 0.05 * inradius,
                 cutoff_weight: DEFAULT_CUTOFF_WEIGHT,
                 colour_by: super::ColourBy::Shading,
+                walls: None,
             },
         )
         .adding_parts(space, parts)

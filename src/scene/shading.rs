@@ -83,6 +83,8 @@ pub struct Shading {
     pub cutoff_weight: f64,
     /// What surfaces are coloured by over their shading (the teaching views).
     pub colour_by: ColourBy,
+    /// The cell's walls with windows ([`crate::scene::walls`]); `None`: no walls.
+    pub walls: Option<crate::scene::WallStyle>,
 }
 
 /// What a teaching view colours each surface by, over its shading: the surface's lit
@@ -205,6 +207,7 @@ impl Default for Shading {
             near_light: 0.05,
             cutoff_weight: DEFAULT_CUTOFF_WEIGHT,
             colour_by: ColourBy::Shading,
+            walls: None,
         }
     }
 }

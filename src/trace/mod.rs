@@ -8,6 +8,6 @@ mod render;
 pub use budget::{BudgetChoice, MAX_AUTO_BUDGET, SplitMix64, auto_budget, sample_rays};
 pub use render::{
     PATH_HASH_START, RayEnd, RayStory, RenderSettings, SceneHit, TracedRay, colour_of,
-    colour_of_traced, first_hit, first_hit_culled, first_hit_traced, path_hash, ray_story, render,
-    render_view, render_with_progress, to_byte, trace_pixel,
+    colour_of_traced, first_hit, first_hit_culled, first_hit_traced, first_hit_walled, path_hash,
+    ray_story, render, render_view, render_with_progress, to_byte, trace_pixel, walls_of,
 };

@@ -3,7 +3,7 @@
 //! crossing budget.
 
 use crate::geometry::{Geometry, Ray};
-use crate::scene::{ColourBy, CurvedScene, FaceCulling, Hit};
+use crate::scene::{ColourBy, CurvedScene, FaceCulling, Hit, Veil, WallPanels};
 use crate::space::{CellWalker, Space};
 use crate::view::{PixelRays, TraceCamera, ViewLayout};
 use glam::{DVec3, DVec4};
@@ -71,6 +71,9 @@ pub struct TracedRay {
     /// The product of the pairings applied to it, latest on the left (kept only where the
     /// scene is coloured by holonomy, [`ColourBy::Holonomy`]; the identity otherwise).
     pub holonomy: glam::DMat4,
+    /// What the walls it crossed added and let through ([`first_hit_walled`]; clear
+    /// without walls).
+    pub veil: Veil,
 }
 
 /// The start of a face path hash.
@@ -119,15 +122,66 @@ pub fn first_hit_culled(
     start: Ray<DVec4>,
     max_crossings: usize,
 ) -> TracedRay {
-    trace_ray(walker, scene, culling, start, max_crossings, |_, _| {})
+    trace_ray(
+        walker,
+        scene,
+        culling,
+        None,
+        start,
+        max_crossings,
+        |_, _| {},
+    )
 }
 
-/// The one walk of the CPU tracer: [`first_hit_culled`], calling `crossed(face, distance)`
+/// [`first_hit_culled`] through the cell's walls ([`WallPanels`], built once per scene with
+/// [`WallPanels::new`]): the ray's [`TracedRay::veil`] holds what the walls it crossed add,
+/// and a ray stops (as fog) once the walls let too little light through to matter.
+#[must_use]
+pub fn first_hit_walled(
+    walker: &CellWalker<DVec4>,
+    scene: &CurvedScene,
+    culling: Option<&FaceCulling>,
+    walls: Option<&WallPanels>,
+    start: Ray<DVec4>,
+    max_crossings: usize,
+) -> TracedRay {
+    trace_ray(
+        walker,
+        scene,
+        culling,
+        walls,
+        start,
+        max_crossings,
+        |_, _| {},
+    )
+}
+
+/// The walls of the walker's cell in the scene's wall style, if it has walls.
+#[must_use]
+pub fn walls_of(walker: &CellWalker<DVec4>, scene: &CurvedScene) -> Option<WallPanels> {
+    let style = scene.shading.walls?;
+    let reflections: Vec<bool> = walker
+        .pairings
+        .iter()
+        .map(|m| m.determinant() < 0.0)
+        .collect();
+    WallPanels::from_parts(
+        walker.geometry,
+        &walker.covectors,
+        &walker.partners,
+        &reflections,
+        style,
+        &scene.shading,
+    )
+}
+
+/// The one walk of the CPU tracer: [`first_hit_walled`], calling `crossed(face, distance)`
 /// at each face crossed (the distance travelled to it).
 fn trace_ray(
     walker: &CellWalker<DVec4>,
     scene: &CurvedScene,
     culling: Option<&FaceCulling>,
+    walls: Option<&WallPanels>,
     start: Ray<DVec4>,
     max_crossings: usize,
     mut crossed: impl FnMut(usize, f64),
@@ -141,6 +195,7 @@ fn trace_ray(
     let mut last_face = None;
     let mut holonomy = glam::DMat4::IDENTITY;
     let keep_holonomy = scene.shading.colour_by == ColourBy::Holonomy;
+    let mut veil = Veil::CLEAR;
     for crossings in 0..=max_crossings {
         let Some(exit) = walker.exit(&ray, skip) else {
             return TracedRay {
@@ -148,6 +203,7 @@ fn trace_ray(
                 path,
                 last_face,
                 holonomy,
+                veil,
             };
         };
         let s_exit = exit.ratio();
@@ -169,6 +225,7 @@ fn trace_ray(
                 path,
                 last_face,
                 holonomy,
+                veil,
             };
         }
         if crossings == max_crossings {
@@ -183,6 +240,28 @@ fn trace_ray(
             if keep_holonomy {
                 holonomy = walker.pairings[exit.face] * holonomy;
             }
+            if let Some(walls) = walls {
+                // The exit point and tangent there, as `CellWalker::cross` forms them.
+                let at_face = ray.point * exit.den + ray.tangent * exit.num;
+                let along = ray.point * (-g.kappa() * exit.num) + ray.tangent * exit.den;
+                let seen = walls.cross(
+                    &mut veil,
+                    &scene.shading,
+                    exit.face,
+                    at_face,
+                    along,
+                    distance,
+                );
+                if !seen {
+                    return TracedRay {
+                        end: RayEnd::Fog(crossings + 1),
+                        path,
+                        last_face,
+                        holonomy,
+                        veil,
+                    };
+                }
+            }
         }
         if distance >= cutoff {
             return TracedRay {
@@ -190,6 +269,7 @@ fn trace_ray(
                 path,
                 last_face,
                 holonomy,
+                veil,
             };
         }
         ray = next;
@@ -200,6 +280,7 @@ fn trace_ray(
         path,
         last_face,
         holonomy,
+        veil,
     }
 }
 
@@ -211,10 +292,11 @@ pub fn trace_pixel(
     start: Ray<DVec4>,
     max_crossings: usize,
 ) -> DVec3 {
+    let walls = walls_of(walker, scene);
     colour_of_traced(
         walker.geometry,
         scene,
-        &first_hit_traced(walker, scene, start, max_crossings),
+        &first_hit_walled(walker, scene, None, walls.as_ref(), start, max_crossings),
     )
 }
 
@@ -223,7 +305,7 @@ pub fn trace_pixel(
 #[must_use]
 pub fn colour_of_traced(geometry: Geometry, scene: &CurvedScene, traced: &TracedRay) -> DVec3 {
     let by = scene.shading.colour_by;
-    match &traced.end {
+    let behind = match &traced.end {
         RayEnd::Hit(h) if by != ColourBy::Shading => scene.shading.shade_tinted(
             geometry,
             &scene.lights,
@@ -232,7 +314,8 @@ pub fn colour_of_traced(geometry: Geometry, scene: &CurvedScene, traced: &Traced
             Some(by.tint(geometry, h.crossings, traced.last_face, traced.holonomy)),
         ),
         end => colour_of(geometry, scene, end),
-    }
+    };
+    traced.veil.over(behind)
 }
 
 /// The colour of a ray that ended as `end` (fog where it met nothing).
@@ -290,6 +373,10 @@ pub fn render_view(
 ) -> RgbImage {
     let walker = CellWalker::<DVec4>::new(space);
     let culling = FaceCulling::new(space, scene);
+    let walls = scene
+        .shading
+        .walls
+        .and_then(|style| WallPanels::new(space, style, &scene.shading));
     let g = space.geometry;
     let (w, h) = (settings.width, settings.height);
     let done = AtomicU32::new(0);
@@ -299,10 +386,11 @@ pub fn render_view(
             let mut row = Vec::with_capacity(3 * w as usize);
             for i in 0..w {
                 let colour = |ray| {
-                    let traced = first_hit_culled(
+                    let traced = first_hit_walled(
                         &walker,
                         scene,
                         culling.as_ref(),
+                        walls.as_ref(),
                         ray,
                         settings.max_crossings,
                     );
@@ -340,9 +428,17 @@ pub fn ray_story(
     max_crossings: usize,
 ) -> RayStory {
     let mut crossings = Vec::new();
-    let traced = trace_ray(walker, scene, None, start, max_crossings, |face, d| {
-        crossings.push((face, d));
-    });
+    let traced = trace_ray(
+        walker,
+        scene,
+        None,
+        None,
+        start,
+        max_crossings,
+        |face, d| {
+            crossings.push((face, d));
+        },
+    );
     RayStory {
         crossings,
         end: traced.end,

@@ -529,3 +529,40 @@ fn colour_by_variants_validate_and_match_the_packed_layout() {
         }
     }
 }
+
+/// The walls with windows (`WALLS`) in every geometry, alone and with objects, culling, a
+/// teaching view, stereo-free and with `HIT_ID`: each validates and keeps the packer's
+/// layout, and a seed scene with walls packs to it.
+#[test]
+fn wall_variants_validate_and_match_the_packed_layout() {
+    for geometry in Geometry::ALL {
+        for (balls, tubes, culling, colour_by) in
+            [(0, 0, false, 0), (2, 3, true, 2), (1, 0, false, 0)]
+        {
+            let key = ShaderKey {
+                faces: 6,
+                balls,
+                tubes,
+                culling,
+                colour_by,
+                walls: true,
+                ..ShaderKey::empty(geometry)
+            };
+            assert_eq!(validate(&key), key.uniform_bytes(), "{key:?}");
+            hit_id_module(&key);
+        }
+    }
+    for seed in SEED_SPACES {
+        let space = seed.build().expect("builds");
+        let mut scene = CurvedScene::default_for(&space, Shading::default_fog_distance(&space));
+        scene.shading.walls = Some(bevy_curved_spaces::scene::WallStyle::new(0.5).unwrap());
+        let gpu = GpuScene::new(&space, &scene, 16).expect("packs");
+        assert!(gpu.key.walls, "{}", seed.id);
+        assert_eq!(
+            (gpu.words.len() + VIEW_WORDS) * 4,
+            validate(&gpu.key),
+            "{}: packed words differ from the shader's uniform size",
+            seed.id
+        );
+    }
+}

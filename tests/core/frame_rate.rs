@@ -20,6 +20,7 @@ fn app(fps: f64, quality: Quality) -> App {
             parts: SceneParts::default(),
             time: None,
             colour_by: Default::default(),
+            walls: None,
         })
         .insert_resource(FrameRateTarget::fps(Some(fps)))
         .add_systems(Update, hold_frame_rate);

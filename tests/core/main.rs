@@ -23,3 +23,4 @@ mod spaces;
 mod stereo;
 mod straddling;
 mod trace;
+mod walls;

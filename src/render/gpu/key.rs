@@ -41,6 +41,9 @@ pub struct ShaderKey {
     /// What surfaces are coloured by over their shading ([`crate::scene::ColourBy::index`]; 0
     /// for the plain picture): shader def `COLOUR_BY`, and `COLOUR_HOLONOMY` for 3.
     pub colour_by: u32,
+    /// Whether the cell's walls with windows are drawn ([`crate::scene::walls`]; shader def
+    /// `WALLS`).
+    pub walls: bool,
     /// The unspecialised variant (the benchmark's comparison): all geometries' formulas,
     /// arrays of [`GENERAL_CAPACITY`], geometry and counts read from the uniform.
     pub general: bool,
@@ -69,6 +72,7 @@ impl ShaderKey {
             culling: false,
             step_cap: false,
             colour_by: 0,
+            walls: false,
             general: false,
         }
     }
@@ -99,6 +103,9 @@ impl ShaderKey {
             if self.colour_by == crate::scene::ColourBy::Holonomy.index() {
                 defs.push("COLOUR_HOLONOMY".into());
             }
+        }
+        if self.walls {
+            defs.push("WALLS".into());
         }
         let mut counted = |flag: &str, count_def: &str, n: u32| {
             if n > 0 {
@@ -201,6 +208,7 @@ impl ShaderKey {
             + count(self.lights) * (1 + count(self.light_images.max(1))) * vec4
             + faces * FACE_BYTES
             + faces.div_ceil(4) * vec4 // partners, four to a vec4
+            + if self.walls { (3 * faces + 1) * vec4 } else { 0 }
             + balls * size_of::<GpuBall>()
             + tubes * size_of::<GpuTube>()
             + count(self.globes) * size_of::<GpuGlobe>()

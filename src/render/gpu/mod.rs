@@ -11,7 +11,7 @@ use super::layout::{
 };
 use crate::geometry::Geometry;
 use crate::scene::culling::MAX_CULLED_FACES;
-use crate::scene::{CurvedScene, FaceCulling, Object};
+use crate::scene::{CurvedScene, FaceCulling, Object, WallPanels};
 use crate::space::Space;
 use crate::view::{ViewKind, ViewLayout};
 use bevy::shader::ShaderDefVal;
@@ -375,6 +375,10 @@ impl GpuScene {
             });
         }
         let culling = FaceCulling::new(space, scene);
+        let walls = scene
+            .shading
+            .walls
+            .and_then(|style| WallPanels::new(space, style, &scene.shading));
         let light_images = scene
             .lights
             .iter()
@@ -396,6 +400,7 @@ impl GpuScene {
             culling: culling.is_some() && balls.len() + tubes.len() > 0,
             step_cap: space.reaches_equator(),
             colour_by: scene.shading.colour_by.index(),
+            walls: walls.is_some(),
             general: false,
         };
         let bytes = key.uniform_bytes();
@@ -459,6 +464,9 @@ impl GpuScene {
         let mut partners: Vec<u32> = faces.iter().map(|f| f.2 as u32).collect();
         partners.resize(4 * faces.len().div_ceil(4), 0);
         out.words.extend(partners);
+        if let Some(walls) = &walls {
+            pack_walls(&mut out, walls);
+        }
         pack_objects(
             &mut out,
             g,
@@ -493,6 +501,26 @@ impl GpuScene {
         let at = size_of::<GpuShading>() / 4;
         [0, 1, 2, 3].map(|k| self.words[at + k])
     }
+}
+
+/// Appends the walls: per face the unit covector, the colour with `S(w)` of the margin, the
+/// opacity and whether it is a mirror; then the share of light below which a ray stops.
+fn pack_walls(out: &mut UniformWriter, walls: &WallPanels) {
+    for face in &walls.faces {
+        out.push(&vec4(face.unit));
+    }
+    for face in &walls.faces {
+        out.push(&colour(face.colour, face.margin));
+    }
+    for face in &walls.faces {
+        out.push(&vec4(DVec4::new(
+            face.opacity,
+            if face.mirror { 1.0 } else { 0.0 },
+            0.0,
+            0.0,
+        )));
+    }
+    out.push(&vec4(DVec4::new(walls.stop_below, 0.0, 0.0, 0.0)));
 }
 
 /// Appends the culling's per-face thresholds (rounded up to f32, four to a `vec4`) and the
@@ -669,7 +697,7 @@ impl GpuScene {
         let k = unculled.key;
         let (cap_faces, cap_balls, cap_tubes) = GENERAL_CAPACITY;
         // Only balls and tubes have general arrays.
-        let other_kinds = k.globes + k.discs + k.instances > 0 || k.avatar;
+        let other_kinds = k.globes + k.discs + k.instances > 0 || k.avatar || k.walls;
         if k.general
             || other_kinds
             || k.faces > cap_faces
