@@ -11,6 +11,7 @@
 
 use bevy_curved_spaces::components::ActiveSpace;
 use bevy_curved_spaces::offscreen::{OffscreenRender, render_offscreen};
+use bevy_curved_spaces::scene::Centrepiece;
 use bevy_curved_spaces::scene::{Ball, Object, SceneParts};
 use bevy_curved_spaces::space::invariants::inradius;
 use bevy_curved_spaces::space::seed_space;
@@ -44,10 +45,9 @@ fn main() -> ExitCode {
     let picture = render_offscreen(&OffscreenRender {
         parts: SceneParts {
             edges: true,
-            centre_ball: false,
+            centrepiece: Centrepiece::None,
             avatar: false,
             clifford: false,
-            gyroscope: false,
         },
         objects: vec![ball],
         ..OffscreenRender::new(ActiveSpace::new(&id, space.clone()), camera, (640, 360), 32)

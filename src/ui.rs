@@ -549,9 +549,14 @@ fn panel(
             }
             let mut parts = settings.parts;
             ui.checkbox(&mut parts.edges, "cell edges");
-            ui.checkbox(&mut parts.centre_ball, "centre ball");
+            egui::ComboBox::from_label("centrepiece")
+                .selected_text(parts.centrepiece.name())
+                .show_ui(ui, |ui| {
+                    for c in crate::scene::Centrepiece::ALL {
+                        ui.selectable_value(&mut parts.centrepiece, c, c.name());
+                    }
+                });
             ui.checkbox(&mut parts.avatar, "your ship (seen round the space)");
-            ui.checkbox(&mut parts.gyroscope, "gyroscope at the centre");
             if active.space.geometry == crate::geometry::Geometry::Spherical {
                 ui.checkbox(&mut parts.clifford, "Clifford parallels");
             }

@@ -285,7 +285,7 @@ pub(super) fn mesh_cost(
         &subject.space,
         DEFAULT_FOG_FACTOR * subject.inradius,
         crate::scene::SceneParts {
-            centre_ball: false,
+            centrepiece: crate::scene::Centrepiece::None,
             ..Default::default()
         },
     );

@@ -13,7 +13,7 @@ use bevy::prelude::*;
 use bevy_curved_spaces::components::Quality;
 use bevy_curved_spaces::components::StereoSettings;
 use bevy_curved_spaces::scene::walls::DEFAULT_WALL_OPACITY;
-use bevy_curved_spaces::scene::{SceneParts, WallStyle};
+use bevy_curved_spaces::scene::{Centrepiece, SceneParts, WallStyle};
 use bevy_curved_spaces::space::DEFAULT_SPACE;
 use bevy_curved_spaces::space::Space;
 use bevy_curved_spaces::space::dirichlet::DirichletOptions;
@@ -170,8 +170,11 @@ struct ViewArgs {
     /// In spherical spaces, show Clifford parallels (great circles of a Hopf fibration).
     #[arg(long)]
     clifford: bool,
-    /// Put a gyroscope at the cell's centre (a ring, its axis and two coloured markers).
-    #[arg(long)]
+    /// What sits at the cell's centre (default: the scene's, a ball in the default scene).
+    #[arg(long, value_enum)]
+    centrepiece: Option<CentrepieceArg>,
+    /// The same as `--centrepiece gyroscope`.
+    #[arg(long, conflicts_with = "centrepiece")]
     gyroscope: bool,
     #[command(flatten)]
     walls: WallArgs,
@@ -191,13 +194,25 @@ struct WallArgs {
 }
 
 impl ViewArgs {
-    /// `parts` with the parallels and the gyroscope asked for; the gyroscope is the
-    /// centrepiece, so the centre ball makes way for it.
+    /// The centrepiece asked for, if any.
+    fn centrepiece(&self) -> Option<Centrepiece> {
+        match (self.centrepiece, self.gyroscope) {
+            (Some(c), _) => Some(c.into()),
+            (None, true) => Some(Centrepiece::Gyroscope),
+            (None, false) => None,
+        }
+    }
+
+    /// Whether the arguments change the scene's parts.
+    fn changes_parts(&self) -> bool {
+        self.clifford || self.centrepiece().is_some()
+    }
+
+    /// `parts` with the parallels and the centrepiece asked for.
     fn parts(&self, parts: SceneParts) -> SceneParts {
         SceneParts {
             clifford: parts.clifford || self.clifford,
-            gyroscope: parts.gyroscope || self.gyroscope,
-            centre_ball: parts.centre_ball && !self.gyroscope,
+            centrepiece: self.centrepiece().unwrap_or(parts.centrepiece),
             ..parts
         }
     }
@@ -356,6 +371,33 @@ impl From<ColourByArg> for bevy_curved_spaces::scene::ColourBy {
             ColourByArg::Crossings => ColourBy::Crossings,
             ColourByArg::Face => ColourBy::Face,
             ColourByArg::Holonomy => ColourBy::Holonomy,
+        }
+    }
+}
+
+/// `--centrepiece`'s values.
+#[derive(Clone, Copy, ValueEnum)]
+enum CentrepieceArg {
+    /// Nothing at the centre.
+    None,
+    /// A gold ball.
+    Ball,
+    /// The spinning Earth-like globe.
+    Globe,
+    /// A ring, its axis and two markers: shows how each copy is turned.
+    Gyroscope,
+    /// A spiral galaxy of small glowing stars.
+    Galaxy,
+}
+
+impl From<CentrepieceArg> for Centrepiece {
+    fn from(c: CentrepieceArg) -> Self {
+        match c {
+            CentrepieceArg::None => Centrepiece::None,
+            CentrepieceArg::Ball => Centrepiece::Ball,
+            CentrepieceArg::Globe => Centrepiece::Globe,
+            CentrepieceArg::Gyroscope => Centrepiece::Gyroscope,
+            CentrepieceArg::Galaxy => Centrepiece::Galaxy,
         }
     }
 }

@@ -111,7 +111,7 @@ struct View {
 
 pub(super) fn render_command(args: &RenderArgs) -> Result<(), String> {
     let mut chosen = choose_scene(&args.space, args.scene.as_deref(), args.fog)?.at(args.time)?;
-    if args.view.clifford || args.view.gyroscope {
+    if args.view.changes_parts() {
         let parts = args.view.parts(chosen.parts);
         chosen = chosen.with_parts(parts);
     }

@@ -105,9 +105,11 @@ struct FileSpec {
     /// Clifford parallels (spherical spaces).
     #[serde(default)]
     clifford: bool,
-    /// A gyroscope at the centre.
+    /// A gyroscope at the centre (the same as `centrepiece = "gyroscope"`).
     #[serde(default)]
     gyroscope: bool,
+    /// What sits at the cell's centre: none, ball, globe, gyroscope or galaxy.
+    centrepiece: Option<Spanned<String>>,
     /// The cell's walls with windows: how far open (0 solid, 1 none).
     walls: Option<Spanned<f64>>,
     /// The share of light a wall stops.
@@ -280,10 +282,9 @@ pub fn parse_scene(text: &str, base: &Path, file: &str) -> Result<SceneFile, Sce
         fog,
         SceneParts {
             edges: false,
-            centre_ball: false,
+            centrepiece: crate::scene::Centrepiece::None,
             avatar: false,
             clifford: false,
-            gyroscope: false,
         },
     );
     if let Some(a) = &spec.ambient {
@@ -402,6 +403,7 @@ pub fn parse_scene(text: &str, base: &Path, file: &str) -> Result<SceneFile, Sce
         }
         None => None,
     };
+    let centrepiece = centrepiece_of(&spec).map_err(|(span, m)| fail(span, m))?;
     Ok(SceneFile {
         space_id,
         space,
@@ -410,13 +412,45 @@ pub fn parse_scene(text: &str, base: &Path, file: &str) -> Result<SceneFile, Sce
         start_fov,
         parts: SceneParts {
             edges: spec.edges,
-            centre_ball: spec.centre_ball,
+            centrepiece,
             avatar: spec.avatar,
             clifford: spec.clifford,
-            gyroscope: spec.gyroscope,
         },
         moving,
     })
+}
+
+/// The file's centrepiece: `centrepiece = "NAME"`, or the older switches `centre_ball` and
+/// `gyroscope` (not both with it).
+fn centrepiece_of(
+    spec: &FileSpec,
+) -> Result<crate::scene::Centrepiece, (Option<std::ops::Range<usize>>, String)> {
+    use crate::scene::Centrepiece;
+    match &spec.centrepiece {
+        Some(name) => {
+            if spec.centre_ball || spec.gyroscope {
+                return Err((
+                    Some(name.span()),
+                    "give the centrepiece once: centrepiece, or centre_ball/gyroscope, not both"
+                        .into(),
+                ));
+            }
+            Centrepiece::from_name(name.get_ref()).ok_or_else(|| {
+                let names: Vec<&str> = Centrepiece::ALL.iter().map(|c| c.name()).collect();
+                (
+                    Some(name.span()),
+                    format!(
+                        "unknown centrepiece `{}`; choose one of {}",
+                        name.get_ref(),
+                        names.join(", ")
+                    ),
+                )
+            })
+        }
+        None if spec.gyroscope => Ok(Centrepiece::Gyroscope),
+        None if spec.centre_ball => Ok(Centrepiece::Ball),
+        None => Ok(Centrepiece::None),
+    }
 }
 
 /// Every key a scene file knows, for suggestions.
@@ -455,6 +489,7 @@ const KEYS: &[&str] = &[
     "gyroscope",
     "walls",
     "wall_opacity",
+    "centrepiece",
 ];
 
 /// An unknown-field message with the nearest known key, if one is close (`color` →

@@ -7,6 +7,7 @@
 
 pub mod assets;
 pub mod avatar;
+pub mod centrepiece;
 pub mod culling;
 #[cfg(feature = "scene-files")]
 pub mod file;
@@ -25,8 +26,8 @@ pub mod walls;
 pub use culling::FaceCulling;
 pub use mesh::Model;
 pub use model::{
-    Avatar, CurvedScene, MAX_AVATAR_IMAGES, MAX_IMAGES, PlaceError, SceneParts, SegmentHit,
-    TracedModel, avatar_instances, avatar_size, clifford_parallels, gyroscope, palette,
+    Avatar, Centrepiece, CurvedScene, MAX_AVATAR_IMAGES, MAX_IMAGES, PlaceError, SceneParts,
+    SegmentHit, TracedModel, avatar_instances, avatar_size, clifford_parallels, gyroscope, palette,
 };
 pub use moving::{MovingError, MovingObject};
 pub use object::{Ball, BallTexture, Disc, Hit, MeshInstance, Object, Tube};

@@ -292,8 +292,8 @@ pub fn palette(i: usize) -> DVec3 {
 pub struct SceneParts {
     /// The cell's edges (tubes coloured by edge cycle) and a small ball at each vertex.
     pub edges: bool,
-    /// A ball at the cell's centre.
-    pub centre_ball: bool,
+    /// What sits at the cell's centre.
+    pub centrepiece: Centrepiece,
     /// The player's ship ([`crate::scene::avatar`]), seen where rays come back round the
     /// space; put it at the player with [`CurvedScene::set_avatar_frame`].
     pub avatar: bool,
@@ -301,9 +301,55 @@ pub struct SceneParts {
     /// one the space's pairings preserve, where one does) as thin tubes, through the
     /// centre and round it ([`clifford_parallels`]).
     pub clifford: bool,
-    /// A gyroscope at the cell's centre: a ring, an axis through it and two coloured
-    /// markers, so that a copy seen round a twisted space shows how it is turned.
-    pub gyroscope: bool,
+}
+
+/// What sits at the cell's centre in the default scene: something to recognise in every
+/// copy of the cell, and to tell how each copy is turned.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Centrepiece {
+    /// Nothing.
+    None,
+    /// A plain gold ball (a quarter of the inradius).
+    #[default]
+    Ball,
+    /// The textured Earth-like globe (`assets/textures/globe.png`, built in), slowly
+    /// spinning: its continents show how each copy is turned and mirrored.
+    Globe,
+    /// A gyroscope: a ring, an axis through it and two coloured markers
+    /// ([`gyroscope`]).
+    Gyroscope,
+    /// A spiral galaxy: a cloud of small glowing stars in two arms round a bulge, one mesh
+    /// with its own bounding hierarchy ([`galaxy_model`]).
+    Galaxy,
+}
+
+impl Centrepiece {
+    /// Every centrepiece, nothing first.
+    pub const ALL: [Centrepiece; 5] = [
+        Centrepiece::None,
+        Centrepiece::Ball,
+        Centrepiece::Globe,
+        Centrepiece::Gyroscope,
+        Centrepiece::Galaxy,
+    ];
+
+    /// Its name on the command line, in scene files and in the panel.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Centrepiece::None => "none",
+            Centrepiece::Ball => "ball",
+            Centrepiece::Globe => "globe",
+            Centrepiece::Gyroscope => "gyroscope",
+            Centrepiece::Galaxy => "galaxy",
+        }
+    }
+
+    /// The centrepiece of a name.
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|c| c.name() == name)
+    }
 }
 
 impl Default for SceneParts {
@@ -311,10 +357,9 @@ impl Default for SceneParts {
     fn default() -> Self {
         Self {
             edges: true,
-            centre_ball: true,
+            centrepiece: Centrepiece::Ball,
             avatar: false,
             clifford: false,
-            gyroscope: false,
         }
     }
 }
@@ -447,6 +492,7 @@ impl CurvedScene {
                 let _ = scene.place(space, tube);
             }
         }
+        scene.add_centrepiece(space, parts.centrepiece);
         if !parts.avatar {
             scene.avatar = None;
         } else if scene.avatar.is_none() {
@@ -455,6 +501,47 @@ impl CurvedScene {
             let _ = scene.add_avatar(space.geometry, size);
         }
         scene
+    }
+
+    /// Adds the centrepieces that need a texture or a mesh (the globe, the galaxy) at the
+    /// cell's centre; the ball and the gyroscope are plain objects ([`Self::part_objects`]).
+    fn add_centrepiece(&mut self, space: &Space, centrepiece: Centrepiece) {
+        use crate::scene::centrepiece::{
+            GLOBE_SPIN, centrepiece_tilt, galaxy_model, galaxy_radius, globe_texture,
+        };
+        let g = space.geometry;
+        let inradius = crate::space::invariants::inradius(space);
+        let frame = g.translation_to(space.centre()) * centrepiece_tilt(g);
+        let object = match centrepiece {
+            Centrepiece::Globe => {
+                self.textures.push(globe_texture());
+                Object::Ball(
+                    Ball::new(
+                        g,
+                        space.centre(),
+                        0.3 * inradius.min(std::f64::consts::FRAC_PI_4),
+                        DVec3::ONE,
+                    )
+                    .with_texture(crate::scene::BallTexture {
+                        texture: self.textures.len() as u32 - 1,
+                        frame,
+                        spin: GLOBE_SPIN,
+                    }),
+                )
+            }
+            Centrepiece::Galaxy => {
+                let radius = galaxy_radius(inradius);
+                // A fixed small model, well inside π/2: placing it cannot fail.
+                let Ok(mesh) = self.add_model(g, &galaxy_model(), radius) else {
+                    return;
+                };
+                let r = self.meshes[mesh as usize].radius;
+                Object::Mesh(MeshInstance::new(g, mesh, frame, r))
+            }
+            Centrepiece::None | Centrepiece::Ball | Centrepiece::Gyroscope => return,
+        };
+        // Well inside the cell (a third of the inradius or less): no images, cannot fail.
+        let _ = self.place(space, object);
     }
 
     /// The objects of the default scene's parts: the cell's edges as thin tubes coloured by
@@ -525,10 +612,10 @@ impl CurvedScene {
                 DVec3::splat(0.9),
             ))
         }));
-        if parts.gyroscope {
+        if parts.centrepiece == Centrepiece::Gyroscope {
             objects.extend(gyroscope(space));
         }
-        if parts.centre_ball {
+        if parts.centrepiece == Centrepiece::Ball {
             objects.push(Object::Ball(Ball::new(
                 g,
                 space.centre(),

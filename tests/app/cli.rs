@@ -1057,6 +1057,41 @@ fn render_shows_moving_objects_at_their_time() {
         "invalid value 'purple'",
     );
     fails_with(
+        &["render", "torus", "--cpu", "--walls", "1.2"],
+        "expected an opening from 0 (solid walls) to 1 (no walls), got `1.2`",
+    );
+    fails_with(
+        &[
+            "render",
+            "torus",
+            "--cpu",
+            "--walls",
+            "0.5",
+            "--wall-opacity",
+            "-0.1",
+        ],
+        "expected an opacity above 0 and at most 1",
+    );
+    fails_with(
+        &["render", "torus", "--cpu", "--wall-opacity", "0.5"],
+        "--walls",
+    );
+    fails_with(
+        &["render", "torus", "--cpu", "--centrepiece", "comet"],
+        "invalid value 'comet'",
+    );
+    fails_with(
+        &[
+            "render",
+            "torus",
+            "--cpu",
+            "--gyroscope",
+            "--centrepiece",
+            "galaxy",
+        ],
+        "cannot be used with",
+    );
+    fails_with(
         &[
             "walk",
             "torus",

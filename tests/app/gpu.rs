@@ -9,6 +9,7 @@
 use crate::common::{compare, gpu_lock};
 use bevy_curved_spaces::components::ActiveSpace;
 use bevy_curved_spaces::offscreen::{OffscreenRender, OffscreenRenderer};
+use bevy_curved_spaces::scene::Centrepiece;
 use bevy_curved_spaces::scene::{CurvedScene, SceneParts, Shading};
 use bevy_curved_spaces::space::{SEED_SPACES, Space};
 use bevy_curved_spaces::trace::{RenderSettings, render};
@@ -192,10 +193,9 @@ fn placed_objects_straddling_faces_render_alike_on_gpu_and_cpu() {
         let ball = Object::Ball(Ball::new(g, centre, radius, DVec3::new(0.3, 0.9, 0.5)));
         let parts = SceneParts {
             edges: true,
-            centre_ball: false,
+            centrepiece: Centrepiece::None,
             avatar: false,
             clifford: false,
-            gyroscope: false,
         };
         let settings = TracerSettings {
             fog_distance: None,
@@ -409,10 +409,9 @@ fn gpu_disparity_in_the_torus_matches_the_geometry() {
         .render(&OffscreenRender {
             parts: SceneParts {
                 edges: false,
-                centre_ball: false,
+                centrepiece: Centrepiece::None,
                 avatar: false,
                 clifford: false,
-                gyroscope: false,
             },
             objects: vec![ball],
             stereo: StereoSettings {
@@ -577,10 +576,9 @@ fn compare_scene(
             // The scene holds its edges already: add no parts but the avatar.
             parts: SceneParts {
                 edges: false,
-                centre_ball: false,
+                centrepiece: Centrepiece::None,
                 avatar: scene.avatar.is_some(),
                 clifford: false,
-                gyroscope: false,
             },
             base: BaseScene {
                 space_id: id.to_string(),
@@ -647,10 +645,9 @@ fn a_gltf_from_assets_renders_alike_on_gpu_and_cpu_in_three_geometries() {
             Shading::default_fog_distance(&space),
             SceneParts {
                 edges: true,
-                centre_ball: false,
+                centrepiece: Centrepiece::None,
                 avatar: false,
                 clifford: false,
-                gyroscope: false,
             },
         );
         let mesh = scene
@@ -835,10 +832,9 @@ fn entities_render_alike_on_gpu_and_cpu() {
         ];
         let parts = SceneParts {
             edges: true,
-            centre_ball: false,
+            centrepiece: Centrepiece::None,
             avatar: false,
             clifford: false,
-            gyroscope: false,
         };
         let mut scene =
             CurvedScene::with_parts(&space, Shading::default_fog_distance(&space), parts);
@@ -1019,8 +1015,7 @@ fn clifford_parallels_and_the_gyroscope_render_alike_on_gpu_and_cpu() {
         ..SceneParts::default()
     };
     let gyroscope = SceneParts {
-        gyroscope: true,
-        centre_ball: false,
+        centrepiece: Centrepiece::Gyroscope,
         ..SceneParts::default()
     };
     for (id, parts) in [
@@ -1134,10 +1129,9 @@ fn walls_of_glued_faces_share_a_colour_in_the_picture() {
     let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
     let nothing = SceneParts {
         edges: false,
-        centre_ball: false,
+        centrepiece: Centrepiece::None,
         avatar: false,
         clifford: false,
-        gyroscope: false,
     };
     let walls = WallStyle::with_opacity(0.0, 1.0).expect("in range");
     for id in ["seifert-weber", "quarter-turn", "poincare", "mirrored-cube"] {
@@ -1224,5 +1218,34 @@ fn walls_of_glued_faces_share_a_colour_in_the_picture() {
             }
         }
         println!("{id}: walls of {} faces seen, glued ones alike", seen.len());
+    }
+}
+
+/// The globe and the galaxy centrepieces on the GPU as on the CPU reference, in a space of
+/// each geometry.
+#[test]
+fn the_globe_and_the_galaxy_render_alike_on_gpu_and_cpu() {
+    let _gpu = gpu_lock();
+    let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
+    for id in ["quarter-turn", "poincare", "seifert-weber"] {
+        let space = bevy_curved_spaces::space::seed_space(id).expect("builds");
+        for centrepiece in [Centrepiece::Globe, Centrepiece::Galaxy] {
+            let parts = SceneParts {
+                centrepiece,
+                ..SceneParts::default()
+            };
+            let differing = parts_render_alike(&mut renderer, id, &space, parts);
+            println!(
+                "{id} with the {}: differing {:.3} %",
+                centrepiece.name(),
+                100.0 * differing
+            );
+            assert!(
+                differing <= MAX_DIFFERING,
+                "{id} {}: {:.3} % differ",
+                centrepiece.name(),
+                100.0 * differing
+            );
+        }
     }
 }

@@ -4,6 +4,7 @@
 //! errors that name the line and the problem).
 
 use bevy_curved_spaces::geometry::Geometry;
+use bevy_curved_spaces::scene::Centrepiece;
 use bevy_curved_spaces::scene::assets::torus_knot;
 use bevy_curved_spaces::scene::file::{load_scene_file, parse_scene};
 use bevy_curved_spaces::scene::gltf::{self, GlbMesh, write_glb};
@@ -182,10 +183,9 @@ fn the_avatar_is_seen_round_the_space_and_not_from_inside() {
             2.0,
             SceneParts {
                 edges: false,
-                centre_ball: false,
+                centrepiece: Centrepiece::None,
                 avatar: true,
                 clifford: false,
-                gyroscope: false,
             },
         )
     };
@@ -312,6 +312,27 @@ fn bad_scene_files_get_errors_naming_the_line_and_the_problem() {
     let cases: Vec<(&str, usize, &str)> = vec![
         ("space = \"klein-bottle\"\n", 1, "unknown space"),
         ("space = \"torus\"\nfog = -1\n", 2, "fog distance"),
+        (
+            "space = \"torus\"\nwalls = 1.5\n",
+            2,
+            "opening must be between 0",
+        ),
+        (
+            "space = \"torus\"\nwalls = 0.5\nwall_opacity = 0\n",
+            3,
+            "opacity must be above 0",
+        ),
+        ("space = \"torus\"\nwall_opacity = 0.5\n", 2, "needs walls"),
+        (
+            "space = \"torus\"\ncentrepiece = \"comet\"\n",
+            2,
+            "unknown centrepiece `comet`; choose one of none, ball, globe, gyroscope, galaxy",
+        ),
+        (
+            "space = \"torus\"\ngyroscope = true\ncentrepiece = \"globe\"\n",
+            3,
+            "give the centrepiece once",
+        ),
         (
             "space = \"torus\"\n\n[[object]]\ntype = \"cube\"\nradius = 1\n",
             4,
@@ -484,4 +505,48 @@ fn scene_files_take_spaces_from_groups() {
     let (line, message) = error_of("space = \"lens-6-3\"\n", &census);
     assert_eq!(line, Some(1));
     assert!(message.contains("common factor"), "{message}");
+}
+
+#[test]
+fn scene_files_choose_walls_and_a_centrepiece() {
+    use bevy_curved_spaces::scene::{Centrepiece, WallStyle};
+    let here = manifest();
+    let file = parse_scene(
+        "space = \"poincare\"\navatar = false\nwalls = 0.25\nwall_opacity = 0.6\ncentrepiece = \"galaxy\"\n",
+        &here,
+        "a.toml",
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(
+        file.base.shading.walls,
+        Some(WallStyle::with_opacity(0.25, 0.6).unwrap())
+    );
+    assert_eq!(file.parts.centrepiece, Centrepiece::Galaxy);
+    // The whole scene has the galaxy: one mesh object.
+    let scene = file.scene();
+    assert_eq!(scene.meshes.len(), 1);
+    assert_eq!(
+        scene.meshes[0].triangles.len(),
+        8 * bevy_curved_spaces::scene::centrepiece::GALAXY_STARS
+    );
+    for (text, expected) in [
+        ("space = \"torus\"\n", Centrepiece::None),
+        ("space = \"torus\"\ncentre_ball = true\n", Centrepiece::Ball),
+        (
+            "space = \"torus\"\ngyroscope = true\n",
+            Centrepiece::Gyroscope,
+        ),
+        (
+            "space = \"torus\"\ncentrepiece = \"globe\"\n",
+            Centrepiece::Globe,
+        ),
+        (
+            "space = \"torus\"\ncentrepiece = \"none\"\n",
+            Centrepiece::None,
+        ),
+    ] {
+        let file = parse_scene(text, &here, "b.toml").unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(file.parts.centrepiece, expected, "{text}");
+        assert_eq!(file.base.shading.walls, None);
+    }
 }

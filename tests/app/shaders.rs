@@ -8,6 +8,7 @@ use bevy_curved_spaces::geometry::Geometry;
 use bevy_curved_spaces::render::gpu::{
     GpuScene, MAX_GPU_BUDGET, ShaderKey, TRACER_WGSL, UPSCALE_WGSL, VIEW_WORDS, compose_wgsl,
 };
+use bevy_curved_spaces::scene::Centrepiece;
 use bevy_curved_spaces::scene::{CurvedScene, SceneParts, Shading};
 use bevy_curved_spaces::space::SEED_SPACES;
 
@@ -270,17 +271,15 @@ fn every_seed_scene_packs_to_the_shader_layout() {
             SceneParts::default(),
             SceneParts {
                 edges: false,
-                centre_ball: true,
+                centrepiece: Centrepiece::Ball,
                 avatar: false,
                 clifford: false,
-                gyroscope: false,
             },
             SceneParts {
                 edges: true,
-                centre_ball: false,
+                centrepiece: Centrepiece::None,
                 avatar: false,
                 clifford: false,
-                gyroscope: false,
             },
         ] {
             let scene =
@@ -321,10 +320,9 @@ fn a_scene_without_objects_and_a_zero_budget_are_refused_or_handled() {
         1.0,
         SceneParts {
             edges: false,
-            centre_ball: false,
+            centrepiece: Centrepiece::None,
             avatar: false,
             clifford: false,
-            gyroscope: false,
         },
     );
     let gpu = GpuScene::new(&space, &scene, 8).expect("an empty scene shows fog");

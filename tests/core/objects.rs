@@ -10,6 +10,7 @@ use bevy_curved_spaces::objects::{
 };
 use bevy_curved_spaces::prelude::*;
 use bevy_curved_spaces::render::PreparedScene;
+use bevy_curved_spaces::scene::Centrepiece;
 use bevy_curved_spaces::scene::TracedModel;
 use bevy_curved_spaces::scene::mesh::cube_source;
 use bevy_curved_spaces::space::invariants::{circumradius, elements_near, inradius};
@@ -261,10 +262,9 @@ fn centre_pixel(app: &App) -> DVec3 {
         Shading::default_fog_distance(space),
         SceneParts {
             edges: false,
-            centre_ball: false,
+            centrepiece: Centrepiece::None,
             avatar: false,
             clifford: false,
-            gyroscope: false,
         },
     );
     let problems = add_entity_objects(

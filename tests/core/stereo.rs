@@ -6,6 +6,7 @@
 
 use crate::common::differing_fraction;
 use bevy_curved_spaces::geometry::{Geometry, ORIGIN};
+use bevy_curved_spaces::scene::Centrepiece;
 use bevy_curved_spaces::scene::{Ball, CurvedScene, Object, SceneParts, Shading};
 use bevy_curved_spaces::space::CellWalker;
 use bevy_curved_spaces::space::invariants::inradius;
@@ -23,10 +24,9 @@ fn lone_ball(space: &Space, centre: DVec4, radius: f64) -> CurvedScene {
         Shading::default_fog_distance(space),
         SceneParts {
             edges: false,
-            centre_ball: false,
+            centrepiece: Centrepiece::None,
             avatar: false,
             clifford: false,
-            gyroscope: false,
         },
     );
     let ball = Ball::new(space.geometry(), centre, radius, DVec3::ONE);

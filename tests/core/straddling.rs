@@ -2,6 +2,7 @@
 //! pairings (only the images that meet the cell), so they look whole from everywhere.
 
 use crate::common::{compare, differing_fraction};
+use bevy_curved_spaces::scene::Centrepiece;
 use bevy_curved_spaces::scene::{Ball, CurvedScene, Object, PlaceError, SceneParts};
 use bevy_curved_spaces::space::invariants::inradius;
 use bevy_curved_spaces::space::{SEED_SPACES, seed_space};
@@ -24,10 +25,9 @@ fn placing_the_default_scene_changes_no_pixel() {
             fog,
             SceneParts {
                 edges: false,
-                centre_ball: false,
+                centrepiece: Centrepiece::None,
                 avatar: false,
                 clifford: false,
-                gyroscope: false,
             },
         );
         for o in &default.objects {
@@ -70,10 +70,9 @@ fn ambient_scene(space: &bevy_curved_spaces::space::Space) -> CurvedScene {
         2.0,
         SceneParts {
             edges: false,
-            centre_ball: false,
+            centrepiece: Centrepiece::None,
             avatar: false,
             clifford: false,
-            gyroscope: false,
         },
     );
     scene.shading.ambient = 1.0;

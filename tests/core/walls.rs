@@ -4,6 +4,7 @@
 //! share a colour and a margin; the veil blends what the walls add.
 
 use bevy_curved_spaces::geometry::Geometry;
+use bevy_curved_spaces::scene::Centrepiece;
 use bevy_curved_spaces::scene::walls::MIRROR_COLOUR;
 use bevy_curved_spaces::scene::{CurvedScene, SceneParts, Shading, WallPanels, WallStyle};
 use bevy_curved_spaces::space::{CellWalker, SEED_SPACES, Space};
@@ -197,10 +198,9 @@ fn walls_open_fully_are_none_closed_ones_cover_the_face_and_mirrors_are_silver()
 fn the_veil_holds_what_each_wall_crossed_adds_and_stops_when_little_gets_through() {
     let nothing = SceneParts {
         edges: false,
-        centre_ball: false,
+        centrepiece: Centrepiece::None,
         avatar: false,
         clifford: false,
-        gyroscope: false,
     };
     for id in ["seifert-weber", "half-turn", "poincare"] {
         let space = bevy_curved_spaces::space::seed_space(id).unwrap();
