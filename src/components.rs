@@ -155,7 +155,9 @@ pub struct TracerSettings {
     pub time: Option<f64>,
     /// What surfaces are coloured by over their shading (the teaching views).
     pub colour_by: crate::scene::ColourBy,
-    /// The cell's walls with windows ([`crate::scene::walls`]); `None`: no walls.
+    /// The cell's walls with windows ([`crate::scene::walls`]); `None`: the base scene's
+    /// own (a scene file's `walls`; none in the default scene). An opening of 1 shows no
+    /// walls, whatever the base scene says.
     pub walls: Option<crate::scene::WallStyle>,
 }
 

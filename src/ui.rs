@@ -272,21 +272,41 @@ fn inspector(
 }
 
 /// The cell's walls: on or off, how far their windows are open, how much light they stop.
-fn wall_controls(ui: &mut egui::Ui, settings: &mut ResMut<TracerSettings>) {
+/// `shown` is the walls of the scene on screen (the settings' or the base scene's own).
+fn wall_controls(
+    ui: &mut egui::Ui,
+    settings: &mut ResMut<TracerSettings>,
+    shown: Option<crate::scene::WallStyle>,
+) {
     use crate::scene::WallStyle;
-    let mut on = settings.walls.is_some();
-    let mut style = settings.walls.unwrap_or(WallStyle {
+    // What is on screen: the settings' walls, else the base scene's own.
+    let current = settings.walls.or(shown);
+    let mut on = current.is_some_and(|w| w.opening < 1.0);
+    let mut style = current.unwrap_or(WallStyle {
         opening: 0.5,
         opacity: crate::scene::walls::DEFAULT_WALL_OPACITY,
     });
+    // Turned back on, the walls start half open.
+    if style.opening >= 1.0 {
+        style.opening = 0.5;
+    }
     ui.checkbox(&mut on, "walls (glued faces share a colour)");
     if on {
-        ui.add(egui::Slider::new(&mut style.opening, 0.0..=1.0).text("window opening"));
+        // Up to just short of fully open: 1 is "no walls", the checkbox.
+        ui.add(egui::Slider::new(&mut style.opening, 0.0..=0.99).text("window opening"));
         ui.add(egui::Slider::new(&mut style.opacity, 0.05..=1.0).text("wall opacity"));
     }
-    let walls = on.then_some(style);
-    if walls != settings.walls {
-        settings.walls = walls;
+    // Off is an opening of 1, so that a scene file's walls can be turned off too.
+    let wanted = match (on, current) {
+        (true, _) => Some(style),
+        (false, Some(_)) => Some(WallStyle {
+            opening: 1.0,
+            ..style
+        }),
+        (false, None) => None,
+    };
+    if wanted != current {
+        settings.walls = wanted;
     }
 }
 
@@ -563,7 +583,11 @@ fn panel(
             if parts != settings.parts {
                 settings.parts = parts;
             }
-            wall_controls(ui, &mut settings);
+            wall_controls(
+                ui,
+                &mut settings,
+                shown_scene.as_ref().and_then(|s| s.0.shading.walls),
+            );
             ui.separator();
             stereo_controls(ui, &mut stereo, active.inradius);
             colour_by_controls(ui, &mut settings, active.space.faces.len());

@@ -31,7 +31,12 @@ pub fn build_scene(
     };
     scene.shading.fog_distance = fog;
     scene.shading.colour_by = settings.colour_by;
-    scene.shading.walls = settings.walls;
+    // The walls set here, else the base scene's own (a scene file's `walls`); an opening of
+    // 1 turns a base scene's walls off.
+    scene.shading.walls = settings
+        .walls
+        .or(scene.shading.walls)
+        .filter(|w| w.opening < 1.0);
     let problems: Vec<String> = objects
         .iter()
         .enumerate()

@@ -226,3 +226,40 @@ fn the_veil_holds_what_each_wall_crossed_adds_and_stops_when_little_gets_through
         }
     }
 }
+
+/// The plugin's scene takes the walls set in `TracerSettings`, else the base scene's own (a
+/// scene file's), and an opening of 1 turns either off.
+#[test]
+fn the_plugin_shows_the_settings_walls_else_the_base_scenes() {
+    use bevy_curved_spaces::components::TracerSettings;
+    use bevy_curved_spaces::render::upload::build_scene;
+    let space = bevy_curved_spaces::space::seed_space("poincare").unwrap();
+    let mut base = CurvedScene::with_parts(
+        &space,
+        Shading::default_fog_distance(&space),
+        SceneParts::default(),
+    );
+    let file_walls = WallStyle::with_opacity(0.3, 0.7).unwrap();
+    base.shading.walls = Some(file_walls);
+    let mut settings = TracerSettings {
+        fog_distance: None,
+        max_crossings: Some(8),
+        quality: Default::default(),
+        resolution_scale: 1.0,
+        parts: SceneParts::default(),
+        time: Some(0.0),
+        colour_by: Default::default(),
+        walls: None,
+    };
+    let shown = |settings: &TracerSettings, base: Option<&CurvedScene>| {
+        build_scene(&space, settings, &[], base).0.shading.walls
+    };
+    assert_eq!(shown(&settings, None), None);
+    assert_eq!(shown(&settings, Some(&base)), Some(file_walls));
+    let mine = WallStyle::new(0.8).unwrap();
+    settings.walls = Some(mine);
+    assert_eq!(shown(&settings, Some(&base)), Some(mine));
+    assert_eq!(shown(&settings, None), Some(mine));
+    settings.walls = Some(WallStyle::new(1.0).unwrap());
+    assert_eq!(shown(&settings, Some(&base)), None);
+}
