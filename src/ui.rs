@@ -108,12 +108,23 @@ fn next_stereo_mode(
 
 /// The cell seen from outside: its edges in the chart (coloured by edge cycle, as the
 /// default scene draws them), each face's number at its nearest point to the centre in
-/// that face's colour (the colours of `--colour-by face`), and the player: a white dot and
+/// that face's colour (the colours of `--colour-by face`, or of the walls when they are
+/// shown), and the player: a white dot and
 /// the direction it looks in. An oblique view of the chart, fixed so that it reads the
 /// same as you move.
-fn minimap(ui: &mut egui::Ui, active: &ActiveSpace, frame: &PlayerFrame) {
+fn minimap(ui: &mut egui::Ui, active: &ActiveSpace, frame: &PlayerFrame, walls: bool) {
     use crate::scene::palette;
     let space = &active.space;
+    // With walls shown, faces are labelled in their walls' colours (glued faces alike).
+    let wall_colours = walls.then(|| {
+        let partners: Vec<usize> = space.faces.iter().map(|f| f.partner).collect();
+        let reflections: Vec<bool> = space
+            .faces
+            .iter()
+            .map(|f| f.pairing.determinant() < 0.0)
+            .collect();
+        crate::scene::walls::wall_colours(&partners, &reflections)
+    });
     let g = space.geometry;
     let colour = |c: glam::DVec3| {
         let [r, gr, b] = c
@@ -155,7 +166,7 @@ fn minimap(ui: &mut egui::Ui, active: &ActiveSpace, frame: &PlayerFrame) {
             egui::Align2::CENTER_CENTER,
             f.to_string(),
             egui::FontId::proportional(11.0),
-            colour(palette(f)),
+            colour(wall_colours.as_ref().map_or(palette(f), |c| c[f])),
         );
     }
     let here = g.to_chart(frame.0.w_axis);
@@ -583,11 +594,12 @@ fn panel(
             if parts != settings.parts {
                 settings.parts = parts;
             }
-            wall_controls(
-                ui,
-                &mut settings,
-                shown_scene.as_ref().and_then(|s| s.0.shading.walls),
-            );
+            let shown_walls = shown_scene.as_ref().and_then(|s| s.0.shading.walls);
+            wall_controls(ui, &mut settings, shown_walls);
+            let walls_shown = settings
+                .walls
+                .or(shown_walls)
+                .is_some_and(|w| w.opening < 1.0);
             ui.separator();
             stereo_controls(ui, &mut stereo, active.inradius);
             colour_by_controls(ui, &mut settings, active.space.faces.len());
@@ -628,7 +640,7 @@ fn panel(
                 && !active.space.vertices.is_empty()
             {
                 egui::CollapsingHeader::new("mini-map").default_open(true).show(ui, |ui| {
-                    minimap(ui, &active, frame);
+                    minimap(ui, &active, frame, walls_shown);
                 });
             }
             if let (Some(scene), Some((camera, frame, _))) =

@@ -139,6 +139,33 @@ impl Veil {
     }
 }
 
+/// The walls' colours: one per pair of glued faces ([`palette`] of the pair's rank, pairs
+/// numbered in the order of their first face), [`MIRROR_COLOUR`] for a mirror (a face glued
+/// to itself by a reflection). The mini-map labels faces in these colours too.
+#[must_use]
+pub fn wall_colours(partners: &[usize], reflections: &[bool]) -> Vec<DVec3> {
+    let n = partners.len();
+    let mut rank = vec![usize::MAX; n];
+    let mut pairs = 0;
+    for f in 0..n {
+        let p = partners[f].min(n - 1);
+        if rank[f] == usize::MAX {
+            rank[f] = pairs;
+            rank[p] = pairs;
+            pairs += 1;
+        }
+    }
+    (0..n)
+        .map(|f| {
+            if partners[f] == f && reflections.get(f).copied().unwrap_or(false) {
+                MIRROR_COLOUR
+            } else {
+                palette(rank[f])
+            }
+        })
+        .collect()
+}
+
 /// `S⁻¹`: asin, identity, asinh.
 fn s_inverse(geometry: Geometry, s: f64) -> f64 {
     match geometry {
@@ -225,17 +252,7 @@ impl WallPanels {
         let inradii: Vec<f64> = (0..n)
             .map(|f| face_inradius(geometry, &units, &sines, f))
             .collect();
-        // One colour per pair of glued faces, numbered in the order of their first face.
-        let mut rank = vec![usize::MAX; n];
-        let mut pairs = 0;
-        for f in 0..n {
-            let p = partners.get(f).copied().unwrap_or(f).min(n - 1);
-            if rank[f] == usize::MAX {
-                rank[f] = pairs;
-                rank[p] = pairs;
-                pairs += 1;
-            }
-        }
+        let colours = wall_colours(partners, reflections);
         let faces = (0..n)
             .map(|f| {
                 let partner = partners.get(f).copied().unwrap_or(f).min(n - 1);
@@ -249,11 +266,7 @@ impl WallPanels {
                 };
                 WallFace {
                     unit: units[f],
-                    colour: if mirror {
-                        MIRROR_COLOUR
-                    } else {
-                        palette(rank[f])
-                    },
+                    colour: colours[f],
                     margin,
                     opacity: style.opacity * if mirror { MIRROR_OPACITY } else { 1.0 },
                     mirror,
