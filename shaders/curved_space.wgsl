@@ -881,6 +881,14 @@ struct Exit {
     den: f32,
 }
 
+#ifdef CULLING
+// Per face, the residual −N·p at the segment's start and its rate N·v along it (−N·X(s) =
+// start − s·rate), kept by exit_face so that the culling reads them instead of forming the
+// dot products again.
+var<private> face_start: array<f32, #{FACE_SLOTS}>;
+var<private> face_rate: array<f32, #{FACE_SLOTS}>;
+#endif
+
 // The exit face: the smallest T = −(N·p)/(N·v) among faces with N·v > 0, compared without
 // dividing; the face just entered (`skip`) is passed over (Rust: `CellWalker::exit`).
 fn exit_face(ray: Ray, skip: u32) -> Exit {
@@ -888,10 +896,19 @@ fn exit_face(ray: Ray, skip: u32) -> Exit {
     for (var f = 0u; f < face_count(); f += 1u) {
         let n = space.covectors[f];
         let dn = dot(n, ray.tangent);
+#ifdef CULLING
+        let start = -dot(n, ray.point);
+        face_start[f] = start;
+        face_rate[f] = dn;
+#endif
         if f == skip || !(dn > 0.0) {
             continue;
         }
+#ifdef CULLING
+        let nm = max(start, 0.0);
+#else
         let nm = max(-dot(n, ray.point), 0.0);
+#endif
         if exit.face == 0xffffffffu || nm * exit.den < exit.num * dn {
             exit = Exit(f, nm, dn);
         }
@@ -958,13 +975,12 @@ fn cross_face(ray: Ray, exit: Exit) -> Ray {
 #ifdef CULLING
 // The faces (bits of faces 0–31) the segment p + s v, s in [0, s_max], comes near (Rust:
 // `FaceCulling::near_faces`): −N·X is linear in s, so its least value is at an end; `scale`
-// bounds |X(s)| (segment_scale).
-fn near_faces(ray: Ray, s_max: f32, scale: f32) -> u32 {
+// bounds |X(s)| (segment_scale). The residuals are exit_face's, of the same segment.
+fn near_faces(s_max: f32, scale: f32) -> u32 {
     var near = 0u;
     for (var f = 0u; f < min(face_count(), 32u); f += 1u) {
-        let n = space.covectors[f];
-        let r0 = -dot(n, ray.point);
-        let r1 = r0 - s_max * dot(n, ray.tangent);
+        let r0 = face_start[f];
+        let r1 = r0 - s_max * face_rate[f];
         if min(r0, r1) <= space.near[f / 4u][f % 4u] * scale {
             near |= 1u << f;
         }
@@ -983,10 +999,9 @@ fn segment_scale(s_max: f32) -> f32 {
 
 // The part of `range` (of s) where the segment is near face `face`: −N·X(s) = a − s b is
 // linear, so it is an interval (empty when x > y).
-fn near_part(ray: Ray, face: u32, scale: f32, range: vec2<f32>) -> vec2<f32> {
-    let n = space.covectors[face];
-    let a = -dot(n, ray.point);
-    let b = dot(n, ray.tangent);
+fn near_part(face: u32, scale: f32, range: vec2<f32>) -> vec2<f32> {
+    let a = face_start[face];
+    let b = face_rate[face];
     let t = space.near[face / 4u][face % 4u] * scale;
     if b > 0.0 {
         return vec2<f32>(max(range.x, (a - t) / b), range.y);
@@ -1075,7 +1090,7 @@ fn intersect_scene(ray: Ray, s_max: f32, travelled: f32) -> SceneHit {
 #endif
 #ifdef CULLING
     let scale = segment_scale(s_max);
-    let near = near_faces(ray, s_max, scale);
+    let near = near_faces(s_max, scale);
     // The objects that hug fewer than two faces (all lanes the same bucket), then the
     // buckets of each pair f < g of the faces the segment comes near (usually one: the
     // faces it enters and leaves by), one pair a turn.
@@ -1090,7 +1105,7 @@ fn intersect_scene(ray: Ray, s_max: f32, travelled: f32) -> SceneHit {
     loop {
         var both = true;
         if bucket != #{CULL_BUCKETS}u - 1u {
-            let part = near_part(ray, pair.y, scale, near_part(ray, pair.x, scale, vec2<f32>(0.0, s_max)));
+            let part = near_part(pair.y, scale, near_part(pair.x, scale, vec2<f32>(0.0, s_max)));
             both = part.x <= part.y;
         }
 #ifdef BALLS

@@ -24,7 +24,9 @@ use crate::view::TraceCamera;
 pub use accuracy::growth;
 use accuracy::*;
 use indicatif::{ProgressBar, ProgressStyle};
-pub use report::{charts, read_report, summary_markdown, write_report, write_scene_report};
+pub use report::{
+    charts, read_report, summary_markdown, write_edges_report, write_report, write_scene_report,
+};
 use serde::{Deserialize, Serialize};
 pub use timing::bench_mesh;
 use timing::*;
@@ -540,6 +542,36 @@ impl Subject {
     fn scene(&self, fog_factor: f64) -> CurvedScene {
         CurvedScene::default_for(&self.space, fog_factor * self.inradius)
     }
+}
+
+/// Times only what the cell's edges cost ([`EdgesRow`]): the default view with its edges
+/// culled, unculled and absent, in turn, for each of `config.spaces` at the first of
+/// `config.budgets` and the middle of `config.sizes`. Seconds per space where the full
+/// benchmark takes minutes, for working on the edges' cost.
+pub fn run_edges(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, BenchError> {
+    let budget = *config
+        .budgets
+        .first()
+        .ok_or(BenchError::Empty("no crossing budget was given"))?;
+    if config.spaces.is_empty() || config.sizes.is_empty() {
+        return Err(BenchError::Empty("no spaces or sizes were named"));
+    }
+    let mut harness = Harness::new()?;
+    progress.set_length(config.spaces.len() as u64);
+    let mut report = BenchReport::empty(Some(&harness));
+    for id in &config.spaces {
+        let subject = Subject::new(id)?;
+        announce(
+            progress,
+            format!("{}: edges culled, unculled and none", subject.id),
+        );
+        report
+            .edges
+            .push(edges_cost(&mut harness, &subject, budget, config)?);
+        progress.inc(1);
+    }
+    progress.finish_and_clear();
+    Ok(report)
 }
 
 /// Times a scene file's start view (its space, objects, lights, fog, parts, and its `fov`)

@@ -102,6 +102,26 @@ pub fn write_scene_report(
     Ok(vec![json, csv, summary])
 }
 
+/// Writes an edges-only benchmark ([`super::run_edges`]): `bench.json`, `edges.csv` and a
+/// `summary.md` with the edges' table.
+pub fn write_edges_report(
+    report: &BenchReport,
+    config: &BenchConfig,
+    dir: &Path,
+) -> Result<Vec<PathBuf>, BenchError> {
+    let config = serde_json::to_value(config).map_err(|e| write_error(dir, &e))?;
+    let json = write_json(dir, config, report)?;
+    let csv = write_text(dir, "edges.csv", &to_csv(&to_values(&report.edges)))?;
+    let device = report.device.as_ref().map_or_else(
+        || "no GPU".to_string(),
+        |d| format!("{} ({})", d.name, d.driver),
+    );
+    let mut md = format!("Device: {device}. Build: {}.\n", report.build);
+    edges_section(&mut md, report);
+    let summary = write_text(dir, "summary.md", &md)?;
+    Ok(vec![json, csv, summary])
+}
+
 /// Reads a `bench.json` written by [`write_report`] back (to redraw its charts and tables).
 pub fn read_report(path: &Path) -> Result<(BenchConfig, BenchReport), BenchError> {
     let fail = |e: &dyn std::fmt::Display| BenchError::Write {

@@ -80,6 +80,34 @@ pub(super) fn bench(args: &BenchArgs) -> Result<(), String> {
     }
     let started = Instant::now();
     let progress = indicatif::ProgressBar::new(0);
+    if args.edges {
+        if args.budgets.is_none() {
+            config.budgets = vec![32];
+        }
+        let report =
+            bevy_curved_spaces::bench::run_edges(&config, &progress).map_err(|e| e.to_string())?;
+        for r in &report.edges {
+            say!(
+                "{:<24} {:>3} edge objects: culled {:>8.3} ms ({:.2}×), unculled {:>8.3} ms ({:.2}×), without {:>8.3} ms",
+                r.space,
+                r.edge_objects,
+                r.with_edges_ms,
+                r.ratio,
+                r.unculled_ms,
+                r.unculled_ratio,
+                r.without_edges_ms
+            );
+        }
+        let written = bevy_curved_spaces::bench::write_edges_report(&report, &config, &args.out)
+            .map_err(|e| e.to_string())?;
+        say!(
+            "wrote {} files to {} in {:.1} s",
+            written.len(),
+            args.out.display(),
+            started.elapsed().as_secs_f64()
+        );
+        return Ok(());
+    }
     if let Some(scene) = &args.scene {
         let report = bevy_curved_spaces::bench::run_scene(&config, scene, &progress)
             .map_err(|e| e.to_string())?;
