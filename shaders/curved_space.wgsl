@@ -973,19 +973,50 @@ fn cross_face(ray: Ray, exit: Exit) -> Ray {
 }
 
 #ifdef CULLING
+// The faces a segment comes near, and whether two of them are near at one point of it.
+struct Near {
+    faces: u32,
+    pairs: bool,
+}
+
 // The faces (bits of faces 0–31) the segment p + s v, s in [0, s_max], comes near (Rust:
 // `FaceCulling::near_faces`): −N·X is linear in s, so its least value is at an end; `scale`
 // bounds |X(s)| (segment_scale). The residuals are exit_face's, of the same segment.
-fn near_faces(s_max: f32, scale: f32) -> u32 {
-    var near = 0u;
+//
+// A face is near the segment on an interval of s that holds an end (or all of it). Two faces
+// are near at one point exactly when both are near at the start, or both at the end, or one
+// only at the start (up to s = a) and the other only at the end (from s = b) with b ≤ a; so
+// `pairs` tells, from the latest a and the earliest b, whether any pair of faces needs
+// visiting. Most segments are near only the faces they enter and leave by, far apart.
+fn near_faces(s_max: f32, scale: f32) -> Near {
+    var at_start = 0u;
+    var at_end = 0u;
+    var leaves = -1.0;
+    var reaches = NO_HIT;
     for (var f = 0u; f < min(face_count(), 32u); f += 1u) {
         let r0 = face_start[f];
-        let r1 = r0 - s_max * face_rate[f];
-        if min(r0, r1) <= space.near[f / 4u][f % 4u] * scale {
-            near |= 1u << f;
+        let rate = face_rate[f];
+        let r1 = r0 - s_max * rate;
+        let t = space.near[f / 4u][f % 4u] * scale;
+        let start = r0 <= t;
+        let end = r1 <= t;
+        if start {
+            at_start |= 1u << f;
+        }
+        if end {
+            at_end |= 1u << f;
+        }
+        // Near only at the start: the residual grows (rate < 0), past t at (r0 − t)/rate.
+        if start && !end {
+            leaves = max(leaves, (r0 - t) / rate);
+        }
+        // Near only at the end: the residual falls (rate > 0), to t at (r0 − t)/rate.
+        if end && !start {
+            reaches = min(reaches, (r0 - t) / rate);
         }
     }
-    return near;
+    let pairs = countOneBits(at_start) >= 2u || countOneBits(at_end) >= 2u || reaches <= leaves;
+    return Near(at_start | at_end, pairs);
 }
 
 // A bound on |X(s)| over the segment: 1 in E³ and H³, √(1 + s_max²) in S³.
@@ -1090,11 +1121,12 @@ fn intersect_scene(ray: Ray, s_max: f32, travelled: f32) -> SceneHit {
 #endif
 #ifdef CULLING
     let scale = segment_scale(s_max);
-    let near = near_faces(s_max, scale);
-    // The objects that hug fewer than two faces (all lanes the same bucket), then the
-    // buckets of each pair f < g of the faces the segment comes near (usually one: the
-    // faces it enters and leaves by), one pair a turn.
-    var outer = near;
+    let near_set = near_faces(s_max, scale);
+    let near = near_set.faces;
+    // The objects that hug fewer than two faces (all lanes the same bucket), then, where two
+    // faces are near at one point, the buckets of each pair f < g of the faces the segment
+    // comes near, one pair a turn (most segments visit none).
+    var outer = select(0u, near, near_set.pairs);
     var f = firstTrailingBit(outer);
     outer &= outer - 1u;
     var inner = outer;

@@ -476,6 +476,11 @@ pub struct EdgesRow {
     pub ratio: f64,
     /// `unculled_ms / without_edges_ms`.
     pub unculled_ratio: f64,
+    /// Pixels whose `HIT_ID` (what the ray met, its crossings and face path, how it ended)
+    /// differs between the culled and the unculled tracer: culling must leave it alone, so
+    /// anything but 0 is a bug.
+    #[serde(default)]
+    pub hit_ids_differing: usize,
 }
 
 /// A mesh at the cell's centre: frame time against triangle count, timed interleaved with

@@ -389,12 +389,12 @@ fn edges_section(md: &mut String, report: &BenchReport) {
     }
     let _ = writeln!(
         *md,
-        "\n### The cell's edges: the default view with its edge tubes and vertex balls (culled by face masks, as drawn; and every one tested in every cell) against the same view without them, timed in turn\n\n| space | size | budget | edge objects | with edges ms | × without | unculled ms | × without | without edges ms |\n|---|---|---:|---:|---:|---:|---:|---:|---:|"
+        "\n### The cell's edges: the default view with its edge tubes and vertex balls (culled by face masks, as drawn; and every one tested in every cell) against the same view without them, timed in turn\n\n| space | size | budget | edge objects | with edges ms | × without | unculled ms | × without | without edges ms | hit ids differing, culled against unculled |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|"
     );
     for r in &report.edges {
         let _ = writeln!(
             *md,
-            "| {} | {}×{} | {} | {} | {:.2} | {:.2}× | {:.2} | {:.2}× | {:.2} |",
+            "| {} | {}×{} | {} | {} | {:.2} | {:.2}× | {:.2} | {:.2}× | {:.2} | {} |",
             r.space,
             r.width,
             r.height,
@@ -404,7 +404,8 @@ fn edges_section(md: &mut String, report: &BenchReport) {
             r.ratio,
             r.unculled_ms,
             r.unculled_ratio,
-            r.without_edges_ms
+            r.without_edges_ms,
+            r.hit_ids_differing
         );
     }
 }

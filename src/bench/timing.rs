@@ -139,6 +139,15 @@ pub(super) fn edges_cost(
     }
     let programs: Vec<(&Program, &Frame)> = runs.iter().map(|(p, f)| (p, f)).collect();
     let stats = time_in_turn(harness, &programs, config)?;
+    // What each ray met, culled and not: the culling must not change it.
+    let culled_ids = super::accuracy::gpu_pixels(harness, subject, &culled, budget, (w, h))?;
+    let unculled_ids = super::accuracy::gpu_pixels(harness, subject, &unculled, budget, (w, h))?;
+    let hit_ids_differing = culled_ids
+        .ids
+        .iter()
+        .zip(&unculled_ids.ids)
+        .filter(|(a, b)| a != b)
+        .count();
     Ok(EdgesRow {
         space: subject.id.clone(),
         geometry: subject.geometry(),
@@ -151,6 +160,7 @@ pub(super) fn edges_cost(
         without_edges_ms: stats[2].median,
         ratio: stats[0].median / stats[2].median,
         unculled_ratio: stats[1].median / stats[2].median,
+        hit_ids_differing,
     })
 }
 

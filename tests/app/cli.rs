@@ -326,6 +326,13 @@ fn bench_quick_writes_results_that_respect_their_bounds() {
         let ms = t["median_ms"].as_f64().unwrap();
         assert!(ms.is_finite() && ms > 0.0, "{t}");
     }
+    // The face culling leaves what every ray meets alone (HIT_ID, culled against unculled).
+    let edges = rows("edges");
+    assert_eq!(edges.len(), 2);
+    for e in edges {
+        assert_eq!(e["hit_ids_differing"], 0, "{e}");
+        assert!(e["with_edges_ms"].as_f64().unwrap() > 0.0, "{e}");
+    }
     for c in rows("cutoff") {
         assert!(
             c["max_error"].as_f64().unwrap() <= c["bound"].as_f64().unwrap(),
