@@ -548,3 +548,125 @@ proptest! {
         flight_outcome(&format!("{}{junk}{}", &text[..at], &text[at..]));
     }
 }
+
+/// A Bevy mesh built from fuzzed data: positions (some hostile), normals and UVs of the
+/// right or a wrong length, indices some of which may point past the vertices, and a
+/// topology that may not be a triangle list.
+fn fuzzed_bevy_mesh(
+    positions: &[[f32; 3]],
+    normals: Option<usize>,
+    uvs: Option<usize>,
+    indices: Option<&[u32]>,
+    strip: bool,
+) -> bevy::mesh::Mesh {
+    use bevy::asset::RenderAssetUsages;
+    use bevy::mesh::{Indices, Mesh, PrimitiveTopology};
+    let topology = if strip {
+        PrimitiveTopology::TriangleStrip
+    } else {
+        PrimitiveTopology::TriangleList
+    };
+    let mut mesh = Mesh::new(topology, RenderAssetUsages::default())
+        .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, positions.to_vec());
+    if let Some(n) = normals {
+        mesh.insert_attribute(Mesh::ATTRIBUTE_NORMAL, vec![[0.0f32, 1.0, 0.0]; n]);
+    }
+    if let Some(n) = uvs {
+        mesh.insert_attribute(Mesh::ATTRIBUTE_UV_0, vec![[0.5f32, 0.5]; n]);
+    }
+    if let Some(i) = indices {
+        mesh.insert_indices(Indices::U32(i.to_vec()));
+    }
+    mesh
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 96, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// Bevy meshes with hostile data (the path of `CurvedObject` with a `Handle<Mesh>`): a
+    /// model or a named error, then a traced model or a named error in every geometry —
+    /// never a panic, never a non-finite triangle.
+    #[test]
+    fn bevy_meshes_with_hostile_data(
+        raw in proptest::collection::vec((any::<u8>(), -2.0f32..2.0, -2.0f32..2.0, -2.0f32..2.0), 0..24),
+        normals_off in prop_oneof![Just(None), Just(Some(0usize)), Just(Some(1usize))],
+        uvs_off in prop_oneof![Just(None), Just(Some(0usize)), Just(Some(2usize))],
+        indices in proptest::option::of(proptest::collection::vec(0u32..30, 0..36)),
+        strip in proptest::bool::weighted(0.1),
+        size in prop_oneof![Just(0.3f64), Just(0.0), Just(-1.0), Just(f64::NAN), Just(1e300), Just(3.0)],
+    ) {
+        use bevy_curved_spaces::objects::model_from_bevy_mesh;
+        use bevy_curved_spaces::scene::TracedModel;
+        let hostile = [f32::NAN, f32::INFINITY, -f32::INFINITY, 1e38, -1e38, 1e-40, 0.0];
+        let positions: Vec<[f32; 3]> = raw
+            .iter()
+            .map(|&(k, x, y, z)| {
+                // One vertex in eight gets a hostile coordinate.
+                if k % 8 == 0 {
+                    [hostile[usize::from(k / 8) % hostile.len()], y, z]
+                } else {
+                    [x, y, z]
+                }
+            })
+            .collect();
+        let n = positions.len();
+        let mesh = fuzzed_bevy_mesh(
+            &positions,
+            normals_off.map(|d: usize| n + d),
+            uvs_off.map(|d: usize| n.saturating_sub(d)),
+            indices.as_deref(),
+            strip,
+        );
+        let started = Instant::now();
+        if let Ok(model) = model_from_bevy_mesh(&mesh, None) {
+            for g in Geometry::ALL {
+                if let Ok(traced) = TracedModel::new(g, &model, size) {
+                    for t in &traced.mesh.triangles {
+                        prop_assert!(t.corners.iter().all(|c| c.is_finite()), "{g:?}: {t:?}");
+                    }
+                }
+            }
+        }
+        prop_assert!(started.elapsed().as_secs_f64() < 5.0);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// Any model of finite triangles goes to a Bevy mesh and back to the same traced
+    /// triangles, in every geometry: the asset path and the file path draw alike.
+    #[test]
+    fn models_round_trip_through_bevy_meshes(
+        corners in proptest::collection::vec((-1.0f32..1.0, -1.0f32..1.0, -1.0f32..1.0), 3..30),
+    ) {
+        use bevy_curved_spaces::objects::{bevy_mesh_from_model, model_from_bevy_mesh};
+        use bevy_curved_spaces::scene::mesh::MeshSource;
+        use bevy_curved_spaces::scene::{Model, SurfaceMaterial, TracedModel};
+        use glam::DVec3;
+        let positions: Vec<DVec3> = corners
+            .iter()
+            .map(|&(x, y, z)| DVec3::new(f64::from(x), f64::from(y), f64::from(z)))
+            .collect();
+        let triangles = positions.len() / 3;
+        let model = Model {
+            source: MeshSource {
+                indices: (0..triangles as u32).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect(),
+                materials: vec![0; triangles],
+                positions,
+                normals: None,
+                uvs: None,
+            },
+            materials: vec![SurfaceMaterial::default()],
+            textures: Vec::new(),
+        };
+        let back = model_from_bevy_mesh(&bevy_mesh_from_model(&model), None).expect("our own mesh");
+        for g in Geometry::ALL {
+            match (TracedModel::new(g, &model, 0.3), TracedModel::new(g, &back, 0.3)) {
+                (Ok(a), Ok(b)) => prop_assert_eq!(&a.mesh, &b.mesh, "{:?}", g),
+                (Err(a), Err(b)) => prop_assert_eq!(a.to_string(), b.to_string()),
+                (a, b) => prop_assert!(false, "{g:?}: {:?} against {:?}", a.is_ok(), b.is_ok()),
+            }
+        }
+    }
+}
