@@ -1135,3 +1135,66 @@ fn render_shows_moving_objects_at_their_time() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `render --walls` and `--centrepiece` change the picture (CPU renderer), and the scene
+/// file's walls come through unless the command line says otherwise.
+#[test]
+fn render_draws_walls_and_centrepieces() {
+    let dir = temp_dir("render-views");
+    let picture = |name: &str, extra: &[&str]| {
+        let out = dir.join(format!("{name}.png"));
+        let mut args = vec![
+            "render",
+            "poincare",
+            "--cpu",
+            "--size",
+            "48x27",
+            "--crossings",
+            "6",
+        ];
+        args.extend_from_slice(extra);
+        args.extend(["--out", out.to_str().unwrap()]);
+        let o = run(&args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        image::open(&out).unwrap().to_rgb8()
+    };
+    let plain = picture("plain", &[]);
+    let walls = picture("walls", &["--walls", "0.4"]);
+    let open = picture("open", &["--walls", "1"]);
+    let galaxy = picture("galaxy", &["--centrepiece", "galaxy"]);
+    let none = picture("none", &["--centrepiece", "none"]);
+    let gyroscope = picture("gyroscope", &["--gyroscope"]);
+    assert_ne!(plain, walls);
+    assert_eq!(plain, open, "fully open windows are no walls");
+    assert_ne!(plain, galaxy);
+    assert_ne!(plain, none);
+    assert_ne!(galaxy, none);
+    assert_ne!(gyroscope, none);
+    // A scene file's walls, and the command line's over them.
+    let scene = format!(
+        "{}/assets/scenes/seifert_weber_walls.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let render_scene = |name: &str, extra: &[&str]| {
+        let out = dir.join(format!("{name}.png"));
+        let mut args = vec![
+            "render",
+            "--scene",
+            &scene,
+            "--cpu",
+            "--size",
+            "48x27",
+            "--crossings",
+            "6",
+        ];
+        args.extend_from_slice(extra);
+        args.extend(["--out", out.to_str().unwrap()]);
+        let o = run(&args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        image::open(&out).unwrap().to_rgb8()
+    };
+    let file_walls = render_scene("file", &[]);
+    let no_walls = render_scene("file-open", &["--walls", "1"]);
+    assert_ne!(file_walls, no_walls);
+    std::fs::remove_dir_all(&dir).ok();
+}
