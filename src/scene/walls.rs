@@ -236,6 +236,10 @@ impl WallPanels {
             return None;
         }
         let n = covectors.len();
+        // A face without a (valid) partner counts as glued to itself.
+        let partners: Vec<usize> = (0..n)
+            .map(|f| partners.get(f).copied().filter(|&p| p < n).unwrap_or(f))
+            .collect();
         let units: Vec<DVec4> = covectors
             .iter()
             .map(|&c| unit_covector(geometry, c))
@@ -252,10 +256,10 @@ impl WallPanels {
         let inradii: Vec<f64> = (0..n)
             .map(|f| face_inradius(geometry, &units, &sines, f))
             .collect();
-        let colours = wall_colours(partners, reflections);
+        let colours = wall_colours(&partners, reflections);
         let faces = (0..n)
             .map(|f| {
-                let partner = partners.get(f).copied().unwrap_or(f).min(n - 1);
+                let partner = partners[f];
                 let mirror = partner == f && reflections.get(f).copied().unwrap_or(false);
                 // Glued faces are congruent: one margin for both, so the window matches.
                 let inradius = inradii[f].min(inradii[partner]);
