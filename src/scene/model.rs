@@ -319,7 +319,7 @@ pub enum Centrepiece {
     /// ([`gyroscope`]).
     Gyroscope,
     /// A spiral galaxy: a cloud of small glowing stars in two arms round a bulge, one mesh
-    /// with its own bounding hierarchy ([`galaxy_model`]).
+    /// with its own bounding hierarchy ([`galaxy_model`](crate::scene::centrepiece::galaxy_model)).
     Galaxy,
 }
 
