@@ -896,19 +896,10 @@ fn exit_face(ray: Ray, skip: u32) -> Exit {
     for (var f = 0u; f < face_count(); f += 1u) {
         let n = space.covectors[f];
         let dn = dot(n, ray.tangent);
-#ifdef CULLING
-        let start = -dot(n, ray.point);
-        face_start[f] = start;
-        face_rate[f] = dn;
-#endif
         if f == skip || !(dn > 0.0) {
             continue;
         }
-#ifdef CULLING
-        let nm = max(start, 0.0);
-#else
         let nm = max(-dot(n, ray.point), 0.0);
-#endif
         if exit.face == 0xffffffffu || nm * exit.den < exit.num * dn {
             exit = Exit(f, nm, dn);
         }
@@ -988,14 +979,15 @@ struct Near {
 // only at the start (up to s = a) and the other only at the end (from s = b) with b ≤ a; so
 // `pairs` tells, from the latest a and the earliest b, whether any pair of faces needs
 // visiting. Most segments are near only the faces they enter and leave by, far apart.
-fn near_faces(s_max: f32, scale: f32) -> Near {
+fn near_faces(ray: Ray, s_max: f32, scale: f32) -> Near {
     var at_start = 0u;
     var at_end = 0u;
     var leaves = -1.0;
     var reaches = NO_HIT;
     for (var f = 0u; f < min(face_count(), 32u); f += 1u) {
-        let r0 = face_start[f];
-        let rate = face_rate[f];
+        let n = space.covectors[f];
+        let r0 = -dot(n, ray.point);
+        let rate = dot(n, ray.tangent);
         let r1 = r0 - s_max * rate;
         let t = space.near[f / 4u][f % 4u] * scale;
         let start = r0 <= t;
@@ -1030,9 +1022,10 @@ fn segment_scale(s_max: f32) -> f32 {
 
 // The part of `range` (of s) where the segment is near face `face`: −N·X(s) = a − s b is
 // linear, so it is an interval (empty when x > y).
-fn near_part(face: u32, scale: f32, range: vec2<f32>) -> vec2<f32> {
-    let a = face_start[face];
-    let b = face_rate[face];
+fn near_part(ray: Ray, face: u32, scale: f32, range: vec2<f32>) -> vec2<f32> {
+    let n = space.covectors[face];
+    let a = -dot(n, ray.point);
+    let b = dot(n, ray.tangent);
     let t = space.near[face / 4u][face % 4u] * scale;
     if b > 0.0 {
         return vec2<f32>(max(range.x, (a - t) / b), range.y);
@@ -1121,7 +1114,7 @@ fn intersect_scene(ray: Ray, s_max: f32, travelled: f32) -> SceneHit {
 #endif
 #ifdef CULLING
     let scale = segment_scale(s_max);
-    let near_set = near_faces(s_max, scale);
+    let near_set = near_faces(ray, s_max, scale);
     let near = near_set.faces;
     // The objects that hug fewer than two faces (all lanes the same bucket), then, where two
     // faces are near at one point, the buckets of each pair f < g of the faces the segment
@@ -1137,7 +1130,7 @@ fn intersect_scene(ray: Ray, s_max: f32, travelled: f32) -> SceneHit {
     loop {
         var both = true;
         if bucket != #{CULL_BUCKETS}u - 1u {
-            let part = near_part(pair.y, scale, near_part(pair.x, scale, vec2<f32>(0.0, s_max)));
+            let part = near_part(ray, pair.y, scale, near_part(ray, pair.x, scale, vec2<f32>(0.0, s_max)));
             both = part.x <= part.y;
         }
 #ifdef BALLS
