@@ -117,12 +117,7 @@ fn minimap(ui: &mut egui::Ui, active: &ActiveSpace, frame: &PlayerFrame, walls: 
     let space = &active.space;
     // With walls shown, faces are labelled in their walls' colours (glued faces alike).
     let wall_colours = walls.then(|| {
-        let partners: Vec<usize> = space.faces.iter().map(|f| f.partner).collect();
-        let reflections: Vec<bool> = space
-            .faces
-            .iter()
-            .map(|f| f.pairing.determinant() < 0.0)
-            .collect();
+        let (partners, reflections) = crate::scene::walls::gluing(space);
         crate::scene::walls::wall_colours(&partners, &reflections)
     });
     let g = space.geometry;

@@ -166,6 +166,17 @@ pub fn wall_colours(partners: &[usize], reflections: &[bool]) -> Vec<DVec3> {
         .collect()
 }
 
+/// Each face's partner and whether its pairing reverses orientation: what the walls'
+/// colours are chosen by ([`wall_colours`]).
+#[must_use]
+pub fn gluing(space: &Space) -> (Vec<usize>, Vec<bool>) {
+    space
+        .faces
+        .iter()
+        .map(|f| (f.partner, f.pairing.determinant() < 0.0))
+        .unzip()
+}
+
 /// `S⁻¹`: asin, identity, asinh.
 fn s_inverse(geometry: Geometry, s: f64) -> f64 {
     match geometry {
@@ -205,12 +216,7 @@ impl WallPanels {
     #[must_use]
     pub fn new(space: &Space, style: WallStyle, shading: &Shading) -> Option<Self> {
         let covectors: Vec<DVec4> = space.faces.iter().map(|f| f.covector).collect();
-        let partners: Vec<usize> = space.faces.iter().map(|f| f.partner).collect();
-        let reflections: Vec<bool> = space
-            .faces
-            .iter()
-            .map(|f| f.pairing.determinant() < 0.0)
-            .collect();
+        let (partners, reflections) = gluing(space);
         Self::from_parts(
             space.geometry,
             &covectors,

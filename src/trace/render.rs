@@ -122,15 +122,7 @@ pub fn first_hit_culled(
     start: Ray<DVec4>,
     max_crossings: usize,
 ) -> TracedRay {
-    trace_ray(
-        walker,
-        scene,
-        culling,
-        None,
-        start,
-        max_crossings,
-        |_, _| {},
-    )
+    first_hit_walled(walker, scene, culling, None, start, max_crossings)
 }
 
 /// [`first_hit_culled`] through the cell's walls ([`WallPanels`], built once per scene with
