@@ -11,6 +11,7 @@ pub mod entities;
 pub mod harness;
 
 mod accuracy;
+mod edge_work;
 mod plot;
 mod report;
 mod timing;
@@ -481,6 +482,21 @@ pub struct EdgesRow {
     /// anything but 0 is a bug.
     #[serde(default)]
     pub hit_ids_differing: usize,
+    /// Cells a ray of the view passes, on average (the CPU reference's walk).
+    #[serde(default)]
+    pub segments_per_pixel: f64,
+    /// The share of segments that come near two faces at one point: only those can meet
+    /// an edge tube or a vertex ball, so only those test any.
+    #[serde(default)]
+    pub near_two_faces: f64,
+    /// The share of 4 × 2 pixel blocks (a software rasteriser's SIMD lanes) in which, at
+    /// the same segment count, at least one pixel's segment comes near two faces at one
+    /// point: the lanes run in step, so these blocks pay for the edge tests.
+    #[serde(default)]
+    pub blocks_near_two_faces: f64,
+    /// Edge objects tested per segment once culled (CPU), against `edge_objects` unculled.
+    #[serde(default)]
+    pub tests_per_segment: f64,
 }
 
 /// A mesh at the cell's centre: frame time against triangle count, timed interleaved with

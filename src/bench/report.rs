@@ -389,12 +389,12 @@ fn edges_section(md: &mut String, report: &BenchReport) {
     }
     let _ = writeln!(
         *md,
-        "\n### The cell's edges: the default view with its edge tubes and vertex balls (culled by face masks, as drawn; and every one tested in every cell) against the same view without them, timed in turn\n\n| space | size | budget | edge objects | with edges ms | × without | unculled ms | × without | without edges ms | hit ids differing, culled against unculled |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|"
+        "\n### The cell's edges: the default view with its edge tubes and vertex balls (culled by face masks, as drawn; and every one tested in every cell) against the same view without them, timed in turn (× without: the median over rounds of each round's ratio)\n\n| space | size | budget | edge objects | with edges ms | × without | unculled ms | × without | without edges ms | hit ids differing, culled against unculled | segments per pixel | near two faces at once | 4×2 blocks near two faces | edge tests per segment, culled |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
     );
     for r in &report.edges {
         let _ = writeln!(
             *md,
-            "| {} | {}×{} | {} | {} | {:.2} | {:.2}× | {:.2} | {:.2}× | {:.2} | {} |",
+            "| {} | {}×{} | {} | {} | {:.2} | {:.2}× | {:.2} | {:.2}× | {:.2} | {} | {:.1} | {:.0} % | {:.0} % | {:.2} |",
             r.space,
             r.width,
             r.height,
@@ -405,7 +405,11 @@ fn edges_section(md: &mut String, report: &BenchReport) {
             r.unculled_ms,
             r.unculled_ratio,
             r.without_edges_ms,
-            r.hit_ids_differing
+            r.hit_ids_differing,
+            r.segments_per_pixel,
+            100.0 * r.near_two_faces,
+            100.0 * r.blocks_near_two_faces,
+            r.tests_per_segment
         );
     }
 }

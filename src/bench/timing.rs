@@ -83,6 +83,26 @@ pub(super) fn time_in_turn(
     programs: &[(&Program, &Frame)],
     config: &BenchConfig,
 ) -> Result<Vec<Stats>, BenchError> {
+    Ok(time_rounds(harness, programs, config)?
+        .into_iter()
+        .map(Stats::of)
+        .collect())
+}
+
+/// The median over rounds of `a[i] / b[i]`: a ratio of two programs timed in the same
+/// rounds, each round's pair of frames drawn back to back, so that a slow spell of a shared
+/// machine moves both.
+pub(super) fn paired_ratio(a: &[f64], b: &[f64]) -> f64 {
+    let ratios: Vec<f64> = a.iter().zip(b).map(|(x, y)| x / y).collect();
+    Stats::of(ratios).median
+}
+
+/// Each program's frame times, drawn in turn round by round (see [`time_in_turn`]).
+pub(super) fn time_rounds(
+    harness: &mut Harness,
+    programs: &[(&Program, &Frame)],
+    config: &BenchConfig,
+) -> Result<Vec<Vec<f64>>, BenchError> {
     let mut times: Vec<Vec<f64>> = vec![Vec::new(); programs.len()];
     let start = std::time::Instant::now();
     let mut rounds = 0;
@@ -94,7 +114,7 @@ pub(super) fn time_in_turn(
         }
         rounds += 1;
     }
-    Ok(times.into_iter().map(Stats::of).collect())
+    Ok(times)
 }
 
 /// The default view with the cell's edges culled (as drawn), unculled, and without edges,
@@ -138,7 +158,10 @@ pub(super) fn edges_cost(
         harness.draw(program, frame)?;
     }
     let programs: Vec<(&Program, &Frame)> = runs.iter().map(|(p, f)| (p, f)).collect();
-    let stats = time_in_turn(harness, &programs, config)?;
+    let times = time_rounds(harness, &programs, config)?;
+    let ratio = paired_ratio(&times[0], &times[2]);
+    let unculled_ratio = paired_ratio(&times[1], &times[2]);
+    let stats: Vec<Stats> = times.into_iter().map(Stats::of).collect();
     // What each ray met, culled and not: the culling must not change it.
     let culled_ids = super::accuracy::gpu_pixels(harness, subject, &culled, budget, (w, h))?;
     let unculled_ids = super::accuracy::gpu_pixels(harness, subject, &unculled, budget, (w, h))?;
@@ -148,6 +171,7 @@ pub(super) fn edges_cost(
         .zip(&unculled_ids.ids)
         .filter(|(a, b)| a != b)
         .count();
+    let work = super::edge_work::edge_work(subject, &with, budget, (w, h));
     Ok(EdgesRow {
         space: subject.id.clone(),
         geometry: subject.geometry(),
@@ -158,9 +182,13 @@ pub(super) fn edges_cost(
         with_edges_ms: stats[0].median,
         unculled_ms: stats[1].median,
         without_edges_ms: stats[2].median,
-        ratio: stats[0].median / stats[2].median,
-        unculled_ratio: stats[1].median / stats[2].median,
+        ratio,
+        unculled_ratio,
         hit_ids_differing,
+        segments_per_pixel: work.map_or(0.0, |x| x.segments_per_pixel),
+        near_two_faces: work.map_or(0.0, |x| x.near_two_faces),
+        blocks_near_two_faces: work.map_or(0.0, |x| x.blocks_near_two_faces),
+        tests_per_segment: work.map_or(0.0, |x| x.tests_per_segment),
     })
 }
 

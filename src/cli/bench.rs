@@ -7,6 +7,10 @@ use bevy_curved_spaces::offscreen::gpu_available;
 use bevy_curved_spaces::space::seed_space;
 use std::time::Instant;
 
+/// Rounds of the three edge views `bench --edges` times per space, at least: ratios of a
+/// few per cent need more than the sweep's timings.
+const EDGES_ROUNDS: usize = 15;
+
 pub(super) fn bench(args: &BenchArgs) -> Result<(), String> {
     if let Some(from) = &args.from {
         let (config, report) =
@@ -84,18 +88,24 @@ pub(super) fn bench(args: &BenchArgs) -> Result<(), String> {
         if args.budgets.is_none() {
             config.budgets = vec![32];
         }
+        if !args.quick {
+            config.min_frames = config.min_frames.max(EDGES_ROUNDS);
+        }
         let report =
             bevy_curved_spaces::bench::run_edges(&config, &progress).map_err(|e| e.to_string())?;
         for r in &report.edges {
             say!(
-                "{:<24} {:>3} edge objects: culled {:>8.3} ms ({:.2}×), unculled {:>8.3} ms ({:.2}×), without {:>8.3} ms",
+                "{:<24} {:>3} edge objects: culled {:>8.3} ms ({:.2}×), unculled {:>8.3} ms ({:.2}×), without {:>8.3} ms; {:.1} segments a pixel, {:.0} % near two faces at once ({:.0} % of 4×2 blocks)",
                 r.space,
                 r.edge_objects,
                 r.with_edges_ms,
                 r.ratio,
                 r.unculled_ms,
                 r.unculled_ratio,
-                r.without_edges_ms
+                r.without_edges_ms,
+                r.segments_per_pixel,
+                100.0 * r.near_two_faces,
+                100.0 * r.blocks_near_two_faces
             );
         }
         let written = bevy_curved_spaces::bench::write_edges_report(&report, &config, &args.out)

@@ -150,6 +150,32 @@ impl FaceCulling {
         lo <= hi
     }
 
+    /// Whether the segment `X(s) ∝ p + s v`, `0 ≤ s ≤ s_max`, comes near two faces at one
+    /// point: only then can it meet an object hugging two faces or more, and only then does
+    /// the GPU visit the buckets of face pairs (the shader's `Near::pairs`). The part of the
+    /// segment near a face is an interval of `s` (`−N·X` is linear); two overlap exactly
+    /// when both faces are near at the start, or both at the end, or one near only up to `a`
+    /// and the other only from `b ≤ a`.
+    #[must_use]
+    pub fn near_at_once(&self, p: DVec4, v: DVec4, s_max: f64) -> bool {
+        let scale = self.segment_scale(s_max);
+        let (mut at_start, mut at_end) = (0u32, 0u32);
+        let (mut leaves, mut reaches) = (f64::NEG_INFINITY, f64::INFINITY);
+        for (n, t) in self.covectors.iter().zip(&self.thresholds) {
+            let (r0, rate, t) = (-n.dot(p), n.dot(v), t * scale);
+            let (start, end) = (r0 <= t, r0 - s_max * rate <= t);
+            at_start += u32::from(start);
+            at_end += u32::from(end);
+            if start && !end {
+                leaves = leaves.max((r0 - t) / rate);
+            }
+            if end && !start {
+                reaches = reaches.min((r0 - t) / rate);
+            }
+        }
+        at_start >= 2 || at_end >= 2 || reaches <= leaves
+    }
+
     /// `max |X(s)|` over a segment on the model's scale: 1 in E³ (w = 1), `√(1 − s²) ≤ 1` in
     /// H³, `√(1 + s_max²)` in S³.
     fn segment_scale(&self, s_max: f64) -> f64 {

@@ -321,7 +321,8 @@ impl GpuScene {
     /// `previous` is shared when the meshes, materials and textures are the same ones
     /// (moving an object rewrites its instance, not its mesh), and each object list is
     /// padded to [`padded_count`] with copies of its last object (never the nearest hit:
-    /// the original comes first), so that the shader's counts change rarely.
+    /// the original comes first; the culling's lists leave them out), so that the shader's
+    /// counts change rarely.
     pub fn reusing(
         space: &Space,
         scene: &CurvedScene,
@@ -476,7 +477,13 @@ impl GpuScene {
         if key.culling
             && let Some(culling) = &culling
         {
-            pack_culling(&mut out, [&lists[0], &lists[1]], culling, space.faces.len());
+            pack_culling(
+                &mut out,
+                [&lists[0], &lists[1]],
+                culling,
+                space.faces.len(),
+                key.list_vecs() as usize,
+            );
         }
         let words = out.words;
         debug_assert_eq!(words.len() * 4 + VIEW_WORDS * 4, bytes);
@@ -530,6 +537,7 @@ fn pack_culling(
     lists: [&[usize]; 2],
     culling: &FaceCulling,
     faces: usize,
+    list_vecs: usize,
 ) {
     let mut thresholds: Vec<u32> = (0..4 * faces.div_ceil(4))
         .map(|f| {
@@ -552,15 +560,14 @@ fn pack_culling(
     // leaves by is visited alone.
     let culled = faces.min(MAX_CULLED_FACES);
     let buckets = cull_buckets(faces);
-    // A padding copy of an object (the same scene index again) goes in its original's
-    // bucket, after it: the original is tested first and stays the nearest hit.
+    // A padding copy of an object (the same scene index again, [`GpuScene::reusing`]) is in
+    // no list: it is never the nearest hit, and testing it costs as much as the original
+    // (the plugin's default scene pads its 21 balls to 32 with copies of the centre ball,
+    // which would all be in the last bucket, tested in every cell).
     let bucketed = |masks: &[u32], objects: &[usize]| -> Vec<Vec<u32>> {
         let mut lists: Vec<Vec<u32>> = vec![Vec::new(); buckets];
-        let mut first: Option<usize> = None;
         for (i, &m) in masks.iter().enumerate() {
             if i > 0 && objects[i] == objects[i - 1] {
-                let b = first.unwrap_or(buckets - 1);
-                lists[b].push(i as u32);
                 continue;
             }
             let bits: Vec<usize> = (0..culled).filter(|&f| m & (1 << f) != 0).collect();
@@ -571,7 +578,6 @@ fn pack_culling(
                 .min_by_key(|&pair| lists[pair].len())
                 .unwrap_or(buckets - 1);
             lists[b].push(i as u32);
-            first = Some(b);
         }
         lists
     };
@@ -588,7 +594,8 @@ fn pack_culling(
     for kind in &lists {
         words.extend(kind.iter().flatten());
     }
-    words.resize(4 * words.len().div_ceil(4), 0);
+    // The lists' full size (ShaderKey::list_vecs), copies left out or not.
+    words.resize(4 * list_vecs, 0);
     out.words.append(&mut words);
 }
 
