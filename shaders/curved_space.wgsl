@@ -28,6 +28,9 @@
 //                                        only those whose faces it comes near
 //                                        (src/scene/culling.rs)
 //   WALLS                                the cell's walls with windows (src/scene/walls.rs)
+//   STRAIGHTFORWARD                      (benchmark) a straightforward tracer of the same
+//                                        walk instead, the benchmark's comparison: balls
+//                                        only, arc length and trigonometry, plain pairings
 //   STEREO_SPLIT                         two eyes in two halves of the view (src/stereo.rs)
 //   ANAGLYPH                             two eyes traced per pixel and mixed by two matrices
 //
@@ -1337,6 +1340,136 @@ fn cross_wall(ray: Ray, exit: Exit, d: f32) {
 }
 #endif
 
+#ifdef STRAIGHTFORWARD
+// C(t): cos t, 1 or cosh t.
+fn c_of(t: f32) -> f32 {
+#ifdef SPHERICAL
+    if kappa() > 0.0 {
+        return cos(t);
+    }
+#endif
+#ifdef HYPERBOLIC
+    if kappa() < 0.0 {
+        return cosh(t);
+    }
+#endif
+    return 1.0;
+}
+
+// The arc length t > 0 at which C(t)·a + S(t)·b = k along γ(t) = C(t) p + S(t) v, the first
+// root, or NO_HIT: a ball's boundary (a = ⟨p,c⟩, b = ⟨v,c⟩, k = C(ρ) in S³ and H³; in E³
+// a = |p − c|², b = 2 (p − c)·v, k = ρ², the quadric t² + b t + a = k).
+fn first_arc(a: f32, b: f32, k: f32) -> f32 {
+#ifdef SPHERICAL
+    if kappa() > 0.0 {
+        // R cos(t − φ) = k: entering at t = φ − acos(k / R).
+        let r = sqrt(a * a + b * b);
+        if !(k < r) {
+            return NO_HIT;
+        }
+        let t = atan2(b, a) - acos(k / r);
+        return select(NO_HIT, t, t > 0.0);
+    }
+#endif
+#ifdef HYPERBOLIC
+    if kappa() < 0.0 {
+        // −⟨γ, c⟩ = cosh ρ with −⟨p,c⟩ = A, −⟨v,c⟩ = B: (A + B) u² − 2 cosh ρ u + (A − B) = 0
+        // in u = eᵗ.
+        let u = roots(-(a + b), 2.0 * k, -(a - b));
+        if u.x > 1.0 && u.x < NO_HIT {
+            return log(u.x);
+        }
+        return NO_HIT;
+    }
+#endif
+#ifdef EUCLIDEAN
+    if kappa() == 0.0 {
+        let t = roots(1.0, b, a - k);
+        return select(NO_HIT, t.x, t.x > 0.0 && t.x < NO_HIT);
+    }
+#endif
+    return NO_HIT;
+}
+
+// The benchmark's comparison, never drawn by the plugin: a straightforward tracer of the
+// same walk and shading, as one would first write it. The geodesic is followed by arc
+// length, γ(t) = C(t) p + S(t) v: each face's crossing is solved for t with an inverse
+// trigonometric (hyperbolic) function, a division a face, and the ball's with its own
+// trigonometric solution; the point and tangent are moved along γ, the face's pairing is
+// applied as a plain f32 product and both are put back on the model every step. The
+// tracer above compares chart ratios without dividing, moves along chart lines, and
+// applies the pairings compensated. Balls only, no step cap.
+fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
+    let fog = space.shading.fog.rgb;
+    let cutoff = space.shading.params.y;
+    let budget = u32(space.shading.params.w);
+    var p = start_point;
+    var v = start_tangent;
+    var travelled = 0.0;
+    var skip = 0xffffffffu;
+    for (var crossings = 0u; crossings <= budget; crossings += 1u) {
+        // N·γ(t) = C(t) N·p + S(t) N·v = 0 at T(t) = S/C = −N·p / N·v.
+        var t_exit = NO_HIT;
+        var face = 0xffffffffu;
+        for (var f = 0u; f < face_count(); f += 1u) {
+            let n = space.covectors[f];
+            let b = dot(n, v);
+            if f != skip && b > 0.0 {
+                let t = distance_from_ratio(max(-dot(n, p), 0.0) / b, 1.0);
+                if t < t_exit {
+                    t_exit = t;
+                    face = f;
+                }
+            }
+        }
+        if face == 0xffffffffu {
+            break;
+        }
+        var t_hit = t_exit;
+        var ball = 0xffffffffu;
+#ifdef BALLS
+        for (var i = 0u; i < ball_count(); i += 1u) {
+            let c = space.balls[i].centre;
+            let size = space.balls[i].colour.w;
+            var t = NO_HIT;
+            if kappa() == 0.0 {
+                let d = p.xyz - c.xyz;
+                t = first_arc(dot(d, d), 2.0 * dot(d, v.xyz), size * size);
+            } else {
+                t = first_arc(form(p, c) * kappa(), form(v, c) * kappa(), size);
+            }
+            if t < t_hit {
+                t_hit = t;
+                ball = i;
+            }
+        }
+#endif
+        if ball != 0xffffffffu {
+            let d = travelled + t_hit;
+            if d >= cutoff {
+                return fog;
+            }
+            let point = project_point(c_of(t_hit) * p + s_of(t_hit) * v);
+            let centre = space.balls[ball].centre;
+            return shade(point, unit_tangent(point, point - centre), space.balls[ball].colour.rgb, space.balls[ball].emission.rgb, d);
+        }
+        if crossings == budget {
+            break;
+        }
+        travelled += t_exit;
+        if travelled >= cutoff {
+            return fog;
+        }
+        let at = c_of(t_exit) * p + s_of(t_exit) * v;
+        let along = -kappa() * s_of(t_exit) * p + c_of(t_exit) * v;
+        let g = space.pairings[face];
+        p = project_point(g * at);
+        v = unit_tangent(p, g * along);
+        skip = partner(face);
+    }
+    return fog;
+}
+#else
 // One camera ray's colour: walk the cell, nearest object hit against exit face, cross by
 // pairings until the fog cut-off or the crossing budget (Rust: `trace::first_hit` and
 // `colour_of`).
@@ -1427,6 +1560,7 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
     }
     return fog;
 }
+#endif
 
 // ---------------------------------------------------------------------------------------
 // Entry points: one triangle covering the viewport.

@@ -448,6 +448,38 @@ pub struct BenchReport {
     /// The cell's edges, culled and not (absent from reports written before culling).
     #[serde(default)]
     pub edges: Vec<EdgesRow>,
+    /// The tracer against a straightforward one on the plainest view.
+    #[serde(default)]
+    pub straightforward: Vec<StraightforwardRow>,
+}
+
+/// The tracer against a straightforward tracer of the same walk (the shader variant
+/// [`GpuScene::straightforward`]: arc length and trigonometric functions, a division a
+/// face, plain f32 pairings) on the plainest view: the camera at the cell's centre looking
+/// along −z with a 90° horizontal field of view, one ball of radius 0.3 inradii at the
+/// centre, fog at 2 inradii, no edges; the two timed in turn.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StraightforwardRow {
+    /// Seed space id.
+    pub space: String,
+    /// Its geometry.
+    pub geometry: String,
+    /// Picture width in pixels.
+    pub width: u32,
+    /// Picture height in pixels.
+    pub height: u32,
+    /// Crossing budget per ray.
+    pub budget: u32,
+    /// Median frame time of the tracer, ms.
+    pub tracer_ms: f64,
+    /// Median frame time of the straightforward tracer, ms.
+    pub straightforward_ms: f64,
+    /// The tracer's time as a share of the straightforward one's (the median over rounds of
+    /// each round's ratio): below 1 is faster.
+    pub ratio: f64,
+    /// Share of pixels whose colour differs between the two pictures (the same walk and
+    /// shading, computed by other formulas in f32).
+    pub differing_pixels: f64,
 }
 
 /// What the default scene's cell edges (tubes and vertex balls) cost: the default view
@@ -563,6 +595,41 @@ impl Subject {
     fn scene(&self, fog_factor: f64) -> CurvedScene {
         CurvedScene::default_for(&self.space, fog_factor * self.inradius)
     }
+}
+
+/// Times only the tracer against the straightforward one ([`StraightforwardRow`]), for
+/// each of `config.spaces` and `config.budgets` at the middle of `config.sizes`.
+pub fn run_straightforward(
+    config: &BenchConfig,
+    progress: &ProgressBar,
+) -> Result<BenchReport, BenchError> {
+    if config.spaces.is_empty() || config.sizes.is_empty() || config.budgets.is_empty() {
+        return Err(BenchError::Empty("no spaces, sizes or budgets were named"));
+    }
+    let mut harness = Harness::new()?;
+    progress.set_length((config.spaces.len() * config.budgets.len()) as u64);
+    let mut report = BenchReport::empty(Some(&harness));
+    for id in &config.spaces {
+        let subject = Subject::new(id)?;
+        for &budget in &config.budgets {
+            announce(
+                progress,
+                format!(
+                    "{} at {budget} crossings: against a straightforward tracer",
+                    subject.id
+                ),
+            );
+            report.straightforward.extend(straightforward_cost(
+                &mut harness,
+                &subject,
+                budget,
+                config,
+            )?);
+            progress.inc(1);
+        }
+    }
+    progress.finish_and_clear();
+    Ok(report)
 }
 
 /// Times only what the cell's edges cost ([`EdgesRow`]): the default view with its edges
@@ -840,6 +907,20 @@ fn gpu_measurements(
         .edges
         .push(edges_cost(harness, subject, auto_default, config)?);
     progress.inc(1);
+    for budget in [16, 32] {
+        if config.budgets.contains(&budget) {
+            announce(
+                progress,
+                format!(
+                    "{} at {budget} crossings: against a straightforward tracer",
+                    subject.id
+                ),
+            );
+            report
+                .straightforward
+                .extend(straightforward_cost(harness, subject, budget, config)?);
+        }
+    }
     for &triangles in &config.mesh_triangles {
         announce(
             progress,

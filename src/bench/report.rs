@@ -43,7 +43,7 @@ pub fn write_report(
 ) -> Result<Vec<PathBuf>, BenchError> {
     let config = serde_json::to_value(config).map_err(|e| write_error(dir, &e))?;
     let mut written = vec![write_json(dir, config, report)?];
-    let tables: [(&str, Vec<serde_json::Value>); 11] = [
+    let tables: [(&str, Vec<serde_json::Value>); 12] = [
         ("timings", to_values(&report.timings)),
         ("errors", to_values(&report.errors)),
         ("conditioning", to_values(&report.conditioning)),
@@ -55,6 +55,7 @@ pub fn write_report(
         ("stereo", to_values(&report.stereo)),
         ("meshes", to_values(&report.meshes)),
         ("edges", to_values(&report.edges)),
+        ("straightforward", to_values(&report.straightforward)),
     ];
     for (name, rows) in tables {
         written.push(write_text(dir, &format!("{name}.csv"), &to_csv(&rows))?);
@@ -102,8 +103,9 @@ pub fn write_scene_report(
     Ok(vec![json, csv, summary])
 }
 
-/// Writes an edges-only benchmark ([`super::run_edges`]): `bench.json`, `edges.csv` and a
-/// `summary.md` with the edges' table.
+/// Writes an edges-only or straightforward-only benchmark ([`super::run_edges`],
+/// [`super::run_straightforward`]): `bench.json`, `edges.csv` or `straightforward.csv`
+/// and a `summary.md` with the table.
 pub fn write_edges_report(
     report: &BenchReport,
     config: &BenchConfig,
@@ -111,15 +113,30 @@ pub fn write_edges_report(
 ) -> Result<Vec<PathBuf>, BenchError> {
     let config = serde_json::to_value(config).map_err(|e| write_error(dir, &e))?;
     let json = write_json(dir, config, report)?;
-    let csv = write_text(dir, "edges.csv", &to_csv(&to_values(&report.edges)))?;
+    let mut written = vec![json];
+    if !report.edges.is_empty() {
+        written.push(write_text(
+            dir,
+            "edges.csv",
+            &to_csv(&to_values(&report.edges)),
+        )?);
+    }
+    if !report.straightforward.is_empty() {
+        written.push(write_text(
+            dir,
+            "straightforward.csv",
+            &to_csv(&to_values(&report.straightforward)),
+        )?);
+    }
     let device = report.device.as_ref().map_or_else(
         || "no GPU".to_string(),
         |d| format!("{} ({})", d.name, d.driver),
     );
     let mut md = format!("Device: {device}. Build: {}.\n", report.build);
     edges_section(&mut md, report);
-    let summary = write_text(dir, "summary.md", &md)?;
-    Ok(vec![json, csv, summary])
+    straightforward_section(&mut md, report);
+    written.push(write_text(dir, "summary.md", &md)?);
+    Ok(written)
 }
 
 /// Reads a `bench.json` written by [`write_report`] back (to redraw its charts and tables).
@@ -183,6 +200,7 @@ pub fn summary_markdown(report: &BenchReport) -> String {
     timings_section(&mut md, report, &spaces, &sizes);
     work_section(&mut md, report);
     edges_section(&mut md, report);
+    straightforward_section(&mut md, report);
     specialisation_section(&mut md, report);
     stereo_section(&mut md, report);
     mesh_section(&mut md, report);
@@ -410,6 +428,32 @@ fn edges_section(md: &mut String, report: &BenchReport) {
             100.0 * r.near_two_faces,
             100.0 * r.blocks_near_two_faces,
             r.tests_per_segment
+        );
+    }
+}
+
+/// The tracer against a straightforward one on the plainest view.
+fn straightforward_section(md: &mut String, report: &BenchReport) {
+    use std::fmt::Write as _;
+    if report.straightforward.is_empty() {
+        return;
+    }
+    let _ = writeln!(
+        *md,
+        "\n### The tracer against a straightforward tracer of the same walk (arc length and trigonometric functions, a division a face, plain f32 pairings): the camera at the centre looking along −z, 90° across, one ball of 0.3 inradii at the centre, fog at 2 inradii, no edges; timed in turn\n\n| space | size | budget | tracer ms | straightforward ms | × straightforward | pixels differing |\n|---|---|---:|---:|---:|---:|---:|"
+    );
+    for r in &report.straightforward {
+        let _ = writeln!(
+            *md,
+            "| {} | {}×{} | {} | {:.2} | {:.2} | {:.2}× | {:.2} % |",
+            r.space,
+            r.width,
+            r.height,
+            r.budget,
+            r.tracer_ms,
+            r.straightforward_ms,
+            r.ratio,
+            100.0 * r.differing_pixels
         );
     }
 }

@@ -192,6 +192,88 @@ pub(super) fn edges_cost(
     })
 }
 
+/// The tracer against the straightforward one on the plainest view (see
+/// [`StraightforwardRow`]) at the middle timed resolution, or `None` where the space's
+/// scene cannot be drawn by the straightforward variant (a step cap).
+pub(super) fn straightforward_cost(
+    harness: &mut Harness,
+    subject: &Subject,
+    budget: u32,
+    config: &BenchConfig,
+) -> Result<Option<StraightforwardRow>, BenchError> {
+    let g = subject.space.geometry();
+    let mut scene = CurvedScene::with_parts(
+        &subject.space,
+        DEFAULT_FOG_FACTOR * subject.inradius,
+        crate::scene::SceneParts {
+            edges: false,
+            centrepiece: crate::scene::Centrepiece::None,
+            ..Default::default()
+        },
+    );
+    scene
+        .objects
+        .push(crate::scene::Object::Ball(crate::scene::Ball::new(
+            g,
+            subject.space.centre(),
+            0.3 * subject.inradius,
+            glam::DVec3::new(1.0, 0.78, 0.45),
+        )));
+    let ours = subject.pack(&scene, budget)?;
+    let Some(plain) = ours.straightforward() else {
+        return Ok(None);
+    };
+    let (w, h) = config.middle_size();
+    // A 90° horizontal field of view.
+    let camera = crate::view::TraceCamera {
+        fov_y_degrees: 2.0 * (f64::from(h) / f64::from(w)).atan().to_degrees(),
+        ..subject.camera
+    };
+    let layout = camera.layout(w, h);
+    let frames: Vec<(Program, Frame)> = [&ours, &plain]
+        .into_iter()
+        .map(|gpu| {
+            (
+                Program::Tracer(gpu.key, ViewKind::Mono, Output::Colour),
+                harness.frame(
+                    w,
+                    h,
+                    Output::Colour,
+                    &uniform_words(&layout, gpu),
+                    &gpu.data,
+                ),
+            )
+        })
+        .collect();
+    for (program, frame) in &frames {
+        harness.draw(program, frame)?;
+    }
+    let pixels: Vec<Vec<u8>> = frames
+        .iter()
+        .map(|(_, f)| harness.read_pixels(f))
+        .collect::<Result<_, _>>()?;
+    let differing = pixels[0]
+        .chunks_exact(4)
+        .zip(pixels[1].chunks_exact(4))
+        .filter(|(x, y)| x.iter().zip(*y).any(|(a, b)| a.abs_diff(*b) > 2))
+        .count();
+    let programs: Vec<(&Program, &Frame)> = frames.iter().map(|(p, f)| (p, f)).collect();
+    let times = time_rounds(harness, &programs, config)?;
+    let ratio = paired_ratio(&times[0], &times[1]);
+    let stats: Vec<Stats> = times.into_iter().map(Stats::of).collect();
+    Ok(Some(StraightforwardRow {
+        space: subject.id.clone(),
+        geometry: subject.geometry(),
+        width: w,
+        height: h,
+        budget,
+        tracer_ms: stats[0].median,
+        straightforward_ms: stats[1].median,
+        ratio,
+        differing_pixels: differing as f64 / f64::from(w * h),
+    }))
+}
+
 /// Times the specialised and the unspecialised shader on the same view, interleaved, at the
 /// middle timed resolution.
 pub(super) fn specialisation(

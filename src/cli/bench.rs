@@ -84,6 +84,36 @@ pub(super) fn bench(args: &BenchArgs) -> Result<(), String> {
     }
     let started = Instant::now();
     let progress = indicatif::ProgressBar::new(0);
+    if args.straightforward {
+        if args.budgets.is_none() {
+            config.budgets = vec![16, 32];
+        }
+        if !args.quick {
+            config.min_frames = config.min_frames.max(EDGES_ROUNDS);
+        }
+        let report = bevy_curved_spaces::bench::run_straightforward(&config, &progress)
+            .map_err(|e| e.to_string())?;
+        for r in &report.straightforward {
+            say!(
+                "{:<24} budget {:>3}: tracer {:>8.3} ms, straightforward {:>8.3} ms: {:.2}× ({:.2} % of pixels differ)",
+                r.space,
+                r.budget,
+                r.tracer_ms,
+                r.straightforward_ms,
+                r.ratio,
+                100.0 * r.differing_pixels
+            );
+        }
+        let written = bevy_curved_spaces::bench::write_edges_report(&report, &config, &args.out)
+            .map_err(|e| e.to_string())?;
+        say!(
+            "wrote {} files to {} in {:.1} s",
+            written.len(),
+            args.out.display(),
+            started.elapsed().as_secs_f64()
+        );
+        return Ok(());
+    }
     if args.edges {
         if args.budgets.is_none() {
             config.budgets = vec![32];

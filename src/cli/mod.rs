@@ -293,6 +293,12 @@ struct BenchArgs {
     /// object, and a new mesh's build); writes entities.csv, new_meshes.csv, entities.md.
     #[arg(long, conflicts_with_all = ["spaces", "budgets", "sizes", "cpu_only", "from", "scene"])]
     entities: bool,
+    /// Time only the tracer against a straightforward tracer of the same walk (arc length,
+    /// trigonometric functions, plain pairings) on the plainest view: the camera at the
+    /// centre, 90° across, a ball of 0.3 inradii, no edges (at --budgets, default 16,32, and
+    /// the middle of --sizes); writes straightforward.csv and summary.md.
+    #[arg(long, conflicts_with_all = ["cpu_only", "from", "scene", "entities", "edges"])]
+    straightforward: bool,
     /// Time only what the cell's edges cost: the default view with its edges culled,
     /// unculled and absent, in turn, per space (at the first of --budgets, default 32, and
     /// the middle of --sizes); writes edges.csv and summary.md.

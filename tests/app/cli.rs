@@ -283,6 +283,35 @@ fn bad_input_gets_a_clear_error() {
 /// bounds they state: the fog cut-off's error is within its bound, f32 keeps the torus's
 /// faces within the conditioning bound, and the automatic budgets are ordered by quality.
 #[test]
+fn bench_straightforward_times_the_tracer_against_the_straightforward_one() {
+    let dir = temp_dir("bench-straightforward");
+    let out = run(&[
+        "bench",
+        "--straightforward",
+        "--quick",
+        "--spaces",
+        "poincare",
+        "--budgets",
+        "8",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let csv = std::fs::read_to_string(dir.join("straightforward.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 2, "{csv}");
+    let summary = std::fs::read_to_string(dir.join("summary.md")).unwrap();
+    assert!(summary.contains("× straightforward"), "{summary}");
+    // It times one thing: with --edges it is refused, by name.
+    let both = run(&["bench", "--straightforward", "--edges"]);
+    assert!(!both.status.success());
+    assert!(String::from_utf8_lossy(&both.stderr).contains("--edges"));
+}
+
+#[test]
 fn bench_quick_writes_results_that_respect_their_bounds() {
     let dir = temp_dir("bench");
     let out = run(&[
@@ -307,6 +336,8 @@ fn bench_quick_writes_results_that_respect_their_bounds() {
         "auto_budgets.csv",
         "specialisation.csv",
         "meshes.csv",
+        "edges.csv",
+        "straightforward.csv",
         "mesh_triangles.png",
         "speed_vs_colour_error.png",
         "speed_vs_hit_error.svg",
@@ -332,6 +363,26 @@ fn bench_quick_writes_results_that_respect_their_bounds() {
     for e in edges {
         assert_eq!(e["hit_ids_differing"], 0, "{e}");
         assert!(e["with_edges_ms"].as_f64().unwrap() > 0.0, "{e}");
+        // The CPU's count of the view's work: every ray passes a cell at least, and the
+        // share of blocks near two faces is at least the share of segments.
+        let (segments, near, blocks) = (
+            e["segments_per_pixel"].as_f64().unwrap(),
+            e["near_two_faces"].as_f64().unwrap(),
+            e["blocks_near_two_faces"].as_f64().unwrap(),
+        );
+        assert!(segments >= 1.0, "{e}");
+        assert!(
+            (0.0..=1.0).contains(&near) && near <= blocks && blocks <= 1.0,
+            "{e}"
+        );
+    }
+    // The straightforward tracer draws the same walk: the same picture but for rounding
+    // (budget 16 is in the quick run's budgets).
+    let plain = rows("straightforward");
+    assert_eq!(plain.len(), 2, "{plain:?}");
+    for r in plain {
+        assert!(r["differing_pixels"].as_f64().unwrap() < 0.01, "{r}");
+        assert!(r["straightforward_ms"].as_f64().unwrap() > 0.0, "{r}");
     }
     for c in rows("cutoff") {
         assert!(

@@ -503,6 +503,25 @@ fn stereo_variants_validate_with_the_same_layout() {
     }
 }
 
+/// The benchmark's straightforward tracer (`STRAIGHTFORWARD`) in every geometry, with and
+/// without lights, validates and keeps the packer's layout.
+#[test]
+fn the_straightforward_variant_validates_and_matches_the_packed_layout() {
+    for geometry in Geometry::ALL {
+        for lights in [0, 1] {
+            let key = ShaderKey {
+                faces: 12,
+                balls: 1,
+                lights,
+                light_images: 2 * lights,
+                straightforward: true,
+                ..ShaderKey::empty(geometry)
+            };
+            assert_eq!(validate(&key), key.uniform_bytes(), "{key:?}");
+        }
+    }
+}
+
 /// The teaching views (`COLOUR_BY` 1 to 3, `COLOUR_HOLONOMY`) in every geometry, with and
 /// without objects and culling, plain and with `HIT_ID`: each validates and keeps the
 /// packer's layout.

@@ -47,6 +47,9 @@ pub struct ShaderKey {
     /// The unspecialised variant (the benchmark's comparison): all geometries' formulas,
     /// arrays of [`GENERAL_CAPACITY`], geometry and counts read from the uniform.
     pub general: bool,
+    /// The benchmark's comparison: a straightforward tracer of the same walk instead (shader
+    /// def `STRAIGHTFORWARD`; balls only). See [`super::GpuScene::straightforward`].
+    pub straightforward: bool,
 }
 
 /// Array sizes of the unspecialised variant: faces, balls, tubes.
@@ -74,6 +77,7 @@ impl ShaderKey {
             colour_by: 0,
             walls: false,
             general: false,
+            straightforward: false,
         }
     }
 
@@ -97,6 +101,9 @@ impl ShaderKey {
         defs.push(ShaderDefVal::UInt("PARTNER_VECS".into(), faces.div_ceil(4)));
         if self.step_cap {
             defs.push("STEP_CAP".into());
+        }
+        if self.straightforward {
+            defs.push("STRAIGHTFORWARD".into());
         }
         if self.colour_by > 0 {
             defs.push(ShaderDefVal::UInt("COLOUR_BY".into(), self.colour_by));

@@ -403,6 +403,7 @@ impl GpuScene {
             colour_by: scene.shading.colour_by.index(),
             walls: walls.is_some(),
             general: false,
+            straightforward: false,
         };
         let bytes = key.uniform_bytes();
         if bytes > MAX_UNIFORM_BYTES {
@@ -693,6 +694,30 @@ impl GpuScene {
             avatar: self.avatar,
             sources: self.sources.clone(),
         }
+    }
+
+    /// The same scene for the benchmark's straightforward tracer (shader def
+    /// `STRAIGHTFORWARD`): the same walk and shading written as one would first write it, by
+    /// arc length with trigonometric functions, a division a face and plain f32 pairings,
+    /// to compare the tracer with. `None` where the scene has more than balls (tubes,
+    /// globes, discs, meshes, the avatar, walls), a teaching colouring, or a step cap.
+    #[must_use]
+    pub fn straightforward(&self) -> Option<GpuScene> {
+        let plain = self.without_culling();
+        let k = plain.key;
+        let more = k.tubes + k.globes + k.discs + k.instances > 0
+            || k.avatar
+            || k.walls
+            || k.colour_by != 0
+            || k.step_cap
+            || k.general;
+        (!more).then_some(GpuScene {
+            key: ShaderKey {
+                straightforward: true,
+                ..k
+            },
+            ..plain
+        })
     }
 
     /// The same scene for the unspecialised shader variant: arrays padded to
