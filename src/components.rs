@@ -40,6 +40,19 @@ impl Quality {
         }
     }
 
+    /// The fraction of sampled rays the crossing budget may leave short at the least, when
+    /// a frame-rate target lowers it ([`crate::frame_rate::BudgetShare`]) after the
+    /// resolution scale reached its floor: the next lower quality's fraction (5 % for
+    /// `Low`).
+    #[must_use]
+    pub fn floor_miss_fraction(self) -> f64 {
+        match self {
+            Quality::Low => 0.05,
+            Quality::Medium => Quality::Low.miss_fraction(),
+            Quality::High => Quality::Medium.miss_fraction(),
+        }
+    }
+
     /// The fraction of the view's resolution that is traced.
     #[must_use]
     pub fn resolution_scale(self) -> f32 {

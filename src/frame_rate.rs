@@ -7,6 +7,12 @@
 //! towards the one predicted to meet it, by at most a step, in steps of 1/32, within the
 //! quality's range. The band and the wait are the hysteresis: a scale that meets the target
 //! is kept, so the picture does not pump.
+//!
+//! Where the scale is at its floor and frames are still slow, the crossing budget gives way
+//! next: [`BudgetShare`] is lowered by steps of ×0.8, and the tracer traces that share of the
+//! automatic budget, never below the quality's floor budget (the one that leaves
+//! [`Quality::floor_miss_fraction`] of the sampled rays short). Fast frames give the budget
+//! back first, then the resolution.
 
 use crate::components::{Quality, TracerSettings};
 use bevy::prelude::*;
@@ -54,6 +60,43 @@ impl Default for FrameRateTarget {
     }
 }
 
+/// The share of the automatic crossing budget that is traced (a resource; 1 unless a
+/// frame-rate target lowered it). See the module's documentation; the budget it gives is
+/// [`crate::trace::BudgetChoice::shared`], and a fixed budget
+/// ([`TracerSettings::max_crossings`]) ignores it.
+#[derive(Resource, Clone, Copy, Debug, PartialEq)]
+pub struct BudgetShare(pub f32);
+
+impl Default for BudgetShare {
+    fn default() -> Self {
+        Self(1.0)
+    }
+}
+
+/// The least [`BudgetShare`] a frame-rate target asks for (the quality's floor budget
+/// usually stops it first).
+pub const MIN_BUDGET_SHARE: f32 = 0.25;
+
+/// The budget share after a smoothed frame time `smoothed` against `target` (ms), or `None`
+/// to keep it: slower than the band, ×0.8 (down to [`MIN_BUDGET_SHARE`]); faster, ×1.25 (up
+/// to 1). The caller lowers it only with the resolution scale at its floor, and raises it
+/// before the scale.
+#[must_use]
+pub fn next_budget_share(share: f32, smoothed: f64, target: f64) -> Option<f32> {
+    if !(smoothed > 0.0 && target > 0.0 && share.is_finite()) {
+        return None;
+    }
+    let ratio = smoothed / target;
+    let next = if ratio > SLOW {
+        (share * 0.8).max(MIN_BUDGET_SHARE)
+    } else if ratio < FAST {
+        (share * 1.25).min(1.0)
+    } else {
+        return None;
+    };
+    (next != share).then_some(next)
+}
+
 /// The range of resolution scales a quality may hold a frame rate with: from its floor to
 /// full resolution.
 #[must_use]
@@ -87,15 +130,20 @@ pub fn next_scale(scale: f32, smoothed: f64, target: f64, range: (f32, f32)) -> 
     (next != scale).then_some(next)
 }
 
-/// Moves [`TracerSettings::resolution_scale`] to hold [`FrameRateTarget`] (a system in
-/// `Update`; it does nothing while the target is off). Frame times are wall-clock
+/// Moves [`TracerSettings::resolution_scale`], then [`BudgetShare`], to hold
+/// [`FrameRateTarget`] (a system in `Update`; it does nothing while the target is off). Frame times are wall-clock
 /// ([`Time<Real>`]): the app's virtual time caps a frame at 250 ms.
 pub fn hold_frame_rate(
     time: Res<Time<Real>>,
     mut target: ResMut<FrameRateTarget>,
     mut settings: ResMut<TracerSettings>,
+    mut share: ResMut<BudgetShare>,
 ) {
     let Some(target_ms) = target.target_ms else {
+        // No target: the whole budget again.
+        if share.0 != 1.0 {
+            share.0 = 1.0;
+        }
         return;
     };
     let dt = 1e3 * time.delta_secs_f64();
@@ -117,6 +165,23 @@ pub fn hold_frame_rate(
         target.smoothed_ms, settings.resolution_scale
     );
     let range = scale_range(settings.quality);
+    // The budget: lowered once the scale is at its floor, given back before the scale.
+    let ratio = target.smoothed_ms / target_ms;
+    let at_floor = settings.resolution_scale <= range.0;
+    if (ratio > SLOW && at_floor) || (ratio < FAST && share.0 < 1.0) {
+        if let Some(next) = next_budget_share(share.0, target.smoothed_ms, target_ms) {
+            info!(
+                "holding {:.0} fps: crossing budget share {} → {next} ({:.1} ms a frame)",
+                1e3 / target_ms,
+                share.0,
+                target.smoothed_ms
+            );
+            share.0 = next;
+            target.frames_since_change = 0;
+            target.changes += 1;
+        }
+        return;
+    }
     if let Some(next) = next_scale(
         settings.resolution_scale,
         target.smoothed_ms,

@@ -18,7 +18,7 @@ use crate::components::{
     PlayerFrame, PlayerSettings, Quality, SceneObjects, StereoSettings, TracerSettings,
     TracerStatus,
 };
-use crate::frame_rate::{FrameRateTarget, hold_frame_rate};
+use crate::frame_rate::{BudgetShare, FrameRateTarget, hold_frame_rate};
 use crate::player;
 use crate::render::TracerRenderPlugin;
 use crate::render::upload::upload_scene;
@@ -113,6 +113,7 @@ impl Plugin for CurvedSpacesPlugin {
         })
         .insert_resource(self.stereo)
         .insert_resource(FrameRateTarget::fps(self.target_fps))
+        .init_resource::<BudgetShare>()
         .init_resource::<TracerStatus>()
         .init_resource::<SceneObjects>()
         .init_resource::<BaseScene>()

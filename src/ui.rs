@@ -455,7 +455,7 @@ fn panel(
     mut stereo: ResMut<StereoSettings>,
     diagnostics: Res<DiagnosticsStore>,
     mut cameras: Query<(&mut CurvedSpaceCamera, &PlayerFrame, &Holonomy)>,
-    mut frame_rate: ResMut<FrameRateTarget>,
+    (mut frame_rate, budget_share): (ResMut<FrameRateTarget>, Res<crate::frame_rate::BudgetShare>),
     mut picker: Local<SpacePicker>,
     entities: Res<crate::objects::EntityObjects>,
     shown_scene: Option<Res<crate::render::upload::ShownScene>>,
@@ -546,9 +546,17 @@ fn panel(
                 ui.add_enabled(hold, egui::Slider::new(&mut fps, 10.0..=144.0).text("fps"))
                     .on_hover_text(
                         "Lowers or raises the traced resolution, within the quality's range, \
-                         to keep this frame rate",
+                         to keep this frame rate; at the lowest resolution, the crossing budget \
+                         next (never below the quality's floor)",
                     );
             });
+            if hold && budget_share.0 < 1.0 && settings.max_crossings.is_none() {
+                ui.label(format!(
+                    "crossing budget lowered to {} ({:.0} % of the automatic one) to hold it",
+                    status.budget,
+                    100.0 * budget_share.0
+                ));
+            }
             let target_ms = hold.then_some(1e3 / fps);
             if target_ms != frame_rate.target_ms {
                 frame_rate.target_ms = target_ms;

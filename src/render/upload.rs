@@ -10,7 +10,7 @@ use crate::components::{
 use crate::objects::{EntityObjects, add_entity_objects};
 use crate::scene::{CurvedScene, Object};
 use crate::space::Space;
-use crate::trace::{BudgetChoice, auto_budget};
+use crate::trace::{BudgetChoice, auto_budget_with_floor};
 use bevy::prelude::*;
 use std::sync::Arc;
 
@@ -67,6 +67,7 @@ pub(crate) fn upload_scene(
     base: Res<BaseScene>,
     mut status: ResMut<TracerStatus>,
     prepared: Option<Res<PreparedScene>>,
+    share: Option<Res<crate::frame_rate::BudgetShare>>,
     mut cache: Local<UploadCache>,
     mut commands: Commands,
 ) {
@@ -75,6 +76,7 @@ pub(crate) fn upload_scene(
         || settings.is_changed()
         || objects.is_changed()
         || base.is_changed()
+        || share.as_ref().is_some_and(|s| s.is_changed())
         || cache.fixed.is_none();
     if !static_changed && !entities.is_changed() {
         return;
@@ -116,8 +118,13 @@ pub(crate) fn upload_scene(
                 c.choice
             }
             _ => {
-                let choice =
-                    auto_budget(space, &scene, quality.miss_fraction(), AUTO_BUDGET_SAMPLES);
+                let choice = auto_budget_with_floor(
+                    space,
+                    &scene,
+                    quality.miss_fraction(),
+                    quality.floor_miss_fraction(),
+                    AUTO_BUDGET_SAMPLES,
+                );
                 *last = Some(BudgetCache {
                     space: space.clone(),
                     scene: fixed.clone(),
@@ -129,9 +136,11 @@ pub(crate) fn upload_scene(
             }
         }
     });
+    // A frame-rate target may trace a share of the automatic budget (never below its floor).
+    let share = share.map_or(1.0, |s| s.0);
     let budget = settings
         .max_crossings
-        .or(auto.map(|a| a.budget))
+        .or(auto.map(|a| a.shared(share)))
         .unwrap_or(1);
     let gpu = if entities.objects.is_empty() {
         GpuScene::new(space, &scene, budget)

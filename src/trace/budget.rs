@@ -78,6 +78,28 @@ pub struct BudgetChoice {
     pub most_needed: u32,
     /// Rays sampled.
     pub samples: usize,
+    /// The least budget a frame-rate target may lower it to ([`auto_budget_with_floor`]):
+    /// `budget` itself unless a floor fraction was given.
+    #[serde(default)]
+    pub floor: u32,
+}
+
+impl BudgetChoice {
+    /// The budget for a share of it in (0, 1] ([`crate::frame_rate::BudgetShare`]): rounded
+    /// up, never below [`Self::floor`] nor above [`Self::budget`].
+    #[must_use]
+    pub fn shared(&self, share: f32) -> u32 {
+        let share = if share.is_finite() {
+            f64::from(share).clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
+        // Rounded up, but not for the f32 share's last bit (40 × 0.8 is 32).
+        let wanted = (f64::from(self.budget) * share - 1e-6).ceil() as u32;
+        wanted
+            .clamp(self.floor.min(self.budget), self.budget)
+            .max(1)
+    }
 }
 
 /// The smallest budget with which at most `miss_fraction` of `samples` sampled rays miss an
@@ -87,6 +109,20 @@ pub fn auto_budget(
     space: &Space,
     scene: &CurvedScene,
     miss_fraction: f64,
+    samples: usize,
+) -> BudgetChoice {
+    auto_budget_with_floor(space, scene, miss_fraction, miss_fraction, samples)
+}
+
+/// [`auto_budget`], and from the same sample the floor a frame-rate target may lower the
+/// budget to: the smallest budget with which at most `floor_fraction` of the rays miss
+/// (at least `miss_fraction`; see [`crate::components::Quality::floor_miss_fraction`]).
+#[must_use]
+pub fn auto_budget_with_floor(
+    space: &Space,
+    scene: &CurvedScene,
+    miss_fraction: f64,
+    floor_fraction: f64,
     samples: usize,
 ) -> BudgetChoice {
     let walker = CellWalker::<DVec4>::new(space);
@@ -103,13 +139,18 @@ pub fn auto_budget(
         .collect();
     needed.sort_unstable();
     let n = needed.len();
-    let allowed = ((miss_fraction.clamp(0.0, 1.0) * n as f64).floor() as usize).min(n - 1);
-    let budget = needed[n - 1 - allowed].max(1);
+    let at = |fraction: f64| {
+        let allowed = ((fraction.clamp(0.0, 1.0) * n as f64).floor() as usize).min(n - 1);
+        needed[n - 1 - allowed].max(1)
+    };
+    let budget = at(miss_fraction);
+    let floor = at(floor_fraction.max(miss_fraction)).min(budget);
     let missed = needed.iter().filter(|&&c| c > budget).count();
     BudgetChoice {
         budget,
         missed_fraction: missed as f64 / n as f64,
         most_needed: needed[n - 1],
         samples: n,
+        floor,
     }
 }

@@ -5,8 +5,12 @@
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
 use bevy_curved_spaces::components::{Quality, TracerSettings};
-use bevy_curved_spaces::frame_rate::{FrameRateTarget, hold_frame_rate, next_scale, scale_range};
+use bevy_curved_spaces::frame_rate::{
+    BudgetShare, FrameRateTarget, MIN_BUDGET_SHARE, hold_frame_rate, next_budget_share, next_scale,
+    scale_range,
+};
 use bevy_curved_spaces::scene::SceneParts;
+use bevy_curved_spaces::trace::BudgetChoice;
 use std::time::Duration;
 
 fn app(fps: f64, quality: Quality) -> App {
@@ -23,6 +27,7 @@ fn app(fps: f64, quality: Quality) -> App {
             walls: None,
         })
         .insert_resource(FrameRateTarget::fps(Some(fps)))
+        .init_resource::<BudgetShare>()
         .add_systems(Update, hold_frame_rate);
     app
 }
@@ -43,6 +48,100 @@ fn run(app: &mut App, frames: usize, cost: impl Fn(f32) -> f64) -> Vec<f32> {
             scale(app)
         })
         .collect()
+}
+
+fn share(app: &App) -> f32 {
+    app.world().resource::<BudgetShare>().0
+}
+
+/// Runs `frames` frames, each taking `cost(scale, budget share)` ms; returns both per frame.
+fn run_with_budget(
+    app: &mut App,
+    frames: usize,
+    cost: impl Fn(f32, f32) -> f64,
+) -> Vec<(f32, f32)> {
+    (0..frames)
+        .map(|_| {
+            let ms = cost(scale(app), share(app));
+            app.insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f64(
+                ms / 1e3,
+            )));
+            app.update();
+            (scale(app), share(app))
+        })
+        .collect()
+}
+
+/// A GPU whose frame costs `full` ms at full resolution and budget, in proportion to the
+/// pixels, of which 70 % follows the crossing budget.
+fn gpu_with_budget(full: f64) -> impl Fn(f32, f32) -> f64 {
+    move |s, b| full * f64::from(s).powi(2) * (0.3 + 0.7 * f64::from(b)) + 0.5
+}
+
+#[test]
+fn at_the_scale_floor_the_budget_gives_way_and_comes_back_first() {
+    let mut app = app(30.0, Quality::High);
+    let (floor, _) = scale_range(Quality::High);
+    // 200 ms at full resolution: 50 ms even at the floor, too slow for 30 fps.
+    let slow = run_with_budget(&mut app, 400, gpu_with_budget(200.0));
+    let (last_scale, last_share) = *slow.last().unwrap();
+    assert_eq!(last_scale, floor);
+    assert!(
+        (MIN_BUDGET_SHARE..1.0).contains(&last_share),
+        "share {last_share}"
+    );
+    // The budget moved only once the scale was at its floor.
+    for &(s, b) in &slow {
+        assert!(b == 1.0 || s == floor, "budget share {b} at scale {s}");
+    }
+    let ms = gpu_with_budget(200.0)(last_scale, last_share);
+    assert!(
+        (1e3 / 30.0 * 0.7..=1e3 / 30.0 * 1.15).contains(&ms),
+        "settled at share {last_share}, {ms:.1} ms a frame"
+    );
+    assert!(
+        slow[250..].iter().all(|&x| x == (last_scale, last_share)),
+        "still moving: {:?}",
+        &slow[250..]
+    );
+    // A faster scene: the whole budget comes back before the resolution rises.
+    let fast = run_with_budget(&mut app, 600, gpu_with_budget(10.0));
+    assert_eq!(*fast.last().unwrap(), (1.0, 1.0));
+    for &(s, b) in &fast {
+        assert!(
+            s == floor || b == 1.0,
+            "scale {s} raised at budget share {b}"
+        );
+    }
+    // The target turned off: the whole budget at once.
+    app.insert_resource(FrameRateTarget::fps(None));
+    app.world_mut().resource_mut::<BudgetShare>().0 = 0.5;
+    run(&mut app, 2, gpu(10.0));
+    assert_eq!(share(&app), 1.0);
+}
+
+#[test]
+fn a_budget_share_keeps_to_the_floor_and_the_budget() {
+    let choice = BudgetChoice {
+        budget: 40,
+        missed_fraction: 0.0,
+        most_needed: 40,
+        samples: 100,
+        floor: 18,
+    };
+    assert_eq!(choice.shared(1.0), 40);
+    assert_eq!(choice.shared(0.8), 32);
+    assert_eq!(choice.shared(0.51), 21, "rounded up");
+    assert_eq!(choice.shared(0.25), 18, "never below the floor");
+    for odd in [0.0, -1.0, 2.0, f32::NAN, f32::INFINITY] {
+        let b = choice.shared(odd);
+        assert!((18..=40).contains(&b), "{odd}: {b}");
+    }
+    assert_eq!(next_budget_share(1.0, 33.0, 33.3), None, "inside the band");
+    assert_eq!(next_budget_share(1.0, 50.0, 33.3), Some(0.8));
+    assert_eq!(next_budget_share(MIN_BUDGET_SHARE, 50.0, 33.3), None);
+    assert_eq!(next_budget_share(0.8, 10.0, 33.3), Some(1.0));
+    assert_eq!(next_budget_share(0.8, f64::NAN, 33.3), None);
 }
 
 /// A GPU whose frame costs `full` ms at full resolution, in proportion to the pixels.
