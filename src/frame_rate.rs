@@ -11,8 +11,10 @@
 //! Where the scale is at its floor and frames are still slow, the crossing budget gives way
 //! next: [`BudgetShare`] is lowered by steps of ×0.8, and the tracer traces that share of the
 //! automatic budget, never below the quality's floor budget (the one that leaves
-//! [`Quality::floor_miss_fraction`] of the sampled rays short). Fast frames give the budget
-//! back first, then the resolution.
+//! [`Quality::floor_miss_fraction`] of the sampled rays short). A step that does not make
+//! frames at least 5 % faster is undone and the budget left alone (on a software
+//! rasteriser the floor's frame time is mostly scaling the window up, not tracing). Fast
+//! frames give the budget back first, then the resolution.
 
 use crate::components::{Quality, TracerSettings};
 use bevy::prelude::*;
@@ -37,9 +39,19 @@ pub struct FrameRateTarget {
     pub smoothed_ms: f64,
     /// Frames measured since the scale last moved.
     pub frames_since_change: u32,
-    /// Times the scale moved (the panel shows it; a test counts it).
+    /// Times the scale or the budget share moved (the panel shows it; a test counts it).
     pub changes: u64,
+    /// The smoothed frame time when the budget share was last lowered: the next measurement
+    /// must be faster by [`BUDGET_GAIN`], or the step is undone.
+    pub before_budget_step: Option<f64>,
+    /// Lowering the budget did not make frames faster (the frame time is spent elsewhere,
+    /// as on a software rasteriser scaling a window up): it is not lowered again until the
+    /// resolution scale or the target changes.
+    pub budget_futile: bool,
 }
+
+/// The least gain a step of the budget share must bring (×0.95 the frame time) to stay.
+pub const BUDGET_GAIN: f64 = 0.95;
 
 impl FrameRateTarget {
     /// Holding `fps` frames a second (`None` or not positive: off).
@@ -50,6 +62,8 @@ impl FrameRateTarget {
             smoothed_ms: 0.0,
             frames_since_change: 0,
             changes: 0,
+            before_budget_step: None,
+            budget_futile: false,
         }
     }
 }
@@ -165,10 +179,30 @@ pub fn hold_frame_rate(
         target.smoothed_ms, settings.resolution_scale
     );
     let range = scale_range(settings.quality);
-    // The budget: lowered once the scale is at its floor, given back before the scale.
+    // The budget: lowered once the scale is at its floor, given back before the scale; a
+    // step that brought no gain is undone, and the budget left alone.
+    if let Some(before) = target.before_budget_step.take()
+        && target.smoothed_ms > BUDGET_GAIN * before
+        && share.0 < 1.0
+    {
+        let back = (share.0 / 0.8).min(1.0);
+        info!(
+            "holding {:.0} fps: a smaller crossing budget did not help ({:.1} → {:.1} ms a \
+             frame); share {} → {back}",
+            1e3 / target_ms,
+            before,
+            target.smoothed_ms,
+            share.0
+        );
+        share.0 = back;
+        target.budget_futile = true;
+        target.frames_since_change = 0;
+        target.changes += 1;
+        return;
+    }
     let ratio = target.smoothed_ms / target_ms;
     let at_floor = settings.resolution_scale <= range.0;
-    if (ratio > SLOW && at_floor) || (ratio < FAST && share.0 < 1.0) {
+    if (ratio > SLOW && at_floor && !target.budget_futile) || (ratio < FAST && share.0 < 1.0) {
         if let Some(next) = next_budget_share(share.0, target.smoothed_ms, target_ms) {
             info!(
                 "holding {:.0} fps: crossing budget share {} → {next} ({:.1} ms a frame)",
@@ -176,6 +210,9 @@ pub fn hold_frame_rate(
                 share.0,
                 target.smoothed_ms
             );
+            if next < share.0 {
+                target.before_budget_step = Some(target.smoothed_ms);
+            }
             share.0 = next;
             target.frames_since_change = 0;
             target.changes += 1;
@@ -198,6 +235,7 @@ pub fn hold_frame_rate(
         );
         target.smoothed_ms *= s * s;
         settings.resolution_scale = next;
+        target.budget_futile = false;
         target.frames_since_change = 0;
         target.changes += 1;
     }

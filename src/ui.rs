@@ -561,6 +561,7 @@ fn panel(
             if target_ms != frame_rate.target_ms {
                 frame_rate.target_ms = target_ms;
                 frame_rate.frames_since_change = 0;
+                frame_rate.budget_futile = false;
             }
             let mut scale = settings.resolution_scale;
             let slider = egui::Slider::new(&mut scale, 0.125..=1.0).text(if hold {

@@ -121,6 +121,24 @@ fn at_the_scale_floor_the_budget_gives_way_and_comes_back_first() {
 }
 
 #[test]
+fn a_smaller_budget_that_does_not_help_is_undone() {
+    let mut app = app(30.0, Quality::Medium);
+    let (floor, _) = scale_range(Quality::Medium);
+    // Like lavapipe scaling a window up: 150 ms a frame at any budget once at the floor.
+    let frames = run_with_budget(&mut app, 400, |s, _| 150.0 + 400.0 * f64::from(s).powi(2));
+    assert_eq!(
+        *frames.last().unwrap(),
+        (floor, 1.0),
+        "{:?}",
+        &frames[300..]
+    );
+    assert!(app.world().resource::<FrameRateTarget>().budget_futile);
+    // It tried once, then left the budget alone.
+    let lowered = frames.windows(2).filter(|w| w[1].1 < w[0].1).count();
+    assert_eq!(lowered, 1, "lowered {lowered} times");
+}
+
+#[test]
 fn a_budget_share_keeps_to_the_floor_and_the_budget() {
     let choice = BudgetChoice {
         budget: 40,
