@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # The benchmark on a real GPU, in a few minutes: every seed space at 640×360, 1280×720 and
 # 1920×1080, crossing budgets 16 and 32, the default scene's edges culled, unculled and
-# absent, the work per pixel and ns per pixel-crossing. Figures go to
+# absent (with the share of segments and of pixel blocks near two faces at once), the
+# tracer against a straightforward tracer of the same walk, the work per pixel and ns per
+# pixel-crossing. Figures go to
 # docs/results/gpu/ (or the folder given as the first argument): summary.md, timings.csv,
 # edges.csv, bench.json and the charts.
 #
