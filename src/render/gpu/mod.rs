@@ -563,8 +563,8 @@ fn pack_culling(
     let buckets = cull_buckets(faces);
     // A padding copy of an object (the same scene index again, [`GpuScene::reusing`]) is in
     // no list: it is never the nearest hit, and testing it costs as much as the original
-    // (the plugin's default scene pads its 21 balls to 32 with copies of the centre ball,
-    // which would all be in the last bucket, tested in every cell).
+    // (with one entity's ball added, the default Seifert–Weber scene's 22 balls are padded
+    // to 32: ten copies of that ball, which were all tested in every cell).
     let bucketed = |masks: &[u32], objects: &[usize]| -> Vec<Vec<u32>> {
         let mut lists: Vec<Vec<u32>> = vec![Vec::new(); buckets];
         for (i, &m) in masks.iter().enumerate() {
