@@ -106,12 +106,7 @@ pub(super) fn bench(args: &BenchArgs) -> Result<(), String> {
         }
         let written = bevy_curved_spaces::bench::write_edges_report(&report, &config, &args.out)
             .map_err(|e| e.to_string())?;
-        say!(
-            "wrote {} files to {} in {:.1} s",
-            written.len(),
-            args.out.display(),
-            started.elapsed().as_secs_f64()
-        );
+        say_written(&written, &args.out, started);
         return Ok(());
     }
     if args.edges {
@@ -140,12 +135,7 @@ pub(super) fn bench(args: &BenchArgs) -> Result<(), String> {
         }
         let written = bevy_curved_spaces::bench::write_edges_report(&report, &config, &args.out)
             .map_err(|e| e.to_string())?;
-        say!(
-            "wrote {} files to {} in {:.1} s",
-            written.len(),
-            args.out.display(),
-            started.elapsed().as_secs_f64()
-        );
+        say_written(&written, &args.out, started);
         return Ok(());
     }
     if let Some(scene) = &args.scene {
@@ -164,12 +154,7 @@ pub(super) fn bench(args: &BenchArgs) -> Result<(), String> {
         }
         let written = bevy_curved_spaces::bench::write_scene_report(&report, &config, &args.out)
             .map_err(|e| e.to_string())?;
-        say!(
-            "wrote {} files to {} in {:.1} s",
-            written.len(),
-            args.out.display(),
-            started.elapsed().as_secs_f64()
-        );
+        say_written(&written, &args.out, started);
         return Ok(());
     }
     let report = bevy_curved_spaces::bench::run(&config, &progress).map_err(|e| e.to_string())?;
@@ -221,13 +206,19 @@ pub(super) fn bench(args: &BenchArgs) -> Result<(), String> {
     }
     let written = bevy_curved_spaces::bench::write_report(&report, &config, &args.out)
         .map_err(|e| e.to_string())?;
+    say_written(&written, &args.out, started);
+    Ok(())
+}
+
+/// Says how many files a run wrote, where (the folder made absolute where it can be) and
+/// in how long.
+fn say_written(written: &[std::path::PathBuf], out: &std::path::Path, started: Instant) {
     say!(
         "wrote {} files to {} in {:.1} s",
         written.len(),
-        std::fs::canonicalize(&args.out)
-            .unwrap_or_else(|_| args.out.clone())
+        std::fs::canonicalize(out)
+            .unwrap_or_else(|_| out.to_path_buf())
             .display(),
         started.elapsed().as_secs_f64()
     );
-    Ok(())
 }
