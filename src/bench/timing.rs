@@ -117,6 +117,29 @@ pub(super) fn time_rounds(
     Ok(times)
 }
 
+/// A mono colour frame of `layout` onto each packed scene, with its tracer program, each
+/// drawn once (compiling the pipeline and warming it up before it is timed).
+fn drawn_views(
+    harness: &mut Harness,
+    layout: &ViewLayout,
+    (w, h): (u32, u32),
+    scenes: &[&GpuScene],
+) -> Result<Vec<(Program, Frame)>, BenchError> {
+    let views: Vec<(Program, Frame)> = scenes
+        .iter()
+        .map(|gpu| {
+            (
+                Program::Tracer(gpu.key, ViewKind::Mono, Output::Colour),
+                harness.frame(w, h, Output::Colour, &uniform_words(layout, gpu), &gpu.data),
+            )
+        })
+        .collect();
+    for (program, frame) in &views {
+        harness.draw(program, frame)?;
+    }
+    Ok(views)
+}
+
 /// The default view with the cell's edges culled (as drawn), unculled, and without edges,
 /// timed in turn at the middle resolution.
 pub(super) fn edges_cost(
@@ -139,24 +162,7 @@ pub(super) fn edges_cost(
     let none = subject.pack(&without, budget)?;
     let (w, h) = config.middle_size();
     let layout = subject.camera.layout(w, h);
-    let runs: Vec<(Program, Frame)> = [&culled, &unculled, &none]
-        .into_iter()
-        .map(|gpu| {
-            (
-                Program::Tracer(gpu.key, ViewKind::Mono, Output::Colour),
-                harness.frame(
-                    w,
-                    h,
-                    Output::Colour,
-                    &uniform_words(&layout, gpu),
-                    &gpu.data,
-                ),
-            )
-        })
-        .collect();
-    for (program, frame) in &runs {
-        harness.draw(program, frame)?;
-    }
+    let runs = drawn_views(harness, &layout, (w, h), &[&culled, &unculled, &none])?;
     let programs: Vec<(&Program, &Frame)> = runs.iter().map(|(p, f)| (p, f)).collect();
     let times = time_rounds(harness, &programs, config)?;
     let ratio = paired_ratio(&times[0], &times[2]);
@@ -230,24 +236,7 @@ pub(super) fn straightforward_cost(
         ..subject.camera
     };
     let layout = camera.layout(w, h);
-    let frames: Vec<(Program, Frame)> = [&ours, &plain]
-        .into_iter()
-        .map(|gpu| {
-            (
-                Program::Tracer(gpu.key, ViewKind::Mono, Output::Colour),
-                harness.frame(
-                    w,
-                    h,
-                    Output::Colour,
-                    &uniform_words(&layout, gpu),
-                    &gpu.data,
-                ),
-            )
-        })
-        .collect();
-    for (program, frame) in &frames {
-        harness.draw(program, frame)?;
-    }
+    let frames = drawn_views(harness, &layout, (w, h), &[&ours, &plain])?;
     let pixels: Vec<Vec<u8>> = frames
         .iter()
         .map(|(_, f)| harness.read_pixels(f))
