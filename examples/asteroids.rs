@@ -15,9 +15,9 @@
 use bevy::prelude::*;
 use bevy::window::PrimaryWindow;
 use bevy_curved_spaces::prelude::*;
+use bevy_curved_spaces::random::SplitMix64;
 use bevy_curved_spaces::scene::mesh::cube_source;
 use bevy_curved_spaces::scene::{Model, TracedModel};
-use bevy_curved_spaces::trace::SplitMix64;
 use glam::DVec3;
 use std::collections::HashMap;
 use std::sync::Arc;

@@ -8,8 +8,8 @@
 //! Writes `headless-gpu.png` and `headless-cpu.png` to the working directory. Without a GPU
 //! it runs on Mesa's lavapipe (`apt-get install mesa-vulkan-drivers libvulkan1`).
 
-use bevy_curved_spaces::components::ActiveSpace;
-use bevy_curved_spaces::offscreen::{OffscreenRender, render_offscreen};
+use bevy_curved_spaces::plugin::components::ActiveSpace;
+use bevy_curved_spaces::plugin::offscreen::{OffscreenRender, render_offscreen};
 use bevy_curved_spaces::scene::{CurvedScene, Shading};
 use bevy_curved_spaces::space::seed_space;
 use bevy_curved_spaces::trace::{RenderSettings, render};

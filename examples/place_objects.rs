@@ -9,8 +9,8 @@
 //! Writes `place-objects.png` to the working directory. In an app, put the objects in the
 //! `SceneObjects` resource instead; the plugin places them the same way.
 
-use bevy_curved_spaces::components::ActiveSpace;
-use bevy_curved_spaces::offscreen::{OffscreenRender, render_offscreen};
+use bevy_curved_spaces::plugin::components::ActiveSpace;
+use bevy_curved_spaces::plugin::offscreen::{OffscreenRender, render_offscreen};
 use bevy_curved_spaces::scene::Centrepiece;
 use bevy_curved_spaces::scene::{Ball, Object, SceneParts};
 use bevy_curved_spaces::space::invariants::inradius;

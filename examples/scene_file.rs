@@ -9,7 +9,7 @@
 //! panel.
 
 use bevy::prelude::*;
-use bevy_curved_spaces::components::BaseScene;
+use bevy_curved_spaces::plugin::components::BaseScene;
 use bevy_curved_spaces::prelude::*;
 use bevy_curved_spaces::scene::file::load_scene_file;
 use bevy_curved_spaces::scene::{Ball, Object};

@@ -31,13 +31,25 @@
 //! crossing budget and resolution, and [`TracerStatus`] reports what the tracer chose and
 //! any problem. Your game's things are entities: a [`prelude::CurvedObject`] at a
 //! [`prelude::CurvedTransform`], moving with a [`prelude::CurvedVelocity`] through the faces
-//! ([`objects`]); [`SceneObjects`] and [`BaseScene`] add still objects, meshes and lights.
+//! ([`plugin::objects`]); [`SceneObjects`] and [`BaseScene`] add still objects, meshes and lights.
 //! Our systems run in the sets [`CurvedSpacesSystems`].
+//!
+//! ## Three layers
+//!
+//! - **The maths core**, with no Bevy at compile time (glam types only): [`geometry`],
+//!   validated [`space`]s with their walk, the [`scene`] model, [`view`]s, the f64 reference
+//!   tracer [`trace`], and the small [`files`] and [`random`] helpers.
+//! - **The plugin**, [`plugin`]: components and resources, the player, entities, the render
+//!   node and the WGSL tracer, offscreen pictures, the frame-rate target, the panel and the
+//!   headset, all over the core.
+//! - **The app**: the `curved-spaces` binary (`src/app`) and its benchmark ([`mod@bench`], feature `bench`).
+//!
+//! Dependencies run down only, and no two sibling modules name each other; the crate's own
+//! tests read the source to keep it so.
 //!
 //! ## Without Bevy
 //!
-//! The maths core — [`geometry`], validated [`space`]s with their walk, the [`scene`] model,
-//! [`view`]s and the f64 reference tracer [`trace`] — uses glam types only:
+//! The maths core uses glam types only:
 //!
 //! ```
 //! use bevy_curved_spaces::prelude::*;
@@ -67,47 +79,43 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 #![warn(missing_docs)]
 
-#[cfg(feature = "bench")]
-pub mod bench;
+// The maths core: no Bevy at compile time (glam types only; `tests/core/layers.rs` keeps it so).
 pub(crate) mod colour;
-pub mod components;
 pub mod files;
-pub mod frame_rate;
 pub mod geometry;
-pub mod headset;
-pub mod objects;
-pub mod offscreen;
-pub mod player;
-pub mod plugin;
-pub mod render;
+pub mod random;
 pub mod scene;
 pub mod space;
 pub mod trace;
-#[cfg(feature = "ui")]
-pub mod ui;
 pub mod view;
-#[cfg(feature = "xr")]
-pub mod xr;
 
-pub use components::{
+// The Bevy layer: components, player, entities, render, offscreen, frame rate, panel, headset.
+pub mod plugin;
+
+// The app's library half (the `curved-spaces` binary is `src/app/main.rs` with its CLI).
+#[cfg(feature = "bench")]
+#[path = "app/bench/mod.rs"]
+pub mod bench;
+
+pub use plugin::CurvedSpacesPlugin;
+pub use plugin::components::{
     ActiveSpace, BaseScene, CurvedSpaceCamera, CurvedSpaceEye, CurvedSpacesSystems, Quality,
     SceneObjects, TracerSettings, TracerStatus,
 };
-pub use plugin::CurvedSpacesPlugin;
 
 /// The types most programs need.
 pub mod prelude {
-    pub use crate::components::{
+    pub use crate::geometry::{Geometry, GeometryError, ORIGIN, Ray, chart_ray};
+    pub use crate::plugin::CurvedSpacesPlugin;
+    pub use crate::plugin::components::{
         ActiveSpace, BaseScene, CurvedSpaceCamera, CurvedSpaceEye, CurvedSpacesSystems,
         KeyBindings, PlayerFrame, PlayerSettings, Quality, SceneObjects, StereoSettings,
         TracerSettings, TracerStatus,
     };
-    pub use crate::geometry::{Geometry, GeometryError, ORIGIN, Ray, chart_ray};
-    pub use crate::objects::{
+    pub use crate::plugin::objects::{
         ActiveSightlines, CurvedObject, CurvedShape, CurvedTransform, CurvedVelocity,
         ObjectCrossedFace,
     };
-    pub use crate::plugin::CurvedSpacesPlugin;
     #[cfg(feature = "scene-files")]
     pub use crate::scene::file::{SceneFile, load_scene_file};
     pub use crate::scene::{

@@ -3,10 +3,10 @@
 //! See [`Centrepiece`](crate::scene::Centrepiece).
 
 use crate::geometry::Geometry;
+use crate::random::SplitMix64;
 use crate::scene::mesh::MeshSource;
 use crate::scene::texture::Texture;
 use crate::scene::{Model, SurfaceMaterial};
-use crate::trace::SplitMix64;
 use glam::{DVec2, DVec3};
 use std::sync::{Arc, OnceLock};
 

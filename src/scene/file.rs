@@ -50,7 +50,7 @@ pub struct SceneFile {
     /// The space the scene is in.
     pub space: Space,
     /// The file's own objects, lights and shading, without the parts: the base scene the
-    /// plugin adds [`crate::components::TracerSettings::parts`] to.
+    /// plugin adds `TracerSettings::parts` to.
     pub base: CurvedScene,
     /// The player's start frame (`None`: the space's default view).
     pub start: Option<DMat4>,

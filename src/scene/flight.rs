@@ -24,7 +24,7 @@
 
 use crate::geometry::Geometry;
 use crate::space::invariants::inradius;
-use crate::space::{Space, wrap_into_cell};
+use crate::space::{Holonomy, Space, wrap_into_cell};
 use glam::{DMat4, DVec3, DVec4};
 use serde::Deserialize;
 
@@ -329,80 +329,6 @@ pub fn load_flight_file(path: &std::path::Path) -> Result<FlightFile, String> {
     parse_flight(&text, &name)
 }
 
-/// A flight replayed on every curved-space camera (`walk --replay FILE`): while this
-/// resource exists, [`replay_flight`] sets each camera's frame to the flight's frame at the
-/// time since the replay began (looping when `looped`), after the player's own motion.
-#[derive(bevy::prelude::Resource, Clone, Debug)]
-pub struct FlightReplay {
-    /// The flight, made for the active space.
-    pub flight: Flight,
-    /// Start again at the end.
-    pub looped: bool,
-    /// The clock's time when the replay began (set by the first run).
-    pub started: Option<f64>,
-}
-
-impl FlightReplay {
-    /// A replay of `flight` from the next frame on.
-    #[must_use]
-    pub fn new(flight: Flight, looped: bool) -> Self {
-        Self {
-            flight,
-            looped,
-            started: None,
-        }
-    }
-
-    /// The flight's time at clock time `now`.
-    #[must_use]
-    pub fn flight_time(&mut self, now: f64) -> f64 {
-        let start = *self.started.get_or_insert(now);
-        let t = (now - start).max(0.0);
-        let duration = self.flight.duration();
-        if duration <= 0.0 {
-            0.0
-        } else if self.looped {
-            t % duration
-        } else {
-            t.min(duration)
-        }
-    }
-}
-
-/// Drives the cameras along a [`FlightReplay`] (registered by the plugin; does nothing
-/// without the resource). Runs after the frames are wrapped, so it wins over the player's
-/// own motion.
-pub fn replay_flight(
-    time: bevy::prelude::Res<bevy::prelude::Time>,
-    active: bevy::prelude::Res<crate::components::ActiveSpace>,
-    replay: Option<bevy::prelude::ResMut<FlightReplay>>,
-    mut cameras: bevy::prelude::Query<
-        (
-            &mut crate::components::PlayerFrame,
-            Option<&mut crate::space::Holonomy>,
-        ),
-        bevy::prelude::With<crate::components::CurvedSpaceCamera>,
-    >,
-) {
-    let Some(mut replay) = replay else {
-        return;
-    };
-    let t = replay.flight_time(time.elapsed_secs_f64());
-    let (frame, crossed) = replay.flight.frame_and_crossings(&active.space, t);
-    for (mut f, holonomy) in &mut cameras {
-        f.0 = frame;
-        // The holonomy of the way from the first key, so the panel's crossings are the
-        // flight's.
-        if let Some(mut h) = holonomy {
-            let mut way = crate::space::Holonomy::default();
-            for &face in &crossed {
-                way.record(face, active.space.faces()[face].pairing);
-            }
-            *h = way;
-        }
-    }
-}
-
 /// Where a recorded flight's space comes from: a space's id or path, or a scene file.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum FlightSource {
@@ -412,200 +338,55 @@ pub enum FlightSource {
     Scene(String),
 }
 
-/// Records the first curved-space camera's path as a flight file (`walk --record FILE`):
-/// while this resource exists, [`record_flight`] adds a key every `interval` seconds — the
-/// camera's frame carried back through the faces it crossed into the universal cover, as
-/// `position`, `look_at` and `up` — and writes the file at most once a second and when the
-/// app exits. `walk --replay FILE` and `flight FILE` play it back; at the keys' times the
-/// replay's frames are the walk's.
-#[derive(bevy::prelude::Resource, Clone, Debug)]
-pub struct FlightRecorder {
-    /// The file written.
-    pub path: std::path::PathBuf,
-    /// The space or scene named in it.
-    pub source: FlightSource,
-    /// Seconds between keys.
-    pub interval: f64,
-    /// Keys so far: time, position, look_at, up (geodesic coordinates in inradii).
-    pub keys: Vec<(f64, DVec3, DVec3, DVec3)>,
-    /// The camera's vertical field of view.
-    pub fov: f64,
-    /// Why recording stopped early, if it did (the keys so far are kept).
-    pub stopped: Option<String>,
-    started: Option<f64>,
-    space: Option<String>,
-    last_write: Option<f64>,
-    unwritten: bool,
-}
-
-impl FlightRecorder {
-    /// A recorder writing to `path`, a key every `interval` seconds.
-    #[must_use]
-    pub fn new(path: std::path::PathBuf, source: FlightSource, interval: f64) -> Self {
-        Self {
-            path,
-            source,
-            interval: interval.max(1e-3),
-            keys: Vec::new(),
-            fov: DEFAULT_FLIGHT_FOV,
-            stopped: None,
-            started: None,
-            space: None,
-            last_write: None,
-            unwritten: false,
-        }
-    }
-
-    /// The flight file's text.
-    #[must_use]
-    pub fn text(&self) -> String {
-        use std::fmt::Write as _;
-        let mut out = String::from(
-            "# A recorded walk (curved-spaces walk --record): replay it with\n\
-             #   curved-spaces walk --replay FILE, or render it with curved-spaces flight FILE\n",
-        );
-        let quoted = |s: &str| toml::Value::String(s.to_string()).to_string();
-        match &self.source {
-            FlightSource::Space(id) => {
-                let _ = writeln!(out, "space = {}", quoted(id));
-            }
-            FlightSource::Scene(path) => {
-                let _ = writeln!(out, "scene = {}", quoted(path));
-            }
-        }
-        let _ = writeln!(out, "fov = {}", self.fov);
-        let v = |x: DVec3| format!("[{:?}, {:?}, {:?}]", x.x, x.y, x.z);
-        for (t, p, look, up) in &self.keys {
-            let _ = write!(
-                out,
-                "\n[[key]]\ntime = {t:?}\nposition = {}\nlook_at = {}\nup = {}\n",
-                v(*p),
-                v(*look),
-                v(*up)
-            );
-        }
-        out
-    }
-
-    /// Writes the file (whole or not at all).
-    pub fn write(&mut self) -> Result<(), String> {
-        if self.keys.is_empty() {
-            return Ok(());
-        }
-        crate::files::write_atomic(&self.path, self.text().as_bytes())
-            .map_err(|e| format!("cannot write {}: {e}", self.path.display()))?;
-        self.unwritten = false;
-        Ok(())
-    }
-
-    /// Adds the key of a camera at clock time `now`, if one is due.
-    pub fn record(
-        &mut self,
-        space: &Space,
-        space_id: &str,
-        now: f64,
-        frame: DMat4,
-        holonomy: &crate::space::Holonomy,
-        fov: f64,
-    ) {
-        if self.stopped.is_some() {
-            return;
-        }
-        if self.space.get_or_insert_with(|| space_id.to_string()) != space_id {
-            self.stop("the space changed; the keys so far are kept".into());
-            return;
-        }
-        let start = *self.started.get_or_insert(now);
-        let t = now - start;
-        if let Some(last) = self.keys.last()
-            && t - last.0 < self.interval - 1e-9
-        {
-            return;
-        }
-        if self.keys.len() >= MAX_KEYS || t > MAX_FLIGHT_SECONDS {
-            self.stop(format!(
-                "a flight holds at most {MAX_KEYS} keys and {MAX_FLIGHT_SECONDS} s"
-            ));
-            return;
-        }
-        let g = space.geometry();
-        // The frame in the universal cover: F_now = H · F_cover.
-        let cover = g.inverse(holonomy.matrix) * frame;
-        let r = 0.5 * inradius(space).min(std::f64::consts::FRAC_PI_4);
-        let at = |local: DMat4| coordinates_of(space, g.project_point((cover * local).w_axis));
-        let keys = (
-            at(DMat4::IDENTITY),
-            at(g.translation(DVec3::NEG_Z, r)),
-            at(g.translation(DVec3::Y, r)),
-        );
-        match keys {
-            (Some(p), Some(look), Some(up)) => {
-                self.keys.push((t, p, look, up));
-                self.fov = fov;
-                self.unwritten = true;
-            }
-            _ => self.stop(format!(
-                "at {t:.2} s the walk left what a flight file can hold (in S³ the hemisphere about the centre; a cell centred off the origin); the keys so far are kept"
-            )),
-        }
-    }
-
-    fn stop(&mut self, why: String) {
-        bevy::log::warn!("recording stopped: {why}");
-        self.stopped = Some(why);
-    }
-}
-
-/// Adds a key of the first curved-space camera to the [`FlightRecorder`] when one is due,
-/// and writes the file at most once a second (registered by the plugin; does nothing
-/// without the resource).
-pub fn record_flight(
-    time: bevy::prelude::Res<bevy::prelude::Time>,
-    active: bevy::prelude::Res<crate::components::ActiveSpace>,
-    recorder: Option<bevy::prelude::ResMut<FlightRecorder>>,
-    cameras: bevy::prelude::Query<(
-        &crate::components::PlayerFrame,
-        &crate::space::Holonomy,
-        &crate::components::CurvedSpaceCamera,
-    )>,
-) {
-    let Some(mut recorder) = recorder else {
-        return;
-    };
-    let Some((frame, holonomy, camera)) = cameras.iter().next() else {
-        return;
-    };
-    let now = time.elapsed_secs_f64();
-    recorder.record(
-        &active.space,
-        &active.id,
-        now,
-        frame.0,
-        holonomy,
-        camera.fov_y_degrees,
+/// A flight file's text: the source, the field of view and the keys (time, position,
+/// look_at, up, in geodesic coordinates in inradii), as [`parse_flight`] reads it back.
+#[must_use]
+pub fn flight_text(source: &FlightSource, fov: f64, keys: &[(f64, DVec3, DVec3, DVec3)]) -> String {
+    use std::fmt::Write as _;
+    let mut out = String::from(
+        "# A recorded walk (curved-spaces walk --record): replay it with\n\
+         #   curved-spaces walk --replay FILE, or render it with curved-spaces flight FILE\n",
     );
-    if recorder.unwritten && recorder.last_write.is_none_or(|w| now - w >= 1.0) {
-        recorder.last_write = Some(now);
-        if let Err(e) = recorder.write() {
-            recorder.stop(e);
+    let quoted = |s: &str| toml::Value::String(s.to_string()).to_string();
+    match source {
+        FlightSource::Space(id) => {
+            let _ = writeln!(out, "space = {}", quoted(id));
+        }
+        FlightSource::Scene(path) => {
+            let _ = writeln!(out, "scene = {}", quoted(path));
         }
     }
+    let _ = writeln!(out, "fov = {fov}");
+    let v = |x: DVec3| format!("[{:?}, {:?}, {:?}]", x.x, x.y, x.z);
+    for (t, p, look, up) in keys {
+        let _ = write!(
+            out,
+            "\n[[key]]\ntime = {t:?}\nposition = {}\nlook_at = {}\nup = {}\n",
+            v(*p),
+            v(*look),
+            v(*up)
+        );
+    }
+    out
 }
 
-/// Writes the recorded flight when the app exits.
-pub fn finish_recording(
-    mut exits: bevy::prelude::MessageReader<bevy::prelude::AppExit>,
-    recorder: Option<bevy::prelude::ResMut<FlightRecorder>>,
-) {
-    if exits.read().next().is_none() {
-        return;
-    }
-    if let Some(mut r) = recorder
-        && r.unwritten
-    {
-        match r.write() {
-            Ok(()) => bevy::log::info!("wrote the recorded flight to {}", r.path.display()),
-            Err(e) => bevy::log::error!("{e}"),
-        }
-    }
+/// The key of a camera at `frame` inside the cell that reached it through `holonomy`: its
+/// position, a point it looks at and a point above it, carried back into the universal cover
+/// (`F_now = H · F_cover`) as geodesic coordinates in inradii; `None` where a flight file
+/// cannot hold them (in S³ beyond the hemisphere about the centre).
+#[must_use]
+pub fn recorded_key(
+    space: &Space,
+    frame: DMat4,
+    holonomy: &Holonomy,
+) -> Option<(DVec3, DVec3, DVec3)> {
+    let g = space.geometry();
+    let cover = g.inverse(holonomy.matrix) * frame;
+    let r = 0.5 * inradius(space).min(std::f64::consts::FRAC_PI_4);
+    let at = |local: DMat4| coordinates_of(space, g.project_point((cover * local).w_axis));
+    Some((
+        at(DMat4::IDENTITY)?,
+        at(g.translation(DVec3::NEG_Z, r))?,
+        at(g.translation(DVec3::Y, r))?,
+    ))
 }

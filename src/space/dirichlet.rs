@@ -17,11 +17,13 @@
 //!    back, the pairings generate the whole group and the cell is its Dirichlet domain (it
 //!    contains the true one and has the same volume).
 
-use super::group::{Generators, GroupError, polish_isometry};
+use super::group::{Generators, GroupError, parse_gen, polish_isometry};
+use super::orbit::OrbitPoints;
 use super::{FaceSpec, MAX_FACES, Space};
 use crate::geometry::{Geometry, ORIGIN, max_abs_entry};
 use glam::{DMat4, DVec3, DVec4};
 use std::collections::HashMap;
+use std::path::Path;
 
 /// Orbit points closer than this (geodesic distance; for flat groups, relative to the
 /// largest generator translation) but not equal are taken as a sign that the group is not
@@ -92,11 +94,11 @@ struct Element {
     word: usize,
 }
 
-/// The elements found so far, keyed by their orbit points.
+/// The elements found so far, found again by their orbit points.
 struct Orbit {
     geometry: Geometry,
     elements: Vec<Element>,
-    buckets: HashMap<[i64; 3], Vec<usize>>,
+    points: OrbitPoints,
 }
 
 impl Orbit {
@@ -104,7 +106,7 @@ impl Orbit {
         let mut orbit = Self {
             geometry,
             elements: Vec::new(),
-            buckets: HashMap::new(),
+            points: OrbitPoints::new(geometry, SEPARATION),
         };
         orbit.push(Element {
             matrix: DMat4::IDENTITY,
@@ -115,67 +117,22 @@ impl Orbit {
         orbit
     }
 
-    /// Coordinates in which geodesically close points are close: the tangent vector at `o`
-    /// (E³, H³: the exponential map does not shrink distances there) or the point itself
-    /// (S³: chords are shorter than arcs); only its first three entries are keyed, the
-    /// fourth is compared.
-    fn coordinates(&self, p: DVec4, distance: f64) -> DVec4 {
-        match self.geometry {
-            Geometry::Spherical => p,
-            Geometry::Euclidean => p.truncate().extend(0.0),
-            Geometry::Hyperbolic => {
-                let x = p.truncate();
-                let len = x.length();
-                if len > 0.0 {
-                    (x * (distance / len)).extend(0.0)
-                } else {
-                    DVec4::ZERO
-                }
-            }
-        }
-    }
-
-    fn key(c: DVec4) -> [i64; 3] {
-        let k = |x: f64| (x / SEPARATION).floor() as i64;
-        [k(c.x), k(c.y), k(c.z)]
-    }
-
     fn push(&mut self, e: Element) -> usize {
-        let i = self.elements.len();
-        let key = Self::key(self.coordinates(e.point, e.distance));
-        self.buckets.entry(key).or_default().push(i);
+        let i = self.points.push(e.point);
         self.elements.push(e);
         i
     }
 
     /// The element whose orbit point is nearest `p`, if one is within [`SEPARATION`].
-    fn nearest(&self, p: DVec4, distance: f64) -> Option<(usize, f64)> {
-        let c = self.coordinates(p, distance);
-        let [a, b, k] = Self::key(c);
-        let mut best: Option<(usize, f64)> = None;
-        for da in -1..=1 {
-            for db in -1..=1 {
-                for dk in -1..=1 {
-                    let Some(list) = self.buckets.get(&[a + da, b + db, k + dk]) else {
-                        continue;
-                    };
-                    for &i in list {
-                        let d = self.geometry.distance(self.elements[i].point, p);
-                        if d < SEPARATION && best.is_none_or(|(_, bd)| d < bd) {
-                            best = Some((i, d));
-                        }
-                    }
-                }
-            }
-        }
-        best
+    fn nearest(&self, p: DVec4) -> Option<(usize, f64)> {
+        self.points.nearest(p)
     }
 
     /// Adds `matrix` unless it is already known; `Ok(true)` when it is new.
     fn insert(&mut self, matrix: DMat4, word: usize) -> Result<bool, GroupError> {
         let point = matrix.w_axis;
         let distance = self.geometry.distance(ORIGIN, point);
-        if let Some((i, d)) = self.nearest(point, distance) {
+        if let Some((i, d)) = self.nearest(point) {
             if d >= SAME * point.w.abs().max(1.0) {
                 return Err(GroupError::NotDiscrete {
                     distance: d,
@@ -661,8 +618,7 @@ fn attempt(
         let e = &orbit.elements[i];
         let inverse = polish_isometry(geometry, geometry.inverse(e.matrix));
         let inverse_point = inverse.w_axis;
-        let Some((j, _)) = orbit.nearest(inverse_point, geometry.distance(ORIGIN, inverse_point))
-        else {
+        let Some((j, _)) = orbit.nearest(inverse_point) else {
             return Ok(Attempt::Grow(None));
         };
         let Some(partner) = cut.faces.iter().position(|&f| f == j) else {
@@ -722,4 +678,29 @@ fn attempt(
         }
     }
     Ok(Attempt::Space(Box::new(space)))
+}
+
+/// Reads a `.gen` file and builds the Dirichlet domain of its group.
+pub fn load_gen_file(path: &Path, options: &DirichletOptions) -> Result<Space, String> {
+    let name = path.display().to_string();
+    let text = crate::files::read_text(path, crate::files::MAX_SPACE_FILE_BYTES)
+        .map_err(|e| format!("cannot read generator file {name}: {e}"))?;
+    let file = parse_gen(&text).map_err(|e| format!("generator file {name}: {e}"))?;
+    let stem = path
+        .file_stem()
+        .map_or_else(|| name.clone(), |s| s.to_string_lossy().into_owned());
+    let description = file.comments.first().cloned().unwrap_or_default();
+    space_from_matrices(&stem, &description, &file.matrices, options)
+        .map_err(|e| format!("generator file {name}: {e}"))
+}
+
+/// The space of the group generated by `matrices` (column-vector convention).
+pub fn space_from_matrices(
+    name: &str,
+    description: &str,
+    matrices: &[DMat4],
+    options: &DirichletOptions,
+) -> Result<Space, GroupError> {
+    let generators = Generators::new(matrices)?;
+    dirichlet_space(name, description, &generators, options)
 }

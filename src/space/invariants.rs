@@ -2,9 +2,18 @@
 //! groups, closed geodesics, injectivity radius.
 
 use super::Space;
+use super::orbit::OrbitPoints;
 use crate::geometry::{Geometry, ORIGIN, max_abs_entry};
 use glam::{DMat3, DMat4, DVec3, DVec4};
 use std::collections::{BTreeMap, HashMap, VecDeque};
+
+/// Two elements of a deck-group walk are one when they move the centre less than this apart
+/// (orbit points of a manifold or orbifold are at least twice the inradius apart).
+const SAME_ORBIT_POINT: f64 = 1e-5;
+
+/// An element met again among the axes found (a manifold's group acts freely, so its orbit
+/// point names it).
+const SAME_AXIS_ELEMENT: f64 = 1e-7;
 
 /// Distance from the centre (chart origin) to the nearest face: the radius of the largest
 /// ball about the centre inside the cell.
@@ -199,12 +208,6 @@ pub fn holonomy_order(space: &Space) -> Option<usize> {
     Some(seen.len())
 }
 
-/// Orbit points of distinct elements are at least twice the inradius apart, so a coarse
-/// grid tells them apart.
-fn orbit_key(p: DVec4) -> [i64; 4] {
-    p.to_array().map(|x| (x * 1e5).round() as i64)
-}
-
 /// Decides cheaply whether an image `h(cell)` may come within `gap` of the cell, never
 /// answering no for one that does. First the orbit bound `d(D, hD) ≥ d(o, ho) − 2R`
 /// (`R` the circumradius), then separating planes: if every vertex of `h(D)` lies beyond
@@ -276,18 +279,16 @@ impl Separation {
 pub fn elements_near(space: &Space, gap: f64, limit: usize) -> Option<Vec<DMat4>> {
     let generators: Vec<DMat4> = space.faces.iter().map(|f| f.pairing).collect();
     let separation = Separation::new(space);
-    let mut seen: HashMap<[i64; 4], ()> = HashMap::new();
-    seen.insert(orbit_key(ORIGIN), ());
+    let mut seen = OrbitPoints::new(space.geometry, SAME_ORBIT_POINT);
+    seen.push(ORIGIN);
     let mut out = vec![DMat4::IDENTITY];
     let mut queue = VecDeque::from([DMat4::IDENTITY]);
     while let Some(m) = queue.pop_front() {
         for generator in &generators {
             let next = m * *generator;
-            let key = orbit_key(next * ORIGIN);
-            if seen.contains_key(&key) {
+            if !seen.insert(next * ORIGIN) {
                 continue;
             }
-            seen.insert(key, ());
             if !separation.may_be_within(next, gap) {
                 continue;
             }
@@ -512,36 +513,15 @@ struct Axes {
     elements: Vec<DMat4>,
     lengths: Vec<f64>,
     chords: Vec<f64>,
-    lookup: HashMap<[i64; 4], Vec<usize>>,
+    /// Where each element moves the centre.
+    points: OrbitPoints,
 }
 
 impl Axes {
-    fn key(m: DMat4) -> [i64; 4] {
-        let p = m * ORIGIN;
-        (p / p.w).to_array().map(|x| (x * 1e6).floor() as i64)
-    }
-
     /// The element equal to `m` (by where it moves the centre: a manifold's group acts
     /// freely), if it is one of these.
     fn find(&self, m: DMat4) -> Option<usize> {
-        let [a, b, c, _] = Self::key(m);
-        let p = m * ORIGIN;
-        for da in -1..=1 {
-            for db in -1..=1 {
-                for dc in -1..=1 {
-                    let Some(list) = self.lookup.get(&[a + da, b + db, c + dc, 1_000_000]) else {
-                        continue;
-                    };
-                    for &i in list {
-                        let q = self.elements[i] * ORIGIN;
-                        if Geometry::Hyperbolic.distance(p, q) < 1e-7 {
-                            return Some(i);
-                        }
-                    }
-                }
-            }
-        }
-        None
+        self.points.nearest(m * ORIGIN).map(|(i, _)| i)
     }
 }
 
@@ -550,7 +530,7 @@ fn axes_meeting_cell(space: &Space, max_length: f64) -> Option<Axes> {
         elements: Vec::new(),
         lengths: Vec::new(),
         chords: Vec::new(),
-        lookup: HashMap::new(),
+        points: OrbitPoints::new(Geometry::Hyperbolic, SAME_AXIS_ELEMENT),
     };
     if space.geometry != Geometry::Hyperbolic || !space.manifold {
         return Some(axes);
@@ -580,12 +560,10 @@ fn axes_meeting_cell(space: &Space, max_length: f64) -> Option<Axes> {
                 1.0 / cycle as f64
             }
         };
-        let i = axes.elements.len();
         axes.elements.push(h);
         axes.lengths.push(length);
         axes.chords.push(weight * g.distance(a, b));
-        let [x, y, z, _] = Axes::key(h);
-        axes.lookup.entry([x, y, z, 1_000_000]).or_default().push(i);
+        axes.points.push(h * ORIGIN);
     }
     Some(axes)
 }

@@ -2,9 +2,9 @@
 //! (`.gen` generator file or JSON space file).
 
 use super::catalog::{affine, dodecahedron_normals, dodecahedron_offset};
-use super::dirichlet::DirichletOptions;
+use super::dirichlet::{DirichletOptions, load_gen_file, space_from_matrices};
 use super::file::load_space_file;
-use super::group::{load_gen_file, parse_gen, space_from_matrices};
+use super::group::parse_gen;
 use super::{SEED_SPACES, Space, SpaceError, seed_space};
 use crate::geometry::Geometry;
 use glam::{DMat3, DMat4, DQuat, DVec3, DVec4};

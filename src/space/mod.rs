@@ -11,6 +11,7 @@ pub mod homology;
 pub mod invariants;
 pub mod library;
 pub mod motion;
+pub mod orbit;
 mod validate;
 pub mod walk;
 mod wrap;

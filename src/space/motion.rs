@@ -11,6 +11,7 @@
 //! steps of [`MOTION_STEP`], so they agree.
 
 use super::invariants::circumradius;
+use super::orbit::OrbitPoints;
 use super::{Holonomy, Space, wrap_into_cell};
 use crate::geometry::{Geometry, translate_local};
 use glam::{DMat4, DVec3, DVec4};
@@ -158,10 +159,8 @@ pub struct Sightlines {
 /// any seed space or census manifold needs).
 pub const MAX_SIGHTLINE_COPIES: usize = 200_000;
 
-/// A cell copy's key: its centre's coordinates, rounded.
-fn copy_key(p: DVec4) -> [i64; 4] {
-    (p * 1e7).round().to_array().map(|x| x as i64)
-}
+/// Two copies of the cell are one when their centres are closer than this.
+const SAME_COPY: f64 = 1e-7;
 
 impl Sightlines {
     /// The search for `space`.
@@ -180,15 +179,15 @@ impl Sightlines {
     #[must_use]
     pub fn between(&self, from: DMat4, to: DVec4) -> Sightline {
         use std::cmp::Reverse;
-        use std::collections::{BinaryHeap, HashSet};
+        use std::collections::BinaryHeap;
         let g = self.geometry;
         let a = g.project_point(from.w_axis);
         let to = g.project_point(to);
         // Ordered by the distance from `a` to the copy's centre (f64 bits order like the
         // numbers for non-negative values).
         let mut queue = BinaryHeap::new();
-        let mut seen = HashSet::new();
-        seen.insert(copy_key(self.centre));
+        let mut seen = OrbitPoints::new(g, SAME_COPY);
+        seen.push(self.centre);
         queue.push((Reverse(g.distance(a, self.centre).to_bits()), 0usize));
         let mut elements = vec![DMat4::IDENTITY];
         let (mut best, mut element) = (g.distance(a, to), DMat4::IDENTITY);
@@ -207,7 +206,7 @@ impl Sightlines {
             for pairing in &self.pairings {
                 let next = h * *pairing;
                 let c = g.project_point(next * self.centre);
-                if seen.insert(copy_key(c)) {
+                if seen.insert(c) {
                     elements.push(next);
                     queue.push((Reverse(g.distance(a, c).to_bits()), elements.len() - 1));
                 }

@@ -10,43 +10,15 @@
 
 use super::{RayEnd, first_hit};
 use crate::geometry::Ray;
+use crate::random::SplitMix64;
 use crate::scene::CurvedScene;
 use crate::space::CellWalker;
 use crate::space::{Space, invariants};
-use glam::{DVec3, DVec4};
+use glam::DVec4;
 use rayon::prelude::*;
 
 /// The largest budget the automatic choice gives (the GPU loop's bound stays finite).
 pub const MAX_AUTO_BUDGET: u32 = 1024;
-
-/// A small deterministic generator (SplitMix64), so that sampled rays and the budget
-/// chosen from them are the same on every run.
-#[derive(Clone, Debug)]
-pub struct SplitMix64(pub u64);
-
-impl SplitMix64 {
-    /// The next 64 random bits.
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in `[0, 1)`.
-    pub fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    /// Uniform on the unit sphere.
-    pub fn direction(&mut self) -> DVec3 {
-        let z = 2.0 * self.unit() - 1.0;
-        let phi = std::f64::consts::TAU * self.unit();
-        let r = (1.0 - z * z).max(0.0).sqrt();
-        DVec3::new(r * phi.cos(), r * phi.sin(), z)
-    }
-}
 
 /// `count` rays from points spread through the cell's inscribed ball (within `0.95 ×`
 /// inradius of the centre) in directions uniform on the sphere.
@@ -85,7 +57,7 @@ pub struct BudgetChoice {
 }
 
 impl BudgetChoice {
-    /// The budget for a share of it in (0, 1] ([`crate::frame_rate::BudgetShare`]): rounded
+    /// The budget for a share of it in (0, 1] (the plugin's `BudgetShare`): rounded
     /// up, never below [`Self::floor`] nor above [`Self::budget`].
     #[must_use]
     pub fn shared(&self, share: f32) -> u32 {
@@ -116,7 +88,7 @@ pub fn auto_budget(
 
 /// [`auto_budget`], and from the same sample the floor a frame-rate target may lower the
 /// budget to: the smallest budget with which at most `floor_fraction` of the rays miss
-/// (at least `miss_fraction`; see [`crate::components::Quality::floor_miss_fraction`]).
+/// (at least `miss_fraction`; see the plugin's `Quality::floor_miss_fraction`).
 #[must_use]
 pub fn auto_budget_with_floor(
     space: &Space,

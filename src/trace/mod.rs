@@ -5,9 +5,7 @@
 mod budget;
 mod render;
 
-pub use budget::{
-    BudgetChoice, MAX_AUTO_BUDGET, SplitMix64, auto_budget, auto_budget_with_floor, sample_rays,
-};
+pub use budget::{BudgetChoice, MAX_AUTO_BUDGET, auto_budget, auto_budget_with_floor, sample_rays};
 pub use render::{
     PATH_HASH_START, RayEnd, RayStory, RenderSettings, SceneHit, TracedRay, colour_of,
     colour_of_traced, first_hit, first_hit_culled, first_hit_traced, first_hit_walled, path_hash,

@@ -4,6 +4,7 @@
 //! here once, in [`ViewLayout`]; the CPU reference renders through it and the GPU packer
 //! writes it into the shader's uniform, where `shaders/curved_space.wgsl` mirrors it.
 
+pub mod headset;
 pub mod stereo;
 
 pub use stereo::StereoMode;

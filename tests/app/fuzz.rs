@@ -595,7 +595,7 @@ proptest! {
         strip in proptest::bool::weighted(0.1),
         size in prop_oneof![Just(0.3f64), Just(0.0), Just(-1.0), Just(f64::NAN), Just(1e300), Just(3.0)],
     ) {
-        use bevy_curved_spaces::objects::model_from_bevy_mesh;
+        use bevy_curved_spaces::plugin::objects::model_from_bevy_mesh;
         use bevy_curved_spaces::scene::TracedModel;
         let hostile = [f32::NAN, f32::INFINITY, -f32::INFINITY, 1e38, -1e38, 1e-40, 0.0];
         let positions: Vec<[f32; 3]> = raw
@@ -640,7 +640,7 @@ proptest! {
     fn models_round_trip_through_bevy_meshes(
         corners in proptest::collection::vec((-1.0f32..1.0, -1.0f32..1.0, -1.0f32..1.0), 3..30),
     ) {
-        use bevy_curved_spaces::objects::{bevy_mesh_from_model, model_from_bevy_mesh};
+        use bevy_curved_spaces::plugin::objects::{bevy_mesh_from_model, model_from_bevy_mesh};
         use bevy_curved_spaces::scene::mesh::MeshSource;
         use bevy_curved_spaces::scene::{Model, SurfaceMaterial, TracedModel};
         use glam::DVec3;

@@ -7,8 +7,8 @@
 //! difference images are written to `target/gpu-vs-cpu/`.
 
 use crate::common::{compare, gpu_lock};
-use bevy_curved_spaces::components::ActiveSpace;
-use bevy_curved_spaces::offscreen::{OffscreenRender, OffscreenRenderer};
+use bevy_curved_spaces::plugin::components::ActiveSpace;
+use bevy_curved_spaces::plugin::offscreen::{OffscreenRender, OffscreenRenderer};
 use bevy_curved_spaces::scene::Centrepiece;
 use bevy_curved_spaces::scene::{CurvedScene, SceneParts, Shading};
 use bevy_curved_spaces::space::{SEED_SPACES, Space};
@@ -178,8 +178,8 @@ fn a_reduced_resolution_is_traced_and_scaled_up() {
 #[test]
 fn placed_objects_straddling_faces_render_alike_on_gpu_and_cpu() {
     let _gpu = gpu_lock();
-    use bevy_curved_spaces::components::TracerSettings;
-    use bevy_curved_spaces::render::upload::build_scene;
+    use bevy_curved_spaces::plugin::components::TracerSettings;
+    use bevy_curved_spaces::plugin::render::upload::build_scene;
     use bevy_curved_spaces::scene::{Ball, Object};
     use glam::DVec3;
     let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
@@ -200,7 +200,7 @@ fn placed_objects_straddling_faces_render_alike_on_gpu_and_cpu() {
         let settings = TracerSettings {
             fog_distance: None,
             max_crossings: Some(24),
-            quality: bevy_curved_spaces::components::Quality::High,
+            quality: bevy_curved_spaces::plugin::components::Quality::High,
             resolution_scale: 1.0,
             parts,
             time: None,
@@ -261,7 +261,7 @@ fn placed_objects_straddling_faces_render_alike_on_gpu_and_cpu() {
     let settings = TracerSettings {
         fog_distance: None,
         max_crossings: None,
-        quality: bevy_curved_spaces::components::Quality::Medium,
+        quality: bevy_curved_spaces::plugin::components::Quality::Medium,
         resolution_scale: 1.0,
         parts: SceneParts::default(),
         time: None,
@@ -288,7 +288,7 @@ fn placed_objects_straddling_faces_render_alike_on_gpu_and_cpu() {
 #[test]
 fn stereo_layouts_render_alike_on_gpu_and_cpu() {
     let _gpu = gpu_lock();
-    use bevy_curved_spaces::components::StereoSettings;
+    use bevy_curved_spaces::plugin::components::StereoSettings;
     use bevy_curved_spaces::space::invariants::inradius;
     use bevy_curved_spaces::trace::render_view;
     use bevy_curved_spaces::view::StereoMode;
@@ -393,8 +393,8 @@ fn stereo_layouts_render_alike_on_gpu_and_cpu() {
 #[test]
 fn gpu_disparity_in_the_torus_matches_the_geometry() {
     let _gpu = gpu_lock();
-    use bevy_curved_spaces::components::StereoSettings;
     use bevy_curved_spaces::geometry::ORIGIN;
+    use bevy_curved_spaces::plugin::components::StereoSettings;
     use bevy_curved_spaces::scene::{Ball, Object};
     use bevy_curved_spaces::view::StereoMode;
     use glam::DVec3;
@@ -483,7 +483,7 @@ fn gpu_disparity_in_the_torus_matches_the_geometry() {
 #[test]
 fn scaled_up_stereo_halves_do_not_mix_at_the_split() {
     let _gpu = gpu_lock();
-    use bevy_curved_spaces::components::StereoSettings;
+    use bevy_curved_spaces::plugin::components::StereoSettings;
     use bevy_curved_spaces::view::StereoMode;
     let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
     let space = bevy_curved_spaces::space::seed_space("seifert-weber").expect("builds");
@@ -551,7 +551,7 @@ fn compare_scene(
     time: f64,
     name: &str,
 ) -> Option<String> {
-    use bevy_curved_spaces::components::BaseScene;
+    use bevy_curved_spaces::plugin::components::BaseScene;
     let crossings = 24;
     let mut cpu_scene = scene.clone();
     cpu_scene.time = time;
@@ -725,8 +725,8 @@ fn the_example_scene_files_render_alike_on_gpu_and_cpu() {
 /// refused at once with the reason, not after waiting for a picture.
 #[test]
 fn an_offscreen_render_of_a_scene_too_large_for_the_gpu_says_why() {
-    use bevy_curved_spaces::components::BaseScene;
-    use bevy_curved_spaces::offscreen::OffscreenError;
+    use bevy_curved_spaces::plugin::components::BaseScene;
+    use bevy_curved_spaces::plugin::offscreen::OffscreenError;
     let _gpu = gpu_lock();
     let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
     let space = bevy_curved_spaces::space::seed_space("torus").expect("seed");
@@ -765,14 +765,14 @@ fn an_offscreen_render_of_a_scene_too_large_for_the_gpu_says_why() {
     assert!(started.elapsed().as_secs() < 30);
 }
 
-/// Entities ([`bevy_curved_spaces::objects`]) as a game spawns them: balls, a tube, a disc and
+/// Entities ([`bevy_curved_spaces::plugin::objects`]) as a game spawns them: balls, a tube, a disc and
 /// two meshes (shared traced models, so material bases and padded lists are exercised) in
 /// Seifert–Weber with its edges (culled lists) and in the torus, one ball straddling a face.
 /// The GPU draws them as the CPU reference draws the same objects.
 #[test]
 fn entities_render_alike_on_gpu_and_cpu() {
     let _gpu = gpu_lock();
-    use bevy_curved_spaces::objects::{
+    use bevy_curved_spaces::plugin::objects::{
         CurvedObject, CurvedTransform, ReadyObject, ReadyShape, add_entity_objects,
     };
     use bevy_curved_spaces::scene::mesh::cube_source;
@@ -844,16 +844,16 @@ fn entities_render_alike_on_gpu_and_cpu() {
             .map(|(i, (o, frame))| ReadyObject {
                 entity: bevy::prelude::Entity::from_raw_u32(i as u32 + 1).unwrap(),
                 shape: match &o.shape {
-                    bevy_curved_spaces::objects::CurvedShape::Ball { radius } => {
+                    bevy_curved_spaces::plugin::objects::CurvedShape::Ball { radius } => {
                         ReadyShape::Ball(*radius)
                     }
-                    bevy_curved_spaces::objects::CurvedShape::Tube { length, radius } => {
+                    bevy_curved_spaces::plugin::objects::CurvedShape::Tube { length, radius } => {
                         ReadyShape::Tube(*length, *radius)
                     }
-                    bevy_curved_spaces::objects::CurvedShape::Disc { radius } => {
+                    bevy_curved_spaces::plugin::objects::CurvedShape::Disc { radius } => {
                         ReadyShape::Disc(*radius)
                     }
-                    bevy_curved_spaces::objects::CurvedShape::Traced(m) => {
+                    bevy_curved_spaces::plugin::objects::CurvedShape::Traced(m) => {
                         ReadyShape::Mesh(m.clone())
                     }
                     other => panic!("{other:?}"),
@@ -1120,7 +1120,7 @@ fn walls_render_alike_on_gpu_and_cpu() {
 #[test]
 fn walls_of_glued_faces_share_a_colour_in_the_picture() {
     let _gpu = gpu_lock();
-    use bevy_curved_spaces::components::BaseScene;
+    use bevy_curved_spaces::plugin::components::BaseScene;
     use bevy_curved_spaces::scene::walls::MIRROR_COLOUR;
     use bevy_curved_spaces::scene::{WallPanels, WallStyle};
     use bevy_curved_spaces::space::CellWalker;

@@ -71,7 +71,7 @@ fn the_hierarchy_of_a_smooth_mesh_agrees_with_brute_force_on_rays_that_hit() {
         .expect("places");
     assert!(mesh.depth() <= 32 && mesh.nodes.len() > 100);
     let mut hits = 0;
-    let mut rng = bevy_curved_spaces::trace::SplitMix64(7);
+    let mut rng = bevy_curved_spaces::random::SplitMix64(7);
     for _ in 0..4000 {
         let o = DVec3::new(rng.unit() - 0.5, rng.unit() - 0.5, 3.0);
         let target = DVec3::new(rng.unit() - 0.5, rng.unit() - 0.5, rng.unit() - 0.5) * 1.6;

@@ -5,7 +5,7 @@
 use bevy::shader::ShaderDefVal;
 use bevy_curved_spaces::bench::BASELINE_WGSL;
 use bevy_curved_spaces::geometry::Geometry;
-use bevy_curved_spaces::render::gpu::{
+use bevy_curved_spaces::plugin::render::gpu::{
     GpuScene, MAX_GPU_BUDGET, ShaderKey, TRACER_WGSL, UPSCALE_WGSL, VIEW_WORDS, compose_wgsl,
 };
 use bevy_curved_spaces::scene::Centrepiece;
@@ -42,7 +42,7 @@ fn validate(key: &ShaderKey) -> usize {
 /// out with, in a variant that declares them all.
 #[test]
 fn the_typed_gpu_structs_match_their_wgsl_twins() {
-    use bevy_curved_spaces::render::layout::{
+    use bevy_curved_spaces::plugin::render::layout::{
         GpuBall, GpuDisc, GpuGlobe, GpuInstance, GpuShading, GpuTube, GpuView,
     };
     let key = ShaderKey {
@@ -468,7 +468,7 @@ fn the_general_variant_holds_every_geometry_and_packs_to_its_layout() {
 /// validate and keep the packed layout.
 #[test]
 fn stereo_variants_validate_with_the_same_layout() {
-    use bevy_curved_spaces::render::gpu::view_shader_defs;
+    use bevy_curved_spaces::plugin::render::gpu::view_shader_defs;
     use bevy_curved_spaces::view::ViewKind;
     for geometry in Geometry::ALL {
         for kind in [ViewKind::Split, ViewKind::Anaglyph] {

@@ -274,11 +274,11 @@ fn player_path(
     straight: bool,
     with_conditioning: bool,
 ) -> ((f64, f64), Option<(f64, f64)>) {
-    use bevy_curved_spaces::components::{PlayerMotion, PlayerSettings};
-    use bevy_curved_spaces::player::step_frame;
+    use bevy_curved_spaces::plugin::components::{PlayerMotion, PlayerSettings};
+    use bevy_curved_spaces::plugin::player::step_frame;
+    use bevy_curved_spaces::random::SplitMix64;
     use bevy_curved_spaces::space::accuracy::ReferenceFrame;
     use bevy_curved_spaces::space::wrap_into_cell;
-    use bevy_curved_spaces::trace::SplitMix64;
     let g = space.geometry();
     let r = inradius(space);
     let margin = PlayerSettings::default().wrap_margin;

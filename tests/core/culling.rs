@@ -3,10 +3,11 @@
 //! grazing the edge tubes); and it skips most of the edge objects' tests.
 
 use bevy_curved_spaces::geometry::{Ray, chart_ray};
+use bevy_curved_spaces::random::SplitMix64;
 use bevy_curved_spaces::scene::{Ball, CurvedScene, FaceCulling, Object, SceneParts, Tube};
 use bevy_curved_spaces::space::invariants::inradius;
 use bevy_curved_spaces::space::{CellWalker, SEED_SPACES, Space};
-use bevy_curved_spaces::trace::{SplitMix64, first_hit_culled, first_hit_traced, sample_rays};
+use bevy_curved_spaces::trace::{first_hit_culled, first_hit_traced, sample_rays};
 use glam::{DVec3, DVec4};
 
 const BUDGET: usize = 24;

@@ -111,8 +111,8 @@ fn a_replayed_flight_drives_the_camera_frame_for_frame() {
     use bevy::input::InputPlugin;
     use bevy::prelude::*;
     use bevy::time::TimeUpdateStrategy;
+    use bevy_curved_spaces::plugin::flight::FlightReplay;
     use bevy_curved_spaces::prelude::*;
-    use bevy_curved_spaces::scene::flight::FlightReplay;
     use std::time::Duration;
     const DT: f64 = 0.25;
     let space = seed_space("seifert-weber").unwrap();
@@ -160,11 +160,12 @@ fn a_replayed_flight_drives_the_camera_frame_for_frame() {
 fn a_recorded_walk_replays_to_the_same_frames() {
     use bevy::prelude::*;
     use bevy::time::TimeUpdateStrategy;
-    use bevy_curved_spaces::components::{PlayerFrame, PlayerMotion};
+    use bevy_curved_spaces::plugin::components::{PlayerFrame, PlayerMotion};
+    use bevy_curved_spaces::plugin::flight::FlightRecorder;
     use bevy_curved_spaces::prelude::{
         ActiveSpace, CurvedSpaceCamera, CurvedSpacesPlugin, Holonomy,
     };
-    use bevy_curved_spaces::scene::flight::{FlightRecorder, FlightSource};
+    use bevy_curved_spaces::scene::flight::FlightSource;
     const DT: f64 = 0.05;
     for id in ["seifert-weber", "half-turn", "mirrored-cube"] {
         let dir = crate::common::scratch_dir(&format!("record-{id}"));

@@ -4,8 +4,8 @@
 
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
-use bevy_curved_spaces::components::{Quality, TracerSettings};
-use bevy_curved_spaces::frame_rate::{
+use bevy_curved_spaces::plugin::components::{Quality, TracerSettings};
+use bevy_curved_spaces::plugin::frame_rate::{
     BudgetShare, FrameRateTarget, MIN_BUDGET_SHARE, hold_frame_rate, next_budget_share, next_scale,
     scale_range,
 };

@@ -3,10 +3,10 @@
 //! bad generator refused with the right error.
 
 use bevy_curved_spaces::geometry::{Geometry, ORIGIN};
-use bevy_curved_spaces::space::dirichlet::{DirichletOptions, dirichlet_space};
-use bevy_curved_spaces::space::group::{
-    Generators, GroupError, parse_gen, space_from_matrices, write_gen,
+use bevy_curved_spaces::space::dirichlet::{
+    DirichletOptions, dirichlet_space, space_from_matrices,
 };
+use bevy_curved_spaces::space::group::{Generators, GroupError, parse_gen, write_gen};
 use bevy_curved_spaces::space::homology::{Homology, first_homology};
 use bevy_curved_spaces::space::invariants::{circumradius, group_order, inradius, volume};
 use bevy_curved_spaces::space::library::{CENSUS, library_space, quaternion_map};
@@ -508,10 +508,10 @@ fn bad_family_parameters_are_named() {
 /// valid frame.
 #[test]
 fn a_long_walk_stays_in_the_cell() {
-    use bevy_curved_spaces::components::{PlayerMotion, PlayerSettings};
-    use bevy_curved_spaces::player::step_frame;
+    use bevy_curved_spaces::plugin::components::{PlayerMotion, PlayerSettings};
+    use bevy_curved_spaces::plugin::player::step_frame;
+    use bevy_curved_spaces::random::SplitMix64;
     use bevy_curved_spaces::space::wrap_into_cell;
-    use bevy_curved_spaces::trace::SplitMix64;
     for id in ["weeks", "lens-7-2", "lens-7-1", "projective-space"] {
         let space = library(id);
         let g = space.geometry();
@@ -631,7 +631,7 @@ fn length_spectra_agree_by_two_routes_and_with_snappy() {
 #[test]
 fn mutated_generator_files_are_refused_cleanly_or_load() {
     use crate::common::HOSTILE;
-    use bevy_curved_spaces::trace::SplitMix64;
+    use bevy_curved_spaces::random::SplitMix64;
     let mut texts: Vec<String> = CENSUS[..2]
         .iter()
         .map(|m| m.generators.to_string())

@@ -7,16 +7,17 @@
 //! ends (the budget bounds every loop). The tolerances are the precision's rounding scaled by
 //! the case's conditioning, stated next to each assertion.
 
-use bevy_curved_spaces::components::PlayerMotion;
 use bevy_curved_spaces::geometry::Ray;
 use bevy_curved_spaces::geometry::{Geometry, Vector4};
-use bevy_curved_spaces::player::step_frame;
+use bevy_curved_spaces::plugin::components::PlayerMotion;
+use bevy_curved_spaces::plugin::player::step_frame;
+use bevy_curved_spaces::random::SplitMix64;
 use bevy_curved_spaces::space::catalog::{dodecahedron_normals, dodecahedron_offset};
 use bevy_curved_spaces::space::invariants::inradius;
 use bevy_curved_spaces::space::wrap_into_cell;
 use bevy_curved_spaces::space::{CellWalker, Limit, Trace};
 use bevy_curved_spaces::space::{SEED_SPACES, Space};
-use bevy_curved_spaces::trace::{SplitMix64, sample_rays};
+use bevy_curved_spaces::trace::sample_rays;
 use glam::{DVec3, DVec4, Vec4};
 
 /// How far outside the cell a walk's points may be: `N·X/X.w` over the faces (chart

@@ -2,10 +2,10 @@
 //! translations and rotations in the room, with face crossings and holonomy.
 
 use bevy_curved_spaces::geometry::{Geometry, ORIGIN};
-use bevy_curved_spaces::headset::{HeadTracker, RoomPose, local_motion};
 use bevy_curved_spaces::space::invariants::inradius;
 use bevy_curved_spaces::space::{Space, seed_space};
 use bevy_curved_spaces::view::TraceCamera;
+use bevy_curved_spaces::view::headset::{HeadTracker, RoomPose, local_motion};
 use bevy_curved_spaces::view::stereo::{HUMAN_IPD_METRES, default_ipd, eye_frames};
 use glam::{DMat4, DQuat, DVec3};
 

@@ -16,6 +16,7 @@ mod geometry;
 mod groups;
 mod hard_cases;
 mod headset;
+mod layers;
 mod objects;
 mod player;
 mod render;

@@ -4,18 +4,19 @@
 
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
-use bevy_curved_spaces::objects::{
+use bevy_curved_spaces::plugin::objects::{
     ActiveSightlines, CurvedObject, CurvedTransform, CurvedVelocity, EntityObjects,
     ObjectCrossedFace, add_entity_objects, bevy_mesh_from_model, model_from_bevy_mesh,
 };
+use bevy_curved_spaces::plugin::render::PreparedScene;
 use bevy_curved_spaces::prelude::*;
-use bevy_curved_spaces::render::PreparedScene;
+use bevy_curved_spaces::random::SplitMix64;
 use bevy_curved_spaces::scene::Centrepiece;
 use bevy_curved_spaces::scene::TracedModel;
 use bevy_curved_spaces::scene::mesh::cube_source;
 use bevy_curved_spaces::space::invariants::{circumradius, elements_near, inradius};
 use bevy_curved_spaces::space::motion::{MOTION_STEP, Sightlines, Velocity, fly};
-use bevy_curved_spaces::trace::{SplitMix64, trace_pixel};
+use bevy_curved_spaces::trace::trace_pixel;
 use glam::{DMat4, DVec3, DVec4};
 use std::time::Duration;
 
@@ -188,7 +189,7 @@ fn a_long_flight_keeps_a_valid_frame_and_matches_fly() {
     assert_eq!(reported, holonomy.crossings);
 }
 
-fn prepared(app: &App) -> std::sync::Arc<bevy_curved_spaces::render::gpu::GpuScene> {
+fn prepared(app: &App) -> std::sync::Arc<bevy_curved_spaces::plugin::render::gpu::GpuScene> {
     app.world().resource::<PreparedScene>().0.clone()
 }
 
@@ -413,7 +414,7 @@ fn a_bevy_mesh_traces_like_our_model() {
 #[cfg(feature = "scene-files")]
 #[test]
 fn a_scene_files_moving_object_is_where_its_motion_took_it() {
-    use bevy_curved_spaces::objects::SceneMover;
+    use bevy_curved_spaces::plugin::objects::SceneMover;
     use bevy_curved_spaces::scene::file::parse_scene;
     let assets = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes");
     let text = r#"
@@ -495,7 +496,7 @@ fn a_scene_files_moving_object_is_where_its_motion_took_it() {
 fn bevy_mesh_assets_are_traced_when_loaded_and_when_changed() {
     use bevy::asset::AssetPlugin;
     use bevy::mesh::Mesh;
-    use bevy_curved_spaces::objects::ReadyShape;
+    use bevy_curved_spaces::plugin::objects::ReadyShape;
     let mut app = App::new();
     app.add_plugins((MinimalPlugins, AssetPlugin::default()))
         .init_asset::<Mesh>()

@@ -5,12 +5,12 @@ use bevy::input::InputPlugin;
 use bevy::input::mouse::MouseMotion;
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
-use bevy_curved_spaces::components::PlayerSettings;
-use bevy_curved_spaces::player::step_frame;
+use bevy_curved_spaces::plugin::components::PlayerSettings;
+use bevy_curved_spaces::plugin::player::step_frame;
 use bevy_curved_spaces::prelude::*;
+use bevy_curved_spaces::random::SplitMix64;
 use bevy_curved_spaces::space::invariants::{circumradius, inradius};
 use bevy_curved_spaces::space::wrap_into_cell;
-use bevy_curved_spaces::trace::SplitMix64;
 use glam::{DMat4, DVec3};
 use std::time::Duration;
 
@@ -128,7 +128,7 @@ fn crossing_a_seifert_weber_face_applies_exactly_its_pairing() {
     let unwrapped = step_frame(
         g,
         start,
-        &bevy_curved_spaces::components::PlayerMotion {
+        &bevy_curved_spaces::plugin::components::PlayerMotion {
             translation: DVec3::new(0.0, 0.0, -(steps as f64) * step),
             rotation: DVec3::ZERO,
         },
@@ -233,7 +233,7 @@ fn crossing_a_mirror_flips_handedness_and_the_controls_stay_natural() {
         unwrapped = step_frame(
             g,
             unwrapped,
-            &bevy_curved_spaces::components::PlayerMotion {
+            &bevy_curved_spaces::plugin::components::PlayerMotion {
                 translation: t,
                 rotation: DVec3::ZERO,
             },
@@ -242,7 +242,7 @@ fn crossing_a_mirror_flips_handedness_and_the_controls_stay_natural() {
     unwrapped = step_frame(
         g,
         unwrapped,
-        &bevy_curved_spaces::components::PlayerMotion {
+        &bevy_curved_spaces::plugin::components::PlayerMotion {
             translation: DVec3::ZERO,
             rotation: DVec3::new(0.0, -150.0 * sensitivity, 0.0),
         },
@@ -305,7 +305,7 @@ fn a_million_random_steps_keep_the_frame_orthonormal_and_inside() {
         let mut worst_outside = f64::NEG_INFINITY;
         let mut crossings = 0;
         for _ in 0..1_000_000 {
-            let motion = bevy_curved_spaces::components::PlayerMotion {
+            let motion = bevy_curved_spaces::plugin::components::PlayerMotion {
                 translation: DVec3::new(next(), next(), next()) * 0.05 * r,
                 rotation: DVec3::new(next(), next(), next()) * 0.2,
             };
@@ -337,7 +337,7 @@ fn a_million_random_steps_keep_the_frame_orthonormal_and_inside() {
 /// `TracerStatus::stereo_error` and the default is used meanwhile.
 #[test]
 fn an_unusable_eye_distance_is_reported_and_replaced_by_the_default() {
-    use bevy_curved_spaces::components::TracerStatus;
+    use bevy_curved_spaces::plugin::components::TracerStatus;
     use bevy_curved_spaces::view::stereo::default_ipd;
     let (mut app, _) = test_app("torus");
     let inradius = app.world().resource::<ActiveSpace>().inradius;

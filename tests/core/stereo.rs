@@ -6,12 +6,13 @@
 
 use crate::common::differing_fraction;
 use bevy_curved_spaces::geometry::{Geometry, ORIGIN};
+use bevy_curved_spaces::random::SplitMix64;
 use bevy_curved_spaces::scene::Centrepiece;
 use bevy_curved_spaces::scene::{Ball, CurvedScene, Object, SceneParts, Shading};
 use bevy_curved_spaces::space::CellWalker;
 use bevy_curved_spaces::space::invariants::inradius;
 use bevy_curved_spaces::space::{Space, seed_space};
-use bevy_curved_spaces::trace::{RayEnd, RenderSettings, SplitMix64, first_hit, render_view};
+use bevy_curved_spaces::trace::{RayEnd, RenderSettings, first_hit, render_view};
 use bevy_curved_spaces::view::StereoMode;
 use bevy_curved_spaces::view::stereo::{StereoError, check_ipd, eye_frames, offset_eye};
 use bevy_curved_spaces::view::{Lens, PixelRays, ViewKind, ViewLayout};

@@ -4,11 +4,12 @@
 //! share a colour and a margin; the veil blends what the walls add.
 
 use bevy_curved_spaces::geometry::Geometry;
+use bevy_curved_spaces::random::SplitMix64;
 use bevy_curved_spaces::scene::Centrepiece;
 use bevy_curved_spaces::scene::walls::MIRROR_COLOUR;
 use bevy_curved_spaces::scene::{CurvedScene, SceneParts, Shading, WallPanels, WallStyle};
 use bevy_curved_spaces::space::{CellWalker, SEED_SPACES, Space};
-use bevy_curved_spaces::trace::{RayEnd, SplitMix64, first_hit_walled, sample_rays};
+use bevy_curved_spaces::trace::{RayEnd, first_hit_walled, sample_rays};
 use glam::{DVec3, DVec4};
 
 /// The distance from the model point `x` to the geodesic line through the vertex points `a`
@@ -231,8 +232,8 @@ fn the_veil_holds_what_each_wall_crossed_adds_and_stops_when_little_gets_through
 /// scene file's), and an opening of 1 turns either off.
 #[test]
 fn the_plugin_shows_the_settings_walls_else_the_base_scenes() {
-    use bevy_curved_spaces::components::TracerSettings;
-    use bevy_curved_spaces::render::upload::build_scene;
+    use bevy_curved_spaces::plugin::components::TracerSettings;
+    use bevy_curved_spaces::plugin::render::upload::build_scene;
     let space = bevy_curved_spaces::space::seed_space("poincare").unwrap();
     let mut base = CurvedScene::with_parts(
         &space,

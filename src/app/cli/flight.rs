@@ -1,0 +1,201 @@
+//! `flight`: a flight file's frames rendered to PNG files (and a video where ffmpeg is
+//! installed), resumable and sliceable across machines.
+
+use super::FlightArgs;
+use super::render::{Chosen, choose_scene};
+use bevy::prelude::*;
+use bevy_curved_spaces::plugin::components::{AUTO_BUDGET_SAMPLES, ActiveSpace, Quality};
+use bevy_curved_spaces::plugin::offscreen::{OffscreenRender, OffscreenRenderer};
+use bevy_curved_spaces::plugin::render::gpu::MAX_GPU_BUDGET;
+use bevy_curved_spaces::scene::flight::{Flight, load_flight_file};
+use bevy_curved_spaces::trace::{RenderSettings, auto_budget, render_view};
+use bevy_curved_spaces::view::{TraceCamera, ViewLayout};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::Instant;
+
+/// `A..B` (1-based, inclusive) into a range of frame numbers.
+pub(super) fn parse_frames(s: &str) -> Result<(usize, usize), String> {
+    let err = || format!("expected frames A..B like 1..30 (1 ≤ A ≤ B), got `{s}`");
+    let (a, b) = s.split_once("..").ok_or_else(err)?;
+    let a: usize = a.trim().parse().map_err(|_| err())?;
+    let b: usize = b.trim().parse().map_err(|_| err())?;
+    if a == 0 || b < a {
+        return Err(err());
+    }
+    Ok((a, b))
+}
+
+/// The file of frame `n` (1-based) in `dir`.
+#[must_use]
+pub(super) fn frame_path(dir: &Path, n: usize) -> PathBuf {
+    dir.join(format!("frame-{n:05}.png"))
+}
+
+pub(super) fn flight(args: &FlightArgs) -> Result<(), String> {
+    let name = args.file.display().to_string();
+    let file = load_flight_file(&args.file)?;
+    let base = args.file.parent().unwrap_or(Path::new(""));
+    let chosen: Chosen = match (&file.scene, &file.space) {
+        (Some(scene), _) => choose_scene("", Some(&base.join(scene)), None)?,
+        (None, Some(space)) => choose_scene(space, None, None)?,
+        (None, None) => unreachable!("parse_flight requires a space or a scene"),
+    };
+    let space = &chosen.space;
+    let flight = Flight::new(space, &file).map_err(|e| format!("{name}: {e}"))?;
+    let total = flight.frame_count(args.fps);
+    let (first, last) = match args.frames {
+        Some((a, b)) if a > total => {
+            return Err(format!(
+                "--frames {a}..{b}: the flight has {total} frames at {} fps",
+                args.fps
+            ));
+        }
+        Some((a, b)) => (a, b.min(total)),
+        None => (1, total),
+    };
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| format!("cannot create folder {}: {e}", args.out.display()))?;
+    let budget = match args.crossings {
+        Some(n) => n,
+        None => {
+            let choice = auto_budget(
+                space,
+                &chosen.scene,
+                Quality::High.miss_fraction(),
+                AUTO_BUDGET_SAMPLES,
+            );
+            choice.budget as usize
+        }
+    };
+    if !args.cpu && !(1..=MAX_GPU_BUDGET as usize).contains(&budget) {
+        return Err(format!(
+            "the GPU tracer takes a crossing budget from 1 to {MAX_GPU_BUDGET}, got {budget} (use --cpu for more)"
+        ));
+    }
+    say!(
+        "flight {name}: {} ({}), {total} frames at {} fps ({:.2} s), frames {first}..{last} at {}×{} by the {} tracer, ≤ {budget} crossings, into {}",
+        chosen.id,
+        space.geometry().name(),
+        args.fps,
+        flight.duration(),
+        args.size.0,
+        args.size.1,
+        if args.cpu { "f64 CPU" } else { "GPU" },
+        args.out.display()
+    );
+    let mut renderer = if args.cpu {
+        None
+    } else {
+        Some(OffscreenRenderer::new().map_err(|e| e.to_string())?)
+    };
+    let todo: Vec<usize> = (first..=last)
+        .filter(|&n| !frame_path(&args.out, n).exists())
+        .collect();
+    if todo.len() < last + 1 - first {
+        say!(
+            "{} of the frames are rendered already; rendering the other {}",
+            last + 1 - first - todo.len(),
+            todo.len()
+        );
+    }
+    let progress = indicatif::ProgressBar::new(todo.len() as u64);
+    progress.set_style(
+        indicatif::ProgressStyle::with_template(
+            "{bar:30} {pos}/{len} frames ({elapsed} elapsed, eta {eta}) {msg}",
+        )
+        .map_err(|e| e.to_string())?,
+    );
+    // One active space for every frame: its invariants are computed once.
+    let active = ActiveSpace::new(&chosen.id, space.clone());
+    let walls = args.walls.style(chosen.scene.shading.walls)?;
+    let started = Instant::now();
+    for &n in &todo {
+        let t = (n - 1) as f64 / args.fps;
+        let frame = flight.frame(space, t);
+        let camera = TraceCamera {
+            frame,
+            fov_y_degrees: flight.fov,
+        };
+        // Moving objects where they are at the frame's time.
+        let at = chosen.at(t).map_err(|e| format!("frame {n}: {e}"))?;
+        let mut scene = at.scene.clone();
+        scene.time = t;
+        scene.shading.colour_by = args.colour_by.into();
+        scene.shading.walls = walls;
+        scene.set_avatar_frame(space, frame);
+        let image = match renderer.as_mut() {
+            None => {
+                let settings = RenderSettings {
+                    width: args.size.0,
+                    height: args.size.1,
+                    max_crossings: budget,
+                };
+                let layout = ViewLayout::new(
+                    Default::default(),
+                    false,
+                    [frame; 2],
+                    flight.fov,
+                    settings.width,
+                    settings.height,
+                );
+                render_view(space, &scene, &layout, &settings, |_, _| {})
+            }
+            Some(r) => r
+                .render(&OffscreenRender {
+                    fog_distance: Some(chosen.scene.shading.fog_distance),
+                    parts: chosen.parts,
+                    base: at.base.clone(),
+                    time: t,
+                    colour_by: args.colour_by.into(),
+                    walls,
+                    ..OffscreenRender::new(active.clone(), camera, args.size, budget as u32)
+                })
+                .map_err(|e| format!("frame {n}: {e}"))?,
+        };
+        let path = frame_path(&args.out, n);
+        bevy_curved_spaces::files::write_png(&path, &image)
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        progress.inc(1);
+    }
+    progress.finish_and_clear();
+    say!(
+        "rendered {} frames in {:.1} s into {}",
+        todo.len(),
+        started.elapsed().as_secs_f64(),
+        args.out.display()
+    );
+    if (first, last) == (1, total) {
+        encode_video(&args.out, args.fps);
+    } else {
+        say!(
+            "frames {first}..{last} of {total}: the video is made when all are rendered (run without --frames, or ffmpeg by hand)"
+        );
+    }
+    Ok(())
+}
+
+/// `DIR/flight.mp4` from the frames, where ffmpeg is installed (else a note how).
+fn encode_video(dir: &Path, fps: f64) {
+    let video = dir.join("flight.mp4");
+    let status = Command::new("ffmpeg")
+        .args(["-y", "-loglevel", "error", "-framerate"])
+        .arg(format!("{fps}"))
+        .arg("-i")
+        .arg(dir.join("frame-%05d.png"))
+        .args([
+            "-vf",
+            "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+            "-pix_fmt",
+            "yuv420p",
+        ])
+        .arg(&video)
+        .status();
+    match status {
+        Ok(s) if s.success() => say!("wrote {}", video.display()),
+        Ok(s) => say!("ffmpeg failed ({s}); the PNG frames are the result"),
+        Err(_) => {
+            say!("ffmpeg is not installed (apt-get install ffmpeg): the PNG frames are the result")
+        }
+    }
+}

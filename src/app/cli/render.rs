@@ -1,0 +1,314 @@
+//! `render`: one picture of a space's default scene or a scene file, through the GPU tracer
+//! offscreen or the f64 CPU reference. Both renderers take the same view: camera, budget,
+//! stereo eyes and scene are decided once here, then handed to the one asked for.
+
+use super::{DEFAULT_FOV, RenderArgs, resolve_space};
+use bevy_curved_spaces::plugin::components::StereoSettings;
+use bevy_curved_spaces::plugin::components::{
+    AUTO_BUDGET_SAMPLES, ActiveSpace, BaseScene, Quality,
+};
+use bevy_curved_spaces::plugin::offscreen::{OffscreenRender, render_offscreen};
+use bevy_curved_spaces::plugin::render::gpu::MAX_GPU_BUDGET;
+use bevy_curved_spaces::scene::file::load_scene_file;
+use bevy_curved_spaces::scene::{CurvedScene, SceneParts, Shading};
+use bevy_curved_spaces::space::Space;
+use bevy_curved_spaces::space::invariants::inradius;
+use bevy_curved_spaces::trace::{RenderSettings, auto_budget, render_view};
+use bevy_curved_spaces::view::stereo::eye_frames;
+use bevy_curved_spaces::view::{TraceCamera, ViewLayout};
+use glam::DMat4;
+use image::RgbImage;
+use std::io::IsTerminal;
+use std::path::Path;
+use std::time::Instant;
+
+/// A scene file's space, scene and start view, or the named space's default scene.
+pub(super) struct Chosen {
+    pub(super) id: String,
+    pub(super) space: Space,
+    /// The whole scene (the CPU renders it).
+    pub(super) scene: CurvedScene,
+    /// What the plugin is given: a scene file's base scene, parts and start view (empty for
+    /// the default scene).
+    pub(super) base: BaseScene,
+    pub(super) parts: SceneParts,
+}
+
+impl Chosen {
+    /// The scene with other default parts (rebuilt from the base scene or the space).
+    pub(super) fn with_parts(mut self, parts: SceneParts) -> Chosen {
+        self.parts = parts;
+        self.base.parts = self.base.parts.map(|_| parts);
+        let fog = self.scene.shading.fog_distance;
+        self.scene = match &self.base.scene {
+            Some(base) => base.adding_parts(&self.space, parts),
+            None => CurvedScene::with_parts(&self.space, fog, parts),
+        };
+        self
+    }
+
+    /// The scene with its moving objects where they are at `time` seconds (unchanged
+    /// without any).
+    pub(super) fn at(&self, time: f64) -> Result<Chosen, String> {
+        let base = self
+            .base
+            .at_time(&self.space, time)
+            .map_err(|e| format!("at time {time} s: {e}"))?;
+        let scene = match (&base.scene, self.base.moving.is_empty()) {
+            (Some(b), false) => b.adding_parts(&self.space, self.parts),
+            _ => self.scene.clone(),
+        };
+        Ok(Chosen {
+            id: self.id.clone(),
+            space: self.space.clone(),
+            scene,
+            base,
+            parts: self.parts,
+        })
+    }
+}
+
+pub(super) fn choose_scene(
+    space_arg: &str,
+    scene: Option<&Path>,
+    fog: Option<f64>,
+) -> Result<Chosen, String> {
+    match scene {
+        Some(path) => {
+            let mut file = load_scene_file(path).map_err(|e| e.to_string())?;
+            if let Some(fog) = fog {
+                file.base.shading.fog_distance = fog;
+            }
+            Ok(Chosen {
+                id: file.space_id.clone(),
+                scene: file.scene(),
+                base: BaseScene::from_file(&file),
+                parts: file.parts,
+                space: file.space,
+            })
+        }
+        None => {
+            let space = resolve_space(space_arg)?;
+            let fog = fog.unwrap_or_else(|| Shading::default_fog_distance(&space));
+            Ok(Chosen {
+                id: space_arg.to_string(),
+                scene: CurvedScene::default_for(&space, fog),
+                space,
+                base: BaseScene::default(),
+                parts: SceneParts::default(),
+            })
+        }
+    }
+}
+
+/// The view both renderers take: camera, eyes, budget, stereo settings and the scene at
+/// the requested time with the avatar at the camera.
+struct View {
+    camera: TraceCamera,
+    eyes: [DMat4; 2],
+    stereo: StereoSettings,
+    settings: RenderSettings,
+    scene: CurvedScene,
+}
+
+pub(super) fn render_command(args: &RenderArgs) -> Result<(), String> {
+    let mut chosen = choose_scene(&args.space, args.scene.as_deref(), args.fog)?.at(args.time)?;
+    if args.view.changes_parts() {
+        let parts = args.view.parts(chosen.parts);
+        chosen = chosen.with_parts(parts);
+    }
+    let view = view(args, &chosen)?;
+    let started = Instant::now();
+    let image = if args.cpu {
+        render_cpu(&chosen.space, &view)
+    } else {
+        render_gpu(args, &chosen, &view)?
+    };
+    save(&image, &args.out)?;
+    let shown = std::fs::canonicalize(&args.out).unwrap_or_else(|_| args.out.clone());
+    say!(
+        "wrote {} ({}×{}, {:.2} s)",
+        shown.display(),
+        view.settings.width,
+        view.settings.height,
+        started.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+/// Decides the view from the arguments and the chosen scene.
+fn view(args: &RenderArgs, chosen: &Chosen) -> Result<View, String> {
+    let space = &chosen.space;
+    let mut scene = chosen.scene.clone();
+    scene.time = args.time;
+    scene.shading.colour_by = args.view.colour_by.into();
+    scene.shading.walls = args.view.walls.style(scene.shading.walls)?;
+    let camera = camera(args, chosen)?;
+    scene.set_avatar_frame(space, camera.frame);
+    let max_crossings = match args.crossings {
+        Some(n) => n,
+        None => {
+            let choice = auto_budget(
+                space,
+                &scene,
+                Quality::High.miss_fraction(),
+                AUTO_BUDGET_SAMPLES,
+            );
+            eprintln!(
+                "automatic crossing budget: {} (the most any of {} sampled rays needs to reach an object before the fog cut-off)",
+                choice.budget, choice.samples
+            );
+            choice.budget as usize
+        }
+    };
+    let stereo = args.stereo.settings(space)?;
+    Ok(View {
+        eyes: eyes(space, &stereo, camera.frame),
+        camera,
+        stereo,
+        settings: RenderSettings {
+            width: args.size.0,
+            height: args.size.1,
+            max_crossings,
+        },
+        scene,
+    })
+}
+
+/// The camera from `--eye`/`--look-at`, else the scene's start view, else the space's
+/// default view.
+fn camera(args: &RenderArgs, chosen: &Chosen) -> Result<TraceCamera, String> {
+    let space = &chosen.space;
+    // `--fov`, else the scene file's, else the default.
+    let fov = args.fov.or(chosen.base.fov).unwrap_or(DEFAULT_FOV);
+    let (Some(eye), Some(target)) = (args.eye, args.look_at) else {
+        return Ok(TraceCamera {
+            fov_y_degrees: fov,
+            frame: chosen
+                .base
+                .start
+                .unwrap_or_else(|| TraceCamera::default_for(space).frame),
+        });
+    };
+    let probe = space
+        .geometry()
+        .from_chart(eye)
+        .map_err(|e| e.to_string())?;
+    if space.outside_by(probe) > 1e-12 {
+        return Err(format!(
+            "camera position {:?} is outside the cell of {}",
+            eye.to_array(),
+            space.name()
+        ));
+    }
+    TraceCamera::looking_at(space.geometry(), eye, target, fov).map_err(|e| e.to_string())
+}
+
+/// The eyes' frames (both the camera's in mono), saying where an eye was wrapped.
+fn eyes(space: &Space, stereo: &StereoSettings, head: DMat4) -> [DMat4; 2] {
+    if !stereo.mode.is_stereo() {
+        return [head; 2];
+    }
+    let inradius = inradius(space);
+    let ipd = stereo.ipd_for(inradius);
+    let eyes = eye_frames(space, head, ipd);
+    let wrapped: Vec<String> = eyes
+        .iter()
+        .zip(["left", "right"])
+        .filter(|(e, _)| !e.crossed.is_empty())
+        .map(|(e, name)| format!("the {name} eye is wrapped through face(s) {:?}", e.crossed))
+        .collect();
+    eprintln!(
+        "stereo {}: eyes {ipd:.4} apart (the inradius feels like {:.2} m){}",
+        stereo.mode,
+        inradius / stereo.units_per_metre(inradius),
+        if wrapped.is_empty() {
+            String::new()
+        } else {
+            format!("; {}", wrapped.join(", "))
+        }
+    );
+    eyes.map(|e| e.frame)
+}
+
+/// The f64 CPU reference, with a percentage on a terminal (nothing in logs).
+fn render_cpu(space: &Space, view: &View) -> RgbImage {
+    let settings = &view.settings;
+    eprintln!(
+        "rendering {} ({}) at {}×{} with the f64 CPU reference on {} threads (fog λ = {:.3}, ≤ {} crossings)…",
+        space.name(),
+        space.geometry().name(),
+        settings.width,
+        settings.height,
+        rayon::current_num_threads(),
+        view.scene.shading.fog_distance,
+        settings.max_crossings
+    );
+    let tty = std::io::stderr().is_terminal();
+    let layout = ViewLayout::new(
+        view.stereo.mode,
+        view.stereo.swap_eyes,
+        view.eyes,
+        view.camera.fov_y_degrees,
+        settings.width,
+        settings.height,
+    );
+    render_view(space, &view.scene, &layout, settings, |done, rows| {
+        if tty && (done * 20 / rows != (done - 1) * 20 / rows || done == rows) {
+            eprint!("\r{:>3} %", done * 100 / rows);
+            if done == rows {
+                eprintln!();
+            }
+        }
+    })
+}
+
+/// The GPU tracer through the plugin, offscreen.
+fn render_gpu(args: &RenderArgs, chosen: &Chosen, view: &View) -> Result<RgbImage, String> {
+    let settings = &view.settings;
+    let space = &chosen.space;
+    let fog = view.scene.shading.fog_distance;
+    eprintln!(
+        "rendering {} ({}) at {}×{} with the GPU tracer (fog λ = {fog:.3}, ≤ {} crossings)…",
+        space.name(),
+        space.geometry().name(),
+        settings.width,
+        settings.height,
+        settings.max_crossings
+    );
+    let max_crossings = u32::try_from(settings.max_crossings)
+        .ok()
+        .filter(|&n| (1..=MAX_GPU_BUDGET).contains(&n))
+        .ok_or_else(|| {
+            format!(
+                "the GPU tracer takes a crossing budget from 1 to {MAX_GPU_BUDGET}, got {} (use --cpu for more)",
+                settings.max_crossings
+            )
+        })?;
+    render_offscreen(&OffscreenRender {
+        fog_distance: Some(fog),
+        parts: chosen.parts,
+        base: chosen.base.clone(),
+        time: args.time,
+        stereo: view.stereo,
+        colour_by: args.view.colour_by.into(),
+        walls: view.scene.shading.walls,
+        ..OffscreenRender::new(
+            ActiveSpace::new(&chosen.id, space.clone()),
+            view.camera,
+            args.size,
+            max_crossings,
+        )
+    })
+    .map_err(|e| e.to_string())
+}
+
+/// Writes the picture, creating its folder.
+fn save(image: &RgbImage, out: &Path) -> Result<(), String> {
+    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir)
+            .map_err(|e| format!("cannot create folder {}: {e}", dir.display()))?;
+    }
+    bevy_curved_spaces::files::write_png(out, image)
+        .map_err(|e| format!("cannot write {}: {e}", out.display()))
+}

@@ -1,0 +1,280 @@
+//! `walk`: the app in a window (or a headset), or an offscreen picture where there is no
+//! display.
+
+#[cfg(feature = "xr")]
+use super::render::Chosen;
+use super::render::{choose_scene, render_command};
+use super::*;
+use bevy::prelude::*;
+use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
+use bevy_curved_spaces::plugin::components::StereoSettings;
+use bevy_curved_spaces::plugin::flight::FlightReplay;
+use bevy_curved_spaces::plugin::offscreen::gpu_available;
+use bevy_curved_spaces::plugin::render::FramesTraced;
+use bevy_curved_spaces::scene::flight::{Flight, load_flight_file};
+use bevy_curved_spaces::view::StereoMode;
+use bevy_curved_spaces::{ActiveSpace, CurvedSpaceCamera, CurvedSpacesPlugin};
+use std::path::{Path, PathBuf};
+
+/// `walk --screenshot`: where to save, and whether it was requested.
+#[derive(Resource)]
+pub(super) struct ScreenshotThenExit {
+    path: PathBuf,
+    requested: bool,
+}
+
+/// Frames the tracer draws before `--screenshot` captures (the window has settled).
+pub(super) const SCREENSHOT_AFTER_FRAMES: u64 = 10;
+
+pub(super) fn screenshot_then_exit(
+    frames: Res<FramesTraced>,
+    mut shot: ResMut<ScreenshotThenExit>,
+    mut commands: Commands,
+) {
+    if shot.requested || frames.get() < SCREENSHOT_AFTER_FRAMES {
+        return;
+    }
+    shot.requested = true;
+    let path = shot.path.clone();
+    commands.spawn(Screenshot::primary_window()).observe(
+        move |captured: On<ScreenshotCaptured>, mut exit: MessageWriter<AppExit>| {
+            match bevy_curved_spaces::plugin::screenshot::save_screenshot(&captured.image, &path) {
+                Ok(()) => {
+                    let shown = std::fs::canonicalize(&path).unwrap_or_else(|_| path.clone());
+                    say!("wrote {}", shown.display());
+                    exit.write(AppExit::Success);
+                }
+                Err(e) => {
+                    eprintln!("error: cannot write {}: {e}", path.display());
+                    exit.write(AppExit::error());
+                }
+            }
+        },
+    );
+}
+
+/// Whether a window can be opened (an X11 or Wayland display is named).
+pub(super) fn display_available() -> bool {
+    ["DISPLAY", "WAYLAND_DISPLAY"]
+        .iter()
+        .any(|v| std::env::var_os(v).is_some_and(|x| !x.is_empty()))
+}
+
+/// The stereo mode shown instead of a headset: the one asked for, side by side if none.
+pub(super) fn desktop_stereo(asked: StereoMode) -> StereoMode {
+    if asked.is_stereo() {
+        asked
+    } else {
+        StereoMode::SideBySide
+    }
+}
+
+/// Whether a headset can be used: an OpenXR loader and runtime, in a build with `xr`.
+pub(super) fn xr_runtime() -> Result<(), String> {
+    #[cfg(feature = "xr")]
+    {
+        bevy_curved_spaces::plugin::xr::probe_runtime().map_err(|e| e.to_string())
+    }
+    #[cfg(not(feature = "xr"))]
+    {
+        Err("this build has no OpenXR support (build it with `cargo build --release --features xr`)".into())
+    }
+}
+
+pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
+    // A replayed flight names its own space or scene.
+    let replay = match &args.replay {
+        Some(path) => Some(load_flight_file(path)?),
+        None => None,
+    };
+    let mut args_for_flight;
+    let args = match &replay {
+        Some(file) => {
+            args_for_flight = args.clone();
+            let base = args
+                .replay
+                .as_deref()
+                .and_then(Path::parent)
+                .unwrap_or(Path::new(""));
+            args_for_flight.scene = file.scene.as_ref().map(|s| base.join(s));
+            if let Some(space) = &file.space {
+                args_for_flight.space = space.clone();
+            }
+            &args_for_flight
+        }
+        None => args,
+    };
+    let chosen = choose_scene(&args.space, args.scene.as_deref(), args.fog)?;
+    let flight = match &replay {
+        Some(file) => Some(Flight::new(&chosen.space, file)?),
+        None => None,
+    };
+    let space = chosen.space.clone();
+    let mut stereo_args = args.stereo;
+    if args.xr {
+        match xr_runtime() {
+            #[cfg(feature = "xr")]
+            Ok(()) if display_available() => return walk_xr(args, &chosen),
+            Ok(()) => {
+                eprintln!("an OpenXR runtime was found, but no display to open the app's window on")
+            }
+            Err(e) => eprintln!("{e}"),
+        }
+        stereo_args.stereo = desktop_stereo(stereo_args.stereo);
+        eprintln!(
+            "falling back to desktop stereo: {} (choose another with --stereo)",
+            stereo_args.stereo.label()
+        );
+    }
+    if !display_available() {
+        eprintln!(
+            "no display found (DISPLAY and WAYLAND_DISPLAY are unset): rendering {} offscreen to curved-spaces.png instead",
+            args.space
+        );
+        let mut render = RenderArgs::of(&args.space);
+        render.fog = args.fog;
+        render.scene = args.scene.clone();
+        render.stereo = stereo_args;
+        render.view = args.view;
+        if !gpu_available() {
+            eprintln!("no GPU adapter found: using the CPU reference renderer");
+            render.cpu = true;
+        }
+        return render_command(&render);
+    }
+    let stereo = stereo_args.settings(&space)?;
+    let walls = args.view.walls.style(chosen.scene.shading.walls)?;
+    let active = ActiveSpace::new(&chosen.id, space);
+    eprintln!(
+        "walking in {}: click to look around, WASD to move, Esc releases the mouse, F1 the panel",
+        active.space.name()
+    );
+    let mut app = App::new();
+    app.add_plugins(DefaultPlugins.set(window_titled(format!(
+        "curved spaces: {}",
+        active.space.name()
+    ))));
+    app.insert_resource(chosen.base.clone());
+    add_walk_plugins(&mut app, args, active, stereo, walls).add_systems(
+        Startup,
+        |mut commands: Commands| {
+            commands.spawn((Camera3d::default(), CurvedSpaceCamera::default()));
+        },
+    );
+    if let Some(flight) = flight {
+        eprintln!("replaying the flight ({:.1} s, looping)", flight.duration());
+        app.insert_resource(FlightReplay::new(flight, true));
+    }
+    {
+        let mut settings = app
+            .world_mut()
+            .resource_mut::<bevy_curved_spaces::plugin::components::TracerSettings>();
+        settings.parts = args.view.parts(settings.parts);
+    }
+    if let Some(path) = &args.record {
+        use bevy_curved_spaces::plugin::flight::FlightRecorder;
+        use bevy_curved_spaces::scene::flight::FlightSource;
+        let source = match &args.scene {
+            Some(scene) => FlightSource::Scene(
+                std::fs::canonicalize(scene)
+                    .unwrap_or_else(|_| scene.clone())
+                    .display()
+                    .to_string(),
+            ),
+            None => FlightSource::Space(args.space.clone()),
+        };
+        // Fail now, not after the walk, where the file cannot be written.
+        bevy_curved_spaces::files::write_atomic(path, b"")
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        eprintln!(
+            "recording the walk to {} (a key every {} s; replay it with walk --replay)",
+            path.display(),
+            args.record_interval
+        );
+        app.insert_resource(FlightRecorder::new(
+            path.clone(),
+            source,
+            args.record_interval,
+        ));
+    }
+    if let Some(path) = &args.screenshot {
+        app.insert_resource(ScreenshotThenExit {
+            path: path.clone(),
+            requested: false,
+        })
+        .add_systems(Update, screenshot_then_exit);
+    }
+    exit_result(app.run())
+}
+
+/// The window of `walk`.
+pub(super) fn window_titled(title: String) -> WindowPlugin {
+    WindowPlugin {
+        primary_window: Some(Window { title, ..default() }),
+        ..default()
+    }
+}
+
+/// The space, the plugin with `walk`'s options and the panel's visibility.
+pub(super) fn add_walk_plugins<'a>(
+    app: &'a mut App,
+    args: &WalkArgs,
+    active: ActiveSpace,
+    stereo: StereoSettings,
+    walls: Option<bevy_curved_spaces::scene::WallStyle>,
+) -> &'a mut App {
+    app.insert_resource(active)
+        .add_plugins(CurvedSpacesPlugin {
+            fog_distance: args.fog,
+            max_crossings: args.crossings,
+            quality: args.quality.into(),
+            ui: true,
+            stereo,
+            avatar: !args.no_avatar,
+            // A screenshot shows the quality's resolution, not one chosen by timing.
+            target_fps: (args.screenshot.is_none() && args.fps > 0.0).then_some(args.fps),
+            colour_by: args.view.colour_by.into(),
+            walls,
+            ..default()
+        })
+        .insert_resource(bevy_curved_spaces::plugin::ui::PanelVisible(!args.no_ui))
+}
+
+pub(super) fn exit_result(exit: AppExit) -> Result<(), String> {
+    match exit {
+        AppExit::Success => Ok(()),
+        AppExit::Error(code) => Err(format!("the app stopped with error code {code}")),
+    }
+}
+
+/// `walk --xr` with a runtime: the headset's views are traced, the window mirrors the head.
+#[cfg(feature = "xr")]
+pub(super) fn walk_xr(args: &WalkArgs, chosen: &Chosen) -> Result<(), String> {
+    use bevy_curved_spaces::plugin::xr::{CurvedSpacesXrPlugin, add_xr_plugins, xr_available};
+    let stereo = args.stereo.settings(&chosen.space)?;
+    let walls = args.view.walls.style(chosen.scene.shading.walls)?;
+    let active = ActiveSpace::new(&chosen.id, chosen.space.clone());
+    eprintln!(
+        "walking in {} with a headset: left thumbstick walks, right thumbstick turns; the window mirrors the head",
+        active.space.name()
+    );
+    let mut app = App::new();
+    app.add_plugins(add_xr_plugins(DefaultPlugins).set(window_titled(format!(
+        "curved spaces (XR mirror): {}",
+        active.space.name()
+    ))));
+    add_walk_plugins(&mut app, args, active, stereo, walls);
+    if xr_available(app.world()) {
+        app.add_plugins(CurvedSpacesXrPlugin::default());
+    } else {
+        eprintln!(
+            "the OpenXR runtime did not start a session: falling back to desktop stereo in the window"
+        );
+        let mut settings = app.world_mut().resource_mut::<StereoSettings>();
+        settings.mode = desktop_stereo(settings.mode);
+        app.add_systems(Startup, |mut commands: Commands| {
+            commands.spawn((Camera3d::default(), CurvedSpaceCamera::default()));
+        });
+    }
+    exit_result(app.run())
+}

@@ -1,0 +1,432 @@
+//! The ECS state the plugin shares: the components on curved-space cameras and the
+//! resources that configure and report on the tracer. Everything Bevy-facing that more than
+//! one of the player, render and UI systems reads lives here, so those modules depend on this
+//! one and not on each other.
+
+use crate::scene::{CurvedScene, Object, SceneParts, Shading};
+use crate::space::{Holonomy, Space, SpaceError, invariants, seed_space};
+use crate::trace::BudgetChoice;
+use crate::view::stereo::{HUMAN_IPD_METRES, StereoMode, check_ipd, default_ipd};
+use crate::view::{Lens, TraceCamera};
+use bevy::ecs::component::{Mutable, StorageType};
+use bevy::prelude::*;
+use glam::{DMat4, DVec3};
+use std::sync::Arc;
+
+/// Speed against accuracy presets: how many rays the automatic crossing budget may leave
+/// short (shown as fog instead of a far object) and the fraction of the window's resolution
+/// that is traced.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Quality {
+    /// Budget short for at most 2 % of rays, half resolution.
+    Low,
+    /// Budget short for at most 0.5 % of rays, three quarters of the resolution.
+    #[default]
+    Medium,
+    /// Budget enough for every sampled ray, full resolution.
+    High,
+}
+
+impl Quality {
+    /// The fraction of sampled rays the automatic budget may leave short. Such a ray shows
+    /// the fog colour instead of an object seen at distance `d`, an error of at most its fog
+    /// weight `e^(−d/λ)`.
+    #[must_use]
+    pub fn miss_fraction(self) -> f64 {
+        match self {
+            Quality::Low => 0.02,
+            Quality::Medium => 0.005,
+            Quality::High => 0.0,
+        }
+    }
+
+    /// The fraction of sampled rays the crossing budget may leave short at the least, when
+    /// a frame-rate target lowers it ([`crate::plugin::frame_rate::BudgetShare`]) after the
+    /// resolution scale reached its floor: the next lower quality's fraction (5 % for
+    /// `Low`).
+    #[must_use]
+    pub fn floor_miss_fraction(self) -> f64 {
+        match self {
+            Quality::Low => 0.05,
+            Quality::Medium => Quality::Low.miss_fraction(),
+            Quality::High => Quality::Medium.miss_fraction(),
+        }
+    }
+
+    /// The fraction of the view's resolution that is traced.
+    #[must_use]
+    pub fn resolution_scale(self) -> f32 {
+        match self {
+            Quality::Low => 0.5,
+            Quality::Medium => 0.75,
+            Quality::High => 1.0,
+        }
+    }
+
+    /// Every preset, lowest first.
+    pub const ALL: [Quality; 3] = [Quality::Low, Quality::Medium, Quality::High];
+}
+
+/// Rays sampled to choose the automatic crossing budget (a few ms to 0.1 s of CPU time when
+/// the space, the fog or the scene changes).
+pub const AUTO_BUDGET_SAMPLES: usize = 2048;
+
+/// Our systems, in the order they run in `Update`; order your own around them.
+#[derive(SystemSet, Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum CurvedSpacesSystems {
+    /// Keys, mouse and scroll become each player's [`PlayerMotion`].
+    Input,
+    /// Motions are applied to the frames (and a space switch resets them).
+    Move,
+    /// Frames that left the cell are wrapped through faces ([`Holonomy`]).
+    Wrap,
+    /// The space and scene are packed for the GPU when they changed.
+    Upload,
+}
+
+/// A camera that shows the curved space: add it to an ordinary `Camera3d`.
+///
+/// Its position and orientation in the space are its [`PlayerFrame`]; the camera's
+/// `Transform` is not used.
+#[derive(Component, Clone, Copy, Debug, PartialEq)]
+#[require(PlayerFrame, Holonomy, PlayerMotion)]
+pub struct CurvedSpaceCamera {
+    /// Vertical field of view in degrees.
+    pub fov_y_degrees: f64,
+}
+
+impl Default for CurvedSpaceCamera {
+    fn default() -> Self {
+        Self {
+            fov_y_degrees: 70.0,
+        }
+    }
+}
+
+/// The space every curved-space camera shows. Replace it (or use [`ActiveSpace::seed`]) to
+/// switch spaces at run time: the players are put back at the space's start view.
+#[derive(Resource, Clone, Debug)]
+pub struct ActiveSpace {
+    /// The seed id or the file the space came from.
+    pub id: String,
+    /// The validated space.
+    pub space: Arc<Space>,
+    /// Its volume.
+    pub volume: f64,
+    /// Its cell's inradius (the default fog and eye distance scale with it).
+    pub inradius: f64,
+    /// `None` where the group was too large to enumerate.
+    pub injectivity_radius: Option<f64>,
+}
+
+impl ActiveSpace {
+    /// A space with its read-outs computed.
+    #[must_use]
+    pub fn new(id: impl Into<String>, space: Space) -> Self {
+        Self {
+            id: id.into(),
+            volume: invariants::volume(&space),
+            inradius: invariants::inradius(&space),
+            injectivity_radius: invariants::injectivity_radius(&space),
+            space: Arc::new(space),
+        }
+    }
+
+    /// One of the seed spaces by id.
+    pub fn seed(id: &str) -> Result<Self, SpaceError> {
+        Ok(Self::new(id, seed_space(id)?))
+    }
+
+    /// A space by name, as the command line takes it: a seed space, a library family member
+    /// (`lens-7-2`, `weeks`) or a path to a space file (`.gen` or JSON). Slow for spaces from
+    /// large groups (a census manifold takes a fraction of a second in a release build).
+    pub fn named(id: &str) -> Result<Self, String> {
+        let space = crate::space::resolve_space(
+            id,
+            std::path::Path::new(""),
+            &crate::space::dirichlet::DirichletOptions::default(),
+        )?;
+        Ok(Self::new(id, space))
+    }
+}
+
+/// The tracer's knobs, changeable at run time.
+#[derive(Resource, Clone, Copy, Debug, PartialEq)]
+pub struct TracerSettings {
+    /// Fog distance scale λ; `None` for the space's default.
+    pub fog_distance: Option<f64>,
+    /// Crossing budget per ray; `None` for the automatic budget of `quality`.
+    pub max_crossings: Option<u32>,
+    /// What the automatic budget aims for.
+    pub quality: Quality,
+    /// Fraction of the view's resolution that is traced (then scaled up), in (0, 1].
+    pub resolution_scale: f32,
+    /// Which parts of the default scene show (edges, centre ball, your ship).
+    pub parts: SceneParts,
+    /// The scene's clock in seconds (spinning globes); `None` follows the app's [`Time`].
+    /// Fixed for still pictures that must match a CPU render.
+    pub time: Option<f64>,
+    /// What surfaces are coloured by over their shading (the teaching views).
+    pub colour_by: crate::scene::ColourBy,
+    /// The cell's walls with windows ([`crate::scene::walls`]); `None`: the base scene's
+    /// own (a scene file's `walls`; none in the default scene). An opening of 1 shows no
+    /// walls, whatever the base scene says.
+    pub walls: Option<crate::scene::WallStyle>,
+}
+
+impl TracerSettings {
+    /// The fog distance in use: the one set here, else the base scene's own (a scene file's
+    /// `fog`), else the space's default ([`Shading::default_fog_distance`]). The one rule for
+    /// it: the tracer, the panel and offscreen renders all ask here.
+    #[must_use]
+    pub fn fog_for(&self, space: &Space, base: Option<&CurvedScene>) -> f64 {
+        self.fog_distance
+            .or(base.map(|b| b.shading.fog_distance))
+            .unwrap_or_else(|| Shading::default_fog_distance(space))
+    }
+}
+
+/// Your own objects in the curved space, added to the default scene parts: metric balls and
+/// geodesic tubes with their centres inside the cell (`trace::Ball::new`, `trace::Tube::new`
+/// in model coordinates). One that sticks out through faces is drawn through its images
+/// under the pairings that meet the cell ([`CurvedScene::place`]), so it looks whole from every
+/// side. A misplaced object is reported in [`TracerStatus::error`] and left out.
+#[derive(Resource, Clone, Debug, Default, PartialEq)]
+pub struct SceneObjects(pub Vec<Object>);
+
+/// A scene to show instead of the default one, such as a loaded scene file
+/// ([`crate::scene::file::load_scene_file`], [`BaseScene::from_file`]): used while the
+/// active space's id is `space_id`, with the default parts of [`TracerSettings::parts`] and
+/// the [`SceneObjects`] added to it. Its start view is where players start, and `parts` is
+/// what the plugin starts [`TracerSettings::parts`] with.
+#[derive(Resource, Clone, Debug, Default)]
+pub struct BaseScene {
+    /// The id of the space the scene was made for.
+    pub space_id: String,
+    /// Its objects, lights and shading, without the default parts.
+    pub scene: Option<Arc<CurvedScene>>,
+    /// Where players start (a frame), if the scene says.
+    pub start: Option<DMat4>,
+    /// The start view's vertical field of view (degrees), if the scene says: new
+    /// [`CurvedSpaceCamera`]s take it.
+    pub fov: Option<f64>,
+    /// The parts the plugin starts [`TracerSettings::parts`] with, if the scene says.
+    pub parts: Option<SceneParts>,
+    /// Objects that move (a scene file's objects with a `velocity`): while the scene is in
+    /// use the plugin spawns each as an entity ([`crate::plugin::objects`]) that flies from its
+    /// start through the faces.
+    pub moving: Vec<crate::scene::MovingObject>,
+}
+
+impl BaseScene {
+    /// A loaded scene file as the base scene.
+    #[cfg(feature = "scene-files")]
+    #[must_use]
+    pub fn from_file(file: &crate::scene::file::SceneFile) -> Self {
+        Self {
+            space_id: file.space_id.clone(),
+            scene: Some(Arc::new(file.base.clone())),
+            start: file.start,
+            fov: file.start_fov,
+            parts: Some(file.parts),
+            moving: file.moving.clone(),
+        }
+    }
+
+    /// This base scene with its moving objects fixed where they are at `time` seconds (a
+    /// still picture, or a flight's frame): no entities are spawned for them.
+    pub fn at_time(&self, space: &Space, time: f64) -> Result<Self, crate::scene::MovingError> {
+        if self.moving.is_empty() {
+            return Ok(self.clone());
+        }
+        let scene = match &self.scene {
+            Some(s) => Some(Arc::new(s.with_moving_at(space, &self.moving, time)?)),
+            None => None,
+        };
+        Ok(Self {
+            scene,
+            moving: Vec::new(),
+            ..self.clone()
+        })
+    }
+
+    /// The base scene for the active space, if it is the one the scene was made for.
+    #[must_use]
+    pub fn for_space(&self, active: &ActiveSpace) -> Option<&CurvedScene> {
+        self.scene.as_deref().filter(|_| active.id == self.space_id)
+    }
+
+    /// Where players start in the active space.
+    #[must_use]
+    pub fn start_frame(&self, active: &ActiveSpace) -> DMat4 {
+        self.start
+            .filter(|_| active.id == self.space_id)
+            .unwrap_or_else(|| TraceCamera::default_for(&active.space).frame)
+    }
+}
+
+/// The last problem the tracer had with the scene (shown in the UI), if any.
+#[derive(Resource, Clone, Debug, Default, PartialEq)]
+pub struct TracerStatus {
+    /// What is wrong with the scene or its objects, if anything.
+    pub error: Option<String>,
+    /// The crossing budget in use.
+    pub budget: u32,
+    /// The fog distance λ in use ([`TracerSettings::fog_for`]).
+    pub fog_distance: f64,
+    /// How the automatic budget was chosen (`None` when the budget is fixed).
+    pub auto_budget: Option<BudgetChoice>,
+    /// What is wrong with the [`StereoSettings`], if anything (the default eye distance is
+    /// used meanwhile).
+    pub stereo_error: Option<String>,
+}
+
+/// The player's frame: an isometry of the model whose columns are the right, up and back
+/// unit tangents and the position (the camera looks along `−back`).
+#[derive(Component, Clone, Copy, Debug, PartialEq)]
+pub struct PlayerFrame(pub DMat4);
+
+impl Default for PlayerFrame {
+    fn default() -> Self {
+        Self(DMat4::IDENTITY)
+    }
+}
+
+// `Holonomy` is plain data of the space layer (the headset tracks it without Bevy); as a
+// component it lives in the table storage like the others.
+impl Component for Holonomy {
+    const STORAGE_TYPE: StorageType = StorageType::Table;
+    type Mutability = Mutable;
+}
+
+/// What the controls ask for this frame, in the player's own axes.
+#[derive(Component, Clone, Copy, Debug, Default, PartialEq)]
+pub struct PlayerMotion {
+    /// Distance to move along right, up, back (geodesic units).
+    pub translation: DVec3,
+    /// Angles (radians) to turn about right (pitch), up (yaw) and back (roll).
+    pub rotation: DVec3,
+}
+
+/// Rebindable keys of the first-person controls.
+#[derive(Resource, Clone, Debug, PartialEq)]
+pub struct KeyBindings {
+    /// Move forward.
+    pub forward: KeyCode,
+    /// Move backward.
+    pub backward: KeyCode,
+    /// Move left.
+    pub left: KeyCode,
+    /// Move right.
+    pub right: KeyCode,
+    /// Move up.
+    pub up: KeyCode,
+    /// Move down.
+    pub down: KeyCode,
+    /// Roll to the left.
+    pub roll_left: KeyCode,
+    /// Roll to the right.
+    pub roll_right: KeyCode,
+    /// Speed up.
+    pub faster: KeyCode,
+    /// Slow down.
+    pub slower: KeyCode,
+    /// Release the grabbed mouse.
+    pub release_mouse: KeyCode,
+}
+
+impl Default for KeyBindings {
+    fn default() -> Self {
+        Self {
+            forward: KeyCode::KeyW,
+            backward: KeyCode::KeyS,
+            left: KeyCode::KeyA,
+            right: KeyCode::KeyD,
+            up: KeyCode::Space,
+            down: KeyCode::ShiftLeft,
+            roll_left: KeyCode::KeyQ,
+            roll_right: KeyCode::KeyE,
+            faster: KeyCode::Equal,
+            slower: KeyCode::Minus,
+            release_mouse: KeyCode::Escape,
+        }
+    }
+}
+
+/// How the controls feel.
+#[derive(Resource, Clone, Debug, PartialEq)]
+pub struct PlayerSettings {
+    /// Walking speed in cell inradii per second.
+    pub speed: f64,
+    /// Radians per pixel of mouse motion.
+    pub mouse_sensitivity: f64,
+    /// Roll speed in radians per second.
+    pub roll_speed: f64,
+    /// How far past a face (in `N·X/X.w`, chart units) the position may go before it wraps:
+    /// the hysteresis that keeps a player standing on a face from flickering between sides.
+    pub wrap_margin: f64,
+    /// Whether mouse motion turns the view without a grabbed cursor (tests, touchpads).
+    pub look_without_grab: bool,
+}
+
+impl Default for PlayerSettings {
+    fn default() -> Self {
+        Self {
+            speed: 0.6,
+            mouse_sensitivity: 0.003,
+            roll_speed: 1.2,
+            wrap_margin: 1e-4,
+            look_without_grab: false,
+        }
+    }
+}
+
+/// Whether the primary window's cursor is grabbed for mouse look.
+#[derive(Resource, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct MouseLook {
+    /// Whether the cursor is grabbed now.
+    pub grabbed: bool,
+}
+
+/// Whether the pointer is over the panel (then a click does not grab the cursor).
+#[derive(Resource, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PointerOverUi(pub bool);
+
+/// The stereo options of the curved-space cameras (a resource; changeable at run time).
+#[derive(Resource, Clone, Copy, Debug, Default, PartialEq)]
+pub struct StereoSettings {
+    /// How the two eyes share the picture.
+    pub mode: StereoMode,
+    /// Distance between the eyes in the space's units (geodesic); `None` for
+    /// [`default_ipd`] of the cell. It sets the world scale: how big the cell feels.
+    pub ipd: Option<f64>,
+    /// Show the right eye where the left one belongs and vice versa (cross-eyed viewing of
+    /// side-by-side pictures).
+    pub swap_eyes: bool,
+}
+
+impl StereoSettings {
+    /// The eye distance in use for a cell of this inradius: the chosen one, or the default
+    /// where none is chosen or the chosen one fails [`check_ipd`].
+    #[must_use]
+    pub fn ipd_for(&self, inradius: f64) -> f64 {
+        self.ipd
+            .filter(|&ipd| check_ipd(ipd, inradius).is_ok())
+            .unwrap_or_else(|| default_ipd(inradius))
+    }
+
+    /// Space units per metre at this eye distance (the "world scale").
+    #[must_use]
+    pub fn units_per_metre(&self, inradius: f64) -> f64 {
+        self.ipd_for(inradius) / HUMAN_IPD_METRES
+    }
+}
+
+/// Marks a curved-space camera that is one eye of a head-mounted display: it is drawn as
+/// one view with its own (asymmetric) frustum, and the [`StereoSettings`] do not apply to
+/// it. Its [`PlayerFrame`] is the eye's frame, kept inside the cell by its owner.
+#[derive(Component, Clone, Copy, Debug, PartialEq)]
+pub struct CurvedSpaceEye {
+    /// The eye's frustum.
+    pub lens: Lens,
+}

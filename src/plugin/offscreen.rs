@@ -1,0 +1,320 @@
+//! Rendering one picture through the real plugin without a window: a Bevy app whose
+//! curved-space camera draws into an image, captured once the tracer has drawn it.
+//! Used by the CLI's GPU `render`, the headless example and the GPU-vs-CPU tests.
+
+use crate::plugin::CurvedSpacesPlugin;
+use crate::plugin::components::PlayerFrame;
+use crate::plugin::components::StereoSettings;
+use crate::plugin::components::{
+    ActiveSpace, BaseScene, CurvedSpaceCamera, SceneObjects, TracerSettings,
+};
+use crate::plugin::render::FramesTraced;
+use crate::plugin::screenshot::image_to_rgb;
+use crate::scene::{Object, SceneParts};
+use crate::view::TraceCamera;
+use bevy::app::{PluginsState, ScheduleRunnerPlugin};
+use bevy::camera::{ImageRenderTarget, RenderTarget};
+use bevy::prelude::*;
+use bevy::render::render_resource::{TextureFormat, TextureUsages};
+use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
+use bevy::window::ExitCondition;
+use glam::DMat4;
+use image::RgbImage;
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+/// What to render.
+#[derive(Clone, Debug)]
+pub struct OffscreenRender {
+    /// The space.
+    pub space: ActiveSpace,
+    /// Picture width in pixels.
+    pub width: u32,
+    /// Picture height in pixels.
+    pub height: u32,
+    /// The camera frame (columns right, up, back, position).
+    pub frame: DMat4,
+    /// Vertical field of view in degrees.
+    pub fov_y_degrees: f64,
+    /// Fog distance scale λ; `None` for the space's default.
+    pub fog_distance: Option<f64>,
+    /// Crossing budget per ray.
+    pub max_crossings: u32,
+    /// Which default scene parts show.
+    pub parts: SceneParts,
+    /// Objects added to the scene (see [`SceneObjects`]).
+    pub objects: Vec<Object>,
+    /// Fraction of the resolution that is traced (then scaled up), in (0, 1].
+    pub resolution_scale: f32,
+    /// Stereo mode, eye distance and eye swap (the frame is the head's).
+    pub stereo: StereoSettings,
+    /// A whole scene (a scene file's) instead of the default parts, for its space.
+    pub base: BaseScene,
+    /// The scene's clock in seconds (the globes' spin).
+    pub time: f64,
+    /// Entities to spawn for the picture ([`crate::plugin::objects`]): objects at their frames,
+    /// drawn the way a game's are (padded lists, shared scene data).
+    pub entities: Vec<(crate::plugin::objects::CurvedObject, DMat4)>,
+    /// The teaching view ([`crate::scene::ColourBy`]).
+    pub colour_by: crate::scene::ColourBy,
+    /// The cell's walls with windows.
+    pub walls: Option<crate::scene::WallStyle>,
+}
+
+impl OffscreenRender {
+    /// A mono picture of the space's default scene parts from `camera` at `width × height`,
+    /// with the space's own fog, full resolution, no objects of your own and the clock at 0.
+    /// Change the other fields with struct update syntax.
+    #[must_use]
+    pub fn new(
+        space: ActiveSpace,
+        camera: TraceCamera,
+        (width, height): (u32, u32),
+        max_crossings: u32,
+    ) -> Self {
+        Self {
+            space,
+            width,
+            height,
+            frame: camera.frame,
+            fov_y_degrees: camera.fov_y_degrees,
+            fog_distance: None,
+            max_crossings,
+            parts: SceneParts::default(),
+            objects: Vec::new(),
+            resolution_scale: 1.0,
+            stereo: StereoSettings::default(),
+            base: BaseScene::default(),
+            time: 0.0,
+            entities: Vec::new(),
+            colour_by: crate::scene::ColourBy::Shading,
+            walls: None,
+        }
+    }
+}
+
+/// Why no picture came back.
+// The fields of a variant are the values its message names.
+#[allow(missing_docs)]
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum OffscreenError {
+    /// No GPU adapter was found (no GPU and no software Vulkan driver).
+    #[error(
+        "no GPU adapter was found (no GPU and no software Vulkan driver): on Debian install one with `apt-get install mesa-vulkan-drivers libvulkan1`, or use --cpu"
+    )]
+    NoAdapter,
+    /// The image size (width, height attached) is not supported: each must be 1 to 8192.
+    #[error("image size {0}×{1} is not supported: width and height must be 1 to 8192")]
+    BadSize(u32, u32),
+    /// The GPU tracer did not produce a picture within the time limit (attached).
+    #[error(
+        "the GPU tracer did not produce a picture within {0:?} (is the GPU busy or the scene too heavy?)"
+    )]
+    Timeout(Duration),
+    /// The scene cannot be drawn on the GPU (the reason is attached).
+    #[error("the scene cannot be drawn on the GPU: {0}")]
+    Scene(String),
+    /// The captured picture has an unexpected format (described in the message).
+    #[error("the captured picture has an unexpected format: {0}")]
+    Format(String),
+}
+
+/// Whether wgpu finds any adapter (a GPU or a software driver such as lavapipe).
+#[must_use]
+pub fn gpu_available() -> bool {
+    use wgpu::{Instance, InstanceDescriptor, RequestAdapterOptions};
+    let instance = Instance::new(InstanceDescriptor::new_without_display_handle());
+    bevy::tasks::block_on(instance.request_adapter(&RequestAdapterOptions::default())).is_ok()
+}
+
+/// How long a picture may take before [`render_offscreen`] gives up.
+pub const OFFSCREEN_TIMEOUT: Duration = Duration::from_secs(120);
+
+/// Renders one picture with the GPU tracer and returns it (8-bit RGB, the same encoding as
+/// the CPU reference's PNGs). To render several, keep an [`OffscreenRenderer`].
+pub fn render_offscreen(request: &OffscreenRender) -> Result<RgbImage, OffscreenError> {
+    OffscreenRenderer::new()?.render(request)
+}
+
+/// A windowless Bevy app with the plugin, reused for any number of pictures.
+pub struct OffscreenRenderer {
+    app: App,
+    frames: FramesTraced,
+}
+
+impl OffscreenRenderer {
+    /// Starts the app (and the GPU device).
+    pub fn new() -> Result<Self, OffscreenError> {
+        if !gpu_available() {
+            return Err(OffscreenError::NoAdapter);
+        }
+        let mut app = App::new();
+        let plugins = DefaultPlugins.set(WindowPlugin {
+            primary_window: None,
+            exit_condition: ExitCondition::DontExit,
+            ..default()
+        });
+        // No window and no event loop: the app is driven by `update` below.
+        #[cfg(feature = "window")]
+        let plugins = plugins.disable::<bevy::winit::WinitPlugin>();
+        app.add_plugins(plugins.set(bevy::log::LogPlugin {
+            level: bevy::log::Level::WARN,
+            // "software rendering is slow" is expected on lavapipe, not news.
+            filter: "wgpu=error,wgpu_hal::gles=off,naga=warn,bevy_render::renderer=error".into(),
+            ..default()
+        }))
+        .add_plugins(ScheduleRunnerPlugin::run_loop(Duration::ZERO))
+        .add_plugins(CurvedSpacesPlugin {
+            controls: false,
+            ..default()
+        });
+        // Wait for the renderer to initialise (it may do so asynchronously).
+        while app.plugins_state() == PluginsState::Adding {
+            bevy::tasks::tick_global_task_pools_on_main_thread();
+        }
+        app.finish();
+        app.cleanup();
+        let frames = app.world().resource::<FramesTraced>().clone();
+        Ok(Self { app, frames })
+    }
+
+    /// Renders one picture.
+    pub fn render(&mut self, request: &OffscreenRender) -> Result<RgbImage, OffscreenError> {
+        let (w, h) = (request.width, request.height);
+        if !(1..=8192).contains(&w) || !(1..=8192).contains(&h) {
+            return Err(OffscreenError::BadSize(w, h));
+        }
+        let settings = TracerSettings {
+            fog_distance: request.fog_distance,
+            max_crossings: Some(request.max_crossings.max(1)),
+            quality: crate::plugin::components::Quality::High,
+            resolution_scale: request.resolution_scale,
+            parts: request.parts,
+            time: Some(request.time),
+            colour_by: request.colour_by,
+            walls: request.walls,
+        };
+        // A scene the GPU cannot take would only time out below: say why now.
+        let space = &request.space.space;
+        let (scene, _) = crate::plugin::render::upload::build_scene(
+            space,
+            &settings,
+            &request.objects,
+            request.base.for_space(&request.space),
+        );
+        crate::plugin::render::gpu::GpuScene::new(
+            space,
+            &scene,
+            settings.max_crossings.unwrap_or(1),
+        )
+        .map_err(|e| OffscreenError::Scene(e.to_string()))?;
+        let world = self.app.world_mut();
+        // The same space again (a flight's frames) is not inserted anew: that would count as
+        // a change of space.
+        let same_space = world.get_resource::<ActiveSpace>().is_some_and(|a| {
+            a.id == request.space.id && Arc::ptr_eq(&a.space, &request.space.space)
+        });
+        if !same_space {
+            world.insert_resource(request.space.clone());
+        }
+        world.insert_resource(settings);
+        world.insert_resource(request.base.clone());
+        world.insert_resource(SceneObjects(request.objects.clone()));
+        world.insert_resource(request.stereo);
+        let spawned: Vec<Entity> = request
+            .entities
+            .iter()
+            .map(|(object, frame)| {
+                world
+                    .spawn((
+                        object.clone(),
+                        crate::plugin::objects::CurvedTransform(*frame),
+                    ))
+                    .id()
+            })
+            .collect();
+        // A changed space puts every player back at its start view in the next update:
+        // let that happen before the camera exists, so the requested frame is kept.
+        self.app.update();
+        let world = self.app.world_mut();
+        let mut target = Image::new_target_texture(w, h, TextureFormat::Rgba8UnormSrgb, None);
+        target.texture_descriptor.usage |= TextureUsages::COPY_SRC;
+        let handle = world.resource_mut::<Assets<Image>>().add(target);
+        let camera = world
+            .spawn((
+                Camera3d::default(),
+                RenderTarget::Image(ImageRenderTarget {
+                    handle: handle.clone(),
+                    scale_factor: 1.0,
+                }),
+                CurvedSpaceCamera {
+                    fov_y_degrees: request.fov_y_degrees,
+                },
+                PlayerFrame(request.frame),
+            ))
+            .id();
+        let result = self.capture(&handle);
+        self.app.world_mut().despawn(camera);
+        for e in spawned {
+            self.app.world_mut().despawn(e);
+        }
+        self.app
+            .world_mut()
+            .resource_mut::<Assets<Image>>()
+            .remove(&handle);
+        result
+    }
+
+    fn capture(&mut self, handle: &Handle<Image>) -> Result<RgbImage, OffscreenError> {
+        let drawn_before = self.frames.get();
+        let captured: Arc<Mutex<Option<Image>>> = Arc::default();
+        let start = Instant::now();
+        let mut requested = false;
+        loop {
+            self.app.update();
+            if let Some(image) = captured.lock().expect("capture lock").take() {
+                return image_to_rgb(&image).map_err(OffscreenError::Format);
+            }
+            if start.elapsed() > OFFSCREEN_TIMEOUT {
+                return Err(OffscreenError::Timeout(OFFSCREEN_TIMEOUT));
+            }
+            // The pipeline compiles asynchronously: capture once the tracer has drawn
+            // this camera (two frames, as the previous camera's last frame may still have
+            // been in flight in the pipelined renderer).
+            if !requested && self.frames.get() >= drawn_before + 2 {
+                requested = true;
+                let sink = captured.clone();
+                self.app
+                    .world_mut()
+                    .spawn(Screenshot::image(handle.clone()))
+                    .observe(move |shot: On<ScreenshotCaptured>| {
+                        *sink.lock().expect("capture lock") = Some(shot.image.clone());
+                    });
+            }
+        }
+    }
+}
+
+/// Gives the process a private runtime directory when `XDG_RUNTIME_DIR` is unset or not a
+/// folder, so that the Vulkan loader's Wayland client does not print
+/// `error: XDG_RUNTIME_DIR is invalid or not set` for every GPU render in a headless session.
+/// Genuine errors are unaffected. Does nothing where the variable names a folder already.
+///
+/// # Safety
+/// Changes the process environment: call it before any other thread is started (first thing
+/// in `main`), as [`std::env::set_var`] requires.
+pub unsafe fn quiet_runtime_dir() {
+    if std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|d| std::path::Path::new(&d).is_dir()) {
+        return;
+    }
+    let user = std::env::var("USER").unwrap_or_else(|_| "user".into());
+    let dir = std::env::temp_dir().join(format!("curved-spaces-runtime-{user}"));
+    let mut builder = std::fs::DirBuilder::new();
+    builder.recursive(true);
+    #[cfg(unix)]
+    std::os::unix::fs::DirBuilderExt::mode(&mut builder, 0o700);
+    if builder.create(&dir).is_ok() {
+        // SAFETY: the caller guarantees no other thread reads the environment now.
+        unsafe { std::env::set_var("XDG_RUNTIME_DIR", &dir) };
+    }
+}

@@ -1,0 +1,149 @@
+//! The player: a frame `F` inside the cell (columns right, up, back, position) that moves by
+//! local translations and rotations, and wraps through a face (`F ← g_f F`) once it is past
+//! the face by a margin, recording the crossing ([`Holonomy`]). `docs/design.md` §6.
+//!
+//! All motion is local (`F ← F M`): the picture depends on `F` only through its columns, so
+//! after a mirror crossing (a left-handed frame) the view and the controls continue exactly
+//! as they would have without the wrap.
+
+use crate::plugin::components::{
+    ActiveSpace, KeyBindings, MouseLook, PlayerFrame, PlayerMotion, PlayerSettings,
+};
+
+use crate::geometry::{Geometry, translate_local};
+use crate::space::Holonomy;
+use crate::space::wrap_into_cell;
+use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll, MouseScrollUnit};
+use bevy::prelude::*;
+use bevy::window::{CursorGrabMode, CursorOptions, PrimaryWindow};
+use glam::{DMat4, DVec3};
+
+/// The frame after a local motion: translate along the local direction, then turn.
+/// Rotations are applied about right, up and back in that order, each by its angle.
+#[must_use]
+pub fn step_frame(geometry: Geometry, frame: DMat4, motion: &PlayerMotion) -> DMat4 {
+    let mut f = translate_local(geometry, frame, motion.translation);
+    for (axis, angle) in [
+        (DVec3::X, motion.rotation.x),
+        (DVec3::Y, motion.rotation.y),
+        (DVec3::Z, motion.rotation.z),
+    ] {
+        if angle != 0.0 && angle.is_finite() {
+            f *= geometry.rotation(axis, angle);
+        }
+    }
+    f
+}
+
+/// Reads keys, mouse and scroll into each player's [`PlayerMotion`].
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn read_input(
+    keys: Res<ButtonInput<KeyCode>>,
+    motion: Res<AccumulatedMouseMotion>,
+    scroll: Res<AccumulatedMouseScroll>,
+    bindings: Res<KeyBindings>,
+    mut settings: ResMut<PlayerSettings>,
+    look: Res<MouseLook>,
+    time: Res<Time>,
+    active: Res<ActiveSpace>,
+    mut players: Query<&mut PlayerMotion>,
+) {
+    let dt = time.delta_secs_f64();
+    let axis = |plus: KeyCode, minus: KeyCode| {
+        f64::from(u8::from(keys.pressed(plus))) - f64::from(u8::from(keys.pressed(minus)))
+    };
+    let b = &*bindings;
+    let mut factor = 1.0;
+    if keys.just_pressed(b.faster) {
+        factor *= 1.25;
+    }
+    if keys.just_pressed(b.slower) {
+        factor /= 1.25;
+    }
+    let notches = match scroll.unit {
+        MouseScrollUnit::Line => f64::from(scroll.delta.y),
+        MouseScrollUnit::Pixel => f64::from(scroll.delta.y) / 40.0,
+    };
+    factor *= 1.25f64.powf(notches);
+    if factor != 1.0 {
+        settings.speed = (settings.speed * factor).clamp(0.01, 20.0);
+    }
+    let direction = DVec3::new(
+        axis(b.right, b.left),
+        axis(b.up, b.down),
+        axis(b.backward, b.forward),
+    );
+    let direction = direction.normalize_or_zero();
+    let step = settings.speed * active.inradius * dt;
+    let looking = look.grabbed || settings.look_without_grab;
+    let mouse = if looking {
+        motion.delta.as_dvec2() * settings.mouse_sensitivity
+    } else {
+        glam::DVec2::ZERO
+    };
+    let roll = axis(b.roll_left, b.roll_right) * settings.roll_speed * dt;
+    for mut m in &mut players {
+        *m = PlayerMotion {
+            translation: direction * step,
+            // Mouse right turns right (negative yaw about up); mouse down looks down.
+            rotation: DVec3::new(-mouse.y, -mouse.x, roll),
+        };
+    }
+}
+
+/// Grabs the cursor on a click in the window, releases it with the release key.
+pub(crate) fn grab_cursor(
+    mouse: Res<ButtonInput<MouseButton>>,
+    keys: Res<ButtonInput<KeyCode>>,
+    bindings: Res<KeyBindings>,
+    mut look: ResMut<MouseLook>,
+    mut windows: Query<&mut CursorOptions, With<PrimaryWindow>>,
+    pointer_over_ui: Option<Res<crate::plugin::components::PointerOverUi>>,
+) {
+    let over_ui = pointer_over_ui.is_some_and(|p| p.0);
+    let grab = if mouse.just_pressed(MouseButton::Left) && !over_ui {
+        true
+    } else if keys.just_pressed(bindings.release_mouse) {
+        false
+    } else {
+        return;
+    };
+    look.grabbed = grab;
+    for mut cursor in &mut windows {
+        cursor.grab_mode = if grab {
+            CursorGrabMode::Locked
+        } else {
+            CursorGrabMode::None
+        };
+        cursor.visible = !grab;
+    }
+}
+
+/// Applies each player's motion to its frame.
+pub(crate) fn move_players(
+    active: Res<ActiveSpace>,
+    mut players: Query<(&mut PlayerFrame, &PlayerMotion)>,
+) {
+    let g = active.space.geometry;
+    for (mut frame, motion) in &mut players {
+        if *motion != PlayerMotion::default() {
+            frame.0 = step_frame(g, frame.0, motion);
+        }
+    }
+}
+
+/// Wraps players that left the cell and re-orthonormalizes every frame.
+pub(crate) fn wrap_players(
+    active: Res<ActiveSpace>,
+    settings: Res<PlayerSettings>,
+    mut players: Query<(&mut PlayerFrame, &mut Holonomy)>,
+) {
+    let space = &active.space;
+    for (mut frame, mut holonomy) in &mut players {
+        let (wrapped, crossed) = wrap_into_cell(space, frame.0, settings.wrap_margin);
+        for face in crossed {
+            holonomy.record(face, space.faces[face].pairing);
+        }
+        frame.0 = wrapped;
+    }
+}

@@ -1,0 +1,255 @@
+//! What the shader is specialised on ([`ShaderKey`]): its shader defs and the uniform's size,
+//! and composing the WGSL with them (for the tests and the benchmark).
+
+use crate::geometry::Geometry;
+use crate::plugin::render::layout::{
+    FACE_BYTES, GpuBall, GpuDisc, GpuGlobe, GpuInstance, GpuShading, GpuTube, GpuView, Vec4F,
+};
+use bevy::shader::ShaderDefVal;
+
+/// What the shader is specialised on: one compiled pipeline per key.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct ShaderKey {
+    /// The geometry (only its formulas are compiled).
+    pub geometry: Geometry,
+    /// Faces of the cell.
+    pub faces: u32,
+    /// Plain balls.
+    pub balls: u32,
+    /// Geodesic tubes.
+    pub tubes: u32,
+    /// Textured balls.
+    pub globes: u32,
+    /// Discs.
+    pub discs: u32,
+    /// Placed meshes.
+    pub instances: u32,
+    /// Point lights.
+    pub lights: u32,
+    /// Images per light (the light and its copies through the faces).
+    pub light_images: u32,
+    /// Whether the player's avatar is drawn.
+    pub avatar: bool,
+    /// Whether any texture is used.
+    pub textures: bool,
+    /// Whether balls and tubes carry face masks ([`crate::scene::FaceCulling`]): a segment
+    /// tests only those whose faces it comes near.
+    pub culling: bool,
+    /// A spherical cell that reaches distance π/2 ([`crate::space::Space::reaches_equator`]):
+    /// rays step at most π/4 without crossing (shader def `STEP_CAP`).
+    pub step_cap: bool,
+    /// What surfaces are coloured by over their shading ([`crate::scene::ColourBy::index`]; 0
+    /// for the plain picture): shader def `COLOUR_BY`, and `COLOUR_HOLONOMY` for 3.
+    pub colour_by: u32,
+    /// Whether the cell's walls with windows are drawn ([`crate::scene::walls`]; shader def
+    /// `WALLS`).
+    pub walls: bool,
+    /// The unspecialised variant (the benchmark's comparison): all geometries' formulas,
+    /// arrays of [`GENERAL_CAPACITY`], geometry and counts read from the uniform.
+    pub general: bool,
+    /// The benchmark's comparison: a straightforward tracer of the same walk instead (shader
+    /// def `STRAIGHTFORWARD`; balls only). See [`super::GpuScene::straightforward`].
+    pub straightforward: bool,
+}
+
+/// Array sizes of the unspecialised variant: faces, balls, tubes.
+pub const GENERAL_CAPACITY: (u32, u32, u32) = (crate::space::MAX_FACES as u32, 256, 256);
+
+impl ShaderKey {
+    /// The key of an empty scene in `geometry` (no faces, objects or lights): a start for
+    /// struct-update syntax.
+    #[must_use]
+    pub fn empty(geometry: Geometry) -> Self {
+        Self {
+            geometry,
+            faces: 0,
+            balls: 0,
+            tubes: 0,
+            globes: 0,
+            discs: 0,
+            instances: 0,
+            lights: 0,
+            light_images: 0,
+            avatar: false,
+            textures: false,
+            culling: false,
+            step_cap: false,
+            colour_by: 0,
+            walls: false,
+            general: false,
+            straightforward: false,
+        }
+    }
+
+    /// The shader defs of this key (see the header of `shaders/curved_space.wgsl`).
+    #[must_use]
+    pub fn shader_defs(&self) -> Vec<ShaderDefVal> {
+        let (faces, balls, tubes) = self.array_sizes();
+        let mut defs: Vec<ShaderDefVal> = if self.general {
+            ["SPHERICAL", "EUCLIDEAN", "HYPERBOLIC", "CURVED", "GENERAL"]
+                .map(ShaderDefVal::from)
+                .into()
+        } else {
+            match self.geometry {
+                Geometry::Spherical => vec!["SPHERICAL".into(), "CURVED".into()],
+                Geometry::Euclidean => vec!["EUCLIDEAN".into()],
+                Geometry::Hyperbolic => vec!["HYPERBOLIC".into(), "CURVED".into()],
+            }
+        };
+        defs.push(ShaderDefVal::UInt("FACE_COUNT".into(), self.faces));
+        defs.push(ShaderDefVal::UInt("FACE_SLOTS".into(), faces));
+        defs.push(ShaderDefVal::UInt("PARTNER_VECS".into(), faces.div_ceil(4)));
+        if self.step_cap {
+            defs.push("STEP_CAP".into());
+        }
+        if self.straightforward {
+            defs.push("STRAIGHTFORWARD".into());
+        }
+        if self.colour_by > 0 {
+            defs.push(ShaderDefVal::UInt("COLOUR_BY".into(), self.colour_by));
+            if self.colour_by == crate::scene::ColourBy::Holonomy.index() {
+                defs.push("COLOUR_HOLONOMY".into());
+            }
+        }
+        if self.walls {
+            defs.push("WALLS".into());
+        }
+        let mut counted = |flag: &str, count_def: &str, n: u32| {
+            if n > 0 {
+                defs.push(flag.into());
+                defs.push(ShaderDefVal::UInt(count_def.into(), n));
+            }
+        };
+        counted("BALLS", "BALL_COUNT", balls);
+        counted("TUBES", "TUBE_COUNT", tubes);
+        counted("GLOBES", "GLOBE_COUNT", self.globes);
+        counted("DISCS", "DISC_COUNT", self.discs);
+        counted("INSTANCES", "INSTANCE_COUNT", self.instances);
+        counted("LIGHTS", "LIGHT_COUNT", self.lights);
+        if self.lights > 0 {
+            defs.push(ShaderDefVal::UInt(
+                "LIGHT_IMAGES".into(),
+                self.light_images.max(1),
+            ));
+        }
+        if self.avatar {
+            defs.push("AVATAR".into());
+        }
+        if self.avatar || self.instances > 0 {
+            defs.push("MESHES".into());
+        }
+        if self.textures {
+            defs.push("TEXTURES".into());
+        }
+        if self.avatar || self.instances > 0 || self.textures {
+            defs.push("SCENE_DATA".into());
+        }
+        if self.culling {
+            defs.push("CULLING".into());
+            defs.push(ShaderDefVal::UInt("MASK_VECS".into(), self.mask_vecs()));
+            defs.push(ShaderDefVal::UInt("LIST_VECS".into(), self.list_vecs()));
+            defs.push(ShaderDefVal::UInt(
+                "CULL_BUCKETS".into(),
+                super::cull_buckets(self.faces as usize) as u32,
+            ));
+        }
+        defs
+    }
+
+    /// The sizes of the uniform's face, ball and tube arrays.
+    #[must_use]
+    pub fn array_sizes(&self) -> (u32, u32, u32) {
+        if self.general {
+            GENERAL_CAPACITY
+        } else {
+            // WGSL has no empty arrays: the 3-sphere's face slot is unused.
+            (self.faces.max(1), self.balls, self.tubes)
+        }
+    }
+
+    /// `vec4`s of the face masks (a `u32` per ball and tube, four to a `vec4`); 0 without
+    /// culling.
+    #[must_use]
+    pub fn mask_vecs(&self) -> u32 {
+        if self.culling {
+            (self.balls + self.tubes).div_ceil(4)
+        } else {
+            0
+        }
+    }
+
+    /// `vec4`s of the culling's object lists (`u32`s four to a `vec4`): for the balls, then
+    /// the tubes, where each of [`super::cull_buckets`] buckets starts (and the end), then
+    /// the object indices.
+    #[must_use]
+    pub fn list_vecs(&self) -> u32 {
+        if self.culling {
+            let buckets = super::cull_buckets(self.faces as usize) as u32;
+            (2 * (buckets + 1) + self.balls + self.tubes).div_ceil(4)
+        } else {
+            0
+        }
+    }
+
+    /// `vec4`s at the end of the uniform that only culling uses: the per-face thresholds
+    /// (four to a `vec4`), the masks and the object lists.
+    #[must_use]
+    pub fn culling_vecs(&self) -> usize {
+        if self.culling {
+            self.faces.div_ceil(4) as usize + self.mask_vecs() as usize + self.list_vecs() as usize
+        } else {
+            0
+        }
+    }
+
+    /// Size in bytes of `SpaceUniform` for this key, from the sizes of its typed parts.
+    #[must_use]
+    pub fn uniform_bytes(&self) -> usize {
+        let vec4 = size_of::<Vec4F>();
+        let (faces, balls, tubes) = self.array_sizes();
+        let (faces, balls, tubes) = (faces as usize, balls as usize, tubes as usize);
+        let count = |n: u32| n as usize;
+        size_of::<GpuView>()
+            + size_of::<GpuShading>()
+            + vec4 // scene data offsets
+            + count(self.lights) * (1 + count(self.light_images.max(1))) * vec4
+            + faces * FACE_BYTES
+            + faces.div_ceil(4) * vec4 // partners, four to a vec4
+            + if self.walls { (3 * faces + 1) * vec4 } else { 0 }
+            + balls * size_of::<GpuBall>()
+            + tubes * size_of::<GpuTube>()
+            + count(self.globes) * size_of::<GpuGlobe>()
+            + count(self.discs) * size_of::<GpuDisc>()
+            + count(self.instances) * size_of::<GpuInstance>()
+            + self.culling_vecs() * vec4
+            + if self.general { vec4 } else { 0 }
+    }
+}
+
+#[cfg(feature = "bench")]
+/// Composes WGSL with shader defs through naga_oil (as Bevy does) into a naga module; the
+/// error names the file and what went wrong.
+pub fn compose_wgsl(
+    source: &str,
+    file_path: &str,
+    defs: &[ShaderDefVal],
+) -> Result<naga::Module, String> {
+    use naga_oil::compose::{Composer, NagaModuleDescriptor, ShaderDefValue, ShaderType};
+    let shader_defs = defs
+        .iter()
+        .map(|d| match d {
+            ShaderDefVal::Bool(k, v) => (k.clone(), ShaderDefValue::Bool(*v)),
+            ShaderDefVal::Int(k, v) => (k.clone(), ShaderDefValue::Int(*v)),
+            ShaderDefVal::UInt(k, v) => (k.clone(), ShaderDefValue::UInt(*v)),
+        })
+        .collect();
+    Composer::default()
+        .make_naga_module(NagaModuleDescriptor {
+            source,
+            file_path,
+            shader_type: ShaderType::Wgsl,
+            shader_defs,
+            additional_imports: &[],
+        })
+        .map_err(|e| format!("{file_path}: {e:?}"))
+}

@@ -1,0 +1,474 @@
+//! What the WGSL tracer needs, packed for its uniform: the shader key (geometry, face count,
+//! object kinds and counts → shader defs) and the words of `SpaceUniform` in
+//! `shaders/curved_space.wgsl`, in the same order and layout.
+//!
+//! Every member of the WGSL struct is a `vec4` or a `mat4x4` (or an array of them), so the
+//! layout has no padding: the buffer is the members' components one after another.
+
+use super::layout::{
+    AVATAR_SLOTS, GpuBall, GpuDisc, GpuGlobe, GpuInstance, GpuShading, GpuTube, GpuView, Mat4F,
+    UniformWriter, Vec4F, colour, mat4, vec4,
+};
+use crate::geometry::Geometry;
+use crate::scene::culling::MAX_CULLED_FACES;
+use crate::scene::{CurvedScene, FaceCulling, Object, WallPanels};
+use crate::space::Space;
+use crate::view::{ViewKind, ViewLayout};
+use bevy::shader::ShaderDefVal;
+use glam::{DMat4, DVec4};
+use std::sync::Arc;
+
+mod key;
+mod pack;
+mod view;
+
+#[cfg(feature = "bench")]
+pub use key::compose_wgsl;
+pub use key::{GENERAL_CAPACITY, ShaderKey};
+
+use pack::*;
+pub use pack::{cull_buckets, padded_count};
+pub use view::{ViewExtras, view_shader_defs, view_words};
+
+/// The WGSL source of the tracer.
+pub const TRACER_WGSL: &str = include_str!("../../../../shaders/curved_space.wgsl");
+
+/// The WGSL source of the upscaling pass (the resolution scale).
+pub const UPSCALE_WGSL: &str = include_str!("../../../../shaders/upscale.wgsl");
+
+/// wgpu's default `max_uniform_buffer_binding_size`: the tracer's data must fit in it.
+pub const MAX_UNIFORM_BYTES: usize = 64 << 10;
+
+/// wgpu's default `max_storage_buffer_binding_size`: the scene data (meshes, textures) must
+/// fit in it.
+pub const MAX_SCENE_DATA_BYTES: usize = 128 << 20;
+
+/// The largest crossing budget the GPU tracer takes: every loop of the shader is bounded by
+/// it (and by the face and object counts), so no frame can run away.
+pub const MAX_GPU_BUDGET: u32 = 4096;
+
+/// Words of the per-view part at the start of the uniform ([`GpuView`]).
+pub const VIEW_WORDS: usize = size_of::<GpuView>() / 4;
+
+/// The scene cannot be given to the GPU tracer.
+// The fields of a variant are the values its message names.
+#[allow(missing_docs)]
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum GpuSceneError {
+    /// The scene needs `bytes` bytes of uniform data (`faces` faces, `objects` objects with their images, `lights` lights), more than the `limit` bytes a GPU is guaranteed to bind.
+    #[error(
+        "the scene needs {bytes} bytes of uniform data ({faces} faces, {objects} objects with their images, {lights} lights), more than the {limit} bytes a GPU is guaranteed to bind; show fewer objects"
+    )]
+    TooLarge {
+        bytes: usize,
+        limit: usize,
+        faces: u32,
+        objects: usize,
+        lights: u32,
+    },
+    /// The scene's meshes and textures need `bytes` bytes (`triangles` triangles), more than the `limit` bytes a GPU is guaranteed to bind.
+    #[error(
+        "the scene's meshes and textures need {bytes} bytes ({triangles} triangles), more than the {limit} bytes a GPU is guaranteed to bind; use smaller meshes or textures"
+    )]
+    DataTooLarge {
+        bytes: usize,
+        limit: usize,
+        triangles: usize,
+    },
+    /// The crossing budget must be at least 1 (the budget given is attached).
+    #[error("the crossing budget must be at least 1, got {0}")]
+    NoCrossings(u32),
+    /// The crossing budget (attached) is more than the GPU tracer takes, [`MAX_GPU_BUDGET`]: a frame could run for seconds.
+    #[error(
+        "a crossing budget of {0} is more than the GPU tracer takes ({MAX_GPU_BUDGET}): a frame could run for seconds; the fog ends rays long before"
+    )]
+    BudgetTooLarge(u32),
+}
+
+/// The kinds of the GPU's object lists, in their order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+enum GpuKind {
+    Ball,
+    Tube,
+    Globe,
+    Disc,
+    Instance,
+}
+
+fn gpu_kind(o: &Object) -> GpuKind {
+    match o {
+        Object::Ball(b) if b.texture.is_some() => GpuKind::Globe,
+        Object::Ball(_) => GpuKind::Ball,
+        Object::Tube(_) => GpuKind::Tube,
+        Object::Disc(_) => GpuKind::Disc,
+        Object::Mesh(_) => GpuKind::Instance,
+    }
+}
+
+/// The index each scene object has in the shader's lists, which [`GpuScene::new`] fills with
+/// the plain balls first, then the tubes, the textured balls (globes), the discs and the
+/// meshes, each in scene order (the `HIT_ID` output reports it). The avatar's images come
+/// after all of them, as in [`crate::trace::SceneHit::object`].
+#[must_use]
+pub fn gpu_object_indices(scene: &CurvedScene) -> Vec<u32> {
+    let kinds: Vec<GpuKind> = scene.objects.iter().map(gpu_kind).collect();
+    kinds
+        .iter()
+        .enumerate()
+        .map(|(i, k)| {
+            let before = kinds.iter().filter(|x| *x < k).count();
+            let same = kinds[..i].iter().filter(|x| *x == k).count();
+            (before + same) as u32
+        })
+        .collect()
+}
+
+/// The avatar as the GPU draws it: its mesh's root node and the distance within which its
+/// hits are passed through.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GpuAvatar {
+    /// Index into the scene's meshes.
+    pub mesh: u32,
+    /// The root node of its mesh in the scene data.
+    pub root: u32,
+    /// Its bounding radius.
+    pub radius: f64,
+    /// Hits nearer than this to the eye are passed through.
+    pub skip: f64,
+}
+
+/// A space and its scene, packed for the GPU (everything but the per-view camera part).
+#[derive(Clone, Debug, PartialEq)]
+pub struct GpuScene {
+    /// The shader variant it needs.
+    pub key: ShaderKey,
+    /// The words of `SpaceUniform` after `view`.
+    pub words: Vec<u32>,
+    /// The scene data buffer (`scene_data`): hierarchy nodes, triangles, materials, the
+    /// texture table and texels. At least one vec4, so it can always be bound. Shared
+    /// with the scene it was packed for when only objects moved ([`GpuScene::reusing`]):
+    /// the GPU keeps its buffer then.
+    pub data: Arc<Vec<u32>>,
+    /// The player's ship, if the scene draws it.
+    pub avatar: Option<GpuAvatar>,
+    /// What `data` was packed from and each mesh's root node.
+    sources: DataSources,
+}
+
+impl GpuScene {
+    /// Packs a space and a scene with a crossing budget per ray.
+    pub fn new(
+        space: &Space,
+        scene: &CurvedScene,
+        max_crossings: u32,
+    ) -> Result<Self, GpuSceneError> {
+        Self::build(space, scene, max_crossings, None, false)
+    }
+
+    /// Packs a scene whose objects move (the plugin's entities): the scene data of
+    /// `previous` is shared when the meshes, materials and textures are the same ones
+    /// (moving an object rewrites its instance, not its mesh), and each object list is
+    /// padded to [`padded_count`] with copies of its last object (never the nearest hit:
+    /// the original comes first; the culling's lists leave them out), so that the shader's
+    /// counts change rarely.
+    pub fn reusing(
+        space: &Space,
+        scene: &CurvedScene,
+        max_crossings: u32,
+        previous: Option<&GpuScene>,
+    ) -> Result<Self, GpuSceneError> {
+        Self::build(space, scene, max_crossings, previous, true)
+    }
+
+    fn build(
+        space: &Space,
+        scene: &CurvedScene,
+        max_crossings: u32,
+        previous: Option<&GpuScene>,
+        padded: bool,
+    ) -> Result<Self, GpuSceneError> {
+        if max_crossings == 0 {
+            return Err(GpuSceneError::NoCrossings(max_crossings));
+        }
+        if max_crossings > MAX_GPU_BUDGET {
+            return Err(GpuSceneError::BudgetTooLarge(max_crossings));
+        }
+        let g = space.geometry;
+        let lists = kind_lists(scene, padded);
+        let of_kind = |k: GpuKind| -> Vec<&Object> {
+            lists[k as usize]
+                .iter()
+                .map(|&i| &scene.objects[i])
+                .collect()
+        };
+        let (balls, tubes, globes, discs, instances) = (
+            of_kind(GpuKind::Ball),
+            of_kind(GpuKind::Tube),
+            of_kind(GpuKind::Globe),
+            of_kind(GpuKind::Disc),
+            of_kind(GpuKind::Instance),
+        );
+        let (data, offsets, sources) = match previous {
+            Some(p) if p.sources.same_as(scene) => (p.data.clone(), p.offsets(), p.sources.clone()),
+            _ => {
+                let (data, offsets, roots) = pack_scene_data(scene);
+                (Arc::new(data), offsets, DataSources::of(scene, roots))
+            }
+        };
+        let roots = &sources.roots;
+        if 4 * data.len() > MAX_SCENE_DATA_BYTES {
+            return Err(GpuSceneError::DataTooLarge {
+                bytes: 4 * data.len(),
+                limit: MAX_SCENE_DATA_BYTES,
+                triangles: scene.meshes.iter().map(|m| m.triangles.len()).sum(),
+            });
+        }
+        let culling = FaceCulling::new(space, scene);
+        let walls = scene
+            .shading
+            .walls
+            .and_then(|style| WallPanels::new(space, style, &scene.shading));
+        let light_images = scene
+            .lights
+            .iter()
+            .map(|l| l.images.len())
+            .max()
+            .unwrap_or(0) as u32;
+        let key = ShaderKey {
+            geometry: g,
+            faces: space.faces.len() as u32,
+            balls: balls.len() as u32,
+            tubes: tubes.len() as u32,
+            globes: globes.len() as u32,
+            discs: discs.len() as u32,
+            instances: instances.len() as u32,
+            lights: scene.lights.len() as u32,
+            light_images,
+            avatar: scene.avatar.is_some(),
+            textures: !scene.textures.is_empty(),
+            culling: culling.is_some() && balls.len() + tubes.len() > 0,
+            step_cap: space.reaches_equator(),
+            colour_by: scene.shading.colour_by.index(),
+            walls: walls.is_some(),
+            general: false,
+            straightforward: false,
+        };
+        let bytes = key.uniform_bytes();
+        if bytes > MAX_UNIFORM_BYTES {
+            return Err(GpuSceneError::TooLarge {
+                bytes,
+                limit: MAX_UNIFORM_BYTES,
+                faces: key.faces,
+                objects: scene.objects.len(),
+                lights: key.lights,
+            });
+        }
+        let shading = &scene.shading;
+        let mut out = UniformWriter::with_capacity(bytes);
+        out.push(&GpuShading {
+            fog: colour(shading.fog_colour, shading.ambient),
+            params: vec4(DVec4::new(
+                shading.fog_distance,
+                shading.cutoff_distance(),
+                g.s(shading.near_light),
+                f64::from(max_crossings),
+            )),
+            exact: vec4(DVec4::X),
+        });
+        out.push(&offsets);
+        for light in &scene.lights {
+            out.push(&colour(
+                light.colour * light.power,
+                light.images.len() as f64,
+            ));
+            for k in 0..light_images as usize {
+                out.push(&vec4(
+                    light.images.get(k).copied().unwrap_or(light.position),
+                ));
+            }
+        }
+        // The faces, or for the 3-sphere (no face) one unused slot: WGSL has no empty arrays.
+        let slot = [(DVec4::ZERO, DMat4::IDENTITY, 0)];
+        let faces: Vec<(DVec4, DMat4, usize)> = if space.faces.is_empty() {
+            slot.to_vec()
+        } else {
+            space
+                .faces
+                .iter()
+                .map(|f| (f.covector, f.pairing, f.partner))
+                .collect()
+        };
+        for (covector, _, _) in &faces {
+            out.push(&vec4(*covector));
+        }
+        for (_, pairing, _) in &faces {
+            out.push(&mat4(*pairing));
+        }
+        // What rounding each pairing to f32 left out: the shader applies hi + lo compensated.
+        for (_, pairing, _) in &faces {
+            let hi = mat4(*pairing).map(|c| DVec4::from_array(c.map(f64::from)));
+            out.push(&mat4(
+                *pairing - DMat4::from_cols(hi[0], hi[1], hi[2], hi[3]),
+            ));
+        }
+        let mut partners: Vec<u32> = faces.iter().map(|f| f.2 as u32).collect();
+        partners.resize(4 * faces.len().div_ceil(4), 0);
+        out.words.extend(partners);
+        if let Some(walls) = &walls {
+            pack_walls(&mut out, walls);
+        }
+        pack_objects(
+            &mut out,
+            g,
+            [&balls, &tubes, &globes, &discs, &instances],
+            roots,
+        );
+        if key.culling
+            && let Some(culling) = &culling
+        {
+            pack_culling(
+                &mut out,
+                [&lists[0], &lists[1]],
+                culling,
+                space.faces.len(),
+                key.list_vecs() as usize,
+            );
+        }
+        let words = out.words;
+        debug_assert_eq!(words.len() * 4 + VIEW_WORDS * 4, bytes);
+        let avatar = scene.avatar.as_ref().map(|a| GpuAvatar {
+            mesh: a.mesh,
+            root: roots.get(a.mesh as usize).copied().unwrap_or(0),
+            radius: scene.meshes.get(a.mesh as usize).map_or(0.0, |m| m.radius),
+            skip: a.skip,
+        });
+        Ok(Self {
+            key,
+            words,
+            data,
+            avatar,
+            sources,
+        })
+    }
+
+    /// The offsets of the scene data's parts (triangles, materials, texture table,
+    /// texels), as the uniform holds them after the shading.
+    fn offsets(&self) -> [u32; 4] {
+        let at = size_of::<GpuShading>() / 4;
+        [0, 1, 2, 3].map(|k| self.words[at + k])
+    }
+}
+
+impl GpuScene {
+    /// The same scene with every object tested in every cell (the benchmark's comparison
+    /// for [`FaceCulling`]): the culling's words dropped from the end of the uniform.
+    #[must_use]
+    pub fn without_culling(&self) -> GpuScene {
+        let mut words = self.words.clone();
+        words.truncate(words.len() - 4 * self.key.culling_vecs());
+        GpuScene {
+            key: ShaderKey {
+                culling: false,
+                ..self.key
+            },
+            words,
+            data: self.data.clone(),
+            avatar: self.avatar,
+            sources: self.sources.clone(),
+        }
+    }
+
+    /// The same scene for the benchmark's straightforward tracer (shader def
+    /// `STRAIGHTFORWARD`): the same walk and shading written as one would first write it, by
+    /// arc length with trigonometric functions, a division a face and plain f32 pairings,
+    /// to compare the tracer with. `None` where the scene has more than balls (tubes,
+    /// globes, discs, meshes, the avatar, walls), a teaching colouring, or a step cap.
+    #[must_use]
+    pub fn straightforward(&self) -> Option<GpuScene> {
+        let plain = self.without_culling();
+        let k = plain.key;
+        let more = k.tubes + k.globes + k.discs + k.instances > 0
+            || k.avatar
+            || k.walls
+            || k.colour_by != 0
+            || k.step_cap
+            || k.general;
+        (!more).then_some(GpuScene {
+            key: ShaderKey {
+                straightforward: true,
+                ..k
+            },
+            ..plain
+        })
+    }
+
+    /// The same scene for the unspecialised shader variant: arrays padded to
+    /// [`GENERAL_CAPACITY`] and the geometry and counts appended. `None` if the scene has
+    /// more faces or objects than that.
+    #[must_use]
+    pub fn generalised(&self) -> Option<GpuScene> {
+        let unculled = self.without_culling();
+        let k = unculled.key;
+        let (cap_faces, cap_balls, cap_tubes) = GENERAL_CAPACITY;
+        // Only balls and tubes have general arrays.
+        let other_kinds = k.globes + k.discs + k.instances > 0 || k.avatar || k.walls;
+        if k.general
+            || other_kinds
+            || k.faces > cap_faces
+            || k.balls > cap_balls
+            || k.tubes > cap_tubes
+        {
+            return None;
+        }
+        // The 3-sphere's one unused face slot counts as a face here.
+        let faces = k.faces.max(1) as usize;
+        // (words per element, elements, capacity) of each array, in uniform order.
+        let words_of = |bytes: usize| bytes / 4;
+        let vec4_words = words_of(size_of::<Vec4F>());
+        let arrays = [
+            (vec4_words, faces, cap_faces as usize),
+            (words_of(size_of::<Mat4F>()), faces, cap_faces as usize),
+            (words_of(size_of::<Mat4F>()), faces, cap_faces as usize),
+            (
+                vec4_words,
+                faces.div_ceil(4),
+                (cap_faces as usize).div_ceil(4),
+            ),
+            (
+                words_of(size_of::<GpuBall>()),
+                k.balls as usize,
+                cap_balls as usize,
+            ),
+            (
+                words_of(size_of::<GpuTube>()),
+                k.tubes as usize,
+                cap_tubes as usize,
+            ),
+        ];
+        // Shading, data offsets and the lights.
+        let header = words_of(size_of::<GpuShading>())
+            + vec4_words * (1 + k.lights as usize * (1 + k.light_images.max(1) as usize));
+        let mut words = unculled.words[..header].to_vec();
+        let mut at = header;
+        for (size, count, capacity) in arrays {
+            words.extend_from_slice(&unculled.words[at..at + size * count]);
+            words.resize(words.len() + size * (capacity - count), 0);
+            at += size * count;
+        }
+        debug_assert_eq!(at, unculled.words.len());
+        let general = [
+            self.key.geometry.kappa() as f32,
+            k.faces as f32,
+            k.balls as f32,
+            k.tubes as f32,
+        ];
+        words.extend(general.map(f32::to_bits));
+        Some(GpuScene {
+            key: ShaderKey { general: true, ..k },
+            words,
+            data: self.data.clone(),
+            avatar: None,
+            sources: self.sources.clone(),
+        })
+    }
+}

@@ -1,0 +1,149 @@
+//! The panel's controls for walls, colours and stereo.
+
+use super::*;
+
+/// The cell's walls: on or off, how far their windows are open, how much light they stop.
+/// `shown` is the walls of the scene on screen (the settings' or the base scene's own).
+pub(super) fn wall_controls(
+    ui: &mut egui::Ui,
+    settings: &mut ResMut<TracerSettings>,
+    shown: Option<crate::scene::WallStyle>,
+) {
+    use crate::scene::WallStyle;
+    // What is on screen: the settings' walls, else the base scene's own.
+    let current = settings.walls.or(shown);
+    let mut on = current.is_some_and(|w| w.opening < 1.0);
+    let mut style = current.unwrap_or(WallStyle {
+        opening: 0.5,
+        opacity: crate::scene::walls::DEFAULT_WALL_OPACITY,
+    });
+    // Turned back on, the walls start half open.
+    if style.opening >= 1.0 {
+        style.opening = 0.5;
+    }
+    ui.checkbox(&mut on, "walls (glued faces share a colour)");
+    if on {
+        // Up to just short of fully open: 1 is "no walls", the checkbox.
+        ui.add(egui::Slider::new(&mut style.opening, 0.0..=0.99).text("window opening"));
+        ui.add(egui::Slider::new(&mut style.opacity, 0.05..=1.0).text("wall opacity"));
+    }
+    // Off is an opening of 1, so that a scene file's walls can be turned off too.
+    let wanted = match (on, current) {
+        (true, _) => Some(style),
+        (false, Some(_)) => Some(WallStyle {
+            opening: 1.0,
+            ..style
+        }),
+        (false, None) => None,
+    };
+    if wanted != current {
+        settings.walls = wanted;
+    }
+}
+
+/// The teaching view and its legend: what each tint means.
+pub(super) fn colour_by_controls(
+    ui: &mut egui::Ui,
+    settings: &mut ResMut<TracerSettings>,
+    faces: usize,
+) {
+    use crate::scene::{ColourBy, palette};
+    let mut by = settings.colour_by;
+    egui::ComboBox::from_label("colour by")
+        .selected_text(by.name())
+        .show_ui(ui, |ui| {
+            for m in ColourBy::ALL {
+                ui.selectable_value(&mut by, m, m.name());
+            }
+        });
+    if by != settings.colour_by {
+        settings.colour_by = by;
+    }
+    let swatch = |ui: &mut egui::Ui, c: glam::DVec3, text: String| {
+        let [r, g, b] = c
+            .to_array()
+            .map(|x| (x.clamp(0.0, 1.0) * 255.0).round() as u8);
+        ui.colored_label(egui::Color32::from_rgb(r, g, b), text);
+    };
+    let (entries, what): (Vec<(glam::DVec3, String)>, &str) = match by {
+        ColourBy::Shading => return,
+        ColourBy::Crossings => (
+            (0..8).map(|k| (palette(k), k.to_string())).collect(),
+            "faces crossed:",
+        ),
+        ColourBy::Face => (
+            std::iter::once((glam::DVec3::ONE, "none".to_string()))
+                .chain((0..faces.min(16)).map(|f| (palette(f), f.to_string())))
+                .collect(),
+            "last face crossed:",
+        ),
+        ColourBy::Holonomy => (
+            (0..7)
+                .map(|k| {
+                    let c = if k == 0 { glam::DVec3::ONE } else { palette(k) };
+                    (c, format!("{}", 30 * k))
+                })
+                .chain((7..14).map(|k| (palette(k), format!("m{}", 30 * (k - 7)))))
+                .collect(),
+            "turn of the copy (degrees; m: mirrored):",
+        ),
+    };
+    ui.label(what);
+    ui.horizontal_wrapped(|ui| {
+        for (c, text) in entries {
+            swatch(ui, c, text);
+        }
+    });
+}
+
+/// The stereo mode, the eye distance (with the world scale it gives) and the eye swap.
+pub(super) fn stereo_controls(
+    ui: &mut egui::Ui,
+    stereo: &mut ResMut<StereoSettings>,
+    inradius: f64,
+) {
+    let mut mode = stereo.mode;
+    egui::ComboBox::from_label("stereo")
+        .selected_text(mode.label())
+        .show_ui(ui, |ui| {
+            for m in StereoMode::ALL {
+                ui.selectable_value(&mut mode, m, m.label());
+            }
+        });
+    if mode != stereo.mode {
+        stereo.mode = mode;
+    }
+    if !mode.is_stereo() {
+        return;
+    }
+    let default_ipd = default_ipd(inradius);
+    let mut ipd = stereo.ipd_for(inradius);
+    if ui
+        .add(
+            egui::Slider::new(
+                &mut ipd,
+                0.1 * default_ipd..=inradius.min(10.0 * default_ipd),
+            )
+            .logarithmic(true)
+            .text("eye distance"),
+        )
+        .on_hover_text(
+            "Distance between the eyes in the space's units: it sets how big the cell feels",
+        )
+        .changed()
+    {
+        stereo.ipd = Some(ipd);
+    }
+    ui.label(format!(
+        "the inradius feels like {:.2} m (eyes {:.0} mm apart)",
+        inradius / stereo.units_per_metre(inradius),
+        1000.0 * HUMAN_IPD_METRES
+    ));
+    let mut swap = stereo.swap_eyes;
+    if ui
+        .checkbox(&mut swap, "swap eyes (cross-eyed viewing)")
+        .changed()
+    {
+        stereo.swap_eyes = swap;
+    }
+}

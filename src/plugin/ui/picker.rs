@@ -1,0 +1,144 @@
+//! The panel's space picker: the seed spaces, the library's families and files.
+
+use super::*;
+
+/// The space picker's fields: the family parameters and the file path being typed, and the
+/// last error.
+#[derive(Debug)]
+pub struct SpacePicker {
+    lens_p: u32,
+    lens_q: u32,
+    prism_n: u32,
+    census: usize,
+    path: String,
+    pub(super) error: Option<String>,
+}
+
+impl Default for SpacePicker {
+    fn default() -> Self {
+        Self {
+            lens_p: 7,
+            lens_q: 2,
+            prism_n: 3,
+            census: 1,
+            path: String::new(),
+            error: None,
+        }
+    }
+}
+
+/// The library members without parameters, as the picker lists them.
+pub(super) const LIBRARY_FIXED: &[&str] = &[
+    "three-sphere",
+    "projective-space",
+    "binary-tetrahedral",
+    "binary-octahedral",
+    "binary-icosahedral",
+    "mirrored-tetrahedron",
+    "torus-hexagonal",
+    "torus-fcc",
+    "torus-bcc",
+    "first-amphicosm",
+    "second-amphicosm",
+    "first-amphidicosm",
+    "second-amphidicosm",
+    "weeks",
+    "seifert-weber-group",
+];
+
+/// The space picker: the seed spaces and library members in a list, the families with
+/// parameters as fields, and a path field for a `.gen` or JSON file. Returns the id chosen.
+pub(super) fn space_picker(
+    ui: &mut egui::Ui,
+    active: &ActiveSpace,
+    picker: &mut SpacePicker,
+) -> Option<String> {
+    let mut chosen = None;
+    egui::ComboBox::from_label("space")
+        .selected_text(active.id.as_str())
+        .show_ui(ui, |ui| {
+            for seed in SEED_SPACES {
+                let r = ui
+                    .selectable_label(active.id == seed.id, seed.id)
+                    .on_hover_text(seed.summary);
+                if r.clicked() {
+                    chosen = Some(seed.id.to_string());
+                }
+            }
+            ui.separator();
+            for &id in LIBRARY_FIXED {
+                let summary = crate::space::library::FAMILIES
+                    .iter()
+                    .find(|f| f.pattern == id)
+                    .map_or("", |f| f.summary);
+                if ui
+                    .selectable_label(active.id == id, id)
+                    .on_hover_text(summary)
+                    .clicked()
+                {
+                    chosen = Some(id.to_string());
+                }
+            }
+        });
+    if let Some(summary) = SEED_SPACES.iter().find(|s| s.id == active.id) {
+        ui.label(egui::RichText::new(summary.summary).small());
+    } else if !active.space.description().is_empty() {
+        ui.label(egui::RichText::new(active.space.description()).small());
+    }
+    ui.collapsing("families and files", |ui| {
+        ui.horizontal(|ui| {
+            ui.label("lens");
+            ui.add(
+                egui::DragValue::new(&mut picker.lens_p)
+                    .range(2..=crate::space::library::MAX_LENS_ORDER)
+                    .prefix("P "),
+            );
+            ui.add(
+                egui::DragValue::new(&mut picker.lens_q)
+                    .range(1..=picker.lens_p.saturating_sub(1).max(1))
+                    .prefix("Q "),
+            );
+            if ui.button("go").clicked() {
+                chosen = Some(format!("lens-{}-{}", picker.lens_p, picker.lens_q));
+            }
+        });
+        ui.horizontal(|ui| {
+            ui.label("prism");
+            ui.add(
+                egui::DragValue::new(&mut picker.prism_n)
+                    .range(2..=crate::space::library::MAX_PRISM)
+                    .prefix("N "),
+            );
+            if ui.button("go").clicked() {
+                chosen = Some(format!("prism-{}", picker.prism_n));
+            }
+        });
+        ui.horizontal(|ui| {
+            ui.label("census");
+            ui.add(
+                egui::DragValue::new(&mut picker.census)
+                    .range(1..=crate::space::library::CENSUS.len())
+                    .prefix("N "),
+            );
+            if ui.button("go").clicked() {
+                chosen = Some(format!("census-{}", picker.census));
+            }
+        });
+        ui.horizontal(|ui| {
+            ui.label("file");
+            let edit = ui.add(
+                egui::TextEdit::singleline(&mut picker.path)
+                    .hint_text(".gen or .json path")
+                    .desired_width(150.0),
+            );
+            let enter = edit.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+            if (ui.button("load").clicked() || enter) && !picker.path.trim().is_empty() {
+                chosen = Some(picker.path.trim().to_string());
+            }
+        });
+        if let Some(e) = &picker.error {
+            ui.colored_label(egui::Color32::LIGHT_RED, e);
+        }
+    });
+    chosen
+}
