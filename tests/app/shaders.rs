@@ -7,6 +7,7 @@ use bevy_curved_spaces::bench::BASELINE_WGSL;
 use bevy_curved_spaces::geometry::Geometry;
 use bevy_curved_spaces::plugin::render::gpu::{
     GpuScene, MAX_GPU_BUDGET, ShaderKey, TRACER_WGSL, UPSCALE_WGSL, VIEW_WORDS, compose_wgsl,
+    undecorated,
 };
 use bevy_curved_spaces::scene::Centrepiece;
 use bevy_curved_spaces::scene::{CurvedScene, SceneParts, Shading};
@@ -33,7 +34,7 @@ fn validate(key: &ShaderKey) -> usize {
     let (handle, _) = module
         .types
         .iter()
-        .find(|(_, t)| t.name.as_deref() == Some("SpaceUniform"))
+        .find(|(_, t)| t.name.as_deref().map(undecorated) == Some("SpaceUniform"))
         .expect("the shader declares SpaceUniform");
     layouter[handle].size as usize
 }
@@ -65,7 +66,7 @@ fn the_typed_gpu_structs_match_their_wgsl_twins() {
         let (handle, ty) = module
             .types
             .iter()
-            .find(|(_, t)| t.name.as_deref() == Some(name))
+            .find(|(_, t)| t.name.as_deref().map(undecorated) == Some(name))
             .unwrap_or_else(|| panic!("the shader declares {name}"));
         let naga::TypeInner::Struct { members, .. } = &ty.inner else {
             panic!("{name} is a struct");
@@ -223,11 +224,14 @@ fn each_geometry_compiles_only_its_own_formulas() {
             &["Sin", "Atan2"][..],
         ),
     ] {
+        // Lit, so that the light's falloff S(d) is used: naga_oil keeps only what is used.
         let key = ShaderKey {
             geometry,
             faces: 6,
             balls: 1,
             tubes: 1,
+            lights: 1,
+            light_images: 1,
             ..ShaderKey::empty(geometry)
         };
         let module = compose(&key).expect("composes");
@@ -495,7 +499,7 @@ fn stereo_variants_validate_with_the_same_layout() {
             let (handle, _) = module
                 .types
                 .iter()
-                .find(|(_, t)| t.name.as_deref() == Some("SpaceUniform"))
+                .find(|(_, t)| t.name.as_deref().map(undecorated) == Some("SpaceUniform"))
                 .expect("SpaceUniform");
             assert_eq!(layouter[handle].size as usize, key.uniform_bytes());
         }

@@ -50,6 +50,9 @@ pub(crate) const TRACER_SHADER: Handle<Shader> =
 pub(crate) const UPSCALE_SHADER: Handle<Shader> =
     uuid_handle!("9a1e3b52-7c0d-4f86-b2a4-5d3e6f708192");
 
+/// The first of the ids the tracer's modules are registered under (one after another).
+const SHADER_MODULE_IDS: u128 = 0x6d1f_0c3a_52b8_4e27_a9c4_1b7e_0000_0000;
+
 /// The scene the GPU draws, shared by all curved-space cameras (rebuilt when the space or
 /// the tracer settings change).
 #[derive(Resource, Clone, Debug)]
@@ -111,6 +114,16 @@ impl Plugin for TracerRenderPlugin {
             "../../../shaders/upscale.wgsl",
             Shader::from_wgsl
         );
+        // The modules the tracer `#import`s, registered under fixed ids so that Bevy's
+        // shader cache resolves them by their import paths.
+        let mut shaders = app.world_mut().resource_mut::<Assets<Shader>>();
+        for (i, (path, source)) in gpu::SHADER_MODULES.iter().enumerate() {
+            let id = bevy::asset::uuid::Uuid::from_u128(SHADER_MODULE_IDS + i as u128);
+            let handle: Handle<Shader> = Handle::Uuid(id, std::marker::PhantomData);
+            shaders
+                .insert(handle.id(), Shader::from_wgsl(*source, *path))
+                .expect("an internal shader id is free");
+        }
         let frames = FramesTraced::default();
         app.insert_resource(frames.clone())
             .add_plugins(SyncComponentPlugin::<CurvedSpaceCamera>::default());

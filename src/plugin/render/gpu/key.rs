@@ -227,15 +227,19 @@ impl ShaderKey {
 }
 
 #[cfg(feature = "bench")]
-/// Composes WGSL with shader defs through naga_oil (as Bevy does) into a naga module; the
-/// error names the file and what went wrong.
+/// Composes WGSL with shader defs through naga_oil (as Bevy does) into a naga module, with
+/// the tracer's modules ([`super::SHADER_MODULES`]) available to `#import`; the error names
+/// the file and what went wrong.
 pub fn compose_wgsl(
     source: &str,
     file_path: &str,
     defs: &[ShaderDefVal],
 ) -> Result<naga::Module, String> {
-    use naga_oil::compose::{Composer, NagaModuleDescriptor, ShaderDefValue, ShaderType};
-    let shader_defs = defs
+    use naga_oil::compose::{
+        ComposableModuleDescriptor, Composer, NagaModuleDescriptor, ShaderDefValue, ShaderLanguage,
+        ShaderType,
+    };
+    let shader_defs: std::collections::HashMap<String, ShaderDefValue> = defs
         .iter()
         .map(|d| match d {
             ShaderDefVal::Bool(k, v) => (k.clone(), ShaderDefValue::Bool(*v)),
@@ -243,13 +247,32 @@ pub fn compose_wgsl(
             ShaderDefVal::UInt(k, v) => (k.clone(), ShaderDefValue::UInt(*v)),
         })
         .collect();
-    Composer::default()
-        .make_naga_module(NagaModuleDescriptor {
-            source,
-            file_path,
-            shader_type: ShaderType::Wgsl,
-            shader_defs,
-            additional_imports: &[],
-        })
-        .map_err(|e| format!("{file_path}: {e:?}"))
+    let mut composer = Composer::default();
+    for (path, module) in super::SHADER_MODULES {
+        let added = composer.add_composable_module(ComposableModuleDescriptor {
+            source: module,
+            file_path: path,
+            language: ShaderLanguage::Wgsl,
+            shader_defs: shader_defs.clone(),
+            ..Default::default()
+        });
+        if let Err(e) = added {
+            return Err(format!("{path}: {}", e.emit_to_string(&composer)));
+        }
+    }
+    let made = composer.make_naga_module(NagaModuleDescriptor {
+        source,
+        file_path,
+        shader_type: ShaderType::Wgsl,
+        shader_defs,
+        additional_imports: &[],
+    });
+    made.map_err(|e| format!("{file_path}: {}", e.emit_to_string(&composer)))
+}
+
+/// A name in a composed module without naga_oil's decoration of its module
+/// (`SpaceUniformX_naga_oil_mod_X…X` → `SpaceUniform`).
+#[must_use]
+pub fn undecorated(name: &str) -> &str {
+    name.find("X_naga_oil_mod_X").map_or(name, |i| &name[..i])
 }

@@ -22,16 +22,70 @@ mod key;
 mod pack;
 mod view;
 
-#[cfg(feature = "bench")]
-pub use key::compose_wgsl;
 pub use key::{GENERAL_CAPACITY, ShaderKey};
+#[cfg(feature = "bench")]
+pub use key::{compose_wgsl, undecorated};
 
 use pack::*;
 pub use pack::{cull_buckets, padded_count};
 pub use view::{ViewExtras, view_shader_defs, view_words};
 
-/// The WGSL source of the tracer.
+/// The WGSL source of the tracer's entry points; it `#import`s the [`SHADER_MODULES`].
 pub const TRACER_WGSL: &str = include_str!("../../../../shaders/curved_space.wgsl");
+
+/// The tracer's WGSL modules (`#define_import_path curved_spaces::…`), each the twin of a
+/// Rust module, in the order they import each other: the plugin registers them all, so a
+/// game that embeds the crate needs no shader files.
+pub const SHADER_MODULES: [(&str, &str); 12] = [
+    (
+        "shaders/layout.wgsl",
+        include_str!("../../../../shaders/layout.wgsl"),
+    ),
+    (
+        "shaders/geometry.wgsl",
+        include_str!("../../../../shaders/geometry.wgsl"),
+    ),
+    (
+        "shaders/object.wgsl",
+        include_str!("../../../../shaders/object.wgsl"),
+    ),
+    (
+        "shaders/texture.wgsl",
+        include_str!("../../../../shaders/texture.wgsl"),
+    ),
+    (
+        "shaders/mesh.wgsl",
+        include_str!("../../../../shaders/mesh.wgsl"),
+    ),
+    (
+        "shaders/shading.wgsl",
+        include_str!("../../../../shaders/shading.wgsl"),
+    ),
+    (
+        "shaders/hit_id.wgsl",
+        include_str!("../../../../shaders/hit_id.wgsl"),
+    ),
+    (
+        "shaders/walk.wgsl",
+        include_str!("../../../../shaders/walk.wgsl"),
+    ),
+    (
+        "shaders/culling.wgsl",
+        include_str!("../../../../shaders/culling.wgsl"),
+    ),
+    (
+        "shaders/scene.wgsl",
+        include_str!("../../../../shaders/scene.wgsl"),
+    ),
+    (
+        "shaders/walls.wgsl",
+        include_str!("../../../../shaders/walls.wgsl"),
+    ),
+    (
+        "shaders/trace.wgsl",
+        include_str!("../../../../shaders/trace.wgsl"),
+    ),
+];
 
 /// The WGSL source of the upscaling pass (the resolution scale).
 pub const UPSCALE_WGSL: &str = include_str!("../../../../shaders/upscale.wgsl");

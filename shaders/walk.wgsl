@@ -1,0 +1,110 @@
+// The walk through the cell: exit faces and crossings by the pairings.
+// The Rust twin: `space::walk`.
+#define_import_path curved_spaces::walk
+
+#import curved_spaces::layout::{face_count, kappa, space}
+#import curved_spaces::geometry::{project_point, unit_tangent}
+
+// The exit of a step without crossing (STEP_CAP).
+const NO_FACE: u32 = 0xfffffffeu;
+
+fn partner(face: u32) -> u32 {
+    return space.partners[face / 4u][face % 4u];
+}
+
+
+// A point of the model and a unit tangent there (Rust: `geometry::Ray`).
+struct Ray {
+    point: vec4<f32>,
+    tangent: vec4<f32>,
+}
+
+// Where a ray leaves the cell: the face and the chart ratio T = num/den of the exit point
+// (Rust: `space::walk::Exit`). face is 0xffffffff where no face is ahead.
+struct Exit {
+    face: u32,
+    num: f32,
+    den: f32,
+}
+
+#ifdef CULLING
+// Per face, the residual −N·p at the segment's start and its rate N·v along it (−N·X(s) =
+// start − s·rate), kept by exit_face so that the culling reads them instead of forming the
+// dot products again.
+var<private> face_start: array<f32, #{FACE_SLOTS}>;
+var<private> face_rate: array<f32, #{FACE_SLOTS}>;
+#endif
+
+// The exit face: the smallest T = −(N·p)/(N·v) among faces with N·v > 0, compared without
+// dividing; the face just entered (`skip`) is passed over (Rust: `CellWalker::exit`).
+fn exit_face(ray: Ray, skip: u32) -> Exit {
+    var exit = Exit(0xffffffffu, 0.0, 1.0);
+    for (var f = 0u; f < face_count(); f += 1u) {
+        let n = space.covectors[f];
+        let dn = dot(n, ray.tangent);
+        if f == skip || !(dn > 0.0) {
+            continue;
+        }
+        let nm = max(-dot(n, ray.point), 0.0);
+        if exit.face == 0xffffffffu || nm * exit.den < exit.num * dn {
+            exit = Exit(f, nm, dn);
+        }
+    }
+#ifdef STEP_CAP
+    // No face within π/4: a step of π/4 without crossing (Rust: `CellWalker::step_cap`).
+    if exit.face == 0xffffffffu || exit.num > exit.den {
+        exit = Exit(NO_FACE, 1.0, 1.0);
+    }
+#endif
+    return exit;
+}
+
+// s + e = a + b exactly (Knuth's two-sum: additions only). `one` is 1 at run time but not to
+// the compiler: multiplying by it keeps an optimiser from rewriting (a + b) − a as b, which
+// is true of real numbers and would make the error term zero.
+fn two_sum(a: vec4<f32>, b: vec4<f32>, one: f32) -> array<vec4<f32>, 2> {
+    let s = (a + b) * one;
+    let bb = (s - a) * one;
+    return array<vec4<f32>, 2>(s, (a - (s - bb)) + (b - bb));
+}
+
+// (hi + lo) x with the products and sums of hi x compensated (Ogita–Rump–Oishi Dot2, four
+// rows at once): as accurate as twice the precision rounded once (Rust:
+// `Vector4::transform_compensated`). A pairing's entries reach e^(2r) while the points it
+// moves have size e^r, so the plain product cancels and loses a digit in H³. fma gives the
+// products' rounding errors; where a driver does not fuse it, the error terms are zero and
+// this is the plain product plus lo x, no worse than before.
+fn transform_compensated(hi: mat4x4<f32>, lo: mat4x4<f32>, x: vec4<f32>) -> vec4<f32> {
+    // Flat pairings have small entries: nothing cancels (Rust: `CellWalker::apply_pairing`).
+    if kappa() == 0.0 {
+        return hi * x;
+    }
+    let one = space.shading.exact.x;
+    var p = hi[0] * x.x * one;
+    var s = fma(hi[0], vec4<f32>(x.x), -p) + lo[0] * x.x;
+    for (var j = 1; j < 4; j += 1) {
+        let h = hi[j] * x[j] * one;
+        let r = fma(hi[j], vec4<f32>(x[j]), -h);
+        let sum = two_sum(p, h, one);
+        p = sum[0];
+        s += (sum[1] + r) + lo[j] * x[j];
+    }
+    return p + s;
+}
+
+// Through the exit face: exit point (N·v) p − (N·p) v, tangent κ (N·p) p + (N·v) v, then the
+// face's pairing (compensated), both projected back onto the model (Rust: `CellWalker::cross`).
+fn cross_face(ray: Ray, exit: Exit) -> Ray {
+    let at_face = ray.point * exit.den + ray.tangent * exit.num;
+    let along = ray.point * (-kappa() * exit.num) + ray.tangent * exit.den;
+#ifdef STEP_CAP
+    if exit.face == NO_FACE {
+        let moved = project_point(at_face);
+        return Ray(moved, unit_tangent(moved, along));
+    }
+#endif
+    let hi = space.pairings[exit.face];
+    let lo = space.pairings_lo[exit.face];
+    let point = project_point(transform_compensated(hi, lo, at_face));
+    return Ray(point, unit_tangent(point, transform_compensated(hi, lo, along)));
+}
