@@ -62,11 +62,67 @@ const FRAC_PI_2: DoubleDouble = DoubleDouble {
     lo: 6.123_233_995_736_766e-17,
 };
 
+/// π to 32 digits.
+pub const DD_PI: DoubleDouble = DoubleDouble {
+    hi: std::f64::consts::PI,
+    lo: 1.224_646_799_147_353_2e-16,
+};
+
 impl DoubleDouble {
     /// The exact value of an `f64`.
     #[must_use]
     pub const fn new(x: f64) -> Self {
         Self { hi: x, lo: 0.0 }
+    }
+
+    /// The `f64` nearest the value (ties to even): the leading part of a normalised sum.
+    #[must_use]
+    pub fn round_f64(self) -> f64 {
+        self.hi + self.lo
+    }
+
+    /// The `f32` nearest the value (ties to even), rounded once.
+    #[must_use]
+    pub fn round_f32(self) -> f32 {
+        super::real::nearest_f32(self.hi, self.lo)
+    }
+
+    /// `cos` and `sin` of `π·p/q`, exact at the multiples of π/2 (0 and ±1) and of π/6
+    /// (½ and √3/2 to 32 digits), so a turn by a simple fraction has exact zeros.
+    #[must_use]
+    pub fn cos_sin_pi(p: i64, q: i64) -> (Self, Self) {
+        assert!(q != 0, "cos_sin_pi: zero denominator");
+        // The angle is k·π/6 with k = 6p/q when that is whole.
+        let twelve = 6 * p;
+        if twelve % q == 0 {
+            let k = (twelve / q).rem_euclid(12);
+            let half = Self::new(0.5);
+            let root3 = Self::new(3.0).sqrt() * half;
+            let (c, s) = match k % 3 {
+                0 => {
+                    // Multiples of π/2.
+                    let q4 = k / 3;
+                    let (c, s) = [(1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0)][q4 as usize];
+                    (Self::new(c), Self::new(s))
+                }
+                _ => {
+                    // k = 1, 2 (mod 3): π/6 and π/3 and their images.
+                    let base = k % 6;
+                    let (c, s) = match base {
+                        1 => (root3, half),
+                        2 => (half, root3),
+                        4 => (-half, root3),
+                        5 => (-root3, half),
+                        _ => unreachable!(),
+                    };
+                    if k >= 6 { (-c, -s) } else { (c, s) }
+                }
+            };
+            return (c, s);
+        }
+        let angle = DD_PI * Self::new(p as f64) / Self::new(q as f64);
+        let (s, c) = angle.sin_cos();
+        (c, s)
     }
 
     fn normalized(hi: f64, lo: f64) -> Self {
@@ -368,11 +424,91 @@ impl Mul for DdMat4 {
     }
 }
 
+impl Sub for DdMat4 {
+    type Output = Self;
+    fn sub(self, b: Self) -> Self {
+        Self(std::array::from_fn(|j| self.0[j] - b.0[j]))
+    }
+}
+
 impl DdMat4 {
+    /// The identity.
+    pub const IDENTITY: Self = {
+        let (o, z) = (DoubleDouble::new(1.0), DoubleDouble::new(0.0));
+        Self([
+            DdVec4([o, z, z, z]),
+            DdVec4([z, o, z, z]),
+            DdVec4([z, z, o, z]),
+            DdVec4([z, z, z, o]),
+        ])
+    };
+
     /// The exact value of an `f64` matrix.
     #[must_use]
     pub fn from_f64(m: DMat4) -> Self {
         <DdVec4 as Vector4>::matrix_from_f64(m)
+    }
+
+    /// The leading and trailing parts, as two `f64` matrices.
+    #[must_use]
+    pub fn parts(&self) -> (DMat4, DMat4) {
+        let cols = self.0.map(|c| c.parts());
+        (
+            DMat4::from_cols(cols[0].0, cols[1].0, cols[2].0, cols[3].0),
+            DMat4::from_cols(cols[0].1, cols[1].1, cols[2].1, cols[3].1),
+        )
+    }
+
+    /// Each entry rounded once to the nearest `f64`.
+    #[must_use]
+    pub fn round_f64(&self) -> DMat4 {
+        DMat4::from_cols_array_2d(&self.0.map(|c| c.round_f64().to_array()))
+    }
+
+    /// Entry `(row i, column j)`.
+    #[must_use]
+    pub fn at(&self, i: usize, j: usize) -> DoubleDouble {
+        self.0[j].0[i]
+    }
+
+    /// The transpose.
+    #[must_use]
+    pub fn transpose(&self) -> Self {
+        Self(std::array::from_fn(|j| {
+            DdVec4(std::array::from_fn(|i| self.0[i].0[j]))
+        }))
+    }
+
+    /// The largest absolute entry, in `f64`.
+    #[must_use]
+    pub fn max_abs(&self) -> f64 {
+        self.0
+            .iter()
+            .flat_map(|c| c.0)
+            .fold(0.0_f64, |m, x| m.max(x.abs().to_f64()))
+    }
+}
+
+impl DdVec4 {
+    /// The leading and trailing parts, as two `f64` vectors.
+    #[must_use]
+    pub fn parts(&self) -> (DVec4, DVec4) {
+        (
+            DVec4::from_array(self.0.map(|x| x.hi)),
+            DVec4::from_array(self.0.map(|x| x.lo)),
+        )
+    }
+
+    /// Each component rounded once to the nearest `f64`.
+    #[must_use]
+    pub fn round_f64(&self) -> DVec4 {
+        DVec4::from_array(self.0.map(DoubleDouble::round_f64))
+    }
+
+    /// Each component rounded once to the nearest `f32`.
+    #[must_use]
+    pub fn round_f32(&self) -> glam::Vec4 {
+        glam::Vec4::from_array(self.0.map(DoubleDouble::round_f32))
     }
 }
 
@@ -412,10 +548,20 @@ impl Vector4 for DdVec4 {
         m.0[j]
     }
 
+    fn from_f64_pair(hi: DVec4, lo: DVec4) -> Self {
+        Self(std::array::from_fn(|i| {
+            DoubleDouble::new(hi[i]) + DoubleDouble::new(lo[i])
+        }))
+    }
+
     fn matrix_from_f64(m: DMat4) -> DdMat4 {
         DdMat4(
             m.to_cols_array_2d()
                 .map(|c| Self::from_f64(DVec4::from_array(c))),
         )
+    }
+
+    fn matrix_from_columns(cols: [Self; 4]) -> DdMat4 {
+        DdMat4(cols)
     }
 }

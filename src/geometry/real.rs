@@ -165,6 +165,20 @@ pub trait Vector4:
     /// The nearest matrix to an `f64` one.
     #[must_use]
     fn matrix_from_f64(m: DMat4) -> Self::Matrix;
+    /// The nearest vector to `hi + lo` (a double-double's parts), rounded once: for `f64`
+    /// the sum, for `f32` its nearest `f32`, for double-double the pair itself.
+    #[must_use]
+    fn from_f64_pair(hi: DVec4, lo: DVec4) -> Self;
+    /// The nearest matrix to `hi + lo`, each entry rounded once.
+    #[must_use]
+    fn matrix_from_f64_pair(hi: DMat4, lo: DMat4) -> Self::Matrix {
+        Self::matrix_from_columns(std::array::from_fn(|j| {
+            Self::from_f64_pair(hi.col(j), lo.col(j))
+        }))
+    }
+    /// A matrix from its columns.
+    #[must_use]
+    fn matrix_from_columns(cols: [Self; 4]) -> Self::Matrix;
     /// Column `j` of a matrix.
     #[must_use]
     fn column(m: &Self::Matrix, j: usize) -> Self;
@@ -232,6 +246,14 @@ macro_rules! impl_vector4 {
             fn column(m: &$m, j: usize) -> Self {
                 m.col(j)
             }
+            #[inline]
+            fn from_f64_pair(hi: DVec4, lo: DVec4) -> Self {
+                <$v>::from_array(std::array::from_fn(|i| <$t>::nearest_of_pair(hi[i], lo[i])))
+            }
+            #[inline]
+            fn matrix_from_columns(cols: [Self; 4]) -> $m {
+                <$m>::from_cols(cols[0], cols[1], cols[2], cols[3])
+            }
             /// The same `Dot2` as the default, four rows at once in glam's SIMD vectors, with
             /// Veltkamp–Dekker splitting for the exact products (plain arithmetic, no
             /// library `fma` call where the target has no fused multiply-add).
@@ -278,5 +300,50 @@ macro_rules! impl_vector4 {
         }
     };
 }
+/// The nearest value of a precision to the sum of two `f64`s (a double-double's parts).
+trait NearestOfPair {
+    fn nearest_of_pair(hi: f64, lo: f64) -> Self;
+}
+
+impl NearestOfPair for f64 {
+    fn nearest_of_pair(hi: f64, lo: f64) -> f64 {
+        hi + lo
+    }
+}
+
+impl NearestOfPair for f32 {
+    fn nearest_of_pair(hi: f64, lo: f64) -> f32 {
+        nearest_f32(hi, lo)
+    }
+}
+
+/// The `f32` nearest `hi + lo` (ties to even), rounded once: `hi`'s nearest `f32`, or its
+/// neighbour where the rest of the sum says so (rounding `hi + lo` to `f64` first, then to
+/// `f32`, can land on the wrong side of a half-way point).
+pub(crate) fn nearest_f32(hi: f64, lo: f64) -> f32 {
+    let h = hi as f32;
+    if !h.is_finite() {
+        return h;
+    }
+    // What h leaves out: `hi − h` is exact (the two are within an f32 unit), and lo is
+    // added once; only its sign and its size against half a unit matter.
+    let rest = (hi - f64::from(h)) + lo;
+    if rest == 0.0 {
+        return h;
+    }
+    let next = if rest > 0.0 {
+        h.next_up()
+    } else {
+        h.next_down()
+    };
+    let half_gap = (f64::from(next) - f64::from(h)).abs() / 2.0;
+    let r = rest.abs();
+    if r > half_gap || r == half_gap && h.to_bits() & 1 == 1 {
+        next
+    } else {
+        h
+    }
+}
+
 impl_vector4!(DVec4, DMat4, f64);
 impl_vector4!(Vec4, Mat4, f32);

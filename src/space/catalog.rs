@@ -1,13 +1,17 @@
 //! The seed spaces, each built in code from its definition and validated.
 //!
+//! Each is built in double-double from its closed form and rounded once
+//! ([`super::exact`]): the `f64` numbers of a seed space are the correctly rounded values of
+//! the exact ones.
+//!
 //! Twists are right-handed: a face's pairing rotates by the twist angle about the face's
 //! outward normal (counter-clockwise seen from outside the face), after translating the
 //! face onto its partner. The other sense gives the mirror-image space.
 
-use super::{FaceSpec, Pairing, Space, SpaceError};
-use crate::geometry::Geometry;
+use super::exact::{self, Dd3, ExactCell, ExactFace, dd3, identity3, scaled, unit};
+use super::{Space, SpaceError};
+use crate::geometry::{DdMat4, DoubleDouble, Geometry, Real};
 use glam::{DMat3, DMat4, DVec3};
-use std::f64::consts::{FRAC_1_SQRT_2, PI};
 
 /// The seed space shown when nothing else is chosen.
 pub const DEFAULT_SPACE: &str = "seifert-weber";
@@ -100,17 +104,28 @@ pub fn affine(a: DMat3, b: DVec3) -> DMat4 {
     m
 }
 
-/// Faces `n·x ≤ ½` for the given normals, each glued to the face with the opposite normal
-/// by the unit translation along `−n` (so a ray leaving through `+x` comes back at `−x`).
-fn translated_faces(normals: &[DVec3]) -> Vec<FaceSpec> {
+fn dd(x: f64) -> DoubleDouble {
+    DoubleDouble::new(x)
+}
+
+/// Faces `n·x ≤ ½` for the given unit normals, each glued to the face with the opposite
+/// normal by the unit translation along `−n` (so a ray leaving through `+x` comes back at
+/// `−x`).
+fn translated_faces(normals: &[Dd3]) -> Vec<ExactFace> {
+    let round = |n: &Dd3| DVec3::from_array(n.map(DoubleDouble::round_f64));
     normals
         .iter()
-        .map(|&n| {
+        .map(|n| {
             let partner = normals
                 .iter()
-                .position(|&m| (m + n).length() < 1e-12)
+                .position(|m| (round(m) + round(n)).length() < 1e-12)
                 .unwrap_or(usize::MAX);
-            FaceSpec::paired(n, 0.5, partner, affine(DMat3::IDENTITY, -n))
+            ExactFace {
+                normal: *n,
+                offset: dd(0.5),
+                partner,
+                pairing: exact::affine(identity3(), n.map(|x| -x)),
+            }
         })
         .collect()
 }
@@ -125,66 +140,71 @@ pub const CUBE_NORMALS: [DVec3; 6] = [
     DVec3::NEG_Z,
 ];
 
+fn euclidean(faces: Vec<ExactFace>) -> ExactCell {
+    ExactCell {
+        geometry: Geometry::Euclidean,
+        faces,
+    }
+}
+
 fn torus() -> Result<Space, SpaceError> {
-    Space::new(
+    Space::from_exact(
         "torus",
         "The 3-torus E³/Z³: a unit cube whose opposite faces are glued by translations.",
-        Geometry::Euclidean,
-        &translated_faces(&CUBE_NORMALS),
+        euclidean(translated_faces(&CUBE_NORMALS.map(dd3))),
     )
 }
 
 /// Glues the face at `z = −½` onto `z = +½` by a rotation of `2π/turns` about the z axis
 /// followed by the unit translation in z; the face at `z = +½` gets the inverse.
-fn screw_z(faces: &mut [FaceSpec], top: usize, bottom: usize, turns: u32) {
-    let up = affine(DMat3::from_rotation_z(2.0 * PI / turns as f64), DVec3::Z);
-    faces[bottom].pairing = Some(Pairing {
-        partner: top,
-        matrix: up,
-    });
-    faces[top].pairing = Some(Pairing {
-        partner: bottom,
-        matrix: Geometry::Euclidean.inverse(up),
-    });
+fn screw_z(faces: &mut [ExactFace], top: usize, bottom: usize, turns: u32) {
+    let (c, s) = DoubleDouble::cos_sin_pi(2, i64::from(turns));
+    let z = DoubleDouble::ZERO;
+    let o = DoubleDouble::ONE;
+    let up = exact::affine([[c, -s, z], [s, c, z], [z, z, o]], [z, z, o]);
+    faces[bottom].partner = top;
+    faces[bottom].pairing = up;
+    faces[top].partner = bottom;
+    faces[top].pairing = exact::inverse(Geometry::Euclidean, &up);
 }
 
 fn turned_cube(name: &str, turns: u32) -> Result<Space, SpaceError> {
-    let mut faces = translated_faces(&CUBE_NORMALS);
+    let mut faces = translated_faces(&CUBE_NORMALS.map(dd3));
     screw_z(&mut faces, 4, 5, turns);
-    Space::new(
+    Space::from_exact(
         name,
         format!(
             "A unit cube: x and y faces glued by translations, the z faces by a 1/{turns} turn \
              about the z axis and a unit translation."
         ),
-        Geometry::Euclidean,
-        &faces,
+        euclidean(faces),
     )
 }
 
 fn turned_prism(name: &str, turns: u32) -> Result<Space, SpaceError> {
-    let mut normals: Vec<DVec3> = (0..6)
+    let mut normals: Vec<Dd3> = (0..6)
         .map(|k| {
-            let a = k as f64 * PI / 3.0;
-            DVec3::new(a.cos(), a.sin(), 0.0)
+            let (c, s) = DoubleDouble::cos_sin_pi(k, 3);
+            [c, s, DoubleDouble::ZERO]
         })
         .collect();
-    normals.extend([DVec3::Z, DVec3::NEG_Z]);
+    normals.extend([DVec3::Z, DVec3::NEG_Z].map(dd3));
     let mut faces = translated_faces(&normals);
     screw_z(&mut faces, 6, 7, turns);
-    Space::new(
+    Space::from_exact(
         name,
         format!(
             "A hexagonal prism: opposite sides glued by unit translations, the z faces by a \
              1/{turns} turn about the z axis and a unit translation."
         ),
-        Geometry::Euclidean,
-        &faces,
+        euclidean(faces),
     )
 }
 
 fn hantzsche_wendt() -> Result<Space, SpaceError> {
     let e = Geometry::Euclidean;
+    // Every entry of the group's matrices is a small integer: exact in f64, so the word
+    // search runs in f64; only the normals and offsets (1/√2) need double-double.
     let generators = [
         affine(
             DMat3::from_diagonal(DVec3::new(1.0, -1.0, -1.0)),
@@ -211,80 +231,117 @@ fn hantzsche_wendt() -> Result<Space, SpaceError> {
             .collect();
         words.extend(&frontier);
     }
-    let mut normals = Vec::new();
+    // The twelve directions (±1, ±1, 0) and their permutations (integer vectors).
+    let mut directions = Vec::new();
     for (i, j) in [(0, 1), (0, 2), (1, 2)] {
         for (si, sj) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)] {
             let mut n = DVec3::ZERO;
             n[i] = si;
             n[j] = sj;
-            normals.push(n * FRAC_1_SQRT_2);
+            directions.push(n);
         }
     }
-    let faces: Vec<FaceSpec> = normals
+    let half_root2 = dd(0.5).sqrt();
+    let faces: Vec<ExactFace> = directions
         .iter()
-        .map(|&n| {
-            // The neighbour cell across this face is h(D) with h(0) = 2·(1/√2)·n.
-            let across = n * 2.0 * FRAC_1_SQRT_2;
-            let pairing = words
+        .map(|&d| {
+            // The neighbour cell across this face is h(D) with h(0) = d.
+            let (partner, pairing) = words
                 .iter()
-                .find(|h| (h.w_axis.truncate() - across).length() < 1e-12)
+                .find(|h| (h.w_axis.truncate() - d).length() < 1e-12)
                 .map(|h| {
                     let g = e.inverse(*h);
                     let back = g.w_axis.truncate();
-                    let partner = normals
+                    let partner = directions
                         .iter()
-                        .position(|m| (*m * 2.0 * FRAC_1_SQRT_2 - back).length() < 1e-12)
+                        .position(|m| (*m - back).length() < 1e-12)
                         .unwrap_or(usize::MAX);
-                    Pairing { partner, matrix: g }
-                });
-            FaceSpec {
-                normal: n,
-                offset: FRAC_1_SQRT_2,
+                    (partner, DdMat4::from_f64(g))
+                })
+                .unwrap_or((usize::MAX, DdMat4::IDENTITY));
+            ExactFace {
+                normal: scaled(dd3(d), half_root2),
+                offset: half_root2,
+                partner,
                 pairing,
             }
         })
         .collect();
-    Space::new(
+    Space::from_exact(
         "hantzsche-wendt",
         "The Hantzsche–Wendt manifold, generated by α(x,y,z) = (x+1, 1−y, −z), \
          β(x,y,z) = (−x, y+1, 1−z), γ(x,y,z) = (1−x, −y, z+1); the cell is its Dirichlet \
          domain about the origin, a rhombic dodecahedron.",
-        e,
-        &faces,
+        euclidean(faces),
     )
 }
 
-fn mirror_faces(geometry: Geometry, normals: &[DVec3], offset: f64) -> Vec<FaceSpec> {
+/// Mirrors at chart distance `offset` with the given unit normals.
+fn mirror_faces(geometry: Geometry, normals: &[Dd3], offset: DoubleDouble) -> Vec<ExactFace> {
     normals
         .iter()
         .enumerate()
-        .map(|(i, &n)| FaceSpec::paired(n, offset, i, geometry.reflection(n.extend(-offset))))
+        .map(|(i, &normal)| {
+            let face = ExactFace {
+                normal,
+                offset,
+                partner: i,
+                pairing: DdMat4::IDENTITY,
+            };
+            ExactFace {
+                pairing: exact::reflection(geometry, face.covector()),
+                ..face
+            }
+        })
         .collect()
 }
 
 fn mirrored_cube() -> Result<Space, SpaceError> {
-    Space::new(
+    Space::from_exact(
         "mirrored-cube",
         "A unit cube whose six faces are mirrors: a flat orbifold (a room of mirrors).",
-        Geometry::Euclidean,
-        &mirror_faces(Geometry::Euclidean, &CUBE_NORMALS, 0.5),
+        euclidean(mirror_faces(
+            Geometry::Euclidean,
+            &CUBE_NORMALS.map(dd3),
+            dd(0.5),
+        )),
     )
 }
 
-/// The twelve outward face normals of the regular dodecahedron, `n(f+6) = −n(f)`.
+/// The twelve outward unit face normals of the regular dodecahedron in double-double,
+/// `n(f+6) = −n(f)`: `(0, ±1, ±φ)` and its cyclic permutations over `√(1 + φ²)`.
+#[must_use]
+pub fn dodecahedron_normals_exact() -> [Dd3; 12] {
+    let phi = (dd(1.0) + dd(5.0).sqrt()) / dd(2.0);
+    let (o, z) = (DoubleDouble::ONE, DoubleDouble::ZERO);
+    let half = [
+        [z, o, phi],
+        [z, -o, phi],
+        [o, phi, z],
+        [-o, phi, z],
+        [phi, z, o],
+        [phi, z, -o],
+    ];
+    std::array::from_fn(|f| {
+        let n = unit(half[f % 6]);
+        if f < 6 { n } else { n.map(|x| -x) }
+    })
+}
+
+/// The twelve outward face normals of the regular dodecahedron, `n(f+6) = −n(f)`
+/// (each component correctly rounded).
 #[must_use]
 pub fn dodecahedron_normals() -> [DVec3; 12] {
-    let phi = (1.0 + 5.0_f64.sqrt()) / 2.0;
-    let half = [
-        DVec3::new(0.0, 1.0, phi),
-        DVec3::new(0.0, -1.0, phi),
-        DVec3::new(1.0, phi, 0.0),
-        DVec3::new(-1.0, phi, 0.0),
-        DVec3::new(phi, 0.0, 1.0),
-        DVec3::new(phi, 0.0, -1.0),
-    ];
-    let s = (1.0 + phi * phi).sqrt();
-    std::array::from_fn(|f| if f < 6 { half[f] / s } else { -half[f - 6] / s })
+    dodecahedron_normals_exact().map(|n| DVec3::from_array(n.map(DoubleDouble::round_f64)))
+}
+
+/// Chart distance of the faces of a regular dodecahedron whose dihedral angle has cosine
+/// `cos_dihedral`, in double-double (see [`dodecahedron_offset`]).
+#[must_use]
+pub fn dodecahedron_offset_exact(geometry: Geometry, cos_dihedral: DoubleDouble) -> DoubleDouble {
+    let c = DoubleDouble::ONE / dd(5.0).sqrt();
+    let k = dd(geometry.kappa());
+    (-(c + cos_dihedral) / (k * (DoubleDouble::ONE + cos_dihedral))).sqrt()
 }
 
 /// Chart distance of the faces of a regular dodecahedron with the given dihedral angle.
@@ -294,13 +351,40 @@ pub fn dodecahedron_normals() -> [DVec3; 12] {
 /// `r² = −(c + cos α) / (κ (1 + cos α))`.
 #[must_use]
 pub fn dodecahedron_offset(geometry: Geometry, dihedral: f64) -> f64 {
-    let c = 1.0 / 5.0_f64.sqrt();
-    let k = geometry.kappa();
-    (-(c + dihedral.cos()) / (k * (1.0 + dihedral.cos()))).sqrt()
+    let (_, cos) = dd(dihedral).sin_cos();
+    dodecahedron_offset_exact(geometry, cos).round_f64()
+}
+
+/// A regular dodecahedron (dihedral angle with cosine `cos_dihedral`) whose opposite faces
+/// are glued by the translation along the line through the two face centres composed with
+/// a right-handed twist of cosine and sine `twist`, in double-double.
+fn twisted_dodecahedron_exact(
+    geometry: Geometry,
+    cos_dihedral: DoubleDouble,
+    twist: (DoubleDouble, DoubleDouble),
+) -> ExactCell {
+    let r = dodecahedron_offset_exact(geometry, cos_dihedral);
+    let normals = dodecahedron_normals_exact();
+    let faces = normals
+        .iter()
+        .enumerate()
+        .map(|(f, &n)| {
+            let back = n.map(|x| -x);
+            ExactFace {
+                normal: n,
+                offset: r,
+                partner: (f + 6) % 12,
+                pairing: exact::rotation(n, twist.0, twist.1)
+                    * exact::double_inradius_translation(geometry, back, r),
+            }
+        })
+        .collect();
+    ExactCell { geometry, faces }
 }
 
 /// A regular dodecahedron with opposite faces glued by the translation along the line through
-/// the two face centres composed with a right-handed `twist` about it.
+/// the two face centres composed with a right-handed `twist` about it (built in
+/// double-double from the two angles as given, and rounded once).
 pub fn twisted_dodecahedron(
     name: &str,
     description: &str,
@@ -308,49 +392,54 @@ pub fn twisted_dodecahedron(
     dihedral: f64,
     twist: f64,
 ) -> Result<Space, SpaceError> {
-    let r = dodecahedron_offset(geometry, dihedral);
-    let normals = dodecahedron_normals();
-    let centre = geometry.project_point((normals[0] * r).extend(1.0));
-    let inradius = geometry.distance(crate::geometry::ORIGIN, centre);
-    let faces: Vec<FaceSpec> = normals
-        .iter()
-        .enumerate()
-        .map(|(f, &n)| {
-            let g = geometry.rotation(n, twist) * geometry.translation(-n, 2.0 * inradius);
-            FaceSpec::paired(n, r, (f + 6) % 12, g)
-        })
-        .collect();
-    Space::new(name, description, geometry, &faces)
+    let (_, cos_dihedral) = dd(dihedral).sin_cos();
+    let (s, c) = dd(twist).sin_cos();
+    Space::from_exact(
+        name,
+        description,
+        twisted_dodecahedron_exact(geometry, cos_dihedral, (c, s)),
+    )
 }
 
 fn seifert_weber() -> Result<Space, SpaceError> {
-    twisted_dodecahedron(
+    Space::from_exact(
         "seifert-weber",
         "The Seifert–Weber dodecahedral space: a hyperbolic regular dodecahedron with dihedral \
          angle 72°, each face glued to the opposite one with a right-handed 3π/5 twist.",
-        Geometry::Hyperbolic,
-        2.0 * PI / 5.0,
-        3.0 * PI / 5.0,
+        twisted_dodecahedron_exact(
+            Geometry::Hyperbolic,
+            DoubleDouble::cos_sin_pi(2, 5).0,
+            DoubleDouble::cos_sin_pi(3, 5),
+        ),
     )
 }
 
 fn poincare() -> Result<Space, SpaceError> {
-    twisted_dodecahedron(
+    Space::from_exact(
         "poincare",
         "The Poincaré dodecahedral space S³/2I: a spherical regular dodecahedron with dihedral \
          angle 120°, each face glued to the opposite one with a right-handed π/5 twist.",
-        Geometry::Spherical,
-        2.0 * PI / 3.0,
-        PI / 5.0,
+        twisted_dodecahedron_exact(
+            Geometry::Spherical,
+            DoubleDouble::cos_sin_pi(2, 3).0,
+            DoubleDouble::cos_sin_pi(1, 5),
+        ),
     )
 }
 
 fn mirrored_dodecahedron() -> Result<Space, SpaceError> {
     let g = Geometry::Hyperbolic;
-    Space::new(
+    let right_angle = DoubleDouble::cos_sin_pi(1, 2).0;
+    Space::from_exact(
         "mirrored-dodecahedron",
         "A hyperbolic right-angled regular dodecahedron whose twelve faces are mirrors.",
-        g,
-        &mirror_faces(g, &dodecahedron_normals(), dodecahedron_offset(g, PI / 2.0)),
+        ExactCell {
+            geometry: g,
+            faces: mirror_faces(
+                g,
+                &dodecahedron_normals_exact(),
+                dodecahedron_offset_exact(g, right_angle),
+            ),
+        },
     )
 }

@@ -5,6 +5,7 @@ pub mod accuracy;
 pub mod catalog;
 pub mod dirichlet;
 mod error;
+pub mod exact;
 pub mod file;
 pub mod group;
 pub mod homology;
@@ -179,6 +180,9 @@ pub struct Space {
     /// For a spherical cell that reaches distance π/2 from its centre (built from its
     /// finite group, [`Space::reaches_equator`]): the group's order.
     pub(crate) equator_order: Option<usize>,
+    /// The cell in double-double, for a space built from a closed form
+    /// ([`Space::from_exact`]).
+    pub(crate) exact: Option<std::sync::Arc<exact::ExactCell>>,
 }
 
 impl Space {
@@ -308,6 +312,7 @@ impl Space {
             orientable,
             manifold: true,
             equator_order: Some(order),
+            exact: None,
         }
     }
 }
@@ -411,6 +416,7 @@ impl Space {
             orientable,
             manifold: !has_mirror && !cone_edges,
             equator_order: None,
+            exact: None,
         })
     }
 

@@ -5,7 +5,8 @@
 //! running them side by side measures what each costs.
 
 use super::Space;
-use crate::geometry::{Geometry, Ray, Real, Vector4};
+use super::exact::ExactCell;
+use crate::geometry::{DdMat4, Geometry, Ray, Real, Vector4};
 use glam::{DMat4, DVec4};
 
 /// Where a ray leaves the cell through a face: the ratio `T = num/den = S(t)/C(t)` of the
@@ -94,6 +95,9 @@ impl<V: Vector4> CellWalker<V> {
     /// The walker of a space in the precision `V`.
     #[must_use]
     pub fn new(space: &Space) -> Self {
+        if let Some(cell) = space.exact() {
+            return Self::from_exact(cell);
+        }
         let covectors: Vec<_> = space.faces.iter().map(|f| f.covector).collect();
         let pairings: Vec<_> = space.faces.iter().map(|f| f.pairing).collect();
         let partners: Vec<_> = space.faces.iter().map(|f| f.partner).collect();
@@ -102,6 +106,40 @@ impl<V: Vector4> CellWalker<V> {
             walker.step_cap = Some(1.0);
         }
         walker
+    }
+
+    /// A walker from a cell in double-double: every covector and pairing entry rounded
+    /// once to `V`, and the pairings' low parts what that rounding left out (so the `f64`
+    /// walker too applies its pairings to about 32 digits).
+    #[must_use]
+    pub fn from_exact(cell: &ExactCell) -> Self {
+        let round = |m: &DdMat4| {
+            let (hi, lo) = m.parts();
+            V::matrix_from_f64_pair(hi, lo)
+        };
+        let pairings: Vec<V::Matrix> = cell.faces.iter().map(|f| round(&f.pairing)).collect();
+        let pairings_lo = cell
+            .faces
+            .iter()
+            .zip(&pairings)
+            .map(|(f, hi)| round(&(f.pairing - DdMat4::from_f64(V::matrix_to_f64(hi)))))
+            .collect();
+        Self {
+            geometry: cell.geometry,
+            covectors: cell
+                .faces
+                .iter()
+                .map(|f| {
+                    let (hi, lo) = f.covector().parts();
+                    V::from_f64_pair(hi, lo)
+                })
+                .collect(),
+            pairings,
+            pairings_lo,
+            partners: cell.faces.iter().map(|f| f.partner).collect(),
+            compensated: true,
+            step_cap: None,
+        }
     }
 
     /// A walker from faces given directly (`f64` covectors and pairings, each face's
