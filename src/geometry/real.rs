@@ -325,24 +325,26 @@ pub(crate) fn nearest_f32(hi: f64, lo: f64) -> f32 {
     if !h.is_finite() {
         return h;
     }
-    // What h leaves out: `hi − h` is exact (the two are within an f32 unit), and lo is
-    // added once; only its sign and its size against half a unit matter.
-    let rest = (hi - f64::from(h)) + lo;
-    if rest == 0.0 {
+    // `hi − h` is exact (the two are within an f32 unit); lo, far below hi's last place,
+    // only decides where hi itself is half-way between two f32s (or on one).
+    let d = hi - f64::from(h);
+    let toward = if d != 0.0 { d } else { lo };
+    if toward == 0.0 {
         return h;
     }
-    let next = if rest > 0.0 {
+    let next = if toward > 0.0 {
         h.next_up()
     } else {
         h.next_down()
     };
     let half_gap = (f64::from(next) - f64::from(h)).abs() / 2.0;
-    let r = rest.abs();
-    if r > half_gap || r == half_gap && h.to_bits() & 1 == 1 {
-        next
-    } else {
-        h
-    }
+    let lo_beyond = lo * toward.signum();
+    let go = match d.abs().total_cmp(&half_gap) {
+        std::cmp::Ordering::Greater => true,
+        std::cmp::Ordering::Less => false,
+        std::cmp::Ordering::Equal => lo_beyond > 0.0 || lo_beyond == 0.0 && h.to_bits() & 1 == 1,
+    };
+    if go { next } else { h }
 }
 
 impl_vector4!(DVec4, DMat4, f64);

@@ -17,7 +17,7 @@
 //!    back, the pairings generate the whole group and the cell is its Dirichlet domain (it
 //!    contains the true one and has the same volume).
 
-use super::group::{Generators, GroupError, parse_gen, polish_isometry};
+use super::group::{Generators, GroupError, parse_gen, polish_isometry, polish_isometry_fast};
 use super::orbit::OrbitPoints;
 use super::{FaceSpec, MAX_FACES, Space};
 use crate::geometry::{Geometry, ORIGIN, max_abs_entry};
@@ -176,7 +176,7 @@ fn enumerate(
         for &e in &frontier {
             let (m, word) = (orbit.elements[e].matrix, orbit.elements[e].word);
             for &g in moves {
-                let product = polish_isometry(geometry, m * g);
+                let product = polish_isometry_fast(geometry, m * g);
                 if geometry.distance(ORIGIN, product.w_axis) > radius {
                     continue;
                 }
@@ -660,7 +660,7 @@ fn attempt(
             if s <= 1e-9 {
                 break;
             }
-            element = polish_isometry(geometry, space.faces()[f].pairing * element);
+            element = polish_isometry_fast(geometry, space.faces()[f].pairing * element);
         }
         let d = geometry.distance(ORIGIN, element.w_axis);
         if d > 1e-7

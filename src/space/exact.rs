@@ -219,6 +219,23 @@ fn meet(planes: [(Dd3, DoubleDouble); 3]) -> Dd3 {
     })
 }
 
+/// Below this share of a vector's or matrix's largest entry, an entry of a closed-form
+/// cell is zero: double-double cannot tell it from zero (sums that cancel exactly leave
+/// about 2⁻¹⁰⁴), and such an entry must round to zero, not to a tiny number.
+const NOISE: f64 = 1.0 / (1u128 << 90) as f64;
+
+/// A vector with its entries below [`NOISE`] set to zero.
+fn snap_zeros(v: Dd3) -> Dd3 {
+    let size = v.iter().fold(0.0_f64, |m, x| m.max(x.abs().to_f64()));
+    v.map(|x| {
+        if x.abs().to_f64() < size * NOISE {
+            DoubleDouble::ZERO
+        } else {
+            x
+        }
+    })
+}
+
 impl Space {
     /// Builds and validates a space from its cell in double-double: every face number,
     /// pairing and vertex of the space is the double-double value rounded once to `f64`,
@@ -229,6 +246,18 @@ impl Space {
         description: impl Into<String>,
         cell: ExactCell,
     ) -> Result<Self, SpaceError> {
+        let mut cell = cell;
+        for face in &mut cell.faces {
+            face.normal = snap_zeros(face.normal);
+            let size = face.pairing.max_abs();
+            for col in &mut face.pairing.0 {
+                for x in &mut col.0 {
+                    if x.abs().to_f64() < size * NOISE {
+                        *x = DoubleDouble::ZERO;
+                    }
+                }
+            }
+        }
         let round3 = |v: Dd3| DVec3::from_array(v.map(DoubleDouble::round_f64));
         let specs: Vec<FaceSpec> = cell
             .faces
@@ -268,7 +297,7 @@ impl Space {
             }
             if let Some((three, _)) = best {
                 let planes = three.map(|f| (cell.faces[f].normal, cell.faces[f].offset));
-                space.vertices[v] = round3(meet(planes));
+                space.vertices[v] = round3(snap_zeros(meet(planes)));
             }
         }
         space.exact = Some(Arc::new(cell));

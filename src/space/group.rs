@@ -12,8 +12,8 @@
 //! `−x² − y² − z² + w²` (hyperbolic).
 
 use super::{Space, SpaceError};
-use crate::geometry::{Geometry, max_abs_entry};
-use glam::{DMat3, DMat4, DVec4};
+use crate::geometry::{DdMat4, DdVec4, DoubleDouble, Geometry, Real, Vector4, max_abs_entry};
+use glam::{DMat4, DVec4};
 use std::fmt::Write as _;
 
 /// The most matrices a generator file may list.
@@ -199,20 +199,39 @@ fn residuals(g: DMat4) -> [f64; 3] {
 }
 
 /// The isometry of `geometry` nearest `g` (Gram–Schmidt of its columns in the form,
-/// starting from the image of the basepoint, which is kept on its ray).
+/// starting from the image of the basepoint, which is kept on its ray), computed in
+/// double-double and rounded once: the result is the correctly rounded value of the
+/// isometry that polishing `g`'s digits as given makes.
 #[must_use]
 pub fn polish_isometry(geometry: Geometry, g: DMat4) -> DMat4 {
+    polish_isometry_dd(geometry, &DdMat4::from_f64(g)).round_f64()
+}
+
+/// [`polish_isometry`] in `f64` throughout: for the many products of a group enumeration,
+/// whose survivors are polished again in double-double where they become face pairings.
+#[must_use]
+pub(crate) fn polish_isometry_fast(geometry: Geometry, g: DMat4) -> DMat4 {
     match geometry {
         Geometry::Euclidean => {
-            let a = DMat3::from_mat4(g);
-            let a = orthonormalize3(a);
-            let mut m = DMat4::from_mat3(a);
-            m.w_axis = g.w_axis.truncate().extend(1.0);
-            m
+            let mut c = [g.x_axis, g.y_axis, g.z_axis].map(|v| v.truncate());
+            for _ in 0..2 {
+                for i in 0..3 {
+                    let mut v = c[i];
+                    for done in &c[..i] {
+                        v -= *done * v.dot(*done);
+                    }
+                    c[i] = v.normalize();
+                }
+            }
+            DMat4::from_cols(
+                c[0].extend(0.0),
+                c[1].extend(0.0),
+                c[2].extend(0.0),
+                g.w_axis.truncate().extend(1.0),
+            )
         }
         _ => {
             let form = |a: DVec4, b: DVec4| geometry.form(a, b);
-            // Normalised in the form, never flipped (−I is an element of S³ groups).
             let w = g.w_axis / (geometry.kappa() * form(g.w_axis, g.w_axis)).sqrt();
             let mut cols = [g.x_axis, g.y_axis, g.z_axis];
             for i in 0..3 {
@@ -227,19 +246,45 @@ pub fn polish_isometry(geometry: Geometry, g: DMat4) -> DMat4 {
     }
 }
 
-/// Gram–Schmidt of a 3×3 matrix's columns (twice, for the last bit), keeping its handedness.
-fn orthonormalize3(a: DMat3) -> DMat3 {
-    let mut c = [a.x_axis, a.y_axis, a.z_axis];
-    for _ in 0..2 {
-        for i in 0..3 {
-            let mut v = c[i];
-            for done in &c[..i] {
-                v -= *done * v.dot(*done);
+/// [`polish_isometry`] in double-double.
+#[must_use]
+pub fn polish_isometry_dd(geometry: Geometry, g: &DdMat4) -> DdMat4 {
+    let [x, y, z, w] = g.0;
+    match geometry {
+        Geometry::Euclidean => {
+            // The linear part orthonormalised (twice, for the last bit), handedness kept;
+            // the translation as given.
+            let linear = |v: DdVec4| DdVec4([v.0[0], v.0[1], v.0[2], DoubleDouble::ZERO]);
+            let mut c = [linear(x), linear(y), linear(z)];
+            for _ in 0..2 {
+                for i in 0..3 {
+                    let mut v = c[i];
+                    for done in &c[..i] {
+                        v = v - done.scale(v.dot(*done));
+                    }
+                    c[i] = v.scale(DoubleDouble::ONE / v.dot(v).sqrt());
+                }
             }
-            c[i] = v.normalize();
+            let mut t = w;
+            t.0[3] = DoubleDouble::ONE;
+            DdMat4([c[0], c[1], c[2], t])
+        }
+        _ => {
+            let form = |a: DdVec4, b: DdVec4| geometry.form(a, b);
+            let k = DoubleDouble::new(geometry.kappa());
+            // Normalised in the form, never flipped (−I is an element of S³ groups).
+            let w = w.scale(DoubleDouble::ONE / (k * form(w, w)).sqrt());
+            let mut cols = [x, y, z];
+            for i in 0..3 {
+                let mut v = cols[i] - w.scale(form(cols[i], w) / form(w, w));
+                for done in &cols[..i] {
+                    v = v - done.scale(form(v, *done));
+                }
+                cols[i] = v.scale(DoubleDouble::ONE / form(v, v).sqrt());
+            }
+            DdMat4([cols[0], cols[1], cols[2], w])
         }
     }
-    DMat3::from_cols(c[0], c[1], c[2])
 }
 
 impl Generators {

@@ -7,6 +7,7 @@
 mod common;
 
 mod accuracy;
+mod cells;
 mod culling;
 mod files;
 #[cfg(feature = "scene-files")]

@@ -12,10 +12,10 @@ use super::layout::{
 use crate::geometry::Geometry;
 use crate::scene::culling::MAX_CULLED_FACES;
 use crate::scene::{CurvedScene, FaceCulling, Object, WallPanels};
-use crate::space::Space;
+use crate::space::{CellWalker, Space};
 use crate::view::{ViewKind, ViewLayout};
 use bevy::shader::ShaderDefVal;
-use glam::{DMat4, DVec4};
+use glam::{DMat4, DVec4, Mat4, Vec4};
 use std::sync::Arc;
 
 mod key;
@@ -342,30 +342,35 @@ impl GpuScene {
             }
         }
         // The faces, or for the 3-sphere (no face) one unused slot: WGSL has no empty arrays.
-        let slot = [(DVec4::ZERO, DMat4::IDENTITY, 0)];
-        let faces: Vec<(DVec4, DMat4, usize)> = if space.faces.is_empty() {
-            slot.to_vec()
+        // The f32 numbers are the f32 walker's: a cell built from a closed form is rounded
+        // once from double-double, covectors, pairings and what rounding each pairing left
+        // out (the shader applies hi + lo compensated).
+        let cell = CellWalker::<Vec4>::new(space);
+        let as_f32 = |m: &Mat4| m.to_cols_array_2d();
+        let faces: Vec<(Vec4F, Mat4F, Mat4F, usize)> = if space.faces.is_empty() {
+            vec![([0.0; 4], as_f32(&Mat4::IDENTITY), [[0.0; 4]; 4], 0)]
         } else {
-            space
-                .faces
-                .iter()
-                .map(|f| (f.covector, f.pairing, f.partner))
+            (0..cell.covectors.len())
+                .map(|f| {
+                    (
+                        cell.covectors[f].to_array(),
+                        as_f32(&cell.pairings[f]),
+                        as_f32(&cell.pairings_lo[f]),
+                        cell.partners[f],
+                    )
+                })
                 .collect()
         };
-        for (covector, _, _) in &faces {
-            out.push(&vec4(*covector));
+        for (covector, _, _, _) in &faces {
+            out.push(covector);
         }
-        for (_, pairing, _) in &faces {
-            out.push(&mat4(*pairing));
+        for (_, pairing, _, _) in &faces {
+            out.push(pairing);
         }
-        // What rounding each pairing to f32 left out: the shader applies hi + lo compensated.
-        for (_, pairing, _) in &faces {
-            let hi = mat4(*pairing).map(|c| DVec4::from_array(c.map(f64::from)));
-            out.push(&mat4(
-                *pairing - DMat4::from_cols(hi[0], hi[1], hi[2], hi[3]),
-            ));
+        for (_, _, lo, _) in &faces {
+            out.push(lo);
         }
-        let mut partners: Vec<u32> = faces.iter().map(|f| f.2 as u32).collect();
+        let mut partners: Vec<u32> = faces.iter().map(|f| f.3 as u32).collect();
         partners.resize(4 * faces.len().div_ceil(4), 0);
         out.words.extend(partners);
         if let Some(walls) = &walls {
