@@ -17,10 +17,13 @@
 //!    back, the pairings generate the whole group and the cell is its Dirichlet domain (it
 //!    contains the true one and has the same volume).
 
-use super::group::{Generators, GroupError, parse_gen, polish_isometry, polish_isometry_fast};
+use super::exact::{self, Dd3, ExactCell, ExactFace};
+use super::group::{
+    Generators, GroupError, parse_gen, polish_isometry, polish_isometry_dd, polish_isometry_fast,
+};
 use super::orbit::OrbitPoints;
-use super::{FaceSpec, MAX_FACES, Space};
-use crate::geometry::{Geometry, ORIGIN, max_abs_entry};
+use super::{MAX_FACES, Space};
+use crate::geometry::{DdMat4, DdVec4, DoubleDouble, Geometry, ORIGIN, Real, max_abs_entry};
 use glam::{DMat4, DVec3, DVec4};
 use std::collections::HashMap;
 use std::path::Path;
@@ -92,6 +95,8 @@ struct Element {
     distance: f64,
     /// Length of the shortest word found for it.
     word: usize,
+    /// The element it was found from and the move that made it (`parent · move`).
+    from: Option<(usize, usize)>,
 }
 
 /// The elements found so far, found again by their orbit points.
@@ -113,6 +118,7 @@ impl Orbit {
             point: ORIGIN,
             distance: 0.0,
             word: 0,
+            from: None,
         });
         orbit
     }
@@ -129,7 +135,12 @@ impl Orbit {
     }
 
     /// Adds `matrix` unless it is already known; `Ok(true)` when it is new.
-    fn insert(&mut self, matrix: DMat4, word: usize) -> Result<bool, GroupError> {
+    fn insert(
+        &mut self,
+        matrix: DMat4,
+        word: usize,
+        from: Option<(usize, usize)>,
+    ) -> Result<bool, GroupError> {
         let point = matrix.w_axis;
         let distance = self.geometry.distance(ORIGIN, point);
         if let Some((i, d)) = self.nearest(point) {
@@ -156,6 +167,7 @@ impl Orbit {
             point,
             distance,
             word,
+            from,
         });
         Ok(true)
     }
@@ -175,12 +187,12 @@ fn enumerate(
         let mut next = Vec::new();
         for &e in &frontier {
             let (m, word) = (orbit.elements[e].matrix, orbit.elements[e].word);
-            for &g in moves {
+            for (k, &g) in moves.iter().enumerate() {
                 let product = polish_isometry_fast(geometry, m * g);
                 if geometry.distance(ORIGIN, product.w_axis) > radius {
                     continue;
                 }
-                if orbit.insert(product, word + 1)? {
+                if orbit.insert(product, word + 1, Some((e, k)))? {
                     next.push(orbit.elements.len() - 1);
                     if orbit.elements.len() > limit {
                         return Err(GroupError::TooLarge { limit, radius });
@@ -570,7 +582,12 @@ pub fn dirichlet_space(
             radius = needed * 1.05;
             continue;
         }
-        match attempt(name, description, geometry, &orbit, &cut, &gens, scale) {
+        let groups = Moves {
+            geometry,
+            moves: &moves,
+            scale,
+        };
+        match attempt(name, description, &groups, &orbit, &cut, &gens) {
             Ok(Attempt::Space(space)) => return Ok(*space),
             Ok(Attempt::Grow(_)) if finite => {
                 // Every element is known already: the numbers do not make a group.
@@ -597,43 +614,100 @@ pub fn dirichlet_space(
     }))
 }
 
+/// The moves an enumeration multiplied by, for recomputing its elements in double-double.
+struct Moves<'a> {
+    geometry: Geometry,
+    moves: &'a [DMat4],
+    /// A flat group's cut scale (its translations are divided by it).
+    scale: f64,
+}
+
+impl Moves<'_> {
+    /// Element `i` of the orbit as the exact product of the moves that found it (each
+    /// move's `f64` digits taken as given), polished to an isometry in double-double.
+    fn exact(&self, orbit: &Orbit, i: usize) -> DdMat4 {
+        let mut product = DdMat4::IDENTITY;
+        let mut at = i;
+        // parent · move, so the moves multiply on the right, last found last.
+        let mut word = Vec::new();
+        while let Some((parent, k)) = orbit.elements[at].from {
+            word.push(k);
+            at = parent;
+        }
+        for &k in word.iter().rev() {
+            product = product * DdMat4::from_f64(self.moves[k]);
+        }
+        polish_isometry_dd(self.geometry, &product)
+    }
+}
+
+/// The bisector of the origin and the model point `p` in double-double, as a unit normal
+/// and chart offset (see [`bisector`]).
+fn bisector_dd(geometry: Geometry, p: DdVec4) -> Option<(Dd3, DoubleDouble)> {
+    let xyz = [p.0[0], p.0[1], p.0[2]];
+    let one = DoubleDouble::ONE;
+    let (n, r) = match geometry {
+        Geometry::Spherical => (xyz, one - p.0[3]),
+        Geometry::Euclidean => {
+            let t = xyz.map(|x| x / p.0[3]);
+            let half = DoubleDouble::new(0.5);
+            (t, half * (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]))
+        }
+        Geometry::Hyperbolic => (xyz, p.0[3] - one),
+    };
+    let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    (len.to_f64() > 1e-12 * (1.0 + r.abs().to_f64())).then(|| (n.map(|x| x / len), r / len))
+}
+
 /// Makes the space of a bounded cut, and checks that its pairings generate the group.
+///
+/// The cell's numbers are computed in double-double from the moves' digits and rounded
+/// once ([`Space::from_exact`]): each face pairing is the exact product of the moves along
+/// the word that found it, polished, and each face the bisector of its exact orbit point.
 fn attempt(
     name: &str,
     description: &str,
-    geometry: Geometry,
+    moves: &Moves,
     orbit: &Orbit,
     cut: &Cut,
     gens: &[DMat4],
-    scale: f64,
 ) -> Result<Attempt, GroupError> {
+    let (geometry, scale) = (moves.geometry, moves.scale);
     if cut.faces.len() > MAX_FACES {
         return Err(GroupError::TooManyFaces {
             count: cut.faces.len(),
             max: MAX_FACES,
         });
     }
-    let mut specs = Vec::with_capacity(cut.faces.len());
+    let mut faces = Vec::with_capacity(cut.faces.len());
     for &i in &cut.faces {
         let e = &orbit.elements[i];
         let inverse = polish_isometry(geometry, geometry.inverse(e.matrix));
-        let inverse_point = inverse.w_axis;
-        let Some((j, _)) = orbit.nearest(inverse_point) else {
+        let Some((j, _)) = orbit.nearest(inverse.w_axis) else {
             return Ok(Attempt::Grow(None));
         };
         let Some(partner) = cut.faces.iter().position(|&f| f == j) else {
             return Ok(Attempt::Grow(None));
         };
-        let Some((n, r)) = bisector(geometry, e.point) else {
+        let element = moves.exact(orbit, i);
+        let Some((normal, offset)) = bisector_dd(geometry, element.0[3]) else {
             return Ok(Attempt::Grow(None));
         };
-        let mut pairing = inverse;
+        let mut pairing = polish_isometry_dd(geometry, &exact::inverse(geometry, &element));
+        let s = DoubleDouble::new(scale);
         if geometry == Geometry::Euclidean {
-            pairing.w_axis = (pairing.w_axis.truncate() * scale).extend(1.0);
+            for x in &mut pairing.0[3].0[..3] {
+                *x = *x * s;
+            }
         }
-        specs.push(FaceSpec::paired(n, r * scale, partner, pairing));
+        faces.push(ExactFace {
+            normal,
+            offset: offset * s,
+            partner,
+            pairing,
+        });
     }
-    let space = Space::new(name, description, geometry, &specs)?;
+    let space = Space::from_exact(name, description, ExactCell { geometry, faces })?;
     // Walk each generator's image of o back into the cell by the pairings.
     for &g in gens {
         let mut g = g;

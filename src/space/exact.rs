@@ -1,6 +1,7 @@
 //! Cells from closed forms, in double-double, rounded once (`docs/design.md` §2).
 //!
-//! A cell the crate builds from its definition (the seed spaces) is first built here, in
+//! A cell the crate builds from its definition (the seed spaces; the Dirichlet domains of
+//! groups, from the generators' digits) is first built here, in
 //! double-double ([`DoubleDouble`], about 32 digits): unit face normals and offsets from
 //! square roots of the closed forms, pairings composed from rotations and translations
 //! whose cosines and sines are computed to 32 digits (exactly at the multiples of π/2 and
@@ -304,9 +305,10 @@ impl Space {
         Ok(space)
     }
 
-    /// The cell in double-double when the space was built from a closed form
-    /// ([`Space::from_exact`]); `None` for cells read from files or groups, whose `f64`
-    /// numbers are their own truth.
+    /// The cell in double-double, when the space was built from one ([`Space::from_exact`]):
+    /// the seed spaces (from their closed forms) and the Dirichlet domains of groups (from
+    /// their generators' digits as given). `None` for JSON space files, whose `f64` numbers
+    /// are their own truth, and for cells that reach the equator of S³.
     #[must_use]
     pub fn exact(&self) -> Option<&ExactCell> {
         self.exact.as_deref()

@@ -1,12 +1,13 @@
 //! Finding a space by name: a seed space, a member of a library family, or a file
 //! (`.gen` generator file or JSON space file).
 
-use super::catalog::{affine, dodecahedron_normals, dodecahedron_offset};
+use super::catalog::{affine, dodecahedron_normals_exact, dodecahedron_offset_exact};
 use super::dirichlet::{DirichletOptions, load_gen_file, space_from_matrices};
+use super::exact;
 use super::file::load_space_file;
 use super::group::parse_gen;
 use super::{SEED_SPACES, Space, SpaceError, seed_space};
-use crate::geometry::Geometry;
+use crate::geometry::{DdMat4, DdVec4, DoubleDouble, Geometry, Real};
 use glam::{DMat3, DMat4, DQuat, DVec3, DVec4};
 use std::path::Path;
 
@@ -238,16 +239,57 @@ pub fn quaternion_map(a: DQuat, b: DQuat) -> DMat4 {
     )
 }
 
-/// Left multiplication by the unit quaternion `w + xi + yj + zk`.
-fn left(x: f64, y: f64, z: f64, w: f64) -> DMat4 {
-    let q = DQuat::from_xyzw(x, y, z, w);
-    quaternion_map(q / q.length(), DQuat::IDENTITY)
+/// A quaternion `(x, y, z, w) = w + xi + yj + zk` in double-double.
+type DdQuat = [DoubleDouble; 4];
+
+/// The Hamilton product in double-double.
+fn quat_mul(a: DdQuat, b: DdQuat) -> DdQuat {
+    let [ax, ay, az, aw] = a;
+    let [bx, by, bz, bw] = b;
+    [
+        aw * bx + ax * bw + ay * bz - az * by,
+        aw * by - ax * bz + ay * bw + az * bx,
+        aw * bz + ax * by - ay * bx + az * bw,
+        aw * bw - ax * bx - ay * by - az * bz,
+    ]
 }
 
-/// Right multiplication by the unit quaternion `w + xi + yj + zk`.
-fn right(x: f64, y: f64, z: f64, w: f64) -> DMat4 {
-    let q = DQuat::from_xyzw(x, y, z, w);
-    quaternion_map(DQuat::IDENTITY, q / q.length())
+/// The unit quaternion along `(x, y, z, w)`, in double-double.
+fn unit_quat(q: [f64; 4]) -> DdQuat {
+    let q = q.map(DoubleDouble::new);
+    let len = q.iter().fold(DoubleDouble::ZERO, |s, x| s + *x * *x).sqrt();
+    q.map(|x| x / len)
+}
+
+/// The matrix of `x -> a·x·b` on quaternions in double-double, each entry rounded once.
+fn quaternion_map_dd(a: DdQuat, b: DdQuat) -> DMat4 {
+    let (o, z) = (DoubleDouble::ONE, DoubleDouble::ZERO);
+    let basis = [[o, z, z, z], [z, o, z, z], [z, z, o, z], [z, z, z, o]];
+    DdMat4(basis.map(|e| DdVec4(quat_mul(quat_mul(a, e), b)))).round_f64()
+}
+
+const QUAT_ONE: DdQuat = [
+    DoubleDouble::new(0.0),
+    DoubleDouble::new(0.0),
+    DoubleDouble::new(0.0),
+    DoubleDouble::new(1.0),
+];
+
+/// Left multiplication by the unit quaternion along `w + xi + yj + zk` (normalised and
+/// multiplied out in double-double, rounded once).
+fn left(x: f64, y: f64, z: f64, w: f64) -> DMat4 {
+    quaternion_map_dd(unit_quat([x, y, z, w]), QUAT_ONE)
+}
+
+/// Right multiplication by the unit quaternion along `w + xi + yj + zk`.
+fn right_dd(q: DdQuat) -> DMat4 {
+    quaternion_map_dd(QUAT_ONE, q)
+}
+
+/// `cos + i sin` of `π·p/q` as a unit quaternion.
+fn turn_quat(p: i64, q: i64) -> DdQuat {
+    let (c, s) = DoubleDouble::cos_sin_pi(p, q);
+    [s, DoubleDouble::ZERO, DoubleDouble::ZERO, c]
 }
 
 fn translation(v: DVec3) -> DMat4 {
@@ -303,13 +345,18 @@ pub fn library_space(id: &str) -> Option<Result<Space, String>> {
             None,
         ),
         "binary-icosahedral" => {
-            let phi = 0.5 * (1.0 + 5f64.sqrt());
+            let half = DoubleDouble::new(0.5);
+            let phi = half * (DoubleDouble::ONE + DoubleDouble::new(5.0).sqrt());
+            let z = DoubleDouble::ZERO;
             from_group(
                 id,
                 "Poincaré dodecahedral space S³/2I: the binary icosahedral group (order 120), \
                  by right multiplication by (1 + i + j + k)/2 and (φ + i/φ + j)/2 (the \
                  handedness of the seed space poincare).",
-                &[right(0.5, 0.5, 0.5, 0.5), right(1.0 / phi, 1.0, 0.0, phi)],
+                &[
+                    right_dd([half; 4]),
+                    right_dd([half / phi, half, z, half * phi]),
+                ],
                 None,
             )
         }
@@ -438,19 +485,23 @@ fn family_member(id: &str) -> Option<Result<Space, String>> {
 /// into another of the same kind.
 fn flat_base(name: &str) -> Option<Vec<DMat4>> {
     let s3 = 0.5 * 3f64.sqrt();
-    let screw = |turn: f64, rise: f64| {
+    // A turn of 1/n about z (its cosine and sine rounded once) and a rise of 1/n.
+    let screw = |n: i64| {
+        let (c, s) = DoubleDouble::cos_sin_pi(2, n);
+        let (c, s) = (c.round_f64(), s.round_f64());
+        let rise = DoubleDouble::new(1.0) / DoubleDouble::new(n as f64);
         affine(
-            DMat3::from_rotation_z(std::f64::consts::TAU * turn),
-            DVec3::Z * rise,
+            DMat3::from_cols_array(&[c, s, 0.0, -s, c, 0.0, 0.0, 0.0, 1.0]),
+            DVec3::Z * rise.round_f64(),
         )
     };
     let square = [translation(DVec3::X), translation(DVec3::Y)];
     let hexagonal = [translation(DVec3::X), translation(DVec3::new(0.5, s3, 0.0))];
     Some(match name {
-        "half-turn" => vec![square[0], square[1], screw(0.5, 0.5)],
-        "quarter-turn" => vec![square[0], square[1], screw(0.25, 0.25)],
-        "third-turn" => vec![hexagonal[0], hexagonal[1], screw(1.0 / 3.0, 1.0 / 3.0)],
-        "sixth-turn" => vec![hexagonal[0], hexagonal[1], screw(1.0 / 6.0, 1.0 / 6.0)],
+        "half-turn" => vec![square[0], square[1], screw(2)],
+        "quarter-turn" => vec![square[0], square[1], screw(4)],
+        "third-turn" => vec![hexagonal[0], hexagonal[1], screw(3)],
+        "sixth-turn" => vec![hexagonal[0], hexagonal[1], screw(6)],
         // P2₁2₁2₁: three screws along parallels of the axes that do not meet.
         "hantzsche-wendt" => vec![
             affine(diag(1.0, -1.0, -1.0), DVec3::new(0.5, 0.5, 0.0)),
@@ -512,11 +563,23 @@ fn flat_member(id: &str) -> Option<Result<Space, String>> {
                 "{id}: {name}-{form} needs positive finite sizes at most 1000 to 1"
             )));
         }
-        let stretch = affine(diag(a, b, c), DVec3::ZERO);
-        let squeeze = affine(diag(1.0 / a, 1.0 / b, 1.0 / c), DVec3::ZERO);
+        // S g S⁻¹ in double-double, rounded once.
+        let diag_dd = |d: [f64; 3]| {
+            let mut m = DdMat4::IDENTITY;
+            for (i, x) in d.iter().enumerate() {
+                m.0[i].0[i] = DoubleDouble::new(*x);
+            }
+            m
+        };
+        let stretch = diag_dd([a, b, c]);
+        let one = DoubleDouble::ONE;
+        let mut squeeze = DdMat4::IDENTITY;
+        for (i, x) in [a, b, c].iter().enumerate() {
+            squeeze.0[i].0[i] = one / DoubleDouble::new(*x);
+        }
         let gens: Vec<DMat4> = flat_base(name)?
             .into_iter()
-            .map(|g| stretch * g * squeeze)
+            .map(|g| (stretch * DdMat4::from_f64(g) * squeeze).round_f64())
             .collect();
         return Some(from_group(
             id,
@@ -544,12 +607,9 @@ fn lens(id: &str, p: u32, q: u32) -> Result<Space, String> {
     }
     // (z1, z2) -> (ζ z1, ζ^q z2) for x = z1 + z2 j is x -> e^{iα} x e^{iβ} with α + β = 2π/p,
     // α − β = 2πq/p.
-    let t = std::f64::consts::TAU / f64::from(p);
-    let alpha = 0.5 * t * f64::from(1 + q);
-    let beta = 0.5 * t * (1.0 - f64::from(q));
-    let g = quaternion_map(
-        DQuat::from_xyzw(alpha.sin(), 0.0, 0.0, alpha.cos()),
-        DQuat::from_xyzw(beta.sin(), 0.0, 0.0, beta.cos()),
+    let g = quaternion_map_dd(
+        turn_quat(i64::from(1 + q), i64::from(p)),
+        turn_quat(1 - i64::from(q), i64::from(p)),
     );
     // The basepoint with |z1| = |z2|: there the orbit is spread over both circles.
     from_group(
@@ -568,7 +628,6 @@ fn prism(id: &str, n: u32) -> Result<Space, String> {
             "{id}: a prism space prism-N needs 2 ≤ N ≤ {MAX_PRISM}"
         ));
     }
-    let a = std::f64::consts::PI / f64::from(n);
     from_group(
         id,
         &format!(
@@ -577,7 +636,10 @@ fn prism(id: &str, n: u32) -> Result<Space, String> {
             4 * n,
             4 * n
         ),
-        &[left(a.sin(), 0.0, 0.0, a.cos()), left(0.0, 1.0, 0.0, 0.0)],
+        &[
+            quaternion_map_dd(turn_quat(1, i64::from(n)), QUAT_ONE),
+            left(0.0, 1.0, 0.0, 0.0),
+        ],
         None,
     )
 }
@@ -629,12 +691,14 @@ fn census_space(id: &str, n: usize) -> Result<Space, String> {
 /// does).
 fn seifert_weber_group(id: &str) -> Result<Space, String> {
     let g = Geometry::Hyperbolic;
-    let normals = dodecahedron_normals();
-    let r = dodecahedron_offset(g, 0.4 * std::f64::consts::PI);
-    let inradius = g.distance_from_ratio(r, 1.0);
-    let gens: Vec<DMat4> = normals[..6]
+    let cos_dihedral = DoubleDouble::cos_sin_pi(2, 5).0;
+    let r = dodecahedron_offset_exact(g, cos_dihedral);
+    let (c, s) = DoubleDouble::cos_sin_pi(-3, 5);
+    let gens: Vec<DMat4> = dodecahedron_normals_exact()[..6]
         .iter()
-        .map(|&n| g.translation(n, 2.0 * inradius) * g.rotation(n, -0.6 * std::f64::consts::PI))
+        .map(|&n| {
+            (exact::double_inradius_translation(g, n, r) * exact::rotation(n, c, s)).round_f64()
+        })
         .collect();
     from_group(
         id,

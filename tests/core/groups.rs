@@ -758,7 +758,9 @@ fn cells_reaching_the_equator_are_whole_spaces() {
     let lens = library("lens-7-1");
     assert_eq!(lens.faces().len(), 2);
     assert!((inradius(&lens) - PI / 7.0).abs() < 1e-12);
-    assert!((injectivity_radius(&lens).unwrap() - PI / 7.0).abs() < 1e-9);
+    // A Clifford translation's two rotation angles are equal: the displacement, a double
+    // root of its trace polynomial, is known only to about √ε of the pairing's rounding.
+    assert!((injectivity_radius(&lens).unwrap() - PI / 7.0).abs() < 2e-8);
     // Every lens L(P, Q) about a Hopf circle's point is such a lens too.
     assert!(library("lens-9-8").reaches_equator());
     assert!(!library("lens-9-2").reaches_equator());
