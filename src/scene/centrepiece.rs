@@ -122,11 +122,12 @@ fn octahedron(c: DVec3, h: f64, material: u32) -> MeshSource {
     }
 }
 
-/// The galaxy's radius in a cell of inradius `inradius` (the gyroscope's ring is 0.45
-/// inradii): well inside the cell, so it has no images.
+/// The galaxy's radius for a cell whose inradius, capped as the centrepieces are
+/// ([`crate::space::invariants::inradius_at_most`] with π/4), is `inradius` (the gyroscope's
+/// ring is 0.45 inradii): well inside the cell, so it has no images.
 #[must_use]
 pub fn galaxy_radius(inradius: f64) -> f64 {
-    0.55 * inradius.min(std::f64::consts::FRAC_PI_4)
+    0.55 * inradius
 }
 
 /// The frame the centrepiece at the cell's centre is turned by: tilted towards the default

@@ -23,7 +23,7 @@
 //! position and target must lie within π/2 of the centre.
 
 use crate::geometry::Geometry;
-use crate::space::invariants::inradius;
+use crate::space::invariants::inradius_at_most;
 use crate::space::{Holonomy, Space, wrap_into_cell};
 use glam::{DMat4, DVec3, DVec4};
 use serde::Deserialize;
@@ -157,7 +157,7 @@ pub struct Flight {
 /// The model point at geodesic coordinates `p` (in inradii) from the centre.
 fn point_at(space: &Space, p: DVec3, what: &str) -> Result<DVec4, String> {
     let g = space.geometry();
-    let d = p.length() * inradius(space).min(std::f64::consts::FRAC_PI_2);
+    let d = p.length() * inradius_at_most(space, std::f64::consts::FRAC_PI_2);
     if g == Geometry::Spherical && d >= 0.999 * std::f64::consts::FRAC_PI_2 {
         return Err(format!(
             "{what} {:?} is π/2 or more from the centre, past the hemisphere a flight in S³ \
@@ -303,7 +303,7 @@ pub fn coordinates_of(space: &Space, x: DVec4) -> Option<DVec3> {
     if g == Geometry::Spherical && d >= 0.999 * std::f64::consts::FRAC_PI_2 {
         return None;
     }
-    let scale = inradius(space).min(std::f64::consts::FRAC_PI_2);
+    let scale = inradius_at_most(space, std::f64::consts::FRAC_PI_2);
     let dir = x.truncate().normalize_or_zero();
     Some(dir * (d / scale))
 }
@@ -382,7 +382,7 @@ pub fn recorded_key(
 ) -> Option<(DVec3, DVec3, DVec3)> {
     let g = space.geometry();
     let cover = g.inverse(holonomy.matrix) * frame;
-    let r = 0.5 * inradius(space).min(std::f64::consts::FRAC_PI_4);
+    let r = 0.5 * inradius_at_most(space, std::f64::consts::FRAC_PI_4);
     let at = |local: DMat4| coordinates_of(space, g.project_point((cover * local).w_axis));
     Some((
         at(DMat4::IDENTITY)?,

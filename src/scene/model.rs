@@ -439,23 +439,21 @@ impl CurvedScene {
             GLOBE_SPIN, centrepiece_tilt, galaxy_model, galaxy_radius, globe_texture,
         };
         let g = space.geometry;
-        let inradius = crate::space::invariants::inradius(space);
+        // Centrepieces stay well inside the chart's hemisphere in S³.
+        let inradius =
+            crate::space::invariants::inradius_at_most(space, std::f64::consts::FRAC_PI_4);
         let frame = g.translation_to(space.centre()) * centrepiece_tilt(g);
         let object = match centrepiece {
             Centrepiece::Globe => {
                 self.textures.push(globe_texture());
                 Object::Ball(
-                    Ball::new(
-                        g,
-                        space.centre(),
-                        0.3 * inradius.min(std::f64::consts::FRAC_PI_4),
-                        DVec3::ONE,
-                    )
-                    .with_texture(crate::scene::BallTexture {
-                        texture: self.textures.len() as u32 - 1,
-                        frame,
-                        spin: GLOBE_SPIN,
-                    }),
+                    Ball::new(g, space.centre(), 0.3 * inradius, DVec3::ONE).with_texture(
+                        crate::scene::BallTexture {
+                            texture: self.textures.len() as u32 - 1,
+                            frame,
+                            spin: GLOBE_SPIN,
+                        },
+                    ),
                 )
             }
             Centrepiece::Galaxy => {

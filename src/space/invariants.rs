@@ -15,6 +15,20 @@ const SAME_ORBIT_POINT: f64 = 1e-5;
 /// point names it).
 const SAME_AXIS_ELEMENT: f64 = 1e-7;
 
+/// The inradius as a length to size and place things by, at most `cap` in the curved
+/// geometries (where the chart or the curvature bounds what fits: S³'s chart reaches only
+/// π/2, and the 3-sphere's inradius is π). A flat cell has no length of its own, so there
+/// it is the inradius at any size: a cell scaled by 16 gets a scene scaled by 16.
+#[must_use]
+pub fn inradius_at_most(space: &Space, cap: f64) -> f64 {
+    let r = inradius(space);
+    if space.geometry == Geometry::Euclidean {
+        r
+    } else {
+        r.min(cap)
+    }
+}
+
 /// Distance from the centre (chart origin) to the nearest face: the radius of the largest
 /// ball about the centre inside the cell.
 #[must_use]

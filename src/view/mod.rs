@@ -42,8 +42,9 @@ impl TraceCamera {
     #[must_use]
     pub fn default_for(space: &Space) -> Self {
         let g = space.geometry;
-        // The 3-sphere's inradius is π: stay within the chart's hemisphere.
-        let r = crate::space::invariants::inradius(space).min(std::f64::consts::FRAC_PI_2);
+        // The 3-sphere's inradius is π: stay within the chart's hemisphere (S³ only: a flat
+        // cell has no length of its own).
+        let r = crate::space::invariants::inradius_at_most(space, std::f64::consts::FRAC_PI_2);
         let chart = |dir: DVec3, t: f64| g.to_chart(g.translation(dir, t) * space.centre());
         let eye = chart(DVec3::new(0.3, 0.22, 1.0), 0.75 * r);
         let target = chart(DVec3::new(-0.5, -0.1, -0.3), 0.5 * r);

@@ -216,3 +216,54 @@ fn a_rays_story_is_the_traced_ray() {
         }
     }
 }
+
+/// A flat cell has no length of its own: every flat seed space scaled by a power of two
+/// (2 to 2²⁰, exact) renders the picture it renders at unit size, default scene and view
+/// included. (A scene once capped lengths at π/4, so a cell scaled by 16 showed fog only.)
+#[test]
+fn flat_cells_render_the_same_at_every_scale() {
+    use bevy_curved_spaces::geometry::Geometry;
+    use bevy_curved_spaces::space::FaceSpec;
+    let settings = RenderSettings {
+        width: 64,
+        height: 36,
+        max_crossings: 24,
+    };
+    let picture = |s: &Space| {
+        let scene = CurvedScene::default_for(s, Shading::default_fog_distance(s));
+        render(s, &scene, &TraceCamera::default_for(s), &settings)
+    };
+    for seed in SEED_SPACES {
+        let unit = seed.build().unwrap();
+        if unit.geometry() != Geometry::Euclidean {
+            continue;
+        }
+        let at_unit = picture(&unit);
+        for k in [1, 4, 6, 10, 20] {
+            let scale = 2f64.powi(k);
+            let faces: Vec<FaceSpec> = unit
+                .faces()
+                .iter()
+                .map(|f| {
+                    let mut pairing = f.pairing;
+                    pairing.w_axis = (pairing.w_axis.truncate() * scale).extend(1.0);
+                    FaceSpec::paired(f.normal, f.offset * scale, f.partner, pairing)
+                })
+                .collect();
+            let scaled =
+                Space::new(unit.name(), unit.description(), Geometry::Euclidean, &faces).unwrap();
+            let image = picture(&scaled);
+            let differing = image
+                .pixels()
+                .zip(at_unit.pixels())
+                .filter(|(a, b)| a.0.iter().zip(b.0).any(|(x, y)| x.abs_diff(y) > 2))
+                .count();
+            assert!(
+                differing <= 64 * 36 / 100,
+                "{} scaled by 2^{k}: {differing} of {} pixels differ from unit size",
+                seed.id,
+                64 * 36
+            );
+        }
+    }
+}

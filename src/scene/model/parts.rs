@@ -122,7 +122,7 @@ pub fn clifford_parallels(space: &Space) -> Vec<Object> {
     } else {
         plus
     };
-    let inradius = crate::space::invariants::inradius(space).min(std::f64::consts::FRAC_PI_2);
+    let inradius = crate::space::invariants::inradius_at_most(space, std::f64::consts::FRAC_PI_2);
     let c = space.centre();
     // A unit vector orthogonal to c and J c, and its partner J e1.
     let jc = j * c;
@@ -169,7 +169,7 @@ pub fn clifford_parallels(space: &Space) -> Vec<Object> {
 #[must_use]
 pub fn gyroscope(space: &Space) -> Vec<Object> {
     let g = space.geometry;
-    let r = crate::space::invariants::inradius(space).min(std::f64::consts::FRAC_PI_4);
+    let r = crate::space::invariants::inradius_at_most(space, std::f64::consts::FRAC_PI_4);
     let centre = g.translation_to(space.centre());
     let point = |local: DMat4| g.project_point((centre * local).w_axis);
     let ring_radius = 0.45 * r;
