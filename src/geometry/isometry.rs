@@ -3,10 +3,17 @@
 use super::{Geometry, ORIGIN};
 use glam::{DMat3, DMat4, DVec3, DVec4};
 
-/// The largest absolute entry of a matrix (given as its array of entries).
+/// The largest absolute entry of a matrix (given as its array of entries); NaN if any entry
+/// is NaN (`f64::max` would pass over it, and a check `defect < tol` would accept it).
 #[must_use]
 pub(crate) fn max_abs_entry(entries: &[f64]) -> f64 {
-    entries.iter().fold(0.0_f64, |acc, x| acc.max(x.abs()))
+    entries.iter().fold(0.0_f64, |acc, x| {
+        if acc.is_nan() || x.is_nan() {
+            f64::NAN
+        } else {
+            acc.max(x.abs())
+        }
+    })
 }
 
 impl Geometry {
@@ -106,13 +113,18 @@ impl Geometry {
     /// (S³, H³), or of `AᵀA − I` and the last row's deviation from `(0,0,0,1)` (E³).
     #[must_use]
     pub fn isometry_defect(self, g: DMat4) -> f64 {
+        // A translation part is not checked by the form: a non-finite entry anywhere is no
+        // isometry.
+        if !g.is_finite() {
+            return f64::INFINITY;
+        }
         match self {
             Self::Euclidean => {
                 let a = DMat3::from_mat4(g);
                 let ortho = a.transpose() * a - DMat3::IDENTITY;
                 let ortho = max_abs_entry(&ortho.to_cols_array());
                 let row = g.row(3) - DVec4::W;
-                ortho.max(row.abs().max_element())
+                max_abs_entry(&[ortho, row.x, row.y, row.z, row.w])
             }
             _ => {
                 let gm = DMat4::from_diagonal(DVec4::new(1.0, 1.0, 1.0, self.kappa()));

@@ -235,7 +235,8 @@ impl Geometry {
     /// overflow and `1e-320` does not underflow).
     pub fn tangent_from_chart(self, p: DVec4, dir: DVec3) -> Result<DVec4, GeometryError> {
         let largest = dir.abs().max_element();
-        if !(largest.is_finite() && largest > 0.0) {
+        // Every component finite: `max_element` passes over a NaN.
+        if !(dir.is_finite() && largest > 0.0) {
             return Err(GeometryError::ZeroDirection(dir.x, dir.y, dir.z));
         }
         let scaled = dir / largest;

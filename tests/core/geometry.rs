@@ -183,3 +183,30 @@ fn look_at_builds_a_right_handed_frame() {
         assert!((g.form(-f.z_axis, towards) - 1.0).abs() < 1e-12);
     }
 }
+
+/// A NaN or infinite component anywhere in a direction is an error, and a NaN entry makes
+/// an isometry's defect NaN (never "small"): `f64::max` passes over NaN, so checks built
+/// on the largest component or entry once accepted such inputs.
+#[test]
+fn nan_anywhere_is_never_a_direction_or_an_isometry() {
+    for g in Geometry::ALL {
+        let p = g.from_chart(DVec3::new(0.1, 0.0, 0.0)).unwrap();
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            for i in 0..3 {
+                let mut d = DVec3::new(1.0, 0.5, 0.25);
+                d[i] = bad;
+                assert!(g.tangent_from_chart(p, d).is_err(), "{g:?} {d:?}");
+            }
+        }
+        for i in 0..16 {
+            let mut entries = glam::DMat4::IDENTITY.to_cols_array();
+            entries[i] = f64::NAN;
+            let m = glam::DMat4::from_cols_array(&entries);
+            assert!(
+                !(g.isometry_defect(m) < 1.0),
+                "{g:?} entry {i}: defect {}",
+                g.isometry_defect(m)
+            );
+        }
+    }
+}
