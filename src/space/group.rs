@@ -89,8 +89,8 @@ pub enum GroupError {
     NotCocompact { radius: f64 },
     #[error(
         "the Dirichlet domain reaches distance π/2 from the basepoint, and the group is {what}; \
-         beyond the chart this release draws the 3-sphere, projective space and the lens \
-         spaces of groups acting freely. Move the basepoint (`--basepoint X,Y,Z`) if the \
+         beyond the chart this release draws the 3-sphere, projective space, the lens \
+         spaces of groups acting freely and the mirrored lenses of dihedral reflection groups. Move the basepoint (`--basepoint X,Y,Z`) if the \
          group has a point whose domain is smaller"
     )]
     ReachesEquator { what: String },

@@ -287,9 +287,32 @@ impl Space {
                 }
             })
             .collect();
+        let mirrors = faces
+            .iter()
+            .enumerate()
+            .filter(|(i, f)| f.partner == *i)
+            .count();
+        // A mirrored lens: two mirrors meeting in one great circle at the lens's angle α
+        // (the angle between the outward normals is π − α); once round the edge crosses
+        // both, angle sum 2α, and the relation is the product of the two reflections to
+        // the power π/α.
+        let edge_cycles = if faces.len() == 2 && mirrors == 2 {
+            let alpha = std::f64::consts::PI
+                - faces[0]
+                    .covector
+                    .dot(faces[1].covector)
+                    .clamp(-1.0, 1.0)
+                    .acos();
+            let angle_sum = 2.0 * alpha;
+            vec![EdgeCycle {
+                edges: Vec::new(),
+                angle_sum,
+                order: (std::f64::consts::TAU / angle_sum).round() as u32,
+                crossings: vec![0, 1],
+            }]
         // A lens: the two faces meet in one great circle, glued to itself `order` times
         // around (angle sum 2π); the relation is the pairing to the power `order`.
-        let edge_cycles = if faces.len() == 2 {
+        } else if faces.len() == 2 {
             vec![EdgeCycle {
                 edges: Vec::new(),
                 angle_sum: std::f64::consts::TAU,
@@ -310,7 +333,7 @@ impl Space {
             edge_cycles,
             vertex_cycles: Vec::new(),
             orientable,
-            manifold: true,
+            manifold: mirrors == 0,
             equator_order: Some(order),
             exact: None,
         }
