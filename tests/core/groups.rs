@@ -645,6 +645,16 @@ fn mutated_generator_files_are_refused_cleanly_or_load() {
     ] {
         texts.push(write_gen(&seed_space(id).unwrap()));
     }
+    // Cells beyond the chart: a free lens and a mirrored lens of order 6 (two reflections).
+    texts.push(write_gen(&library("lens-7-1")));
+    let (c, s) = ((PI / 3.0).cos(), (PI / 3.0).sin());
+    texts.push(format!(
+        "1 0 0 0\n0 1 0 0\n0 0 {} {s}\n0 0 {s} {c}\n\n1 0 0 0\n0 1 0 0\n0 0 {} {}\n0 0 {} {c}\n",
+        -c,
+        -c,
+        -s,
+        -s
+    ));
     let mut rng = SplitMix64(0x6E6E);
     let mut pick = |n: usize| ((rng.unit() * n as f64) as usize).min(n.saturating_sub(1));
     let options = DirichletOptions {
@@ -652,7 +662,7 @@ fn mutated_generator_files_are_refused_cleanly_or_load() {
         ..DirichletOptions::default()
     };
     let (mut loaded, mut refused) = (0, 0);
-    for case in 0..96 {
+    for case in 0..128 {
         let base = &texts[case % texts.len()];
         let mut lines: Vec<String> = base.lines().map(String::from).collect();
         let mutation = case % 6;
