@@ -159,14 +159,15 @@ fn invert(m: DdMat4) -> DdMat4 {
             .unwrap();
         a.swap(col, pivot);
         let p = a[col][col];
-        for j in 0..8 {
-            a[col][j] = a[col][j] / p;
+        for x in &mut a[col] {
+            *x = *x / p;
         }
-        for i in 0..4 {
+        let pivot_row = a[col];
+        for (i, row) in a.iter_mut().enumerate() {
             if i != col {
-                let f = a[i][col];
-                for j in 0..8 {
-                    a[i][j] = a[i][j] - f * a[col][j];
+                let f = row[col];
+                for (x, y) in row.iter_mut().zip(pivot_row) {
+                    *x = *x - f * y;
                 }
             }
         }

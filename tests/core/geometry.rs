@@ -203,7 +203,7 @@ fn nan_anywhere_is_never_a_direction_or_an_isometry() {
             entries[i] = f64::NAN;
             let m = glam::DMat4::from_cols_array(&entries);
             assert!(
-                !(g.isometry_defect(m) < 1.0),
+                g.isometry_defect(m).partial_cmp(&1.0) != Some(std::cmp::Ordering::Less),
                 "{g:?} entry {i}: defect {}",
                 g.isometry_defect(m)
             );

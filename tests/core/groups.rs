@@ -650,10 +650,7 @@ fn mutated_generator_files_are_refused_cleanly_or_load() {
     let (c, s) = ((PI / 3.0).cos(), (PI / 3.0).sin());
     texts.push(format!(
         "1 0 0 0\n0 1 0 0\n0 0 {} {s}\n0 0 {s} {c}\n\n1 0 0 0\n0 1 0 0\n0 0 {} {}\n0 0 {} {c}\n",
-        -c,
-        -c,
-        -s,
-        -s
+        -c, -c, -s, -s
     ));
     let mut rng = SplitMix64(0x6E6E);
     let mut pick = |n: usize| ((rng.unit() * n as f64) as usize).min(n.saturating_sub(1));

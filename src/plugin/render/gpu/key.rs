@@ -272,6 +272,7 @@ pub fn compose_wgsl(
 
 /// A name in a composed module without naga_oil's decoration of its module
 /// (`SpaceUniformX_naga_oil_mod_X…X` → `SpaceUniform`).
+#[cfg(feature = "bench")]
 #[must_use]
 pub fn undecorated(name: &str) -> &str {
     name.find("X_naga_oil_mod_X").map_or(name, |i| &name[..i])
