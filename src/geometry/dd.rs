@@ -373,6 +373,15 @@ impl Real for DoubleDouble {
     fn cosh_sinh_of(t: f64) -> (Self, Self) {
         Self::new(t).cosh_sinh()
     }
+
+    fn cos_sin(self) -> (Self, Self) {
+        let (s, c) = self.sin_cos();
+        (c, s)
+    }
+
+    fn cosh_sinh(self) -> (Self, Self) {
+        DoubleDouble::cosh_sinh(self)
+    }
 }
 
 /// A 4-vector of double-doubles.

@@ -14,7 +14,7 @@ pub(crate) use isometry::max_abs_entry;
 pub use isometry::translate_local;
 pub use ray::{Ray, chart_ray};
 
-pub use dd::{DdMat4, DdVec4, DoubleDouble};
+pub use dd::{DD_PI, DdMat4, DdVec4, DoubleDouble};
 pub use real::{Real, Vector4};
 
 use glam::{DVec3, DVec4};

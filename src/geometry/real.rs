@@ -75,6 +75,16 @@ pub trait Real:
     fn cosh_sinh_of(t: f64) -> (Self, Self) {
         (Self::from_f64(t.cosh()), Self::from_f64(t.sinh()))
     }
+    /// `(cos t, sin t)` of this value, to this type's precision.
+    #[must_use]
+    fn cos_sin(self) -> (Self, Self) {
+        Self::cos_sin_of(self.to_f64())
+    }
+    /// `(cosh t, sinh t)` of this value, to this type's precision.
+    #[must_use]
+    fn cosh_sinh(self) -> (Self, Self) {
+        Self::cosh_sinh_of(self.to_f64())
+    }
 }
 
 macro_rules! impl_real {

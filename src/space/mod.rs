@@ -13,6 +13,8 @@ pub mod invariants;
 pub mod library;
 pub mod motion;
 pub mod orbit;
+pub mod product;
+pub mod surface;
 mod validate;
 pub mod walk;
 mod wrap;

@@ -19,6 +19,7 @@ mod hard_cases;
 mod headset;
 mod layers;
 mod objects;
+mod products;
 mod player;
 mod render;
 mod spaces;
