@@ -71,6 +71,13 @@ impl Homology {
     }
 }
 
+/// `H₁` of the group with `generators` generators and these relations (rows of exponents),
+/// for the other kinds of cell (the product spaces).
+#[must_use]
+pub(crate) fn relations_homology(relations: &[Vec<i128>], generators: usize) -> Homology {
+    from_relations(relations, generators)
+}
+
 /// `H₁` of the group with `generators` generators and these relations (rows of exponents).
 fn from_relations(relations: &[Vec<i128>], generators: usize) -> Homology {
     let diagonal = smith_diagonal(relations.to_vec(), generators);

@@ -28,6 +28,17 @@ pub fn resolve_space(id: &str, base: &Path, options: &DirichletOptions) -> Resul
     if let Some(space) = library_space(id) {
         return space;
     }
+    if let Some(product) = super::product::product_space(id) {
+        return match product? {
+            super::product::ProductOrFlat::Flat(space) => Ok(*space),
+            super::product::ProductOrFlat::Product(space) => Err(format!(
+                "{id} is a space of the geometry {} ({}): `info`, `trace` and `list` take it; `render`, `walk`, \
+                 `flight` and `bench` draw the constant-curvature geometries only so far",
+                space.geometry_name(),
+                space.description()
+            )),
+        };
+    }
     let path = base.join(id);
     if is_gen_path(&path) {
         return load_gen_file(&path, options);

@@ -90,7 +90,10 @@ impl SurfaceWord {
         if letters.is_empty() {
             return Err(WordError::Empty);
         }
-        if let Some((i, &c)) = letters.iter().enumerate().find(|(_, c)| !c.is_ascii_alphabetic())
+        if let Some((i, &c)) = letters
+            .iter()
+            .enumerate()
+            .find(|(_, c)| !c.is_ascii_alphabetic())
         {
             return Err(WordError::NotALetter(c, i + 1));
         }
@@ -302,7 +305,11 @@ impl Polygon {
                 let c = cos_half / sin_pn;
                 let (_, sin_half) = DoubleDouble::cos_sin_pi(1, k);
                 let cot_pn = cos_pn / sin_pn;
-                ((c).max(z), (one - c * c).max(z).sqrt(), cot_pn * cos_half / sin_half)
+                (
+                    (c).max(z),
+                    (one - c * c).max(z).sqrt(),
+                    cot_pn * cos_half / sin_half,
+                )
             }
             Geometry::Euclidean => (one, DoubleDouble::new(0.5), z),
         };
@@ -391,7 +398,9 @@ fn side_pairing(
     let (ct, st) = DoubleDouble::cos_sin_pi(2 * i as i64, n);
     let back: Dd3 = [-ct, -st, z];
     let across = match g {
-        Geometry::Euclidean => exact::affine(exact::identity3(), exact::scaled(back, s_rho + s_rho)),
+        Geometry::Euclidean => {
+            exact::affine(exact::identity3(), exact::scaled(back, s_rho + s_rho))
+        }
         // C(2ρ) = C² − κS², S(2ρ) = 2SC.
         _ => {
             let k = DoubleDouble::new(g.kappa());

@@ -4,12 +4,12 @@
 //! cover, long walks, f64 against double-double).
 
 use bevy_curved_spaces::geometry::{DdMat4, DdVec4, DoubleDouble, Geometry, Ray, Real, Vector4};
+use bevy_curved_spaces::random::SplitMix64;
 use bevy_curved_spaces::space::product::{
     ProductError, ProductSpace, ProductWalker, ray_from_centre,
 };
 use bevy_curved_spaces::space::surface::{Polygon, SurfaceWord, WordError};
 use bevy_curved_spaces::space::{Limit, walk::NO_FACE};
-use bevy_curved_spaces::random::SplitMix64;
 use glam::{DVec3, DVec4};
 use std::f64::consts::PI;
 
@@ -42,20 +42,32 @@ fn words_name_their_surfaces() {
 #[test]
 fn bad_words_say_what_is_wrong() {
     assert_eq!(SurfaceWord::parse(""), Err(WordError::Empty));
-    assert!(matches!(SurfaceWord::parse("ab-AB"), Err(WordError::NotALetter('-', 3))));
+    assert!(matches!(
+        SurfaceWord::parse("ab-AB"),
+        Err(WordError::NotALetter('-', 3))
+    ));
     assert!(matches!(
         SurfaceWord::parse("abA"),
-        Err(WordError::Unpaired { letter: 'b', count: 1 })
+        Err(WordError::Unpaired {
+            letter: 'b',
+            count: 1
+        })
     ));
     assert!(matches!(
         SurfaceWord::parse("aaa"),
-        Err(WordError::Unpaired { letter: 'a', count: 3 })
+        Err(WordError::Unpaired {
+            letter: 'a',
+            count: 3
+        })
     ));
     assert!(matches!(
         SurfaceWord::parse("aAbB"),
         Err(WordError::UnequalCycles { .. })
     ));
-    assert!(matches!(SurfaceWord::parse(&"aA".repeat(40)), Err(WordError::TooLong(80))));
+    assert!(matches!(
+        SurfaceWord::parse(&"aA".repeat(40)),
+        Err(WordError::TooLong(80))
+    ));
     for e in [
         SurfaceWord::parse("").unwrap_err(),
         SurfaceWord::parse("aAbB").unwrap_err(),
@@ -63,11 +75,23 @@ fn bad_words_say_what_is_wrong() {
         assert!(!e.to_string().is_empty());
     }
     let bad = |w: &str, l: f64, p: u32| ProductSpace::new("x", w, l, p).unwrap_err();
-    assert!(matches!(bad("abABcdCD", 0.0, 1), ProductError::BadLength(_)));
-    assert!(matches!(bad("abABcdCD", f64::NAN, 1), ProductError::BadLength(_)));
-    assert!(matches!(bad("abABcdCD", f64::INFINITY, 1), ProductError::BadLength(_)));
+    assert!(matches!(
+        bad("abABcdCD", 0.0, 1),
+        ProductError::BadLength(_)
+    ));
+    assert!(matches!(
+        bad("abABcdCD", f64::NAN, 1),
+        ProductError::BadLength(_)
+    ));
+    assert!(matches!(
+        bad("abABcdCD", f64::INFINITY, 1),
+        ProductError::BadLength(_)
+    ));
     assert!(matches!(bad("abABcdCD", 1.0, 0), ProductError::BadTurn(0)));
-    assert!(matches!(bad("abABcdCD", 1.0, 3), ProductError::TurnNotSymmetry { .. }));
+    assert!(matches!(
+        bad("abABcdCD", 1.0, 3),
+        ProductError::TurnNotSymmetry { .. }
+    ));
     assert!(matches!(bad("abAB", 1.0, 1), ProductError::Flat { .. }));
     // abABcdCD turns onto itself by a half turn (four letters on) only; the octagon of
     // opposite sides abcdABCD by every eighth of a turn.
@@ -100,7 +124,13 @@ fn max_abs(v: DdVec4) -> f64 {
 /// partner's pairing, all to 28 digits; the vertex cycles close with angle sum 2π.
 #[test]
 fn the_polygon_of_every_word_is_glued_as_it_says() {
-    for word in ["abABcdCD", "abABcdCDefEF", "aabbcc", "abcdefABCDEF", "aabbccdd"] {
+    for word in [
+        "abABcdCD",
+        "abABcdCDefEF",
+        "aabbcc",
+        "abcdefABCDEF",
+        "aabbccdd",
+    ] {
         let w = SurfaceWord::parse(word).unwrap();
         let polygon = Polygon::of(&w);
         let n = w.side_count();
@@ -112,12 +142,18 @@ fn the_polygon_of_every_word_is_glued_as_it_says() {
             let g = side.pairing;
             let j = side.partner;
             let back = polygon.sides[j].pairing;
-            assert!((back * g - DdMat4::IDENTITY).max_abs() < 1e-28, "{word} side {i}");
+            assert!(
+                (back * g - DdMat4::IDENTITY).max_abs() < 1e-28,
+                "{word} side {i}"
+            );
             let (a, b) = (vertex(&polygon, n, i), vertex(&polygon, n, (i + 1) % n));
             let (ja, jb) = (vertex(&polygon, n, j), vertex(&polygon, n, (j + 1) % n));
             let preserving = w.sides[i].preserving;
             let (to_a, to_b) = if preserving { (jb, ja) } else { (ja, jb) };
-            assert!(max_abs(g * a - to_a) < 1e-28, "{word} side {i}: start vertex");
+            assert!(
+                max_abs(g * a - to_a) < 1e-28,
+                "{word} side {i}: start vertex"
+            );
             assert!(max_abs(g * b - to_b) < 1e-28, "{word} side {i}: end vertex");
             // The image of the centre lies beyond the partner side.
             let cov = DdVec4([
@@ -205,9 +241,18 @@ fn walks_follow_the_geodesic_of_the_cover() {
             let vb = DVec4::new(d.x, d.y, 0.0, 0.0) / lambda.max(1e-300);
             let want = DVec4::W * c + vb * sn;
             let base_err = (DVec4::new(end.x, end.y, 0.0, end.w) - want).length();
-            assert!(base_err < 1e-9 * c.abs().max(1.0), "{}: base off by {base_err:e}", s.name());
+            assert!(
+                base_err < 1e-9 * c.abs().max(1.0),
+                "{}: base off by {base_err:e}",
+                s.name()
+            );
             let z = end.z + height;
-            assert!((z - d.z * distance).abs() < 1e-9, "{}: height {z} not {}", s.name(), d.z * distance);
+            assert!(
+                (z - d.z * distance).abs() < 1e-9,
+                "{}: height {z} not {}",
+                s.name(),
+                d.z * distance
+            );
             assert!(s.outside_by(trace.end.point) < 1e-9);
         }
     }
@@ -239,10 +284,7 @@ fn rays_in_the_base_never_reach_the_top() {
             let ray = ray_from_centre(DVec3::new(f64::cos(a), f64::sin(a), 0.0));
             let trace = walker.trace(ray, Limit::Distance(20.0));
             assert!(
-                trace
-                    .crossings
-                    .iter()
-                    .all(|c| c.face < walker.top()),
+                trace.crossings.iter().all(|c| c.face < walker.top()),
                 "{}",
                 s.name()
             );
@@ -284,7 +326,11 @@ fn corners_and_long_walks_stay_in_the_cell() {
             count += 1;
             true
         });
-        assert!(worst < 1e-9, "{}: {worst:e} outside after {count} crossings", s.name());
+        assert!(
+            worst < 1e-9,
+            "{}: {worst:e} outside after {count} crossings",
+            s.name()
+        );
     }
 }
 
@@ -316,7 +362,11 @@ fn f64_and_f32_walks_agree_with_double_double() {
                     _ => 1.0 + a.distance,
                 };
                 let bound = 64.0 * f64::EPSILON * (n as f64 + 1.0) * grow;
-                assert!(off < bound, "{} crossing {n}: {off:e} > {bound:e}", s.name());
+                assert!(
+                    off < bound,
+                    "{} crossing {n}: {off:e} > {bound:e}",
+                    s.name()
+                );
             }
         }
         let w32 = ProductWalker::<glam::Vec4>::new(&s);
@@ -329,5 +379,54 @@ fn f64_and_f32_walks_agree_with_double_double() {
         );
         assert!(!t32.crossings.is_empty());
         assert!(t32.crossings.iter().all(|c| c.face != NO_FACE));
+    }
+}
+
+/// H₁ from the word and the turn: the surface's homology plus the circle, the turn's
+/// action on the letters taken out.
+#[test]
+fn product_homology_is_the_surfaces_plus_the_circle() {
+    use bevy_curved_spaces::space::product::{ProductOrFlat, product_space};
+    for (id, want) in [
+        ("bitorus-circle", "Z + Z + Z + Z + Z"),
+        ("genus-three-circle", "Z + Z + Z + Z + Z + Z + Z"),
+        ("crosscaps-circle", "Z/2 + Z + Z + Z"),
+        ("sphere-circle", "Z"),
+        ("sphere-circle-turn", "Z"),
+        ("projective-plane-circle", "Z/2 + Z"),
+        // A half turn of abABcdCD swaps the two handles: a = c, b = d.
+        ("bitorus-circle-turn", "Z + Z + Z"),
+    ] {
+        let Some(Ok(ProductOrFlat::Product(space))) = product_space(id) else {
+            panic!("{id} is no product space");
+        };
+        assert_eq!(space.homology().to_string(), want, "{id}");
+    }
+    // Ids with their parts wrong are errors naming the part; a flat word is a flat space.
+    for bad in [
+        "surface-abc-circle-1",
+        "surface-abABcdCD-circle-0",
+        "surface-abABcdCD-circle-x",
+        "surface-abABcdCD-circle-1-turn-3",
+        "surface-abABcdCD-circle-1-turn-q",
+        "surface-abABcdCD",
+        "surface--circle-1",
+    ] {
+        match product_space(bad) {
+            Some(Err(e)) => assert!(e.starts_with(bad), "{bad}: {e}"),
+            other => panic!("{bad}: {other:?}"),
+        }
+    }
+    assert!(product_space("lens-7-1").is_none());
+    match product_space("surface-abAB-circle-1.5") {
+        Some(Ok(ProductOrFlat::Flat(space))) => {
+            assert_eq!(space.geometry(), Geometry::Euclidean);
+            assert!((bevy_curved_spaces::space::invariants::volume(&space) - 1.5).abs() < 1e-12);
+        }
+        other => panic!("a flat word: {other:?}"),
+    }
+    match product_space("surface-abcABC-circle-1-turn-6") {
+        Some(Ok(ProductOrFlat::Flat(space))) => assert!(space.orientable()),
+        other => panic!("the sixth-turn space: {other:?}"),
     }
 }

@@ -5,6 +5,7 @@ use bevy_curved_spaces::space::file::SpaceRecord;
 use bevy_curved_spaces::space::group::write_gen;
 use bevy_curved_spaces::space::invariants::Invariants;
 use bevy_curved_spaces::space::library::{FAMILIES, is_gen_path};
+use bevy_curved_spaces::space::product::ProductSpace;
 use bevy_curved_spaces::space::{SEED_SPACES, Space};
 use std::path::Path;
 
@@ -41,6 +42,29 @@ pub(super) fn list() {
         );
         if family.examples.len() > 1 || family.examples[0] != family.pattern {
             say!("{:<22} {:<11}  e.g. {}", "", "", family.examples.join(", "));
+        }
+    }
+    say!("");
+    say!(
+        "product spaces (H²×R, S²×R): surface-WORD-circle-L[-turn-P], e.g. \
+         surface-abABcdCD-circle-2 (a flat word such as abAB gives a flat space); by name:"
+    );
+    say!(
+        "{:<22} {:<11} {:>14}  description",
+        "id",
+        "geometry",
+        "volume"
+    );
+    for alias in bevy_curved_spaces::space::product::PRODUCT_ALIASES {
+        match ProductSpace::new(alias.id, alias.word, alias.length, alias.turn) {
+            Ok(p) => say!(
+                "{:<22} {:<11} {:>14.10}  {}",
+                alias.id,
+                p.geometry_name(),
+                p.volume(),
+                alias.summary
+            ),
+            Err(e) => say!("{:<22} invalid: {e}", alias.id),
         }
     }
     say!("");
@@ -121,6 +145,69 @@ pub(super) fn info(space: &Space, as_json: bool) -> Result<(), String> {
         }
         Some(_) => {}
     }
+    Ok(())
+}
+
+/// `info` for a product space: its geometry, surface, volume, circle and homology.
+pub(super) fn product_info(space: &ProductSpace, as_json: bool) -> Result<(), String> {
+    let word = space.word();
+    let h1 = space.homology().to_string();
+    if as_json {
+        let value = serde_json::json!({
+            "name": space.name(),
+            "geometry": space.geometry_name(),
+            "description": space.description(),
+            "surface": word.word,
+            "surface_name": word.common_name(),
+            "euler_characteristic": word.euler_characteristic(),
+            "sides": word.side_count(),
+            "corners_per_vertex": word.corners_per_vertex(),
+            "faces": space.face_count(),
+            "base_area": space.base_area(),
+            "circle_length": space.length(),
+            "turn": space.turn(),
+            "volume": space.volume(),
+            "base_inradius": space.base_inradius(),
+            "orientable": space.orientable(),
+            "homology": h1,
+        });
+        say!(
+            "{}",
+            serde_json::to_string_pretty(&value).map_err(|e| e.to_string())?
+        );
+        return Ok(());
+    }
+    say!("{} ({})", space.name(), space.geometry_name());
+    say!("  {}", space.description());
+    say!(
+        "  surface             {} ({}), {} sides, {} corners per vertex",
+        word.word,
+        word.common_name(),
+        word.side_count(),
+        word.corners_per_vertex()
+    );
+    say!("  Euler char.         {}", word.euler_characteristic());
+    say!(
+        "  faces               {} (sides × the circle, top, bottom)",
+        space.face_count()
+    );
+    say!("  base area           {}", number(space.base_area(), 12));
+    say!("  circle length       {}", number(space.length(), 12));
+    say!(
+        "  turn                {}",
+        if space.turn() > 1 {
+            format!("2π/{}", space.turn())
+        } else {
+            "none".to_string()
+        }
+    );
+    say!("  volume              {}", number(space.volume(), 12));
+    say!(
+        "  base inradius       {}",
+        number(space.base_inradius(), 10)
+    );
+    say!("  orientable          {}", space.orientable());
+    say!("  first homology      {h1}");
     Ok(())
 }
 

@@ -505,6 +505,17 @@ fn resolve_space(arg: &str) -> Result<Space, String> {
     bevy_curved_spaces::space::resolve_space(arg, Path::new(""), &options)
 }
 
+/// The product space (H²×R, S²×R) an id names, if it names one; a flat word's product is a
+/// constant-curvature space and comes from [`resolve_space`].
+fn product(arg: &str) -> Result<Option<bevy_curved_spaces::space::product::ProductSpace>, String> {
+    use bevy_curved_spaces::space::product::{ProductOrFlat, product_space};
+    match product_space(arg) {
+        Some(Ok(ProductOrFlat::Product(p))) => Ok(Some(*p)),
+        Some(Err(e)) => Err(e),
+        Some(Ok(ProductOrFlat::Flat(_))) | None => Ok(None),
+    }
+}
+
 /// `render`'s picture size when none is given.
 const DEFAULT_SIZE: &str = "640x360";
 /// `render`'s output file when none is given (also where `walk` renders without a display).
@@ -566,7 +577,10 @@ pub fn run(cli: Cli) -> Result<(), String> {
             info::list();
             Ok(())
         }
-        Some(Command::Info { space, json }) => info::info(&resolve_space(&space)?, json),
+        Some(Command::Info { space, json }) => match product(&space)? {
+            Some(p) => info::product_info(&p, json),
+            None => info::info(&resolve_space(&space)?, json),
+        },
         Some(Command::Trace(args)) => trace::trace(&args),
         Some(Command::Render(args)) => render::render_command(&args),
         Some(Command::Bench(args)) => bench::bench(&args),

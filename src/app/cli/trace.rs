@@ -3,6 +3,7 @@
 use super::*;
 use bevy::prelude::*;
 use bevy_curved_spaces::geometry::{Ray, Vector4, chart_ray};
+use bevy_curved_spaces::space::product::{ProductSpace, ProductWalker};
 use bevy_curved_spaces::space::{CellWalker, Crossing, Limit, Space};
 use glam::{DVec4, Vec4};
 use serde_json::json;
@@ -43,7 +44,115 @@ fn stream<V: Vector4>(
     (to_f64(end), distance, capped)
 }
 
+/// `trace` through a product space (H²×R, S²×R): each crossing's face (a side, `top` or
+/// `bottom`), distance, chart point `(x/w, y/w, z)` and model point `[x, y, w, z]`.
+fn trace_product(args: &TraceArgs, space: &ProductSpace) -> Result<(), String> {
+    let start = bevy_curved_spaces::space::product::chart_ray(space.base(), args.from, args.dir)?;
+    if space.outside_by(start.point) > 1e-12 {
+        return Err(format!(
+            "start point {:?} is outside the cell of {}",
+            args.from.to_array(),
+            space.name()
+        ));
+    }
+    let limit = match (args.crossings, args.distance) {
+        (Some(n), _) => Limit::Crossings(n.min(MAX_WALK)),
+        (None, Some(d)) => Limit::Distance(d),
+        (None, None) => return Err("give --crossings N or --distance D".into()),
+    };
+    let sides = space.face_count() - 2;
+    let face_name = |f: usize| match f {
+        f if f == sides => "top".to_string(),
+        f if f == sides + 1 => "bottom".to_string(),
+        f => format!("side {f}"),
+    };
+    let chart = |p: DVec4| [p.x / p.w, p.y / p.w, p.z];
+    let model = |p: DVec4| [p.x, p.y, p.w, p.z];
+    let mut rows = Vec::new();
+    let mut capped = false;
+    let mut visit = |face: usize, distance: f64, p: DVec4| {
+        rows.push((face, distance, p));
+        if rows.len() >= MAX_WALK {
+            capped = true;
+            return false;
+        }
+        true
+    };
+    let (end, distance) = match args.precision {
+        Precision::F64 => {
+            let w = ProductWalker::<DVec4>::new(space);
+            let (end, d) = w.walk(start, limit, |c| visit(c.face, c.distance, c.ray.point));
+            (end.point, d)
+        }
+        Precision::F32 => {
+            let w = ProductWalker::<Vec4>::new(space);
+            let start = Ray {
+                point: Vec4::from_f64(start.point),
+                tangent: Vec4::from_f64(start.tangent),
+            };
+            let (end, d) = w.walk(start, limit, |c| {
+                visit(c.face, c.distance, c.ray.point.to_f64())
+            });
+            (end.point.to_f64(), d)
+        }
+    };
+    if args.json {
+        let crossings: Vec<serde_json::Value> = rows
+            .iter()
+            .map(|&(f, d, p)| {
+                json!({"face": face_name(f), "distance": d, "point": chart(p), "model": model(p)})
+            })
+            .collect();
+        let out = json!({
+            "space": space.name(),
+            "geometry": space.geometry_name(),
+            "crossings": crossings,
+            "end": {"point": chart(end), "model": model(end), "distance": distance},
+        });
+        say!(
+            "{}",
+            serde_json::to_string_pretty(&out).map_err(|e| e.to_string())?
+        );
+    } else {
+        say!(
+            "{:>5} {:>8} {:>20}  entry point (chart x/w, y/w, z)",
+            "#",
+            "face",
+            "distance"
+        );
+        for (i, &(f, d, p)) in rows.iter().enumerate() {
+            let c = chart(p);
+            say!(
+                "{:>5} {:>8} {:>20.15}  ({:+.15}, {:+.15}, {:+.15})",
+                i + 1,
+                face_name(f),
+                d,
+                c[0],
+                c[1],
+                c[2]
+            );
+        }
+        let c = chart(end);
+        say!(
+            "end at distance {:.15}: ({:+.15}, {:+.15}, {:+.15})",
+            distance,
+            c[0],
+            c[1],
+            c[2]
+        );
+    }
+    if capped {
+        return Err(format!(
+            "stopped after {MAX_WALK} crossings, the most `trace` walks"
+        ));
+    }
+    Ok(())
+}
+
 pub(super) fn trace(args: &TraceArgs) -> Result<(), String> {
+    if let Some(p) = product(&args.space)? {
+        return trace_product(args, &p);
+    }
     let space = resolve_space(&args.space)?;
     let g = space.geometry();
     let start = chart_ray(g, args.from, args.dir).map_err(|e| e.to_string())?;
