@@ -3,6 +3,7 @@
 //! automatic crossing budget.
 
 mod budget;
+pub mod product;
 mod render;
 
 pub use budget::{BudgetChoice, MAX_AUTO_BUDGET, auto_budget, auto_budget_with_floor, sample_rays};

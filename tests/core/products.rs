@@ -430,3 +430,42 @@ fn product_homology_is_the_surfaces_plus_the_circle() {
         other => panic!("the sixth-turn space: {other:?}"),
     }
 }
+
+/// Every named product space renders its default scene on the CPU: a third of the pixels show
+/// something, the centre ball is in view, and a second render is the same picture.
+#[test]
+fn every_named_product_space_renders() {
+    use bevy_curved_spaces::space::product::{PRODUCT_ALIASES, ProductOrFlat, product_space};
+    use bevy_curved_spaces::trace::product::{
+        default_camera, default_scene, render_product, trace_product_pixel,
+    };
+    for alias in PRODUCT_ALIASES {
+        let Some(Ok(ProductOrFlat::Product(space))) = product_space(alias.id) else {
+            panic!("{}", alias.id);
+        };
+        let scene = default_scene(&space);
+        let camera = default_camera(&space);
+        let (w, h) = (48, 27);
+        let image = render_product(&space, &scene, &camera, w, h, 24);
+        let fog = scene
+            .fog_colour
+            .to_array()
+            .map(|x| (x * 255.0).round() as u8);
+        let shown = image.pixels().filter(|p| p.0 != fog).count();
+        assert!(
+            shown > (w * h / 3) as usize,
+            "{}: {shown} pixels show anything",
+            alias.id
+        );
+        assert_eq!(image, render_product(&space, &scene, &camera, w, h, 24));
+        // The ray through the middle meets the centre ball, first, inside the cell.
+        let walker = ProductWalker::<DVec4>::new(&space);
+        let middle = trace_product_pixel(&walker, &scene, camera.ray(w / 2, h / 2, w, h), 24);
+        let ball = scene.objects.last().unwrap().colour;
+        assert!(
+            middle.dot(ball) > 0.05 && middle.max_element() > 0.1,
+            "{}: {middle:?}",
+            alias.id
+        );
+    }
+}

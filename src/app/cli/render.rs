@@ -111,7 +111,55 @@ struct View {
     scene: CurvedScene,
 }
 
+/// `render` of a product space (H²×R, S²×R): its default scene and view on the CPU.
+fn render_product_command(
+    args: &RenderArgs,
+    space: &bevy_curved_spaces::space::product::ProductSpace,
+) -> Result<(), String> {
+    use bevy_curved_spaces::trace::product::{default_camera, default_scene, render_product};
+    if !args.cpu {
+        return Err(format!(
+            "{} is a space of the geometry {}: the GPU tracer draws the constant-curvature \
+             geometries only so far; render it with the CPU reference (`--cpu`)",
+            space.name(),
+            space.geometry_name()
+        ));
+    }
+    let mut scene = default_scene(space);
+    if let Some(fog) = args.fog {
+        scene.fog_distance = fog;
+    }
+    let mut camera = default_camera(space);
+    if let Some(fov) = args.fov {
+        camera.fov_y_degrees = fov;
+    }
+    let budget = args.crossings.unwrap_or(64);
+    say!(
+        "rendering {} ({}) at {}×{} with the f64 CPU reference (fog λ = {:.3}, ≤ {budget} crossings)…",
+        space.name(),
+        space.geometry_name(),
+        args.size.0,
+        args.size.1,
+        scene.fog_distance
+    );
+    let started = Instant::now();
+    let image = render_product(space, &scene, &camera, args.size.0, args.size.1, budget);
+    save(&image, &args.out)?;
+    let shown = std::fs::canonicalize(&args.out).unwrap_or_else(|_| args.out.clone());
+    say!(
+        "wrote {} ({}×{}, {:.2} s)",
+        shown.display(),
+        args.size.0,
+        args.size.1,
+        started.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
 pub(super) fn render_command(args: &RenderArgs) -> Result<(), String> {
+    if let Some(p) = super::product(&args.space)? {
+        return render_product_command(args, &p);
+    }
     let mut chosen = choose_scene(&args.space, args.scene.as_deref(), args.fog)?.at(args.time)?;
     if args.view.changes_parts() {
         let parts = args.view.parts(chosen.parts);

@@ -1,0 +1,491 @@
+//! The CPU reference tracer of the product spaces (H²×R, S²×R): a camera ray per pixel
+//! walks the product cell ([`ProductWalker`]); in each segment the objects are met exactly.
+//!
+//! Every object of a product scene is the set where a distance is at most its radius: a
+//! **ball** (the distance to a point), a **fibre tube** (the surface distance to a point:
+//! a vertical edge of the cell), a **slice tube** (the distance to a surface geodesic in a
+//! slice `z = z₀`: a horizontal edge). Along a geodesic segment `F(t) = d(t)² − r²` is a
+//! convex function (H²×R is a Hadamard manifold; in S²×R the segments are at most π/4 of
+//! surface arc and the objects small, where it holds too), so the segment meets the object
+//! iff `F`'s minimum on it is negative, and then first at the one root of `F` before the
+//! minimum. The minimum is found by golden-section search and the root by bisection, each
+//! run to the last bit of `f64` (60 halvings): bracketed and safeguarded, never marched.
+
+use crate::geometry::{Geometry, Ray};
+use crate::space::product::{ProductSpace, ProductWalker};
+use crate::space::walk::NO_FACE;
+use glam::{DVec3, DVec4};
+use image::RgbImage;
+use rayon::prelude::*;
+
+/// What an object of a product scene is the neighbourhood of.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ProductShape {
+    /// A point of the space (a ball).
+    Point(DVec4),
+    /// The fibre over a surface point (a vertical tube).
+    Fibre(DVec4),
+    /// A surface geodesic in the slice at a height: its unit covector in the surface's
+    /// model (`(n, 0, −r)` scaled), and the height.
+    Geodesic {
+        /// The line's unit covector (its `z` component zero).
+        covector: DVec4,
+        /// The slice's height.
+        height: f64,
+    },
+}
+
+/// An object: every point within `radius` of its shape.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ProductObject {
+    /// What it surrounds.
+    pub shape: ProductShape,
+    /// Its radius.
+    pub radius: f64,
+    /// Its colour, linear RGB.
+    pub colour: DVec3,
+}
+
+/// A scene of a product space: objects, one point light, ambient light and fog.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ProductScene {
+    /// The objects.
+    pub objects: Vec<ProductObject>,
+    /// The light's position.
+    pub light: DVec4,
+    /// Ambient share of the light.
+    pub ambient: f64,
+    /// Fog distance scale λ: a surface at distance `d` keeps `e^(−d/λ)` of its colour.
+    pub fog_distance: f64,
+    /// The fog's colour.
+    pub fog_colour: DVec3,
+}
+
+/// The surface model's form on the base parts `(x, y, w)` of two vectors.
+fn base_form(g: Geometry, a: DVec4, b: DVec4) -> f64 {
+    a.x * b.x + a.y * b.y + g.kappa() * a.w * b.w
+}
+
+/// The base part of a vector.
+fn base(v: DVec4) -> DVec4 {
+    DVec4::new(v.x, v.y, 0.0, v.w)
+}
+
+/// The surface distance between two base points, from their chord (accurate near and far).
+fn surface_distance(g: Geometry, p: DVec4, q: DVec4) -> f64 {
+    let d = base(p) - base(q);
+    let chord = base_form(g, d, d).max(0.0).sqrt();
+    match g {
+        Geometry::Spherical => 2.0 * (0.5 * chord).min(1.0).asin(),
+        _ => 2.0 * (0.5 * chord).asinh(),
+    }
+}
+
+/// The unit surface tangent at `p` pointing away from the base point `q`, and the distance.
+fn away_from(g: Geometry, p: DVec4, q: DVec4) -> (DVec4, f64) {
+    let (p, q) = (base(p), base(q));
+    let along = base_form(g, q, p) / base_form(g, p, p);
+    let toward = q - p * along;
+    let len = base_form(g, toward, toward).max(0.0).sqrt();
+    let d = surface_distance(g, p, q);
+    if len > 0.0 {
+        (-toward / len, d)
+    } else {
+        (DVec4::ZERO, d)
+    }
+}
+
+impl ProductObject {
+    /// The distance from `x` to the shape, and the unit normal there (the gradient of the
+    /// distance: pointing away from the shape).
+    fn distance(&self, g: Geometry, x: DVec4) -> (f64, DVec4) {
+        match self.shape {
+            ProductShape::Point(c) => {
+                let (away, db) = away_from(g, x, c);
+                let dz = x.z - c.z;
+                let d = (db * db + dz * dz).sqrt();
+                let n = away * db + DVec4::Z * dz;
+                (d, if d > 0.0 { n / d } else { DVec4::Z })
+            }
+            ProductShape::Fibre(c) => {
+                let (away, db) = away_from(g, x, c);
+                (db, away)
+            }
+            ProductShape::Geodesic { covector, height } => {
+                let xb = base(x);
+                let norm = (g.kappa() * base_form(g, xb, xb)).abs().sqrt();
+                let xb = xb / norm;
+                let s = covector.dot(xb);
+                let db = match g {
+                    Geometry::Spherical => s.clamp(-1.0, 1.0).asin().abs(),
+                    _ => s.asinh().abs(),
+                };
+                // The covector as a vector (dual under the form), made tangent at x.
+                let m = DVec4::new(covector.x, covector.y, 0.0, g.kappa() * covector.w);
+                let t = m - xb * (base_form(g, m, xb) / base_form(g, xb, xb));
+                let len = base_form(g, t, t).max(0.0).sqrt();
+                let away = if len > 0.0 {
+                    t * (s.signum() / len)
+                } else {
+                    DVec4::ZERO
+                };
+                let dz = x.z - height;
+                let d = (db * db + dz * dz).sqrt();
+                let n = away * db + DVec4::Z * dz;
+                (d, if d > 0.0 { n / d } else { DVec4::Z })
+            }
+        }
+    }
+}
+
+/// The point at distance `t` along a ray of the product (the exact geodesic).
+fn along(g: Geometry, ray: &Ray<DVec4>, t: f64) -> DVec4 {
+    let vb = base(ray.tangent);
+    let lambda = base_form(g, vb, vb).max(0.0).sqrt();
+    let (c, s) = g.cs(lambda * t);
+    let pb = base(ray.point);
+    let p = if lambda > 0.0 {
+        pb * c + vb * (s / lambda)
+    } else {
+        pb
+    };
+    DVec4::new(p.x, p.y, ray.point.z + ray.tangent.z * t, p.w)
+}
+
+/// The first `t` in `[0, t_max]` where the segment meets the object, if it does.
+fn first_meeting(g: Geometry, object: &ProductObject, ray: &Ray<DVec4>, t_max: f64) -> Option<f64> {
+    let f = |t: f64| {
+        let d = object.distance(g, along(g, ray, t)).0;
+        d * d - object.radius * object.radius
+    };
+    // The distance is 1-Lipschitz along a unit-speed geodesic: a segment whose midpoint is
+    // further from the shape than half its length plus the radius cannot meet it.
+    let mid = object.distance(g, along(g, ray, 0.5 * t_max)).0;
+    if mid > 0.5 * t_max + object.radius {
+        return None;
+    }
+    if f(0.0) <= 0.0 {
+        return Some(0.0);
+    }
+    // Golden-section search for the minimum of the convex F on [0, t_max].
+    let ratio = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut a, mut b) = (0.0, t_max);
+    let mut c = b - ratio * (b - a);
+    let mut d = a + ratio * (b - a);
+    let (mut fc, mut fd) = (f(c), f(d));
+    for _ in 0..80 {
+        if fc <= 0.0 || fd <= 0.0 {
+            break;
+        }
+        if fc < fd {
+            b = d;
+            d = c;
+            fd = fc;
+            c = b - ratio * (b - a);
+            fc = f(c);
+        } else {
+            a = c;
+            c = d;
+            fc = fd;
+            d = a + ratio * (b - a);
+            fd = f(d);
+        }
+        if b - a <= 1e-13 * t_max.max(1.0) {
+            break;
+        }
+    }
+    let inside = if fc <= 0.0 {
+        c
+    } else if fd <= 0.0 {
+        d
+    } else if f(t_max) <= 0.0 {
+        t_max
+    } else {
+        return None;
+    };
+    // Bisection on [0, inside]: F > 0 at the left end, ≤ 0 at the right.
+    let (mut lo, mut hi) = (0.0, inside);
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if f(mid) > 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Some(hi)
+}
+
+/// A product camera: a point and an orthonormal frame (right, up, back) of tangents there,
+/// with a vertical field of view.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ProductCamera {
+    /// The eye.
+    pub point: DVec4,
+    /// Right, up and back, unit tangents at the eye.
+    pub frame: [DVec4; 3],
+    /// Vertical field of view in degrees.
+    pub fov_y_degrees: f64,
+}
+
+/// The unit tangent at `p` of the geodesic towards `q` (its surface part along the surface
+/// geodesic, its height part the difference in height, in proportion).
+#[must_use]
+pub fn tangent_towards(g: Geometry, p: DVec4, q: DVec4) -> DVec4 {
+    let (away, db) = away_from(g, p, q);
+    let v = -away * db + DVec4::Z * (q.z - p.z);
+    let len = (base_form(g, v, v) + v.z * v.z).sqrt();
+    if len > 0.0 { v / len } else { DVec4::Z }
+}
+
+/// The product metric's inner product of two tangents.
+fn dot(g: Geometry, a: DVec4, b: DVec4) -> f64 {
+    base_form(g, a, b) + a.z * b.z
+}
+
+impl ProductCamera {
+    /// A camera at `eye` looking at `target`, the fibre up (as far as the view allows).
+    #[must_use]
+    pub fn looking_at(g: Geometry, eye: DVec4, target: DVec4, fov_y_degrees: f64) -> Self {
+        let forward = tangent_towards(g, eye, target);
+        let mut up = DVec4::Z - forward * forward.z;
+        let len = dot(g, up, up).sqrt();
+        up = if len > 1e-9 {
+            up / len
+        } else {
+            // Looking along the fibre: any surface direction is up.
+            let (a, _) = away_from(g, eye, DVec4::new(0.3, 0.1, 0.0, 1.0));
+            a
+        };
+        // right = forward × up in the tangent space, built from the surface basis.
+        let e = surface_basis(g, eye);
+        let coords = |v: DVec4| DVec3::new(dot(g, v, e[0]), dot(g, v, e[1]), v.z);
+        let r = coords(forward).cross(coords(up));
+        let right = e[0] * r.x + e[1] * r.y + DVec4::Z * r.z;
+        Self {
+            point: eye,
+            frame: [right, up, -forward],
+            fov_y_degrees,
+        }
+    }
+
+    /// The ray through pixel `(i, j)` of a `width × height` image.
+    #[must_use]
+    pub fn ray(&self, i: u32, j: u32, width: u32, height: u32) -> Ray<DVec4> {
+        let t = (0.5 * self.fov_y_degrees.to_radians()).tan();
+        let aspect = f64::from(width) / f64::from(height);
+        let px = ((f64::from(i) + 0.5) / f64::from(width) * 2.0 - 1.0) * t * aspect;
+        let py = (1.0 - (f64::from(j) + 0.5) / f64::from(height) * 2.0) * t;
+        let [right, up, back] = self.frame;
+        let v = right * px + up * py - back;
+        Ray {
+            point: self.point,
+            tangent: v,
+        }
+    }
+}
+
+/// An orthonormal basis of the surface's tangent plane at `p` (as tangents of the product).
+fn surface_basis(g: Geometry, p: DVec4) -> [DVec4; 2] {
+    let pb = base(p);
+    let mut out: Vec<DVec4> = Vec::new();
+    for axis in [DVec4::X, DVec4::Y, DVec4::W] {
+        if out.len() == 2 {
+            break;
+        }
+        let mut v = axis - pb * (base_form(g, axis, pb) / base_form(g, pb, pb));
+        for b in &out {
+            v -= *b * base_form(g, v, *b);
+        }
+        let len = base_form(g, v, v).max(0.0).sqrt();
+        if len > 0.3 {
+            out.push(v / len);
+        }
+    }
+    [out[0], out[1]]
+}
+
+/// The default scene: a ball at the centre, the cell's vertical edges (fibre tubes over the
+/// polygon's corners) and its horizontal edges (the polygon's sides in the top and bottom
+/// slices), a light above and beside the ball. The sphere has neither edge: a ring of balls
+/// round the equator marks its directions.
+#[must_use]
+pub fn default_scene(space: &ProductSpace) -> ProductScene {
+    let g = space.base();
+    let walker = ProductWalker::<DVec4>::new(space);
+    let size = space
+        .base_inradius()
+        .min(std::f64::consts::FRAC_PI_2)
+        .min(space.length());
+    let mut objects = Vec::new();
+    let polygon = space.polygon();
+    let n = polygon.sides.len();
+    let edge = 0.04 * size;
+    let h = 0.5 * space.length();
+    if n > 0 && !space.hemisphere() {
+        let r = crate::geometry::Real::to_f64(polygon.circumradius);
+        let (c, s) = g.cs(r);
+        for m in 0..n {
+            let a = std::f64::consts::PI * (2.0 * m as f64 - 1.0) / n as f64;
+            let corner = DVec4::new(s * a.cos(), s * a.sin(), 0.0, c);
+            objects.push(ProductObject {
+                shape: ProductShape::Fibre(corner),
+                radius: edge,
+                colour: DVec3::new(0.85, 0.55, 0.25),
+            });
+        }
+        for cov in &walker.covectors {
+            for height in [-h, h] {
+                objects.push(ProductObject {
+                    shape: ProductShape::Geodesic {
+                        covector: *cov,
+                        height,
+                    },
+                    radius: edge,
+                    colour: DVec3::new(0.3, 0.6, 0.9),
+                });
+            }
+        }
+    } else {
+        // No corner to draw: small balls round the surface's equator-like circle at the
+        // centre's height mark the directions.
+        let ring = 0.6 * size.min(std::f64::consts::FRAC_PI_4 * 1.5);
+        let (c, s) = g.cs(ring);
+        for m in 0..6 {
+            let a = std::f64::consts::TAU * m as f64 / 6.0;
+            objects.push(ProductObject {
+                shape: ProductShape::Point(DVec4::new(s * a.cos(), s * a.sin(), 0.0, c)),
+                radius: 0.08 * size,
+                colour: DVec3::new(0.3, 0.6, 0.9),
+            });
+        }
+    }
+    objects.push(ProductObject {
+        shape: ProductShape::Point(DVec4::W),
+        radius: 0.25 * size,
+        colour: DVec3::new(1.0, 0.78, 0.45),
+    });
+    let (c, s) = g.cs(0.5 * size);
+    ProductScene {
+        objects,
+        light: DVec4::new(s * 0.8, s * 0.6, 0.3 * h, c),
+        ambient: 0.3,
+        fog_distance: 3.0 * size.max(0.5 * h),
+        fog_colour: DVec3::new(0.04, 0.05, 0.08),
+    }
+}
+
+/// The default camera: three quarters of the way to the side from the centre, a little
+/// above it, looking at the ball.
+#[must_use]
+pub fn default_camera(space: &ProductSpace) -> ProductCamera {
+    let g = space.base();
+    let size = space.base_inradius().min(std::f64::consts::FRAC_PI_2);
+    let (c, s) = g.cs(0.7 * size);
+    let a: f64 = 0.35;
+    let eye = DVec4::new(s * a.cos(), s * a.sin(), 0.2 * space.length(), c);
+    ProductCamera::looking_at(g, eye, DVec4::W, 70.0)
+}
+
+/// The colour seen along one ray: nearest object in each segment of the walk, shaded with
+/// the light's nearest copy (Lambert, falloff by the square of the distance, never nearer
+/// than a tenth of the ball's radius) and fog; the fog colour where nothing is met before
+/// the fog's cut-off (the distance past which a surface keeps under half a colour step) or
+/// within the crossing budget.
+#[must_use]
+pub fn trace_product_pixel(
+    walker: &ProductWalker<DVec4>,
+    scene: &ProductScene,
+    start: Ray<DVec4>,
+    max_crossings: usize,
+) -> DVec3 {
+    let g = walker.base;
+    let cutoff = scene.fog_distance * 510f64.ln();
+    let mut ray = walker.normalized(start);
+    let mut distance = 0.0;
+    let mut skip = None;
+    let mut crossings = 0usize;
+    let mut steps = 0usize;
+    while distance < cutoff {
+        let Some(exit) = walker.exit(&ray, skip) else {
+            break;
+        };
+        let t_max = exit.distance.min(cutoff - distance);
+        let mut nearest: Option<(f64, &ProductObject)> = None;
+        for object in &scene.objects {
+            if let Some(t) = first_meeting(g, object, &ray, t_max)
+                && nearest.is_none_or(|(best, _)| t < best)
+            {
+                nearest = Some((t, object));
+            }
+        }
+        if let Some((t, object)) = nearest {
+            let at = along(g, &ray, t);
+            let (_, normal) = object.distance(g, at);
+            let to_light = tangent_towards(g, at, scene.light);
+            let dl = {
+                let db = surface_distance(g, at, scene.light);
+                let dz = at.z - scene.light.z;
+                (db * db + dz * dz).sqrt().max(0.1)
+            };
+            let lambert = dot(g, normal, to_light).max(0.0);
+            let lit = scene.ambient + (1.0 - scene.ambient) * lambert / (dl * dl).max(1.0);
+            let surface = (object.colour * lit).min(DVec3::ONE);
+            let w = (-(distance + t) / scene.fog_distance).exp();
+            return w * surface + (1.0 - w) * scene.fog_colour;
+        }
+        if exit.distance >= cutoff - distance {
+            break;
+        }
+        let (next, _) = walker.cross(&ray, &exit);
+        distance += exit.distance;
+        skip = walker.entered(&exit);
+        ray = next;
+        if exit.face == NO_FACE {
+            steps += 1;
+            if steps > 64 {
+                break;
+            }
+            continue;
+        }
+        steps = 0;
+        crossings += 1;
+        if crossings > max_crossings {
+            break;
+        }
+    }
+    scene.fog_colour
+}
+
+/// Renders a product space's scene on the CPU (rows in parallel).
+#[must_use]
+pub fn render_product(
+    space: &ProductSpace,
+    scene: &ProductScene,
+    camera: &ProductCamera,
+    width: u32,
+    height: u32,
+    max_crossings: usize,
+) -> RgbImage {
+    let walker = ProductWalker::<DVec4>::new(space);
+    let rows: Vec<Vec<u8>> = (0..height)
+        .into_par_iter()
+        .map(|j| {
+            (0..width)
+                .flat_map(|i| {
+                    let c = trace_product_pixel(
+                        &walker,
+                        scene,
+                        camera.ray(i, j, width, height),
+                        max_crossings,
+                    );
+                    c.to_array().map(super::to_byte)
+                })
+                .collect()
+        })
+        .collect();
+    RgbImage::from_raw(width, height, rows.concat()).expect("width × height pixels")
+}
