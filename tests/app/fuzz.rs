@@ -327,6 +327,8 @@ fn hostile_numbers_on_the_command_line() {
     );
     for value in values {
         let vec3 = format!("{value},0,0");
+        let circle = format!("surface-abABcdCD-circle-{value}");
+        let turned = format!("surface-aA-circle-1-turn-{value}");
         let cases: Vec<Vec<&str>> = vec![
             // A scene with a moving object at a hostile time.
             vec![
@@ -455,6 +457,46 @@ fn hostile_numbers_on_the_command_line() {
             ],
             vec!["trace", "torus", "--dir", "1,0,0", "--distance", value],
             vec!["trace", "torus", "--dir", "1,0,0", "--crossings", value],
+            // Product spaces: a hostile length, turn, direction and start.
+            vec!["info", &circle],
+            vec!["info", &turned],
+            vec![
+                "trace",
+                "bitorus-circle",
+                "--dir",
+                &vec3,
+                "--crossings",
+                "3",
+            ],
+            vec![
+                "trace",
+                "sphere-circle",
+                "--from",
+                &vec3,
+                "--dir",
+                "0,1,0.5",
+                "--distance",
+                "2",
+            ],
+            vec![
+                "trace",
+                "projective-plane-circle",
+                "--dir",
+                "1,0,0.2",
+                "--distance",
+                value,
+            ],
+            vec![
+                "render",
+                "crosscaps-circle",
+                "--cpu",
+                "--size",
+                "16x9",
+                "--crossings",
+                "4",
+                "--fog",
+                value,
+            ],
         ];
         for mut args in cases {
             let out_dir = crate::common::scratch_dir("fuzz-cli");

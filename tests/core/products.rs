@@ -469,3 +469,65 @@ fn every_named_product_space_renders() {
         );
     }
 }
+
+/// Random and mutated ids: every one is a product space that walks, a flat space, or an
+/// error naming the problem; never a panic.
+#[test]
+fn random_product_ids_are_spaces_or_clear_errors() {
+    use bevy_curved_spaces::space::product::{ProductOrFlat, product_space};
+    let mut rng = SplitMix64(0x5eed);
+    let mut pick = |n: usize| ((rng.unit() * n as f64) as usize).min(n - 1);
+    let letters: Vec<char> = "aAbBcCdD-1 é".chars().collect();
+    let numbers = [
+        "1", "0", "-2", "nan", "inf", "1e308", "1e-320", "0.5", "x", "",
+    ];
+    let (mut built, mut refused) = (0, 0);
+    for case in 0..600 {
+        let words = [
+            "abABcdCD", "aabbcc", "aa", "aA", "abAB", "abcABC", "abcdABCD", "abab",
+        ];
+        let mut word: Vec<char> = words[pick(words.len())].chars().collect();
+        match case % 4 {
+            // Kept as it is: most of these build.
+            0 => {}
+            // A letter changed, dropped or added.
+            1 => {
+                let i = pick(word.len());
+                word[i] = letters[pick(letters.len())];
+            }
+            2 => {
+                word.remove(pick(word.len()));
+            }
+            _ => word.insert(pick(word.len() + 1), letters[pick(letters.len())]),
+        }
+        let word: String = word.into_iter().collect();
+        let l = numbers[pick(numbers.len())];
+        let id = if case % 3 == 0 {
+            format!(
+                "surface-{word}-circle-{l}-turn-{}",
+                numbers[pick(numbers.len())]
+            )
+        } else {
+            format!("surface-{word}-circle-{l}")
+        };
+        match product_space(&id) {
+            Some(Ok(ProductOrFlat::Product(space))) => {
+                built += 1;
+                let walker = ProductWalker::<DVec4>::new(&space);
+                let trace = walker.trace(
+                    ray_from_centre(DVec3::new(0.5, 0.3, 0.4)),
+                    Limit::Crossings(8),
+                );
+                assert!(trace.end.point.is_finite(), "{id}");
+            }
+            Some(Ok(ProductOrFlat::Flat(_))) => built += 1,
+            Some(Err(e)) => {
+                refused += 1;
+                assert!(e.starts_with(&id) && e.len() > id.len() + 10, "{id}: {e}");
+            }
+            None => panic!("{id}: not recognised as a product id"),
+        }
+    }
+    eprintln!("product ids: {built} built, {refused} refused");
+    assert!(built > 0 && refused > 0);
+}
