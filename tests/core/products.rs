@@ -531,3 +531,27 @@ fn random_product_ids_are_spaces_or_clear_errors() {
     eprintln!("product ids: {built} built, {refused} refused");
     assert!(built > 0 && refused > 0);
 }
+
+/// The injectivity radius: the Bolza surface (the regular octagon with opposite sides
+/// glued, `abcdABCD`) has systole `2 acosh(1 + √2)`, so times a long circle its injectivity
+/// radius is `acosh(1 + √2)`, and times a short one half the circle; S²×S¹ and RP²×S¹ from
+/// the fibre and the antipodal map.
+#[test]
+fn product_injectivity_radii() {
+    let bolza = (1.0 + 2f64.sqrt()).acosh();
+    let long = ProductSpace::new("bolza", "abcdABCD", 10.0, 1).unwrap();
+    let r = long.injectivity_radius(200_000).unwrap();
+    assert!((r - bolza).abs() < 1e-9, "{r} against {bolza}");
+    let short = ProductSpace::new("bolza", "abcdABCD", 1.0, 4).unwrap();
+    assert!((short.injectivity_radius(200_000).unwrap() - 0.5).abs() < 1e-12);
+    let sphere = ProductSpace::new("s", "aA", PI, 1).unwrap();
+    assert!((sphere.injectivity_radius(10).unwrap() - PI / 2.0).abs() < 1e-12);
+    let long_sphere = ProductSpace::new("s", "aA", 10.0, 1).unwrap();
+    assert!((long_sphere.injectivity_radius(10).unwrap() - PI).abs() < 1e-12);
+    let pp = ProductSpace::new("p", "aa", 10.0, 1).unwrap();
+    assert!((pp.injectivity_radius(10).unwrap() - PI / 2.0).abs() < 1e-12);
+    // The bitorus word's octagon: at most the Bolza value (its translations across sides).
+    let bitorus = ProductSpace::new("b", "abABcdCD", 10.0, 1).unwrap();
+    let rb = bitorus.injectivity_radius(200_000).unwrap();
+    assert!(rb > 0.3 && rb <= bolza + 1e-9, "{rb}");
+}

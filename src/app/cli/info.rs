@@ -170,6 +170,7 @@ pub(super) fn product_info(space: &ProductSpace, as_json: bool) -> Result<(), St
             "base_inradius": space.base_inradius(),
             "orientable": space.orientable(),
             "homology": h1,
+            "injectivity_radius": space.injectivity_radius(200_000),
         });
         say!(
             "{}",
@@ -208,6 +209,14 @@ pub(super) fn product_info(space: &ProductSpace, as_json: bool) -> Result<(), St
     );
     say!("  orientable          {}", space.orientable());
     say!("  first homology      {h1}");
+    say!(
+        "  injectivity radius  {}",
+        space
+            .injectivity_radius(200_000)
+            .map_or("– (too many group elements)".to_string(), |r| number(
+                r, 10
+            ))
+    );
     Ok(())
 }
 

@@ -249,6 +249,33 @@ impl ProductSpace {
         relations_homology(&relations, generators)
     }
 
+    /// The injectivity radius: half the shortest closed geodesic, and at most π in S²×R
+    /// (where geodesics along the surface meet their conjugate points). A closed geodesic
+    /// is the axis of a deck transformation `(h, z ↦ z + mL)`; its length is
+    /// `√(a(h)² + (mL)²)` with `a(h)` how far `h` moves the surface's points at least. With
+    /// `m ≠ 0` the shortest is the fibre through the centre (the turn fixes it), `L`; with
+    /// `m = 0` it is the surface's systole, found among the surface group's elements that
+    /// move the centre at most the systole's bound plus twice the circumradius (a shortest
+    /// element has a conjugate whose axis meets the cell). `None` when more than `limit`
+    /// elements would be needed.
+    #[must_use]
+    pub fn injectivity_radius(&self, limit: usize) -> Option<f64> {
+        let g = self.base();
+        let l = self.length;
+        let systole = match g {
+            Geometry::Spherical if self.hemisphere() => std::f64::consts::PI,
+            Geometry::Spherical => f64::INFINITY,
+            _ => surface_systole(self, limit)?,
+        };
+        let shortest = systole.min(l);
+        let conjugate = if g == Geometry::Spherical {
+            std::f64::consts::PI
+        } else {
+            f64::INFINITY
+        };
+        Some((0.5 * shortest).min(conjugate))
+    }
+
     /// The surface's Euler characteristic.
     #[must_use]
     pub fn euler_characteristic(&self) -> i64 {
@@ -265,4 +292,68 @@ impl ProductSpace {
             self.polygon.inradius.to_f64()
         }
     }
+}
+
+/// How far a surface isometry (a 4×4 matrix fixing `z`) moves the points of H² at least:
+/// `cosh a = (tr − det)/2` of its 3×3 part (a translation, or a glide reflection with
+/// `det = −1`); 0 for an elliptic one.
+fn surface_displacement(h: &glam::DMat4) -> f64 {
+    let m = glam::DMat3::from_cols(
+        glam::DVec3::new(h.x_axis.x, h.x_axis.y, h.x_axis.w),
+        glam::DVec3::new(h.y_axis.x, h.y_axis.y, h.y_axis.w),
+        glam::DVec3::new(h.w_axis.x, h.w_axis.y, h.w_axis.w),
+    );
+    let det = m.determinant().signum();
+    let trace = m.x_axis.x + m.y_axis.y + m.z_axis.z;
+    let c = 0.5 * (trace - det);
+    if c > 1.0 { c.acosh() } else { 0.0 }
+}
+
+/// The systole of a hyperbolic surface of the product: the shortest translation among the
+/// elements of its group, enumerated breadth first by the side pairings while they move
+/// the centre at most the bound. The products are taken in double-double: in f64 a word's
+/// rounding grows like the product of its letters' sizes, and a relation's partial
+/// products (which close up into the identity) would come out as tiny translations.
+fn surface_systole(space: &ProductSpace, limit: usize) -> Option<f64> {
+    use crate::geometry::DdMat4;
+    use crate::space::group::polish_isometry_dd;
+    use crate::space::orbit::OrbitPoints;
+    let g = Geometry::Hyperbolic;
+    let moves: Vec<DdMat4> = space.polygon.sides.iter().map(|s| s.pairing).collect();
+    let radius = |h: &glam::DMat4| g.distance(glam::DVec4::W, h.w_axis);
+    let circumradius = space.polygon.circumradius.to_f64();
+    // The generators' translations bound the systole from above.
+    let mut best = moves
+        .iter()
+        .map(|m| surface_displacement(&m.round_f64()))
+        .filter(|&a| a > 1e-9)
+        .fold(f64::INFINITY, f64::min);
+    let mut seen = OrbitPoints::new(g, 1e-7);
+    seen.insert(glam::DVec4::W);
+    let mut frontier = vec![DdMat4::IDENTITY];
+    let mut count = 1usize;
+    while !frontier.is_empty() {
+        let reach = best + 2.0 * circumradius + 1e-9;
+        let mut next = Vec::new();
+        for h in &frontier {
+            for m in &moves {
+                let e = polish_isometry_dd(g, &(*h * *m));
+                let rounded = e.round_f64();
+                if radius(&rounded) > reach || !seen.insert(rounded.w_axis) {
+                    continue;
+                }
+                count += 1;
+                if count > limit {
+                    return None;
+                }
+                let a = surface_displacement(&rounded);
+                if a > 1e-9 {
+                    best = best.min(a);
+                }
+                next.push(e);
+            }
+        }
+        frontier = next;
+    }
+    Some(best)
 }
