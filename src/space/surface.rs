@@ -167,6 +167,22 @@ impl SurfaceWord {
         }
     }
 
+    /// Whether the turn by `2π/p` about the centre carries the gluing to itself: it moves
+    /// side `k` to side `k + n/p`, which must be glued the same way to the turned partner.
+    #[must_use]
+    pub fn turn_is_symmetry(&self, p: u32) -> bool {
+        let n = self.sides.len();
+        let p = p as usize;
+        if p == 0 || n % p != 0 {
+            return false;
+        }
+        let step = n / p;
+        (0..n).all(|k| {
+            let (s, t) = (self.sides[k], self.sides[(k + step) % n]);
+            t.partner == (s.partner + step) % n && t.preserving == s.preserving
+        })
+    }
+
     /// The surface's name, when it has a familiar one.
     #[must_use]
     pub fn common_name(&self) -> String {

@@ -409,6 +409,8 @@ fn product_homology_is_the_surfaces_plus_the_circle() {
         "surface-abABcdCD-circle-x",
         "surface-abABcdCD-circle-1-turn-3",
         "surface-abABcdCD-circle-1-turn-q",
+        "surface-abAB-circle-1-turn-0",
+        "surface-abAB-circle-1-turn-3",
         "surface-abABcdCD",
         "surface--circle-1",
     ] {

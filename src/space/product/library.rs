@@ -149,23 +149,17 @@ fn parse_id(id: &str) -> Option<Result<(String, f64, u32), String>> {
 /// turn, as a constant-curvature space built in double-double.
 fn flat_space(id: &str, word: &str, length: f64, turn_order: u32) -> Result<Space, String> {
     let parsed = SurfaceWord::parse(word).map_err(|e| e.to_string())?;
-    // The same symmetry check as the curved products.
     let n = parsed.side_count();
-    if turn_order > 1 {
-        let step = n / turn_order as usize;
-        let symmetric = n % turn_order as usize == 0
-            && (0..n).all(|k| {
-                let (s, t) = (parsed.sides[k], parsed.sides[(k + step) % n]);
-                t.partner == (s.partner + step) % n && t.preserving == s.preserving
-            });
-        if !symmetric {
-            return Err(ProductError::TurnNotSymmetry {
-                turn: turn_order,
-                word: word.to_string(),
-                sides: n,
-            }
-            .to_string());
+    if !(1..=super::MAX_TURN).contains(&turn_order) {
+        return Err(ProductError::BadTurn(turn_order).to_string());
+    }
+    if turn_order > 1 && !parsed.turn_is_symmetry(turn_order) {
+        return Err(ProductError::TurnNotSymmetry {
+            turn: turn_order,
+            word: word.to_string(),
+            sides: n,
         }
+        .to_string());
     }
     if !(length.is_finite() && length > 0.0) {
         return Err(ProductError::BadLength(length).to_string());

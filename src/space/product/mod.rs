@@ -94,24 +94,15 @@ impl ProductSpace {
                 word: word.word.clone(),
             });
         }
-        let n = word.side_count();
         // The sphere and the hemisphere are glued the same way all round (identity, the
-        // antipodal map): every turn commutes with that. A polygon's turn moves side k to
-        // k + n/P and must keep the partners and the kind of gluing.
-        if word.corners_per_vertex() > 2 || word.geometry() == Geometry::Hyperbolic {
-            let step = n / turn as usize;
-            let symmetric = n % turn as usize == 0
-                && (0..n).all(|k| {
-                    let (s, t) = (word.sides[k], word.sides[(k + step) % n]);
-                    t.partner == (s.partner + step) % n && t.preserving == s.preserving
-                });
-            if !symmetric {
-                return Err(ProductError::TurnNotSymmetry {
-                    turn,
-                    word: word.word.clone(),
-                    sides: n,
-                });
-            }
+        // antipodal map): every turn commutes with that.
+        let uniform = word.geometry() == Geometry::Spherical && word.corners_per_vertex() <= 2;
+        if !uniform && !word.turn_is_symmetry(turn) {
+            return Err(ProductError::TurnNotSymmetry {
+                turn,
+                word: word.word.clone(),
+                sides: word.side_count(),
+            });
         }
         let polygon = Arc::new(Polygon::of(&word));
         let description = format!(
