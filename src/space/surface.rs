@@ -173,7 +173,7 @@ impl SurfaceWord {
     pub fn turn_is_symmetry(&self, p: u32) -> bool {
         let n = self.sides.len();
         let p = p as usize;
-        if p == 0 || n % p != 0 {
+        if p == 0 || !n.is_multiple_of(p) {
             return false;
         }
         let step = n / p;
