@@ -50,7 +50,7 @@ pub(super) fn list() {
          surface-abABcdCD-circle-2 (a flat word such as abAB gives a flat space); by name:"
     );
     say!(
-        "{:<22} {:<11} {:>14}  description",
+        "{:<24} {:<11} {:>14}  description",
         "id",
         "geometry",
         "volume"
@@ -58,13 +58,13 @@ pub(super) fn list() {
     for alias in bevy_curved_spaces::space::product::PRODUCT_ALIASES {
         match ProductSpace::new(alias.id, alias.word, alias.length, alias.turn) {
             Ok(p) => say!(
-                "{:<22} {:<11} {:>14.10}  {}",
+                "{:<24} {:<11} {:>14.10}  {}",
                 alias.id,
                 p.geometry_name(),
                 p.volume(),
                 alias.summary
             ),
-            Err(e) => say!("{:<22} invalid: {e}", alias.id),
+            Err(e) => say!("{:<24} invalid: {e}", alias.id),
         }
     }
     say!("");
