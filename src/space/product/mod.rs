@@ -14,6 +14,7 @@
 //! polygon's pairing (a 4×4 matrix that fixes `z`); leaving through the top applies
 //! `(p, z) ↦ (R⁻¹p, z − L)`, `R` the turn, and the bottom its inverse.
 
+pub mod accuracy;
 mod library;
 mod walk;
 

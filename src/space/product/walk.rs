@@ -98,13 +98,49 @@ impl<V: Vector4> ProductWalker<V> {
         a.component(0) * b.component(0) + a.component(1) * b.component(1) + k * a.w() * b.w()
     }
 
+    /// `⟨v, v⟩` of a surface tangent `v` at the surface point `p`. In H² the form
+    /// `vx² + vy² − vw²` of a tangent at a far point cancels (its entries are of size
+    /// `cosh d`), and in the product that error would tilt the ray between the surface and
+    /// the fibre; with `vw = (px vx + py vy)/pw` and Lagrange's identity it is the sum of
+    /// squares `(vx² + vy² + (px vy − py vx)²)/pw²`.
+    fn speed_squared(&self, p: V, v: V) -> V::Real {
+        match self.base {
+            Geometry::Hyperbolic => {
+                let (px, py, pw) = (p.component(0), p.component(1), p.w());
+                let (vx, vy) = (v.component(0), v.component(1));
+                let cross = px * vy - py * vx;
+                (vx * vx + vy * vy + cross * cross) / (pw * pw)
+            }
+            _ => self.base_form(v, v),
+        }
+    }
+
     /// The ray put back onto the model: the base point projected onto the surface, the
-    /// base tangent made tangent there, the whole tangent of unit length.
+    /// base tangent made tangent there, the whole tangent of unit length. A ray already on
+    /// the model to rounding is kept bit for bit: projecting divides by a form that is
+    /// known only to `ε·w²` at a point of size `w`, which would add more error than it
+    /// removes (as in the constant-curvature walk).
     #[must_use]
     pub fn normalized(&self, ray: Ray<V>) -> Ray<V> {
         let zero = V::Real::ZERO;
+        let one = V::Real::ONE;
         let k = V::Real::from_f64(self.base.kappa());
         let p = ray.point;
+        {
+            let tolerance = V::Real::from_f64(64.0) * V::Real::EPSILON;
+            let w = p.w().abs().max(one);
+            let scaled = tolerance * w * w;
+            let v = ray.tangent;
+            let vb = V::new(v.component(0), v.component(1), zero, v.w());
+            let on_model = (k * self.base_form(p, p) - one).abs() <= scaled
+                && (self.base != Geometry::Hyperbolic || p.w() > zero);
+            let tangent = self.base_form(p, vb).abs() <= scaled;
+            let mu = v.component(2);
+            let unit = (self.speed_squared(p, vb) + mu * mu - one).abs() <= tolerance;
+            if on_model && tangent && unit {
+                return ray;
+            }
+        }
         let norm = (k * self.base_form(p, p)).abs().sqrt();
         let mut w = p.w() / norm;
         if self.base == Geometry::Hyperbolic && w < zero {
@@ -128,7 +164,7 @@ impl<V: Vector4> ProductWalker<V> {
         let along = self.base_form(pb, vb) / self.base_form(pb, pb);
         let vb = vb - pb.scale(along);
         let mu = v.component(2);
-        let len = (self.base_form(vb, vb) + mu * mu).sqrt();
+        let len = (self.speed_squared(point, vb) + mu * mu).sqrt();
         let tangent = V::new(
             vb.component(0) / len,
             vb.component(1) / len,
@@ -147,7 +183,7 @@ impl<V: Vector4> ProductWalker<V> {
         let zero = V::Real::ZERO;
         let (p, v) = (ray.point, ray.tangent);
         let vb = V::new(v.component(0), v.component(1), zero, v.w());
-        let lambda = self.base_form(vb, vb).max(zero).sqrt();
+        let lambda = self.speed_squared(p, vb).max(zero).sqrt();
         let mu = v.component(2);
         if !(lambda.is_finite() && mu.is_finite()) || lambda == zero && mu == zero {
             return None;
@@ -214,20 +250,24 @@ impl<V: Vector4> ProductWalker<V> {
     /// The ray moved by `t` along its geodesic, not normalized.
     fn moved(&self, ray: &Ray<V>, t: V::Real, ratio: Option<(V::Real, V::Real)>) -> Ray<V> {
         let zero = V::Real::ZERO;
-        let one = V::Real::ONE;
         let k = V::Real::from_f64(self.base.kappa());
         let (p, v) = (ray.point, ray.tangent);
         let pb = V::new(p.component(0), p.component(1), zero, p.w());
         let vb = V::new(v.component(0), v.component(1), zero, v.w());
-        let lambda = self.base_form(vb, vb).max(zero).sqrt();
+        let lambda = self.speed_squared(p, vb).max(zero).sqrt();
         let mu = v.component(2);
         // C and S of the surface distance λt: from the side's ratio T = S/C exactly, so the
         // point lands on the side's line, else from t.
         let (c, s) = match ratio {
+            // C = den/f, S = num/f with f² = den² + κ num², factored in H² as
+            // (den − num)(den + num): computing 1 − T² after the division would lose
+            // digits like e^(2s) for a far side.
             Some((num, den)) => {
-                let tt = num / den;
-                let c = one / (one + k * tt * tt).sqrt();
-                (c, tt * c)
+                let f = match self.base {
+                    Geometry::Hyperbolic => ((den - num) * (den + num)).max(zero).sqrt(),
+                    _ => (den * den + num * num).sqrt(),
+                };
+                (den / f, num / f)
             }
             None => match self.base {
                 Geometry::Spherical => (lambda * t).cos_sin(),
