@@ -136,6 +136,27 @@ pub fn conditioning(
     epsilon: f64,
 ) -> Vec<(f64, bool)> {
     let g = walker.geometry;
+    conditioning_of(
+        start,
+        reference,
+        epsilon,
+        |ray| perturbed(g, ray, epsilon),
+        |ray, n| walker.trace(ray, Limit::Crossings(n)),
+        |a, b| separation(g, a, b),
+    )
+}
+
+/// [`conditioning`] for any walk: `perturb` gives the four rays `ε` away from a ray,
+/// `walk` walks a ray for a number of crossings in double-double, `separation` is the
+/// geometry's distance between two points.
+pub(crate) fn conditioning_of(
+    start: &Ray<DdVec4>,
+    reference: &Trace<DdVec4>,
+    epsilon: f64,
+    perturb: impl Fn(&Ray<DdVec4>) -> [Ray<DdVec4>; 4],
+    walk: impl Fn(Ray<DdVec4>, usize) -> Trace<DdVec4>,
+    separation: impl Fn(DdVec4, DdVec4) -> f64,
+) -> Vec<(f64, bool)> {
     let n = reference.crossings.len();
     let mut squares = vec![0.0_f64; n];
     let mut split = vec![false; n];
@@ -146,8 +167,8 @@ pub fn conditioning(
         } else {
             reference.crossings[i - 1].ray
         };
-        for p in perturbed(g, &ray, epsilon) {
-            let trace = walker.trace(p, Limit::Crossings(n - i));
+        for p in perturb(&ray) {
+            let trace = walk(p, n - i);
             for (j, c) in trace.crossings.iter().enumerate() {
                 let k = i + j;
                 let r = &reference.crossings[k];
@@ -155,7 +176,7 @@ pub fn conditioning(
                     split[k..].iter_mut().for_each(|s| *s = true);
                     break;
                 }
-                squares[k] += separation(g, c.ray.point, r.ray.point).powi(2);
+                squares[k] += separation(c.ray.point, r.ray.point).powi(2);
             }
             if trace.crossings.len() < n - i {
                 split[i + trace.crossings.len()..]
@@ -168,7 +189,9 @@ pub fn conditioning(
             squares[i - 1] += 2.0 * epsilon * epsilon;
         }
     }
-    squares[n - 1] += 2.0 * epsilon * epsilon;
+    if n > 0 {
+        squares[n - 1] += 2.0 * epsilon * epsilon;
+    }
     squares.into_iter().map(f64::sqrt).zip(split).collect()
 }
 

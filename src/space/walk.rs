@@ -53,6 +53,31 @@ pub struct CellWalker<V: Vector4> {
     pub step_cap: Option<f64>,
 }
 
+/// A double-double matrix rounded once to `V`, and what that rounding left out (rounded
+/// once too): the `hi`/`lo` pair a compensated pairing is applied with.
+pub(crate) fn rounded_with_rest<V: Vector4>(m: &DdMat4) -> (V::Matrix, V::Matrix) {
+    let (hi, lo) = m.parts();
+    let r = V::matrix_from_f64_pair(hi, lo);
+    let (h2, l2) = (*m - DdMat4::from_f64(V::matrix_to_f64(&r))).parts();
+    (r, V::matrix_from_f64_pair(h2, l2))
+}
+
+/// Records the crossings a walk hands out (`walk` runs it with a visitor) as a [`Trace`].
+pub(crate) fn record<V: Copy>(
+    walk: impl FnOnce(&mut dyn FnMut(&Crossing<V>) -> bool) -> (Ray<V>, f64),
+) -> Trace<V> {
+    let mut crossings = Vec::new();
+    let (end, distance) = walk(&mut |c| {
+        crossings.push(*c);
+        true
+    });
+    Trace {
+        crossings,
+        end,
+        distance,
+    }
+}
+
 /// The face of an [`Exit`] that is a step without crossing (see [`CellWalker::step_cap`]).
 pub const NO_FACE: usize = usize::MAX;
 
@@ -113,17 +138,11 @@ impl<V: Vector4> CellWalker<V> {
     /// walker too applies its pairings to about 32 digits).
     #[must_use]
     pub fn from_exact(cell: &ExactCell) -> Self {
-        let round = |m: &DdMat4| {
-            let (hi, lo) = m.parts();
-            V::matrix_from_f64_pair(hi, lo)
-        };
-        let pairings: Vec<V::Matrix> = cell.faces.iter().map(|f| round(&f.pairing)).collect();
-        let pairings_lo = cell
+        let (pairings, pairings_lo) = cell
             .faces
             .iter()
-            .zip(&pairings)
-            .map(|(f, hi)| round(&(f.pairing - DdMat4::from_f64(V::matrix_to_f64(hi)))))
-            .collect();
+            .map(|f| rounded_with_rest::<V>(&f.pairing))
+            .unzip();
         Self {
             geometry: cell.geometry,
             covectors: cell
@@ -350,15 +369,6 @@ impl<V: Vector4> CellWalker<V> {
     /// Traces a ray through the cell until the limit, recording each crossing.
     #[must_use]
     pub fn trace(&self, start: Ray<V>, limit: Limit) -> Trace<V> {
-        let mut crossings = Vec::new();
-        let (end, distance) = self.walk(start, limit, |c| {
-            crossings.push(*c);
-            true
-        });
-        Trace {
-            crossings,
-            end,
-            distance,
-        }
+        record(|visit| self.walk(start, limit, visit))
     }
 }

@@ -44,21 +44,29 @@ fn stream<V: Vector4>(
     (to_f64(end), distance, capped)
 }
 
+/// The walk's limit from `--crossings`/`--distance`, once the start (`outside` by so much)
+/// is known to lie in the cell of `name`.
+fn start_and_limit(args: &TraceArgs, outside: f64, name: &str) -> Result<Limit, String> {
+    if outside > 1e-12 {
+        return Err(format!(
+            "start point {:?} is outside the cell of {name}",
+            args.from.to_array()
+        ));
+    }
+    match (args.crossings, args.distance) {
+        (Some(n), _) => Ok(Limit::Crossings(n)),
+        (None, Some(d)) => Ok(Limit::Distance(d)),
+        (None, None) => Err("give --crossings N or --distance D".into()),
+    }
+}
+
 /// `trace` through a product space (H²×R, S²×R): each crossing's face (a side, `top` or
 /// `bottom`), distance, chart point `(x/w, y/w, z)` and model point `[x, y, w, z]`.
 fn trace_product(args: &TraceArgs, space: &ProductSpace) -> Result<(), String> {
     let start = bevy_curved_spaces::space::product::chart_ray(space.base(), args.from, args.dir)?;
-    if space.outside_by(start.point) > 1e-12 {
-        return Err(format!(
-            "start point {:?} is outside the cell of {}",
-            args.from.to_array(),
-            space.name()
-        ));
-    }
-    let limit = match (args.crossings, args.distance) {
-        (Some(n), _) => Limit::Crossings(n.min(MAX_WALK)),
-        (None, Some(d)) => Limit::Distance(d),
-        (None, None) => return Err("give --crossings N or --distance D".into()),
+    let limit = match start_and_limit(args, space.outside_by(start.point), space.name())? {
+        Limit::Crossings(n) => Limit::Crossings(n.min(MAX_WALK)),
+        other => other,
     };
     let sides = space.face_count() - 2;
     let face_name = |f: usize| match f {
@@ -156,18 +164,7 @@ pub(super) fn trace(args: &TraceArgs) -> Result<(), String> {
     let space = resolve_space(&args.space)?;
     let g = space.geometry();
     let start = chart_ray(g, args.from, args.dir).map_err(|e| e.to_string())?;
-    if space.outside_by(start.point) > 1e-12 {
-        return Err(format!(
-            "start point {:?} is outside the cell of {}",
-            args.from.to_array(),
-            space.name()
-        ));
-    }
-    let limit = match (args.crossings, args.distance) {
-        (Some(n), _) => Limit::Crossings(n),
-        (None, Some(d)) => Limit::Distance(d),
-        (None, None) => return Err("give --crossings N or --distance D".into()),
-    };
+    let limit = start_and_limit(args, space.outside_by(start.point), space.name())?;
     let chart = |p: DVec4| g.to_chart(p).to_array();
     // Each crossing is printed as it is walked: any length runs in constant memory, and
     // the JSON is written piece by piece (an array, then the end).

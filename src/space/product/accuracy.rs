@@ -4,7 +4,7 @@
 
 use super::{ProductSpace, ProductWalker};
 use crate::geometry::{DdVec4, DoubleDouble, Geometry, Ray, Real, Vector4};
-use crate::space::accuracy::{CrossingAccuracy, SATURATED};
+use crate::space::accuracy::{CrossingAccuracy, SATURATED, conditioning_of};
 use crate::space::walk::{Limit, Trace};
 use glam::DVec4;
 
@@ -89,40 +89,14 @@ pub fn product_conditioning(
     epsilon: f64,
 ) -> Vec<(f64, bool)> {
     let g = walker.base;
-    let n = reference.crossings.len();
-    let mut squares = vec![0.0_f64; n];
-    let mut split = vec![false; n];
-    for i in 0..n {
-        let ray = if i == 0 {
-            *start
-        } else {
-            reference.crossings[i - 1].ray
-        };
-        for p in perturbed(walker, &ray, epsilon) {
-            let trace = walker.trace(p, Limit::Crossings(n - i));
-            for (j, c) in trace.crossings.iter().enumerate() {
-                let k = i + j;
-                let r = &reference.crossings[k];
-                if c.face != r.face || split[k] {
-                    split[k..].iter_mut().for_each(|s| *s = true);
-                    break;
-                }
-                squares[k] += product_separation(g, c.ray.point, r.ray.point).powi(2);
-            }
-            if trace.crossings.len() < n - i {
-                split[i + trace.crossings.len()..]
-                    .iter_mut()
-                    .for_each(|s| *s = true);
-            }
-        }
-        if i > 0 {
-            squares[i - 1] += 2.0 * epsilon * epsilon;
-        }
-    }
-    if n > 0 {
-        squares[n - 1] += 2.0 * epsilon * epsilon;
-    }
-    squares.into_iter().map(f64::sqrt).zip(split).collect()
+    conditioning_of(
+        start,
+        reference,
+        epsilon,
+        |ray| perturbed(walker, ray, epsilon),
+        |ray, n| walker.trace(ray, Limit::Crossings(n)),
+        |a, b| product_separation(g, a, b),
+    )
 }
 
 /// A product walk's error against the double-double walk of the same cell from the same

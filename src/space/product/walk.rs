@@ -1,8 +1,10 @@
 //! The exact walk through a product cell (see the module above for the model).
 
 use super::ProductSpace;
-use crate::geometry::{DdMat4, DoubleDouble, Geometry, Ray, Real, Vector4};
-use crate::space::walk::{Crossing, Limit, MAX_STEPS_WITHOUT_CROSSING, NO_FACE, Trace};
+use crate::geometry::{DoubleDouble, Geometry, Ray, Real, Vector4};
+use crate::space::walk::{
+    Crossing, Limit, MAX_STEPS_WITHOUT_CROSSING, NO_FACE, Trace, record, rounded_with_rest,
+};
 
 /// Where a ray leaves the product cell: the face (a side, [`ProductWalker::top`],
 /// [`ProductWalker::bottom`] or [`NO_FACE`] for a step without crossing) and
@@ -41,14 +43,6 @@ pub struct ProductWalker<V: Vector4> {
     pub step_cap: bool,
 }
 
-/// A matrix of double-doubles rounded to `V`, and its low part.
-fn rounded<V: Vector4>(m: &DdMat4) -> (V::Matrix, V::Matrix) {
-    let (hi, lo) = m.parts();
-    let r = V::matrix_from_f64_pair(hi, lo);
-    let (h2, l2) = (*m - DdMat4::from_f64(V::matrix_to_f64(&r))).parts();
-    (r, V::matrix_from_f64_pair(h2, l2))
-}
-
 impl<V: Vector4> ProductWalker<V> {
     /// The walker of a product space in the precision `V` (every number rounded once from
     /// double-double).
@@ -57,7 +51,10 @@ impl<V: Vector4> ProductWalker<V> {
         let sides = space.side_faces();
         let up = space.top_pairing();
         let down = crate::space::exact::inverse(Geometry::Spherical, &up);
-        let (pairings, pairings_lo) = sides.iter().map(|f| rounded::<V>(&f.pairing)).unzip();
+        let (pairings, pairings_lo) = sides
+            .iter()
+            .map(|f| rounded_with_rest::<V>(&f.pairing))
+            .unzip();
         Self {
             base: space.base(),
             covectors: sides
@@ -70,8 +67,8 @@ impl<V: Vector4> ProductWalker<V> {
             pairings,
             pairings_lo,
             partners: sides.iter().map(|f| f.partner).collect(),
-            up: rounded::<V>(&up),
-            down: rounded::<V>(&down),
+            up: rounded_with_rest::<V>(&up),
+            down: rounded_with_rest::<V>(&down),
             half_length: {
                 let h = DoubleDouble::new(space.length) * DoubleDouble::new(0.5);
                 V::Real::from_f64(h.hi) + V::Real::from_f64(h.lo)
@@ -391,15 +388,6 @@ impl<V: Vector4> ProductWalker<V> {
     /// Traces a ray until the limit, recording each crossing.
     #[must_use]
     pub fn trace(&self, start: Ray<V>, limit: Limit) -> Trace<V> {
-        let mut crossings = Vec::new();
-        let (end, distance) = self.walk(start, limit, |c| {
-            crossings.push(*c);
-            true
-        });
-        Trace {
-            crossings,
-            end,
-            distance,
-        }
+        record(|visit| self.walk(start, limit, visit))
     }
 }
