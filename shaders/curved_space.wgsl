@@ -33,16 +33,24 @@
 //                                        only, arc length and trigonometry, plain pairings
 //   STEREO_SPLIT                         two eyes in two halves of the view (src/stereo.rs)
 //   ANAGLYPH                             two eyes traced per pixel and mixed by two matrices
+//   PRODUCT + PRODUCT_OBJECTS            a product space H²×R (with HYPERBOLIC) or S²×R (with
+//                                        SPHERICAL): FACE_COUNT sides, FACE_SLOTS = sides + 2
+//                                        pairings (the top's, the bottom's), the product
+//                                        walk and objects (shaders/product.wgsl)
 //
 // Points and tangents are 4-vectors with ⟨u,v⟩ = u.xyz·v.xyz + κ u.w v.w; a ray segment in
 // the cell is X(s) ∝ p + s v, a straight line of the chart, so faces are planes (N·X = 0)
 // and balls and tubes are quadrics in s.
 
 #import curved_spaces::layout::{space}
-#import curved_spaces::geometry::{unit_tangent}
 #import curved_spaces::hit_id::{hit_id}
+#ifdef PRODUCT
+#import curved_spaces::product::{product_ray, trace_product}
+#else
+#import curved_spaces::geometry::{unit_tangent}
 #import curved_spaces::walls::{veil_colour, veil_through}
 #import curved_spaces::trace::{trace}
+#endif
 
 // ---------------------------------------------------------------------------------------
 // Entry points: one triangle covering the viewport.
@@ -72,6 +80,10 @@ fn eye_colour(eye: u32, uv: vec2<f32>) -> vec3<f32> {
     let py = mix(lens.w, lens.z, uv.y);
     let f = space.view.frames[eye];
     let p = f[3];
+#ifdef PRODUCT
+    let ray = product_ray(p, px * f[0] + py * f[1] - f[2]);
+    return clamp(trace_product(ray), vec3<f32>(0.0), vec3<f32>(1.0));
+#else
     let v = unit_tangent(p, px * f[0] + py * f[1] - f[2]);
 #ifdef WALLS
     veil_colour = vec3<f32>(0.0);
@@ -80,6 +92,7 @@ fn eye_colour(eye: u32, uv: vec2<f32>) -> vec3<f32> {
     return clamp(veil_colour + veil_through * behind, vec3<f32>(0.0), vec3<f32>(1.0));
 #else
     return clamp(trace(p, v), vec3<f32>(0.0), vec3<f32>(1.0));
+#endif
 #endif
 }
 

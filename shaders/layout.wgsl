@@ -91,6 +91,18 @@ struct Tube {
     emission: vec4<f32>,
 }
 
+#ifdef PRODUCT
+// An object of a product space (Rust: `trace::product::ProductObject`).
+struct ProductObject {
+    // A ball's or a fibre tube's point, or a slice tube's line covector.
+    shape: vec4<f32>,
+    // Kind (0 ball, 1 fibre tube, 2 slice tube), radius, the slice's height, unused.
+    info: vec4<f32>,
+    // Albedo (rgb), unused.
+    colour: vec4<f32>,
+}
+#endif
+
 struct SpaceUniform {
     view: View,
     shading: Shading,
@@ -107,6 +119,14 @@ struct SpaceUniform {
     // What rounding g_f to f32 left out: the pairing is applied as hi + lo, compensated.
     pairings_lo: array<mat4x4<f32>, #{FACE_SLOTS}>,
     partners: array<vec4<u32>, #{PARTNER_VECS}>,
+#ifdef PRODUCT
+    // Half the circle's length, the number of objects, unused ×2 (the pairings above are the sides', then the
+    // top's R⁻¹ and the bottom's R; the covectors of those two slots are unused).
+    product: vec4<f32>,
+    // The light's position.
+    product_light: vec4<f32>,
+    product_objects: array<ProductObject, #{PRODUCT_OBJECTS}>,
+#endif
 #ifdef WALLS
     // Per face: the covector scaled to a unit normal (N̂·X̂ = S(signed distance)).
     wall_units: array<vec4<f32>, #{FACE_SLOTS}>,

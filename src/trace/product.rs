@@ -61,6 +61,15 @@ pub struct ProductScene {
     pub fog_colour: DVec3,
 }
 
+impl ProductScene {
+    /// The distance past which a surface keeps under half a colour step of its own colour
+    /// through the fog (`λ ln 510`): rays stop there.
+    #[must_use]
+    pub fn cutoff_distance(&self) -> f64 {
+        self.fog_distance * 510f64.ln()
+    }
+}
+
 /// The surface model's form on the base parts `(x, y, w)` of two vectors.
 fn base_form(g: Geometry, a: DVec4, b: DVec4) -> f64 {
     a.x * b.x + a.y * b.y + g.kappa() * a.w * b.w
@@ -403,7 +412,7 @@ pub fn trace_product_pixel(
     max_crossings: usize,
 ) -> DVec3 {
     let g = walker.base;
-    let cutoff = scene.fog_distance * 510f64.ln();
+    let cutoff = scene.cutoff_distance();
     let mut ray = walker.normalized(start);
     let mut distance = 0.0;
     let mut skip = None;

@@ -587,3 +587,32 @@ fn wall_variants_validate_and_match_the_packed_layout() {
         );
     }
 }
+
+/// The product variant (H²×R, S²×R) validates for every library product space's default
+/// scene, and the packer writes exactly the layout naga computes; a stereo view of it too.
+#[test]
+fn product_variants_validate_and_match_the_packed_layout() {
+    use bevy_curved_spaces::space::product::{PRODUCT_ALIASES, ProductOrFlat, product_space};
+    use bevy_curved_spaces::trace::product::default_scene;
+    for alias in PRODUCT_ALIASES {
+        let Some(Ok(ProductOrFlat::Product(space))) = product_space(alias.id) else {
+            panic!("{} is a product space", alias.id);
+        };
+        let scene = default_scene(&space);
+        let gpu = GpuScene::product(&space, &scene, 32).expect("packs");
+        assert!(gpu.key.product && gpu.key.faces as usize == space.side_faces().len());
+        let bytes = validate(&gpu.key);
+        assert_eq!(bytes, gpu.key.uniform_bytes(), "{}", alias.id);
+        assert_eq!((gpu.words.len() + VIEW_WORDS) * 4, bytes, "{}", alias.id);
+    }
+    // No objects at all still has an array slot, and the budget is checked as for any scene.
+    let Some(Ok(ProductOrFlat::Product(space))) = product_space("bitorus-circle") else {
+        panic!("bitorus-circle is a product space");
+    };
+    let mut scene = default_scene(&space);
+    scene.objects.clear();
+    let gpu = GpuScene::product(&space, &scene, 8).expect("packs");
+    assert_eq!(validate(&gpu.key), (gpu.words.len() + VIEW_WORDS) * 4);
+    assert!(GpuScene::product(&space, &scene, 0).is_err());
+    assert!(GpuScene::product(&space, &scene, MAX_GPU_BUDGET + 1).is_err());
+}

@@ -16,6 +16,7 @@
 
 pub mod accuracy;
 mod library;
+pub mod motion;
 mod walk;
 
 pub use library::{PRODUCT_ALIASES, ProductAlias, ProductOrFlat, product_space};

@@ -50,6 +50,12 @@ pub struct ShaderKey {
     /// The benchmark's comparison: a straightforward tracer of the same walk instead (shader
     /// def `STRAIGHTFORWARD`; balls only). See [`super::GpuScene::straightforward`].
     pub straightforward: bool,
+    /// A product space (H²×R or S²×R, the surface's geometry in `geometry`; shader def
+    /// `PRODUCT`): `faces` counts the polygon's sides, and the top's and bottom's pairings
+    /// follow theirs.
+    pub product: bool,
+    /// The objects of a product scene (shader def `PRODUCT_OBJECTS`).
+    pub product_objects: u32,
 }
 
 /// Array sizes of the unspecialised variant: faces, balls, tubes.
@@ -78,6 +84,8 @@ impl ShaderKey {
             walls: false,
             general: false,
             straightforward: false,
+            product: false,
+            product_objects: 0,
         }
     }
 
@@ -101,6 +109,13 @@ impl ShaderKey {
         defs.push(ShaderDefVal::UInt("PARTNER_VECS".into(), faces.div_ceil(4)));
         if self.step_cap {
             defs.push("STEP_CAP".into());
+        }
+        if self.product {
+            defs.push("PRODUCT".into());
+            defs.push(ShaderDefVal::UInt(
+                "PRODUCT_OBJECTS".into(),
+                self.product_objects.max(1),
+            ));
         }
         if self.straightforward {
             defs.push("STRAIGHTFORWARD".into());
@@ -161,6 +176,9 @@ impl ShaderKey {
     pub fn array_sizes(&self) -> (u32, u32, u32) {
         if self.general {
             GENERAL_CAPACITY
+        } else if self.product {
+            // The sides, then the top's and the bottom's pairings.
+            (self.faces + 2, 0, 0)
         } else {
             // WGSL has no empty arrays: the 3-sphere's face slot is unused.
             (self.faces.max(1), self.balls, self.tubes)
@@ -223,6 +241,11 @@ impl ShaderKey {
             + count(self.instances) * size_of::<GpuInstance>()
             + self.culling_vecs() * vec4
             + if self.general { vec4 } else { 0 }
+            + if self.product {
+                (2 + 3 * count(self.product_objects.max(1))) * vec4
+            } else {
+                0
+            }
     }
 }
 

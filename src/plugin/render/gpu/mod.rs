@@ -20,6 +20,7 @@ use std::sync::Arc;
 
 mod key;
 mod pack;
+mod product;
 mod view;
 
 pub use key::{GENERAL_CAPACITY, ShaderKey};
@@ -36,7 +37,7 @@ pub const TRACER_WGSL: &str = include_str!("../../../../shaders/curved_space.wgs
 /// The tracer's WGSL modules (`#define_import_path curved_spaces::…`), each the twin of a
 /// Rust module, in the order they import each other: the plugin registers them all, so a
 /// game that embeds the crate needs no shader files.
-pub const SHADER_MODULES: [(&str, &str); 12] = [
+pub const SHADER_MODULES: [(&str, &str); 13] = [
     (
         "shaders/layout.wgsl",
         include_str!("../../../../shaders/layout.wgsl"),
@@ -84,6 +85,10 @@ pub const SHADER_MODULES: [(&str, &str); 12] = [
     (
         "shaders/trace.wgsl",
         include_str!("../../../../shaders/trace.wgsl"),
+    ),
+    (
+        "shaders/product.wgsl",
+        include_str!("../../../../shaders/product.wgsl"),
     ),
 ];
 
@@ -306,6 +311,8 @@ impl GpuScene {
             walls: walls.is_some(),
             general: false,
             straightforward: false,
+            product: false,
+            product_objects: 0,
         };
         let bytes = key.uniform_bytes();
         if bytes > MAX_UNIFORM_BYTES {

@@ -14,6 +14,16 @@ pub(super) struct DataSources {
 }
 
 impl DataSources {
+    /// Packed from nothing (a scene without meshes, textures or materials).
+    pub(super) fn empty() -> Self {
+        Self {
+            meshes: Vec::new(),
+            textures: Vec::new(),
+            materials: Vec::new(),
+            roots: Vec::new(),
+        }
+    }
+
     pub(super) fn of(scene: &CurvedScene, roots: Vec<u32>) -> Self {
         Self {
             meshes: scene

@@ -1,0 +1,419 @@
+// The product geometries H²×R and S²×R (shader def PRODUCT with HYPERBOLIC or SPHERICAL,
+// the surface's geometry): the exact walk through the product cell and the objects met by a
+// bracketed search, one camera ray's colour.
+// The Rust twins: `space::product::ProductWalker` and `trace::product`.
+//
+// A point is (x, y, z, w): (x, y, w) on the surface's model, z the height along the fibre; a
+// unit tangent splits into the base part of speed λ and the fibre speed μ = v.z. The shadow
+// of a geodesic on the surface is the surface geodesic at speed λ, its height z + μt.
+#define_import_path curved_spaces::product
+
+#import curved_spaces::layout::{face_count, kappa, space}
+#import curved_spaces::geometry::distance_from_ratio
+#import curved_spaces::walk::{Ray, partner, transform_compensated}
+
+// A step without crossing (S²: at most π/4 of surface arc).
+const CAP: u32 = 0xfffffffeu;
+const NONE: u32 = 0xffffffffu;
+const FAR: f32 = 3.0e38;
+const QUARTER_PI: f32 = 0.7853981633974483;
+
+// Where a ray leaves the cell: the face (a side, face_count() the top, face_count() + 1 the
+// bottom, CAP or NONE), the distance, and for a side the ratio num/den of its base chart point.
+struct ProductExit {
+    face: u32,
+    distance: f32,
+    num: f32,
+    den: f32,
+}
+
+fn base_form(a: vec4<f32>, b: vec4<f32>) -> f32 {
+    return a.x * b.x + a.y * b.y + kappa() * a.w * b.w;
+}
+
+fn base_of(v: vec4<f32>) -> vec4<f32> {
+    return vec4<f32>(v.x, v.y, 0.0, v.w);
+}
+
+// ⟨v, v⟩ of a surface tangent v at p; in H² by Lagrange's identity, a sum of squares
+// (Rust: `ProductWalker::speed_squared`).
+fn speed_squared(p: vec4<f32>, v: vec4<f32>) -> f32 {
+#ifdef HYPERBOLIC
+    let c = p.x * v.y - p.y * v.x;
+    return (v.x * v.x + v.y * v.y + c * c) / (p.w * p.w);
+#else
+    return base_form(v, v);
+#endif
+}
+
+// C and S of the surface distance t: cos and sin, or cosh and sinh.
+fn cs(t: f32) -> vec2<f32> {
+#ifdef HYPERBOLIC
+    return vec2<f32>(cosh(t), sinh(t));
+#else
+    return vec2<f32>(cos(t), sin(t));
+#endif
+}
+
+// The ray put back onto the model (Rust: `ProductWalker::normalized`).
+fn normalized(ray: Ray) -> Ray {
+    let p = ray.point;
+    let norm = sqrt(abs(kappa() * base_form(p, p)));
+    var q = base_of(p) / norm;
+#ifdef HYPERBOLIC
+    q = select(q, -q, q.w < 0.0);
+#endif
+    let point = vec4<f32>(q.x, q.y, p.z, q.w);
+    var vb = base_of(ray.tangent);
+    vb -= q * (base_form(q, vb) / base_form(q, q));
+    let mu = ray.tangent.z;
+    let len = sqrt(speed_squared(point, vb) + mu * mu);
+    return Ray(point, vec4<f32>(vb.x, vb.y, mu, vb.w) / len);
+}
+
+// The exit: the side the shadow meets first (the smallest ratio, compared without
+// dividing), the top or bottom the height reaches, on S² a step of π/4 (Rust:
+// `ProductWalker::exit`). `skip` is the side just entered.
+fn product_exit(ray: Ray, skip: u32) -> ProductExit {
+    let p = ray.point;
+    let v = ray.tangent;
+    let lambda = sqrt(max(speed_squared(p, base_of(v)), 0.0));
+    let mu = v.z;
+    var best = ProductExit(NONE, FAR, 0.0, 1.0);
+    if lambda > 0.0 {
+        var side = NONE;
+        var num = 0.0;
+        var den = 1.0;
+        for (var f = 0u; f < face_count(); f += 1u) {
+            let n = space.covectors[f];
+            let dn = dot(n, v);
+            if f == skip || !(dn > 0.0) {
+                continue;
+            }
+            let nm = max(-dot(n, p), 0.0);
+            if side == NONE || nm * den < num * dn {
+                side = f;
+                num = nm;
+                den = dn;
+            }
+        }
+        if side != NONE {
+            let scaled = lambda * num;
+#ifdef HYPERBOLIC
+            // A shadow whose ratio reaches 1 never meets the side's line.
+            let reaches = scaled < den;
+#else
+            let reaches = true;
+#endif
+            if reaches {
+                best = ProductExit(side, distance_from_ratio(scaled, den) / lambda, scaled, den);
+            }
+        }
+#ifdef SPHERICAL
+        let capped = QUARTER_PI / lambda;
+        if capped < best.distance {
+            best = ProductExit(CAP, capped, 0.0, 1.0);
+        }
+#endif
+    }
+    let half = space.product.x;
+    if mu > 0.0 {
+        let t = max((half - p.z) / mu, 0.0);
+        if t < best.distance {
+            best = ProductExit(face_count(), t, 0.0, 1.0);
+        }
+    } else if mu < 0.0 {
+        let t = max((-half - p.z) / mu, 0.0);
+        if t < best.distance {
+            best = ProductExit(face_count() + 1u, t, 0.0, 1.0);
+        }
+    }
+    return best;
+}
+
+// The point and tangent at distance t along the ray; at a side's exit (`ratio`) C and S
+// come from the ratio itself, so the point lands on the side's line (Rust:
+// `ProductWalker::moved`).
+fn moved(ray: Ray, t: f32, ratio: bool, num: f32, den: f32) -> Ray {
+    let p = ray.point;
+    let v = ray.tangent;
+    let pb = base_of(p);
+    let vb = base_of(v);
+    let lambda = sqrt(max(speed_squared(p, vb), 0.0));
+    let mu = v.z;
+    var c_s = cs(lambda * t);
+    if ratio {
+#ifdef HYPERBOLIC
+        let f = sqrt(max((den - num) * (den + num), 0.0));
+#else
+        let f = sqrt(den * den + num * num);
+#endif
+        c_s = vec2<f32>(den / f, num / f);
+    }
+    var pb2 = pb;
+    var vb2 = vb;
+    if lambda > 0.0 {
+        pb2 = pb * c_s.x + vb * (c_s.y / lambda);
+        vb2 = pb * (-kappa() * lambda * c_s.y) + vb * c_s.x;
+    }
+    return Ray(vec4<f32>(pb2.x, pb2.y, p.z + mu * t, pb2.w), vec4<f32>(vb2.x, vb2.y, mu, vb2.w));
+}
+
+// Through the exit face: moved there, the face's pairing applied (compensated), the top and
+// bottom setting the height to the opposite slice (Rust: `ProductWalker::cross`).
+fn product_cross(ray: Ray, exit: ProductExit) -> Ray {
+    let sides = face_count();
+    let at = moved(ray, exit.distance, exit.face < sides, exit.num, exit.den);
+    if exit.face == CAP {
+        return normalized(at);
+    }
+    let hi = space.pairings[exit.face];
+    let lo = space.pairings_lo[exit.face];
+    var point = transform_compensated(hi, lo, at.point);
+    let tangent = transform_compensated(hi, lo, at.tangent);
+    if exit.face == sides {
+        point.z = -space.product.x;
+    } else if exit.face == sides + 1u {
+        point.z = space.product.x;
+    }
+    return normalized(Ray(point, tangent));
+}
+
+// The point at distance t along a ray (the exact geodesic).
+fn along(ray: Ray, t: f32) -> vec4<f32> {
+    return moved(ray, t, false, 0.0, 1.0).point;
+}
+
+// The surface distance between the base points of p and q, from their chord.
+fn surface_distance(p: vec4<f32>, q: vec4<f32>) -> f32 {
+    let d = base_of(p) - base_of(q);
+    let chord = sqrt(max(base_form(d, d), 0.0));
+#ifdef HYPERBOLIC
+    return 2.0 * asinh(0.5 * chord);
+#else
+    return 2.0 * asin(min(0.5 * chord, 1.0));
+#endif
+}
+
+// The unit surface tangent at p pointing away from the base point q (zero at q).
+fn away_from(p: vec4<f32>, q: vec4<f32>) -> vec4<f32> {
+    let pb = base_of(p);
+    let qb = base_of(q);
+    let toward = qb - pb * (base_form(qb, pb) / base_form(pb, pb));
+    let len = sqrt(max(base_form(toward, toward), 0.0));
+    return select(vec4<f32>(0.0), -toward / len, len > 0.0);
+}
+
+// The surface distance from a base point x to the line of unit covector m, signed.
+fn line_offset(x: vec4<f32>, m: vec4<f32>) -> f32 {
+    let xb = base_of(x);
+    let s = dot(m, xb / sqrt(abs(kappa() * base_form(xb, xb))));
+#ifdef HYPERBOLIC
+    return asinh(s);
+#else
+    return asin(clamp(s, -1.0, 1.0));
+#endif
+}
+
+// The distance from x to object i's shape.
+fn object_distance(i: u32, x: vec4<f32>) -> f32 {
+    let o = space.product_objects[i];
+    let kind = u32(o.info.x);
+    if kind == 1u {
+        return surface_distance(x, o.shape);
+    }
+    if kind == 2u {
+        let db = line_offset(x, o.shape);
+        let dz = x.z - o.info.z;
+        return sqrt(db * db + dz * dz);
+    }
+    let db = surface_distance(x, o.shape);
+    let dz = x.z - o.shape.z;
+    return sqrt(db * db + dz * dz);
+}
+
+// The unit normal of object i's surface at x (the gradient of the distance).
+fn object_normal(i: u32, x: vec4<f32>) -> vec4<f32> {
+    let o = space.product_objects[i];
+    let kind = u32(o.info.x);
+    if kind == 1u {
+        return away_from(x, o.shape);
+    }
+    var away = vec4<f32>(0.0);
+    var db = 0.0;
+    var dz = 0.0;
+    if kind == 2u {
+        let xb = base_of(x);
+        let unit = xb / sqrt(abs(kappa() * base_form(xb, xb)));
+        let m = vec4<f32>(o.shape.x, o.shape.y, 0.0, kappa() * o.shape.w);
+        let t = m - unit * (base_form(m, unit) / base_form(unit, unit));
+        let len = sqrt(max(base_form(t, t), 0.0));
+        db = line_offset(x, o.shape);
+        away = select(vec4<f32>(0.0), t * (sign(db) / len), len > 0.0);
+        db = abs(db);
+        dz = x.z - o.info.z;
+    } else {
+        away = away_from(x, o.shape);
+        db = surface_distance(x, o.shape);
+        dz = x.z - o.shape.z;
+    }
+    let n = away * db + vec4<f32>(0.0, 0.0, dz, 0.0);
+    let d = sqrt(db * db + dz * dz);
+    return select(vec4<f32>(0.0, 0.0, 1.0, 0.0), n / d, d > 0.0);
+}
+
+// The first t in [0, t_max] where the segment meets object i, or FAR: F(t) = d(t)² − r² is
+// convex along the segment, so a golden-section search finds a point inside if there is
+// one and a bisection the first root before it (Rust: `trace::product::first_meeting`).
+fn first_meeting(i: u32, ray: Ray, t_max: f32) -> f32 {
+    let r = space.product_objects[i].info.y;
+    // The distance is 1-Lipschitz: a segment whose midpoint is further than half its
+    // length plus the radius cannot meet it.
+    if object_distance(i, along(ray, 0.5 * t_max)) > 0.5 * t_max + r {
+        return FAR;
+    }
+    let r2 = r * r;
+    let d0 = object_distance(i, ray.point);
+    if d0 * d0 <= r2 {
+        return 0.0;
+    }
+    let ratio = 0.6180339887498949;
+    var a = 0.0;
+    var b = t_max;
+    var c = b - ratio * (b - a);
+    var d = a + ratio * (b - a);
+    var dc = object_distance(i, along(ray, c));
+    var dd = object_distance(i, along(ray, d));
+    var fc = dc * dc - r2;
+    var fd = dd * dd - r2;
+    for (var k = 0u; k < 48u; k += 1u) {
+        if fc <= 0.0 || fd <= 0.0 || b - a <= 1e-6 * max(t_max, 1.0) {
+            break;
+        }
+        if fc < fd {
+            b = d;
+            d = c;
+            fd = fc;
+            c = b - ratio * (b - a);
+            let e = object_distance(i, along(ray, c));
+            fc = e * e - r2;
+        } else {
+            a = c;
+            c = d;
+            fc = fd;
+            d = a + ratio * (b - a);
+            let e = object_distance(i, along(ray, d));
+            fd = e * e - r2;
+        }
+    }
+    var inside = FAR;
+    if fc <= 0.0 {
+        inside = c;
+    } else if fd <= 0.0 {
+        inside = d;
+    } else {
+        let e = object_distance(i, along(ray, t_max));
+        if e * e <= r2 {
+            inside = t_max;
+        } else {
+            return FAR;
+        }
+    }
+    var lo = 0.0;
+    var hi = inside;
+    for (var k = 0u; k < 40u; k += 1u) {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        let e = object_distance(i, along(ray, mid));
+        if e * e > r2 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    return hi;
+}
+
+// The unit tangent at p towards q (surface part along the surface geodesic, height part
+// the difference in height, in proportion).
+fn tangent_towards(p: vec4<f32>, q: vec4<f32>) -> vec4<f32> {
+    let db = surface_distance(p, q);
+    let v = -away_from(p, q) * db + vec4<f32>(0.0, 0.0, q.z - p.z, 0.0);
+    let len = sqrt(base_form(v, v) + v.z * v.z);
+    return select(vec4<f32>(0.0, 0.0, 1.0, 0.0), v / len, len > 0.0);
+}
+
+// A camera ray: the start put on the model, the direction made a unit tangent there.
+fn product_ray(point: vec4<f32>, direction: vec4<f32>) -> Ray {
+    return normalized(Ray(point, direction));
+}
+
+// One camera ray's colour: the nearest object in each segment of the walk, shaded with the
+// light (Lambert, falloff by the square of the distance, never nearer than 1) and fog; the
+// fog colour past the cut-off or the crossing budget (Rust: `trace_product_pixel`).
+fn trace_product(start: Ray) -> vec3<f32> {
+    let fog = space.shading.fog.rgb;
+    let ambient = space.shading.fog.w;
+    let lambda_fog = space.shading.params.x;
+    let cutoff = space.shading.params.y;
+    let budget = u32(space.shading.params.w);
+    var ray = start;
+    var travelled = 0.0;
+    var skip = NONE;
+    var crossings = 0u;
+    var steps = 0u;
+    for (var guard = 0u; guard < 4u * budget + 256u; guard += 1u) {
+        if travelled >= cutoff {
+            break;
+        }
+        let exit = product_exit(ray, skip);
+        if exit.face == NONE {
+            break;
+        }
+        let t_max = min(exit.distance, cutoff - travelled);
+        var nearest = FAR;
+        var object = NONE;
+        for (var i = 0u; i < min(u32(space.product.y), #{PRODUCT_OBJECTS}u); i += 1u) {
+            let t = first_meeting(i, ray, t_max);
+            if t < nearest {
+                nearest = t;
+                object = i;
+            }
+        }
+        if object != NONE {
+            let at = along(ray, nearest);
+            let normal = object_normal(object, at);
+            let light = space.product_light;
+            let to_light = tangent_towards(at, light);
+            let db = surface_distance(at, light);
+            let dz = at.z - light.z;
+            let dl2 = db * db + dz * dz;
+            let lambert = max(base_form(normal, to_light) + normal.z * to_light.z, 0.0);
+            let lit = ambient + (1.0 - ambient) * lambert / max(dl2, 1.0);
+            let surface = min(space.product_objects[object].colour.rgb * lit, vec3<f32>(1.0));
+            let w = exp(-(travelled + nearest) / lambda_fog);
+            return w * surface + (1.0 - w) * fog;
+        }
+        if exit.distance >= cutoff - travelled {
+            break;
+        }
+        travelled += exit.distance;
+        ray = product_cross(ray, exit);
+        skip = select(NONE, partner(exit.face), exit.face < face_count());
+        if exit.face == CAP {
+            steps += 1u;
+            if steps > 64u {
+                break;
+            }
+            continue;
+        }
+        steps = 0u;
+        crossings += 1u;
+        if crossings > budget {
+            break;
+        }
+    }
+    return fog;
+}

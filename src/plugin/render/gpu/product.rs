@@ -1,0 +1,113 @@
+//! A product space (H²×R, S²×R) and its scene packed for the WGSL tracer's `PRODUCT`
+//! variant (`shaders/product.wgsl`): the shading, the side faces' covectors, every face's
+//! pairing (the sides', then the top's `R⁻¹` and the bottom's `R`) with what rounding left
+//! out, the partners, the circle, the light and the objects.
+
+use super::VIEW_WORDS;
+use super::{DataSources, GpuScene, GpuSceneError, MAX_GPU_BUDGET, MAX_UNIFORM_BYTES, ShaderKey};
+use crate::plugin::render::layout::{GpuShading, UniformWriter, Vec4F, colour, vec4};
+use crate::space::product::{ProductSpace, ProductWalker};
+use crate::trace::product::{ProductScene, ProductShape};
+use glam::{DVec4, Mat4, Vec4};
+use std::sync::Arc;
+
+impl GpuScene {
+    /// Packs a product space and its scene with a crossing budget per ray.
+    pub fn product(
+        space: &ProductSpace,
+        scene: &ProductScene,
+        max_crossings: u32,
+    ) -> Result<Self, GpuSceneError> {
+        if max_crossings == 0 {
+            return Err(GpuSceneError::NoCrossings(max_crossings));
+        }
+        if max_crossings > MAX_GPU_BUDGET {
+            return Err(GpuSceneError::BudgetTooLarge(max_crossings));
+        }
+        let walker = ProductWalker::<Vec4>::new(space);
+        let sides = walker.covectors.len();
+        let key = ShaderKey {
+            faces: sides as u32,
+            step_cap: walker.step_cap,
+            product: true,
+            product_objects: scene.objects.len() as u32,
+            ..ShaderKey::empty(space.base())
+        };
+        let bytes = key.uniform_bytes();
+        if bytes > MAX_UNIFORM_BYTES {
+            return Err(GpuSceneError::TooLarge {
+                bytes,
+                limit: MAX_UNIFORM_BYTES,
+                faces: key.faces,
+                objects: scene.objects.len(),
+                lights: 1,
+            });
+        }
+        let mut out = UniformWriter::with_capacity(bytes);
+        out.push(&GpuShading {
+            fog: colour(scene.fog_colour, scene.ambient),
+            params: vec4(DVec4::new(
+                scene.fog_distance,
+                scene.cutoff_distance(),
+                0.0,
+                f64::from(max_crossings),
+            )),
+            exact: vec4(DVec4::X),
+        });
+        // No scene data: the offsets are unused.
+        out.push(&[0u32; 4]);
+        let slots = sides + 2;
+        let mut covectors: Vec<Vec4F> = walker.covectors.iter().map(|c| c.to_array()).collect();
+        covectors.resize(slots, [0.0; 4]);
+        let hi: Vec<Mat4> = walker
+            .pairings
+            .iter()
+            .copied()
+            .chain([walker.up.0, walker.down.0])
+            .collect();
+        let lo: Vec<Mat4> = walker
+            .pairings_lo
+            .iter()
+            .copied()
+            .chain([walker.up.1, walker.down.1])
+            .collect();
+        for c in &covectors {
+            out.push(c);
+        }
+        for m in hi.iter().chain(&lo) {
+            out.push(&m.to_cols_array_2d());
+        }
+        let mut partners: Vec<u32> = walker.partners.iter().map(|&p| p as u32).collect();
+        partners.resize(4 * slots.div_ceil(4), 0);
+        out.words.extend(partners);
+        out.push(&vec4(DVec4::new(
+            0.5 * space.length(),
+            scene.objects.len() as f64,
+            0.0,
+            0.0,
+        )));
+        out.push(&vec4(scene.light));
+        for o in &scene.objects {
+            let (shape, kind, height) = match o.shape {
+                ProductShape::Point(c) => (c, 0.0, 0.0),
+                ProductShape::Fibre(c) => (c, 1.0, 0.0),
+                ProductShape::Geodesic { covector, height } => (covector, 2.0, height),
+            };
+            out.push(&vec4(shape));
+            out.push(&vec4(DVec4::new(kind, o.radius, height, 0.0)));
+            out.push(&colour(o.colour, 0.0));
+        }
+        if scene.objects.is_empty() {
+            out.push(&[[0.0f32; 4]; 3]);
+        }
+        let words = out.words;
+        debug_assert_eq!(words.len() * 4 + VIEW_WORDS * 4, bytes);
+        Ok(Self {
+            key,
+            words,
+            data: Arc::new(vec![0; 4]),
+            avatar: None,
+            sources: DataSources::empty(),
+        })
+    }
+}
