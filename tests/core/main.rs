@@ -20,6 +20,7 @@ mod headset;
 mod layers;
 mod objects;
 mod player;
+mod product_motion;
 mod products;
 mod render;
 mod spaces;
