@@ -265,6 +265,64 @@ impl OffscreenRenderer {
         result
     }
 
+    /// Renders a product space (H²×R, S²×R) and its scene from a product camera with the
+    /// GPU tracer's `PRODUCT` variant. The scene is packed here and shown as it is (the
+    /// plugin's own scene building is for the constant-curvature spaces); the next
+    /// [`OffscreenRenderer::render`] packs its own scene again.
+    ///
+    /// Work in progress: the `PRODUCT` variant does not yet draw what the CPU reference
+    /// ([`crate::trace::product::render_product`]) draws, so the command line does not use
+    /// it; the test `product_spaces_render_on_the_gpu_like_the_cpu_reference` (ignored for
+    /// now) is the comparison to make pass.
+    pub fn render_product(
+        &mut self,
+        space: &crate::space::product::ProductSpace,
+        scene: &crate::trace::product::ProductScene,
+        camera: &crate::trace::product::ProductCamera,
+        (w, h): (u32, u32),
+        max_crossings: u32,
+    ) -> Result<RgbImage, OffscreenError> {
+        use crate::plugin::render::PreparedScene;
+        if !(1..=8192).contains(&w) || !(1..=8192).contains(&h) {
+            return Err(OffscreenError::BadSize(w, h));
+        }
+        let gpu = crate::plugin::render::gpu::GpuScene::product(space, scene, max_crossings)
+            .map_err(|e| OffscreenError::Scene(e.to_string()))?;
+        // Any pending packing of the plugin's own scene happens first, then the product's
+        // takes its place (nothing repacks while the settings stay).
+        self.app.update();
+        let world = self.app.world_mut();
+        world.insert_resource(StereoSettings::default());
+        world.insert_resource(PreparedScene(Arc::new(gpu)));
+        let mut target = Image::new_target_texture(w, h, TextureFormat::Rgba8UnormSrgb, None);
+        target.texture_descriptor.usage |= TextureUsages::COPY_SRC;
+        let handle = world.resource_mut::<Assets<Image>>().add(target);
+        let frame = crate::space::product::motion::camera_frame(camera.point, camera.frame);
+        let entity = world
+            .spawn((
+                Camera3d::default(),
+                RenderTarget::Image(ImageRenderTarget {
+                    handle: handle.clone(),
+                    scale_factor: 1.0,
+                }),
+                CurvedSpaceCamera {
+                    fov_y_degrees: camera.fov_y_degrees,
+                },
+                PlayerFrame(frame),
+            ))
+            // The plugin's players wrap through the active constant-curvature cell: this
+            // camera is not one of them.
+            .remove::<crate::space::Holonomy>()
+            .id();
+        let result = self.capture(&handle);
+        let world = self.app.world_mut();
+        world.despawn(entity);
+        world.resource_mut::<Assets<Image>>().remove(&handle);
+        // The next render packs the plugin's scene anew.
+        world.remove_resource::<PreparedScene>();
+        result
+    }
+
     fn capture(&mut self, handle: &Handle<Image>) -> Result<RgbImage, OffscreenError> {
         let drawn_before = self.frames.get();
         let captured: Arc<Mutex<Option<Image>>> = Arc::default();

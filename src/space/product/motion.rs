@@ -220,8 +220,8 @@ pub fn orthonormal(g: Geometry, frame: DMat4) -> DMat4 {
         let vb = base(v);
         let along = base_form(g, q, vb) / base_form(g, q, q);
         v -= q * along;
-        for j in 0..k {
-            v -= cols[j] * product_dot(g, v, cols[j]);
+        for c in &cols[..k] {
+            v -= *c * product_dot(g, v, *c);
         }
         let len = product_dot(g, v, v).max(0.0).sqrt();
         if len > 0.0 {
