@@ -269,11 +269,8 @@ impl OffscreenRenderer {
     /// GPU tracer's `PRODUCT` variant. The scene is packed here and shown as it is (the
     /// plugin's own scene building is for the constant-curvature spaces); the next
     /// [`OffscreenRenderer::render`] packs its own scene again.
-    ///
-    /// Work in progress: the `PRODUCT` variant does not yet draw what the CPU reference
-    /// ([`crate::trace::product::render_product`]) draws, so the command line does not use
-    /// it; the test `product_spaces_render_on_the_gpu_like_the_cpu_reference` (ignored for
-    /// now) is the comparison to make pass.
+    /// Traced at full resolution; the picture matches the CPU reference
+    /// ([`crate::trace::product::render_product`]) but for f32 rounding at silhouettes.
     pub fn render_product(
         &mut self,
         space: &crate::space::product::ProductSpace,
@@ -294,6 +291,11 @@ impl OffscreenRenderer {
         let world = self.app.world_mut();
         world.insert_resource(StereoSettings::default());
         world.insert_resource(PreparedScene(Arc::new(gpu)));
+        world.insert_resource(crate::plugin::render::upload::ProductShown);
+        // Every pixel traced, none scaled up: the picture the CPU reference draws.
+        if let Some(mut settings) = world.get_resource_mut::<TracerSettings>() {
+            settings.resolution_scale = 1.0;
+        }
         let mut target = Image::new_target_texture(w, h, TextureFormat::Rgba8UnormSrgb, None);
         target.texture_descriptor.usage |= TextureUsages::COPY_SRC;
         let handle = world.resource_mut::<Assets<Image>>().add(target);
@@ -320,6 +322,7 @@ impl OffscreenRenderer {
         world.resource_mut::<Assets<Image>>().remove(&handle);
         // The next render packs the plugin's scene anew.
         world.remove_resource::<PreparedScene>();
+        world.remove_resource::<crate::plugin::render::upload::ProductShown>();
         result
     }
 

@@ -1254,7 +1254,6 @@ fn the_globe_and_the_galaxy_render_alike_on_gpu_and_cpu() {
 /// reference, default scene and view, 96×54 (the CPU reference's bracketed search is
 /// slower than the constant-curvature tracer's closed forms).
 #[test]
-#[ignore = "work in progress (issue 31): the PRODUCT variant differs from the CPU reference in 40-80 % of pixels"]
 fn product_spaces_render_on_the_gpu_like_the_cpu_reference() {
     use bevy_curved_spaces::space::product::{ProductOrFlat, product_space};
     use bevy_curved_spaces::trace::product::{default_camera, default_scene, render_product};

@@ -111,20 +111,13 @@ struct View {
     scene: CurvedScene,
 }
 
-/// `render` of a product space (H²×R, S²×R): its default scene and view on the CPU.
+/// `render` of a product space (H²×R, S²×R): its default scene and view, on the GPU or
+/// with the CPU reference (`--cpu`).
 fn render_product_command(
     args: &RenderArgs,
     space: &bevy_curved_spaces::space::product::ProductSpace,
 ) -> Result<(), String> {
     use bevy_curved_spaces::trace::product::{default_camera, default_scene, render_product};
-    if !args.cpu {
-        return Err(format!(
-            "{} is a space of the geometry {}: the GPU tracer draws the constant-curvature \
-             geometries only so far; render it with the CPU reference (`--cpu`)",
-            space.name(),
-            space.geometry_name()
-        ));
-    }
     let mut scene = default_scene(space);
     if let Some(fog) = args.fog {
         scene.fog_distance = fog;
@@ -135,15 +128,34 @@ fn render_product_command(
     }
     let budget = args.crossings.unwrap_or(64);
     say!(
-        "rendering {} ({}) at {}×{} with the f64 CPU reference (fog λ = {:.3}, ≤ {budget} crossings)…",
+        "rendering {} ({}) at {}×{} with the {} (fog λ = {:.3}, ≤ {budget} crossings)…",
         space.name(),
         space.geometry_name(),
         args.size.0,
         args.size.1,
+        if args.cpu {
+            "f64 CPU reference"
+        } else {
+            "GPU tracer"
+        },
         scene.fog_distance
     );
     let started = Instant::now();
-    let image = render_product(space, &scene, &camera, args.size.0, args.size.1, budget);
+    let image = if args.cpu {
+        render_product(space, &scene, &camera, args.size.0, args.size.1, budget)
+    } else {
+        let gpu_budget = u32::try_from(budget)
+            .ok()
+            .filter(|&n| (1..=MAX_GPU_BUDGET).contains(&n))
+            .ok_or_else(|| {
+                format!(
+                    "the GPU tracer takes a crossing budget from 1 to {MAX_GPU_BUDGET}, got {budget} (use --cpu for more)"
+                )
+            })?;
+        bevy_curved_spaces::plugin::offscreen::OffscreenRenderer::new()
+            .and_then(|mut r| r.render_product(space, &scene, &camera, args.size, gpu_budget))
+            .map_err(|e| e.to_string())?
+    };
     save(&image, &args.out)?;
     let shown = std::fs::canonicalize(&args.out).unwrap_or_else(|_| args.out.clone());
     say!(

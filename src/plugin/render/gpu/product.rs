@@ -12,9 +12,9 @@ use glam::{DVec4, Mat4, Vec4};
 use std::sync::Arc;
 
 impl GpuScene {
-    /// Packs a product space and its scene with a crossing budget per ray. The packed
-    /// layout is checked against the WGSL (naga); the variant's pictures do not yet match
-    /// the CPU reference, so nothing in the plugin or the command line draws with it yet.
+    /// Packs a product space and its scene with a crossing budget per ray. Drawn by
+    /// [`crate::plugin::offscreen::OffscreenRenderer::render_product`] (the command line's
+    /// `render`); the plugin's players do not walk product spaces yet.
     pub fn product(
         space: &ProductSpace,
         scene: &ProductScene,
