@@ -4,7 +4,7 @@
 //!
 //! The frame's columns are product tangents at the position (4-vectors `(x, y, z, w)`, base
 //! part tangent to the surface, `z` along the fibre). Moving by `t` along a unit tangent
-//! `u` follows the geodesic of [`super::walk`]; a tangent `e` is carried parallel along it:
+//! `u` follows the geodesic of [`super::ProductWalker`]; a tangent `e` is carried parallel along it:
 //! its part along the geodesic's base direction turns with the base velocity, the rest
 //! (the surface normal to the path, and the fibre) stays as it is.
 
