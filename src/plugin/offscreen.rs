@@ -236,23 +236,12 @@ impl OffscreenRenderer {
         // A changed space puts every player back at its start view in the next update:
         // let that happen before the camera exists, so the requested frame is kept.
         self.app.update();
-        let world = self.app.world_mut();
-        let mut target = Image::new_target_texture(w, h, TextureFormat::Rgba8UnormSrgb, None);
-        target.texture_descriptor.usage |= TextureUsages::COPY_SRC;
-        let handle = world.resource_mut::<Assets<Image>>().add(target);
-        let camera = world
-            .spawn((
-                Camera3d::default(),
-                RenderTarget::Image(ImageRenderTarget {
-                    handle: handle.clone(),
-                    scale_factor: 1.0,
-                }),
-                CurvedSpaceCamera {
-                    fov_y_degrees: request.fov_y_degrees,
-                },
-                PlayerFrame(request.frame),
-            ))
-            .id();
+        let (handle, camera) = spawn_camera(
+            self.app.world_mut(),
+            (w, h),
+            request.fov_y_degrees,
+            request.frame,
+        );
         let result = self.capture(&handle);
         self.app.world_mut().despawn(camera);
         for e in spawned {
@@ -296,26 +285,11 @@ impl OffscreenRenderer {
         if let Some(mut settings) = world.get_resource_mut::<TracerSettings>() {
             settings.resolution_scale = 1.0;
         }
-        let mut target = Image::new_target_texture(w, h, TextureFormat::Rgba8UnormSrgb, None);
-        target.texture_descriptor.usage |= TextureUsages::COPY_SRC;
-        let handle = world.resource_mut::<Assets<Image>>().add(target);
         let frame = crate::space::product::motion::camera_frame(camera.point, camera.frame);
-        let entity = world
-            .spawn((
-                Camera3d::default(),
-                RenderTarget::Image(ImageRenderTarget {
-                    handle: handle.clone(),
-                    scale_factor: 1.0,
-                }),
-                CurvedSpaceCamera {
-                    fov_y_degrees: camera.fov_y_degrees,
-                },
-                PlayerFrame(frame),
-            ))
-            // The plugin's players wrap through the active constant-curvature cell: this
-            // camera is not one of them.
-            .remove::<crate::space::Holonomy>()
-            .id();
+        let (handle, entity) = spawn_camera(world, (w, h), camera.fov_y_degrees, frame);
+        // The plugin's players wrap through the active constant-curvature cell: this camera
+        // is not one of them.
+        world.entity_mut(entity).remove::<crate::space::Holonomy>();
         let result = self.capture(&handle);
         let world = self.app.world_mut();
         world.despawn(entity);
@@ -354,6 +328,31 @@ impl OffscreenRenderer {
             }
         }
     }
+}
+
+/// A curved-space camera at `frame` drawing into a new `width × height` image that can be
+/// captured: the image's handle and the camera.
+fn spawn_camera(
+    world: &mut World,
+    (w, h): (u32, u32),
+    fov_y_degrees: f64,
+    frame: DMat4,
+) -> (Handle<Image>, Entity) {
+    let mut target = Image::new_target_texture(w, h, TextureFormat::Rgba8UnormSrgb, None);
+    target.texture_descriptor.usage |= TextureUsages::COPY_SRC;
+    let handle = world.resource_mut::<Assets<Image>>().add(target);
+    let camera = world
+        .spawn((
+            Camera3d::default(),
+            RenderTarget::Image(ImageRenderTarget {
+                handle: handle.clone(),
+                scale_factor: 1.0,
+            }),
+            CurvedSpaceCamera { fov_y_degrees },
+            PlayerFrame(frame),
+        ))
+        .id();
+    (handle, camera)
 }
 
 /// Gives the process a private runtime directory when `XDG_RUNTIME_DIR` is unset or not a

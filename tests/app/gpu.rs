@@ -15,7 +15,7 @@ use bevy_curved_spaces::space::{SEED_SPACES, Space};
 use bevy_curved_spaces::trace::{RenderSettings, render};
 use bevy_curved_spaces::view::TraceCamera;
 use image::RgbImage;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 const WIDTH: u32 = 160;
 const HEIGHT: u32 = 90;
@@ -66,6 +66,44 @@ fn library_spaces_render_on_the_gpu_like_the_cpu_reference() {
 }
 
 /// Each space's default view on the GPU against the CPU reference.
+/// Compares a GPU picture with its CPU reference: prints the figures and, where more than
+/// [`MAX_DIFFERING`] of the pixels differ or the GPU picture is nearly flat, writes the
+/// three images to `out` and adds a failure. A blank or constant picture would also
+/// "agree" with a blank reference: the reference must show structure, and so must the GPU
+/// image.
+fn judge(id: &str, gpu: &RgbImage, cpu: &RgbImage, out: &Path, failures: &mut Vec<String>) {
+    let (c, diff) = compare(gpu, cpu, TOLERANCE);
+    println!(
+        "{:<24} differing {:.3} %, mean error {:.3}/255, max {}",
+        id,
+        100.0 * c.differing,
+        c.mean_error,
+        c.max_error
+    );
+    let distinct = |img: &RgbImage| {
+        let mut v: Vec<[u8; 3]> = img.pixels().map(|p| p.0).collect();
+        v.sort_unstable();
+        v.dedup();
+        v.len()
+    };
+    assert!(
+        distinct(cpu) > 50,
+        "{id}: the reference image is nearly flat"
+    );
+    if c.differing > MAX_DIFFERING || distinct(gpu) < 50 {
+        std::fs::create_dir_all(out).expect("create output folder");
+        for (name, img) in [("gpu", gpu), ("cpu", cpu), ("diff", &diff)] {
+            img.save(out.join(format!("{id}-{name}.png")))
+                .expect("write image");
+        }
+        failures.push(format!(
+            "{id}: {:.2} % of pixels differ by more than {TOLERANCE}/255 (bound {:.0} %)",
+            100.0 * c.differing,
+            100.0 * MAX_DIFFERING
+        ));
+    }
+}
+
 fn spaces_render_alike(spaces: &[(String, Space)]) {
     let _gpu = gpu_lock();
     let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| {
@@ -99,38 +137,7 @@ fn spaces_render_alike(spaces: &[(String, Space)]) {
                 )
             })
             .unwrap_or_else(|e| panic!("{id}: {e}"));
-        let (c, diff) = compare(&gpu, &cpu, TOLERANCE);
-        println!(
-            "{:<22} differing {:.3} %, mean error {:.3}/255, max {}",
-            id,
-            100.0 * c.differing,
-            c.mean_error,
-            c.max_error
-        );
-        // A blank or constant picture would also "agree" with a blank reference: the
-        // reference must show structure, and so must the GPU image.
-        let distinct = |img: &RgbImage| {
-            let mut v: Vec<[u8; 3]> = img.pixels().map(|p| p.0).collect();
-            v.sort_unstable();
-            v.dedup();
-            v.len()
-        };
-        assert!(
-            distinct(&cpu) > 50,
-            "{id}: the reference image is nearly flat"
-        );
-        if c.differing > MAX_DIFFERING || distinct(&gpu) < 50 {
-            std::fs::create_dir_all(&out).expect("create output folder");
-            for (name, img) in [("gpu", &gpu), ("cpu", &cpu), ("diff", &diff)] {
-                img.save(out.join(format!("{id}-{name}.png")))
-                    .expect("write image");
-            }
-            failures.push(format!(
-                "{id}: {:.2} % of pixels differ by more than {TOLERANCE}/255 (bound {:.0} %)",
-                100.0 * c.differing,
-                100.0 * MAX_DIFFERING
-            ));
-        }
+        judge(id, &gpu, &cpu, &out, &mut failures);
     }
     assert!(
         failures.is_empty(),
@@ -1277,34 +1284,7 @@ fn product_spaces_render_on_the_gpu_like_the_cpu_reference() {
         let gpu = renderer
             .render_product(&space, &scene, &camera, (w, h), 24)
             .unwrap_or_else(|e| panic!("{id}: {e}"));
-        let (c, diff) = compare(&gpu, &cpu, TOLERANCE);
-        println!(
-            "{id:<24} differing {:.3} %, mean error {:.3}/255, max {}",
-            100.0 * c.differing,
-            c.mean_error,
-            c.max_error
-        );
-        let distinct = |img: &RgbImage| {
-            let mut v: Vec<[u8; 3]> = img.pixels().map(|p| p.0).collect();
-            v.sort_unstable();
-            v.dedup();
-            v.len()
-        };
-        assert!(
-            distinct(&cpu) > 50,
-            "{id}: the reference image is nearly flat"
-        );
-        if c.differing > MAX_DIFFERING || distinct(&gpu) < 50 {
-            std::fs::create_dir_all(&out).expect("create output folder");
-            for (name, img) in [("gpu", &gpu), ("cpu", &cpu), ("diff", &diff)] {
-                img.save(out.join(format!("{id}-{name}.png")))
-                    .expect("write image");
-            }
-            failures.push(format!(
-                "{id}: {:.2} % of pixels differ by more than {TOLERANCE}/255",
-                100.0 * c.differing
-            ));
-        }
+        judge(id, &gpu, &cpu, &out, &mut failures);
     }
     // The renderer goes back to constant curvature afterwards.
     let space = bevy_curved_spaces::space::seed_space("torus").expect("seed");

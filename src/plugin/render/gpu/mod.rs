@@ -144,6 +144,17 @@ pub enum GpuSceneError {
     BudgetTooLarge(u32),
 }
 
+/// A crossing budget the GPU tracer takes: 1 to [`MAX_GPU_BUDGET`].
+fn check_budget(max_crossings: u32) -> Result<(), GpuSceneError> {
+    if max_crossings == 0 {
+        return Err(GpuSceneError::NoCrossings(max_crossings));
+    }
+    if max_crossings > MAX_GPU_BUDGET {
+        return Err(GpuSceneError::BudgetTooLarge(max_crossings));
+    }
+    Ok(())
+}
+
 /// The kinds of the GPU's object lists, in their order.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 enum GpuKind {
@@ -246,12 +257,7 @@ impl GpuScene {
         previous: Option<&GpuScene>,
         padded: bool,
     ) -> Result<Self, GpuSceneError> {
-        if max_crossings == 0 {
-            return Err(GpuSceneError::NoCrossings(max_crossings));
-        }
-        if max_crossings > MAX_GPU_BUDGET {
-            return Err(GpuSceneError::BudgetTooLarge(max_crossings));
-        }
+        check_budget(max_crossings)?;
         let g = space.geometry;
         let lists = kind_lists(scene, padded);
         let of_kind = |k: GpuKind| -> Vec<&Object> {

@@ -4,7 +4,7 @@
 //! out, the partners, the circle, the light and the objects.
 
 use super::VIEW_WORDS;
-use super::{DataSources, GpuScene, GpuSceneError, MAX_GPU_BUDGET, MAX_UNIFORM_BYTES, ShaderKey};
+use super::{DataSources, GpuScene, GpuSceneError, MAX_UNIFORM_BYTES, ShaderKey};
 use crate::plugin::render::layout::{GpuShading, UniformWriter, Vec4F, colour, vec4};
 use crate::space::product::{ProductSpace, ProductWalker};
 use crate::trace::product::{ProductScene, ProductShape};
@@ -20,12 +20,7 @@ impl GpuScene {
         scene: &ProductScene,
         max_crossings: u32,
     ) -> Result<Self, GpuSceneError> {
-        if max_crossings == 0 {
-            return Err(GpuSceneError::NoCrossings(max_crossings));
-        }
-        if max_crossings > MAX_GPU_BUDGET {
-            return Err(GpuSceneError::BudgetTooLarge(max_crossings));
-        }
+        super::check_budget(max_crossings)?;
         let walker = ProductWalker::<Vec4>::new(space);
         let sides = walker.covectors.len();
         let key = ShaderKey {
