@@ -99,7 +99,7 @@ pub mod bench;
 
 pub use plugin::CurvedSpacesPlugin;
 pub use plugin::components::{
-    ActiveSpace, BaseScene, CurvedSpaceCamera, CurvedSpaceEye, CurvedSpacesSystems, Quality,
+    ActiveProduct, ActiveSpace, BaseProductScene, BaseScene, CurvedSpaceCamera, CurvedSpaceEye, CurvedSpacesSystems, Quality,
     SceneObjects, TracerSettings, TracerStatus,
 };
 
@@ -108,7 +108,7 @@ pub mod prelude {
     pub use crate::geometry::{Geometry, GeometryError, ORIGIN, Ray, chart_ray};
     pub use crate::plugin::CurvedSpacesPlugin;
     pub use crate::plugin::components::{
-        ActiveSpace, BaseScene, CurvedSpaceCamera, CurvedSpaceEye, CurvedSpacesSystems,
+        ActiveProduct, ActiveSpace, BaseProductScene, BaseScene, CurvedSpaceCamera, CurvedSpaceEye, CurvedSpacesSystems,
         KeyBindings, PlayerFrame, PlayerSettings, Quality, SceneObjects, StereoSettings,
         TracerSettings, TracerStatus,
     };

@@ -150,6 +150,71 @@ impl ActiveSpace {
     }
 }
 
+/// Surface group elements enumerated at most for a product space's injectivity radius.
+const PRODUCT_GROUP_LIMIT: usize = 200_000;
+
+/// The product space (H²×R or S²×R) every curved-space camera shows, in place of an
+/// [`ActiveSpace`]: the plugin holds exactly one of the two. Insert it (and remove the
+/// `ActiveSpace`) to switch to a product space at run time, or name one in
+/// [`crate::CurvedSpacesPlugin::space`] (`bitorus-circle`, `surface-abABcdCD-circle-2`).
+/// Players keep the fibre as up, walk horizontally, and wrap through the sides, the top and
+/// the bottom ([`crate::space::product::motion`]).
+#[derive(Resource, Clone, Debug)]
+pub struct ActiveProduct {
+    /// The library id the space came from.
+    pub id: String,
+    /// The validated space.
+    pub space: Arc<crate::space::product::ProductSpace>,
+    /// A length of the cell's size: the smaller of the base polygon's inradius and half the
+    /// circle (walking speeds and the eye distance scale with it).
+    pub inradius: f64,
+    /// Its volume (the surface's area by Gauss–Bonnet times the circle).
+    pub volume: f64,
+    /// `None` where the surface group was too large to enumerate.
+    pub injectivity_radius: Option<f64>,
+}
+
+impl ActiveProduct {
+    /// A product space with its read-outs.
+    #[must_use]
+    pub fn new(id: impl Into<String>, space: crate::space::product::ProductSpace) -> Self {
+        Self {
+            id: id.into(),
+            inradius: space.base_inradius().min(0.5 * space.length()),
+            volume: space.volume(),
+            injectivity_radius: space.injectivity_radius(PRODUCT_GROUP_LIMIT),
+            space: Arc::new(space),
+        }
+    }
+
+    /// Where players start: the default camera of the space's default scene
+    /// ([`crate::trace::product::default_camera`]).
+    #[must_use]
+    pub fn start_frame(&self) -> DMat4 {
+        let camera = crate::trace::product::default_camera(&self.space);
+        crate::space::product::motion::camera_frame(camera.point, camera.frame)
+    }
+
+    /// A product space by its library id (`bitorus-circle`) or its word id
+    /// (`surface-abABcdCD-circle-2-turn-2`). `None` when `id` names no product space (a
+    /// flat word's product is an [`ActiveSpace`]); an error names what is wrong with it.
+    #[must_use]
+    pub fn named(id: &str) -> Option<Result<Self, String>> {
+        use crate::space::product::{ProductOrFlat, product_space};
+        match product_space(id)? {
+            Ok(ProductOrFlat::Product(p)) => Some(Ok(Self::new(id, *p))),
+            Ok(ProductOrFlat::Flat(_)) => None,
+            Err(e) => Some(Err(e)),
+        }
+    }
+}
+
+/// The scene shown in a product space instead of its default one
+/// ([`crate::trace::product::default_scene`]); the fog of [`TracerSettings::fog_distance`]
+/// still applies where it is set.
+#[derive(Resource, Clone, Debug, PartialEq)]
+pub struct BaseProductScene(pub crate::trace::product::ProductScene);
+
 /// The tracer's knobs, changeable at run time.
 #[derive(Resource, Clone, Copy, Debug, PartialEq)]
 pub struct TracerSettings {
@@ -367,6 +432,10 @@ pub struct PlayerSettings {
     pub wrap_margin: f64,
     /// Whether mouse motion turns the view without a grabbed cursor (tests, touchpads).
     pub look_without_grab: bool,
+    /// In a product space (H²×R, S²×R): the fibre stays up, so walking is horizontal and
+    /// turning left and right is about the fibre (Space and Shift climb along it). `false`
+    /// flies freely, as in the constant-curvature spaces.
+    pub fibre_up: bool,
 }
 
 impl Default for PlayerSettings {
@@ -377,6 +446,7 @@ impl Default for PlayerSettings {
             roll_speed: 1.2,
             wrap_margin: 1e-4,
             look_without_grab: false,
+            fibre_up: true,
         }
     }
 }

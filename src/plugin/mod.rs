@@ -6,6 +6,7 @@
 //!   and report on the tracer, shared by the modules below;
 //! - [`player`]: input, motion and the wrap of each camera's frame through the faces;
 //! - [`objects`]: a game's things as entities, moving along geodesics through the faces;
+//! - [`product`]: the same for the product spaces (H²×R, S²×R), while one is shown;
 //! - [`flight`]: replaying and recording camera flights;
 //! - [`render`]: the scene packed for the WGSL tracer and the render node that draws it;
 //! - [`frame_rate`]: the traced resolution (and the crossing budget) following frame times;
@@ -24,6 +25,7 @@ pub mod frame_rate;
 pub mod objects;
 pub mod offscreen;
 pub mod player;
+pub mod product;
 pub mod render;
 pub mod screenshot;
 pub mod setup;

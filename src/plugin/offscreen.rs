@@ -6,7 +6,7 @@ use crate::plugin::CurvedSpacesPlugin;
 use crate::plugin::components::PlayerFrame;
 use crate::plugin::components::StereoSettings;
 use crate::plugin::components::{
-    ActiveSpace, BaseScene, CurvedSpaceCamera, SceneObjects, TracerSettings,
+    ActiveProduct, ActiveSpace, BaseProductScene, BaseScene, CurvedSpaceCamera, SceneObjects, TracerSettings,
 };
 use crate::plugin::render::FramesTraced;
 use crate::plugin::screenshot::image_to_rgb;
@@ -216,6 +216,7 @@ impl OffscreenRenderer {
         });
         if !same_space {
             world.insert_resource(request.space.clone());
+            world.remove_resource::<ActiveProduct>();
         }
         world.insert_resource(settings);
         world.insert_resource(request.base.clone());
@@ -255,10 +256,9 @@ impl OffscreenRenderer {
     }
 
     /// Renders a product space (H²×R, S²×R) and its scene from a product camera with the
-    /// GPU tracer's `PRODUCT` variant. The scene is packed here and shown as it is (the
-    /// plugin's own scene building is for the constant-curvature spaces); the next
-    /// [`OffscreenRenderer::render`] packs its own scene again.
-    /// Traced at full resolution; the picture matches the CPU reference
+    /// GPU tracer's `PRODUCT` variant, through the plugin's own product systems (the space
+    /// becomes the [`ActiveProduct`], the scene its [`BaseProductScene`]). Traced at full
+    /// resolution; the picture matches the CPU reference
     /// ([`crate::trace::product::render_product`]) but for f32 rounding at silhouettes.
     pub fn render_product(
         &mut self,
@@ -268,35 +268,41 @@ impl OffscreenRenderer {
         (w, h): (u32, u32),
         max_crossings: u32,
     ) -> Result<RgbImage, OffscreenError> {
-        use crate::plugin::render::PreparedScene;
         if !(1..=8192).contains(&w) || !(1..=8192).contains(&h) {
             return Err(OffscreenError::BadSize(w, h));
         }
-        let gpu = crate::plugin::render::gpu::GpuScene::product(space, scene, max_crossings)
+        // A scene the GPU cannot take would only time out below: say why now.
+        crate::plugin::render::gpu::GpuScene::product(space, scene, max_crossings)
             .map_err(|e| OffscreenError::Scene(e.to_string()))?;
-        // Any pending packing of the plugin's own scene happens first, then the product's
-        // takes its place (nothing repacks while the settings stay).
-        self.app.update();
         let world = self.app.world_mut();
-        world.insert_resource(StereoSettings::default());
-        world.insert_resource(PreparedScene(Arc::new(gpu)));
-        world.insert_resource(crate::plugin::render::upload::ProductShown);
-        // Every pixel traced, none scaled up: the picture the CPU reference draws.
-        if let Some(mut settings) = world.get_resource_mut::<TracerSettings>() {
-            settings.resolution_scale = 1.0;
+        let same_space = world
+            .get_resource::<ActiveProduct>()
+            .is_some_and(|a| a.space.name() == space.name());
+        if !same_space {
+            world.insert_resource(ActiveProduct::new(space.name(), space.clone()));
+            world.remove_resource::<ActiveSpace>();
         }
+        world.insert_resource(BaseProductScene(scene.clone()));
+        world.insert_resource(StereoSettings::default());
+        // Every pixel traced, none scaled up: the picture the CPU reference draws.
+        world.insert_resource(TracerSettings {
+            fog_distance: None,
+            max_crossings: Some(max_crossings.max(1)),
+            quality: crate::plugin::components::Quality::High,
+            resolution_scale: 1.0,
+            parts: SceneParts::default(),
+            time: Some(0.0),
+            colour_by: crate::scene::ColourBy::Shading,
+            walls: None,
+        });
+        // The switch puts players at the start view in this update, before the camera.
+        self.app.update();
         let frame = crate::space::product::motion::camera_frame(camera.point, camera.frame);
-        let (handle, entity) = spawn_camera(world, (w, h), camera.fov_y_degrees, frame);
-        // The plugin's players wrap through the active constant-curvature cell: this camera
-        // is not one of them.
-        world.entity_mut(entity).remove::<crate::space::Holonomy>();
+        let (handle, entity) = spawn_camera(self.app.world_mut(), (w, h), camera.fov_y_degrees, frame);
         let result = self.capture(&handle);
         let world = self.app.world_mut();
         world.despawn(entity);
         world.resource_mut::<Assets<Image>>().remove(&handle);
-        // The next render packs the plugin's scene anew.
-        world.remove_resource::<PreparedScene>();
-        world.remove_resource::<crate::plugin::render::upload::ProductShown>();
         result
     }
 

@@ -15,16 +15,17 @@
 //! ```
 
 use crate::plugin::components::{
-    ActiveSpace, BaseScene, CurvedSpaceCamera, CurvedSpacesSystems, KeyBindings, MouseLook,
+    ActiveProduct, ActiveSpace, BaseScene, CurvedSpaceCamera, CurvedSpacesSystems, KeyBindings, MouseLook,
     PlayerFrame, PlayerSettings, Quality, SceneObjects, StereoSettings, TracerSettings,
     TracerStatus,
 };
 use crate::plugin::frame_rate::{BudgetShare, FrameRateTarget, hold_frame_rate};
 use crate::plugin::player;
+use crate::plugin::product::product_shown;
 use crate::plugin::render::TracerRenderPlugin;
 use crate::plugin::render::upload::upload_scene;
 use crate::scene::SceneParts;
-use crate::space::{DEFAULT_SPACE, Holonomy};
+use crate::space::DEFAULT_SPACE;
 use bevy::core_pipeline::tonemapping::{DebandDither, Tonemapping};
 use bevy::prelude::*;
 
@@ -82,12 +83,24 @@ impl Default for CurvedSpacesPlugin {
 impl Plugin for CurvedSpacesPlugin {
     fn build(&self, app: &mut App) {
         // A space inserted before the plugin (e.g. from a file) wins over `self.space`.
-        if !app.world().contains_resource::<ActiveSpace>() {
-            let active = ActiveSpace::named(&self.space).unwrap_or_else(|e| {
+        if !app.world().contains_resource::<ActiveSpace>()
+            && !app.world().contains_resource::<ActiveProduct>()
+        {
+            let fallback = |e: String| {
                 error!("{e}; starting in {DEFAULT_SPACE} instead");
                 ActiveSpace::seed(DEFAULT_SPACE).expect("the default seed space is valid")
-            });
-            app.insert_resource(active);
+            };
+            match ActiveProduct::named(&self.space) {
+                Some(Ok(product)) => {
+                    app.insert_resource(product);
+                }
+                Some(Err(e)) => {
+                    app.insert_resource(fallback(e));
+                }
+                None => {
+                    app.insert_resource(ActiveSpace::named(&self.space).unwrap_or_else(fallback));
+                }
+            }
         }
         app.insert_resource(TracerSettings {
             fog_distance: self.fog_distance,
@@ -134,20 +147,34 @@ impl Plugin for CurvedSpacesPlugin {
         .add_systems(
             Update,
             (
-                (reset_players_on_switch, player::move_players)
+                (
+                    crate::plugin::product::reset_players_on_switch,
+                    (
+                        player::move_players.run_if(constant_curvature),
+                        crate::plugin::product::move_product_players.run_if(product_shown),
+                    ),
+                )
                     .chain()
                     .in_set(CurvedSpacesSystems::Move),
-                player::wrap_players.in_set(CurvedSpacesSystems::Wrap),
+                (
+                    player::wrap_players.run_if(constant_curvature),
+                    crate::plugin::product::wrap_product_players.run_if(product_shown),
+                )
+                    .in_set(CurvedSpacesSystems::Wrap),
                 #[cfg(feature = "scene-files")]
                 (
                     crate::plugin::flight::replay_flight,
                     crate::plugin::flight::record_flight,
                 )
                     .chain()
+                    .run_if(constant_curvature)
                     .after(CurvedSpacesSystems::Wrap)
                     .before(CurvedSpacesSystems::Upload),
                 (
-                    upload_scene.after(crate::plugin::objects::collect_objects),
+                    upload_scene
+                        .after(crate::plugin::objects::collect_objects)
+                        .run_if(constant_curvature),
+                    crate::plugin::product::upload_product_scene.run_if(product_shown),
                     check_stereo_settings,
                 )
                     .in_set(CurvedSpacesSystems::Upload),
@@ -187,53 +214,60 @@ impl Plugin for CurvedSpacesPlugin {
 /// A new curved-space camera starts at the space's default view and draws only the tracer.
 fn start_camera(
     add: On<Add, CurvedSpaceCamera>,
-    active: Res<ActiveSpace>,
+    active: Option<Res<ActiveSpace>>,
+    product: Option<Res<ActiveProduct>>,
     base: Res<BaseScene>,
     mut commands: Commands,
     frames: Query<&PlayerFrame>,
 ) {
     let mut entity = commands.entity(add.entity);
-    if frames
-        .get(add.entity)
-        .is_ok_and(|f| *f == PlayerFrame::default())
+    let start = match (&product, &active) {
+        (Some(p), _) => Some(p.start_frame()),
+        (None, Some(a)) => Some(base.start_frame(a)),
+        (None, None) => None,
+    };
+    if let Some(start) = start
+        && frames
+            .get(add.entity)
+            .is_ok_and(|f| *f == PlayerFrame::default())
     {
-        entity.insert(PlayerFrame(base.start_frame(&active)));
+        entity.insert(PlayerFrame(start));
     }
     // The scene's start view includes its field of view.
-    if let Some(fov) = base.fov.filter(|_| active.id == base.space_id) {
+    if let Some(fov) = base
+        .fov
+        .filter(|_| product.is_none() && active.as_ref().is_some_and(|a| a.id == base.space_id))
+    {
         entity.insert(CurvedSpaceCamera { fov_y_degrees: fov });
     }
     // The tracer writes final colours: no anti-aliasing, tonemapping or dithering on top.
     entity.insert((Msaa::Off, Tonemapping::None, DebandDither::Disabled));
 }
 
-fn reset_players_on_switch(
-    active: Res<ActiveSpace>,
-    base: Res<BaseScene>,
-    mut players: Query<(&mut PlayerFrame, &mut Holonomy)>,
-) {
-    if !active.is_changed() || active.is_added() {
-        return;
-    }
-    let start = base.start_frame(&active);
-    for (mut frame, mut holonomy) in &mut players {
-        frame.0 = start;
-        *holonomy = Holonomy::default();
-    }
+/// Whether a constant-curvature space is shown (the run condition of the systems that
+/// walk an [`ActiveSpace`]).
+pub(crate) fn constant_curvature(active: Option<Res<ActiveSpace>>) -> bool {
+    active.is_some()
 }
 
 /// Reports an eye distance that cannot be used (the tracer falls back to the default).
 fn check_stereo_settings(
     stereo: Res<StereoSettings>,
-    active: Res<ActiveSpace>,
+    active: Option<Res<ActiveSpace>>,
+    product: Option<Res<ActiveProduct>>,
     mut status: ResMut<TracerStatus>,
 ) {
-    if !stereo.is_changed() && !active.is_changed() {
+    let (inradius, changed) = match (&product, &active) {
+        (Some(p), _) => (p.inradius, p.is_changed()),
+        (None, Some(a)) => (a.inradius, a.is_changed()),
+        (None, None) => return,
+    };
+    if !stereo.is_changed() && !changed {
         return;
     }
     let problem = stereo
         .ipd
-        .and_then(|ipd| crate::view::stereo::check_ipd(ipd, active.inradius).err())
+        .and_then(|ipd| crate::view::stereo::check_ipd(ipd, inradius).err())
         .map(|e| format!("{e}; using the default eye distance"));
     if let Some(p) = &problem {
         warn!("{p}");

@@ -134,14 +134,16 @@ impl Plugin for CurvedSpacesXrPlugin {
             (reset_head_on_switch, thumbstick_locomotion)
                 .chain()
                 .in_set(CurvedSpacesSystems::Move)
-                .run_if(openxr_session_running),
+                .run_if(openxr_session_running)
+                .run_if(resource_exists::<ActiveSpace>),
         )
         .add_systems(
             PostUpdate,
             (mark_xr_cameras, drive_eyes)
                 .chain()
                 .after(bevy_mod_openxr::render::update_views)
-                .run_if(openxr_session_running),
+                .run_if(openxr_session_running)
+                .run_if(resource_exists::<ActiveSpace>),
         );
         if self.mirror {
             app.add_systems(Startup, spawn_mirror)

@@ -100,7 +100,7 @@ pub fn auto_budget_with_floor(
     let walker = CellWalker::<DVec4>::new(space);
     let rays = sample_rays(space, samples.max(1), 0x5eed_b0d6e7);
     let cap = MAX_AUTO_BUDGET as usize;
-    let mut needed: Vec<u32> = rays
+    let needed: Vec<u32> = rays
         .par_iter()
         .map(|ray| match first_hit(&walker, scene, *ray, cap) {
             RayEnd::Hit(h) => h.crossings as u32,
@@ -109,6 +109,20 @@ pub fn auto_budget_with_floor(
             RayEnd::Budget(c) => c as u32,
         })
         .collect();
+    choose_from_needed(needed, miss_fraction, floor_fraction)
+}
+
+/// The budget from the crossings each sampled ray needs (0 for one any budget shows): the
+/// smallest with which at most `miss_fraction` of them need more, and the floor for
+/// `floor_fraction`. At least 1.
+pub(crate) fn choose_from_needed(
+    mut needed: Vec<u32>,
+    miss_fraction: f64,
+    floor_fraction: f64,
+) -> BudgetChoice {
+    if needed.is_empty() {
+        needed.push(0);
+    }
     needed.sort_unstable();
     let n = needed.len();
     let at = |fraction: f64| {

@@ -399,18 +399,38 @@ pub fn default_camera(space: &ProductSpace) -> ProductCamera {
     ProductCamera::looking_at(g, eye, DVec4::W, 70.0)
 }
 
-/// The colour seen along one ray: nearest object in each segment of the walk, shaded with
-/// the light's nearest copy (Lambert, falloff by the square of the distance, never nearer
-/// than a tenth of the ball's radius) and fog; the fog colour where nothing is met before
-/// the fog's cut-off (the distance past which a surface keeps under half a colour step) or
-/// within the crossing budget.
+/// Where a ray of a product scene ends: at an object (the distance walked, the crossings
+/// made, the point met and the object), in the fog (nothing before the fog's cut-off) or
+/// at the crossing budget (the crossings made).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ProductRayEnd<'a> {
+    /// The ray met an object.
+    Hit {
+        /// The distance from the eye.
+        distance: f64,
+        /// Face crossings before the meeting.
+        crossings: usize,
+        /// The point met.
+        at: DVec4,
+        /// The object met.
+        object: &'a ProductObject,
+    },
+    /// Nothing before the fog's cut-off.
+    Fog,
+    /// The budget ran out after this many crossings.
+    Budget(usize),
+}
+
+/// Walks one ray to its first object: the nearest object in each segment of the walk,
+/// until the fog's cut-off (the distance past which a surface keeps under half a colour
+/// step) or `max_crossings` crossings.
 #[must_use]
-pub fn trace_product_pixel(
+pub fn first_product_hit<'a>(
     walker: &ProductWalker<DVec4>,
-    scene: &ProductScene,
+    scene: &'a ProductScene,
     start: Ray<DVec4>,
     max_crossings: usize,
-) -> DVec3 {
+) -> ProductRayEnd<'a> {
     let g = walker.base;
     let cutoff = scene.cutoff_distance();
     let mut ray = walker.normalized(start);
@@ -432,19 +452,12 @@ pub fn trace_product_pixel(
             }
         }
         if let Some((t, object)) = nearest {
-            let at = along(g, &ray, t);
-            let (_, normal) = object.distance(g, at);
-            let to_light = tangent_towards(g, at, scene.light);
-            let dl = {
-                let db = surface_distance(g, at, scene.light);
-                let dz = at.z - scene.light.z;
-                (db * db + dz * dz).sqrt().max(0.1)
+            return ProductRayEnd::Hit {
+                distance: distance + t,
+                crossings,
+                at: along(g, &ray, t),
+                object,
             };
-            let lambert = dot(g, normal, to_light).max(0.0);
-            let lit = scene.ambient + (1.0 - scene.ambient) * lambert / (dl * dl).max(1.0);
-            let surface = (object.colour * lit).min(DVec3::ONE);
-            let w = (-(distance + t) / scene.fog_distance).exp();
-            return w * surface + (1.0 - w) * scene.fog_colour;
         }
         if exit.distance >= cutoff - distance {
             break;
@@ -463,10 +476,82 @@ pub fn trace_product_pixel(
         steps = 0;
         crossings += 1;
         if crossings > max_crossings {
-            break;
+            return ProductRayEnd::Budget(max_crossings);
         }
     }
-    scene.fog_colour
+    ProductRayEnd::Fog
+}
+
+/// The colour seen along one ray: its first object ([`first_product_hit`]) shaded with the
+/// light's nearest copy (Lambert, falloff by the square of the distance, never nearer than
+/// a tenth of the ball's radius) and fog; the fog colour where nothing is met before the
+/// fog's cut-off or within the crossing budget.
+#[must_use]
+pub fn trace_product_pixel(
+    walker: &ProductWalker<DVec4>,
+    scene: &ProductScene,
+    start: Ray<DVec4>,
+    max_crossings: usize,
+) -> DVec3 {
+    let g = walker.base;
+    let ProductRayEnd::Hit {
+        distance,
+        at,
+        object,
+        ..
+    } = first_product_hit(walker, scene, start, max_crossings)
+    else {
+        return scene.fog_colour;
+    };
+    let (_, normal) = object.distance(g, at);
+    let to_light = tangent_towards(g, at, scene.light);
+    let dl = {
+        let db = surface_distance(g, at, scene.light);
+        let dz = at.z - scene.light.z;
+        (db * db + dz * dz).sqrt().max(0.1)
+    };
+    let lambert = dot(g, normal, to_light).max(0.0);
+    let lit = scene.ambient + (1.0 - scene.ambient) * lambert / (dl * dl).max(1.0);
+    let surface = (object.colour * lit).min(DVec3::ONE);
+    let w = (-distance / scene.fog_distance).exp();
+    w * surface + (1.0 - w) * scene.fog_colour
+}
+
+/// The crossing budget that shows a product scene from `eye` as a budget without limit
+/// would for all but `miss_fraction` of `samples` rays in directions spread over the
+/// sphere (the same rays every run), at most [`super::MAX_AUTO_BUDGET`]: the
+/// smallest budget past which at most that fraction of the rays still needs crossings to
+/// reach its object. Rays that end in the fog need none.
+#[must_use]
+pub fn product_auto_budget(
+    space: &ProductSpace,
+    scene: &ProductScene,
+    eye: DVec4,
+    miss_fraction: f64,
+    samples: usize,
+) -> super::BudgetChoice {
+    let walker = ProductWalker::<DVec4>::new(space);
+    let e = surface_basis(walker.base, eye);
+    let mut random = crate::random::SplitMix64(0x9e0d_0c7a_b0d6);
+    let rays: Vec<Ray<DVec4>> = (0..samples.max(1))
+        .map(|_| {
+            let d = random.direction();
+            Ray {
+                point: eye,
+                tangent: e[0] * d.x + e[1] * d.y + DVec4::Z * d.z,
+            }
+        })
+        .collect();
+    let cap = super::budget::MAX_AUTO_BUDGET as usize;
+    let needed: Vec<u32> = rays
+        .par_iter()
+        .map(|ray| match first_product_hit(&walker, scene, *ray, cap) {
+            ProductRayEnd::Hit { crossings, .. } => crossings as u32,
+            ProductRayEnd::Fog => 0,
+            ProductRayEnd::Budget(c) => c as u32 + 1,
+        })
+        .collect();
+    super::budget::choose_from_needed(needed, miss_fraction, miss_fraction)
 }
 
 /// Renders a product space's scene on the CPU (rows in parallel).

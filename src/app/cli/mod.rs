@@ -251,8 +251,13 @@ struct StereoArgs {
 impl StereoArgs {
     /// The settings, with the eye distance checked against the cell.
     fn settings(&self, space: &Space) -> Result<StereoSettings, String> {
+        self.settings_for(inradius(space))
+    }
+
+    /// The settings, with the eye distance checked against a cell of this inradius.
+    fn settings_for(&self, inradius: f64) -> Result<StereoSettings, String> {
         if let Some(ipd) = self.ipd {
-            check_ipd(ipd, inradius(space)).map_err(|e| e.to_string())?;
+            check_ipd(ipd, inradius).map_err(|e| e.to_string())?;
         }
         Ok(StereoSettings {
             mode: self.stereo,

@@ -104,6 +104,9 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
         }
         None => args,
     };
+    if let Some(product) = super::product(&args.space)? {
+        return walk_product(args, product);
+    }
     let chosen = choose_scene(&args.space, args.scene.as_deref(), args.fog)?;
     let flight = match &replay {
         Some(file) => Some(Flight::new(&chosen.space, file)?),
@@ -154,8 +157,8 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
         "curved spaces: {}",
         active.space.name()
     ))));
-    app.insert_resource(chosen.base.clone());
-    add_walk_plugins(&mut app, args, active, stereo, walls).add_systems(
+    app.insert_resource(chosen.base.clone()).insert_resource(active);
+    add_walk_plugins(&mut app, args, stereo, walls).add_systems(
         Startup,
         |mut commands: Commands| {
             commands.spawn((Camera3d::default(), CurvedSpaceCamera::default()));
@@ -215,16 +218,15 @@ pub(super) fn window_titled(title: String) -> WindowPlugin {
     }
 }
 
-/// The space, the plugin with `walk`'s options and the panel's visibility.
+/// The plugin with `walk`'s options and the panel's visibility (the space is inserted
+/// before).
 pub(super) fn add_walk_plugins<'a>(
     app: &'a mut App,
     args: &WalkArgs,
-    active: ActiveSpace,
     stereo: StereoSettings,
     walls: Option<bevy_curved_spaces::scene::WallStyle>,
 ) -> &'a mut App {
-    app.insert_resource(active)
-        .add_plugins(CurvedSpacesPlugin {
+    app.add_plugins(CurvedSpacesPlugin {
             fog_distance: args.fog,
             max_crossings: args.crossings,
             quality: args.quality.into(),
@@ -254,16 +256,17 @@ pub(super) fn walk_xr(args: &WalkArgs, chosen: &Chosen) -> Result<(), String> {
     let stereo = args.stereo.settings(&chosen.space)?;
     let walls = args.view.walls.style(chosen.scene.shading.walls)?;
     let active = ActiveSpace::new(&chosen.id, chosen.space.clone());
+    let name = active.space.name().to_string();
     eprintln!(
         "walking in {} with a headset: left thumbstick walks, right thumbstick turns; the window mirrors the head",
         active.space.name()
     );
     let mut app = App::new();
     app.add_plugins(add_xr_plugins(DefaultPlugins).set(window_titled(format!(
-        "curved spaces (XR mirror): {}",
-        active.space.name()
+        "curved spaces (XR mirror): {name}"
     ))));
-    add_walk_plugins(&mut app, args, active, stereo, walls);
+    app.insert_resource(active);
+    add_walk_plugins(&mut app, args, stereo, walls);
     if xr_available(app.world()) {
         app.add_plugins(CurvedSpacesXrPlugin::default());
     } else {
@@ -275,6 +278,69 @@ pub(super) fn walk_xr(args: &WalkArgs, chosen: &Chosen) -> Result<(), String> {
         app.add_systems(Startup, |mut commands: Commands| {
             commands.spawn((Camera3d::default(), CurvedSpaceCamera::default()));
         });
+    }
+    exit_result(app.run())
+}
+
+/// `walk` in a product space (H²×R, S²×R): its default scene, the fibre up; offscreen to a
+/// picture where there is no display.
+fn walk_product(
+    args: &WalkArgs,
+    product: bevy_curved_spaces::space::product::ProductSpace,
+) -> Result<(), String> {
+    use bevy_curved_spaces::ActiveProduct;
+    for (given, what) in [
+        (args.scene.is_some(), "--scene"),
+        (args.replay.is_some(), "--replay"),
+        (args.record.is_some(), "--record"),
+        (args.xr, "--xr"),
+    ] {
+        if given {
+            return Err(format!(
+                "{what} is not available in the product spaces (H²×R, S²×R) yet: walk {} without it",
+                args.space
+            ));
+        }
+    }
+    if !display_available() {
+        eprintln!(
+            "no display found (DISPLAY and WAYLAND_DISPLAY are unset): rendering {} offscreen to curved-spaces.png instead",
+            args.space
+        );
+        let mut render = RenderArgs::of(&args.space);
+        render.fog = args.fog;
+        render.crossings = args.crossings.map(|c| c as usize);
+        if !gpu_available() {
+            eprintln!("no GPU adapter found: using the CPU reference renderer");
+            render.cpu = true;
+        }
+        return render_command(&render);
+    }
+    let active = ActiveProduct::new(&args.space, product);
+    let stereo = args.stereo.settings_for(active.inradius)?;
+    eprintln!(
+        "walking in {} ({}): click to look around, WASD to walk, Space/Shift along the fibre, Esc releases the mouse, F1 the panel",
+        active.space.name(),
+        active.space.geometry_name()
+    );
+    let mut app = App::new();
+    app.add_plugins(DefaultPlugins.set(window_titled(format!(
+        "curved spaces: {}",
+        active.space.name()
+    ))));
+    app.insert_resource(active);
+    add_walk_plugins(&mut app, args, stereo, None).add_systems(
+        Startup,
+        |mut commands: Commands| {
+            commands.spawn((Camera3d::default(), CurvedSpaceCamera::default()));
+        },
+    );
+    if let Some(path) = &args.screenshot {
+        app.insert_resource(ScreenshotThenExit {
+            path: path.clone(),
+            requested: false,
+        })
+        .add_systems(Update, screenshot_then_exit);
     }
     exit_result(app.run())
 }

@@ -347,7 +347,14 @@ pub(crate) fn add_systems(app: &mut App) {
         .init_resource::<TracedMeshes>()
         .init_resource::<ActiveSightlines>()
         .add_message::<ObjectCrossedFace>()
-        .add_systems(FixedUpdate, (move_objects, wrap_objects).chain())
+        // Objects move through constant-curvature cells only: in a product space they
+        // wait.
+        .add_systems(
+            FixedUpdate,
+            (move_objects, wrap_objects)
+                .chain()
+                .run_if(resource_exists::<ActiveSpace>),
+        )
         .add_systems(
             Update,
             (
@@ -356,7 +363,8 @@ pub(crate) fn add_systems(app: &mut App) {
                 collect_objects.in_set(CurvedSpacesSystems::Upload),
                 update_sightlines.before(CurvedSpacesSystems::Upload),
                 spawn_scene_movers.before(CurvedSpacesSystems::Move),
-            ),
+            )
+                .run_if(resource_exists::<ActiveSpace>),
         );
 }
 

@@ -7,7 +7,7 @@
 //! as they would have without the wrap.
 
 use crate::plugin::components::{
-    ActiveSpace, KeyBindings, MouseLook, PlayerFrame, PlayerMotion, PlayerSettings,
+    ActiveProduct, ActiveSpace, KeyBindings, MouseLook, PlayerFrame, PlayerMotion, PlayerSettings,
 };
 
 use crate::geometry::{Geometry, translate_local};
@@ -45,9 +45,15 @@ pub(crate) fn read_input(
     mut settings: ResMut<PlayerSettings>,
     look: Res<MouseLook>,
     time: Res<Time>,
-    active: Res<ActiveSpace>,
+    (active, product): (Option<Res<ActiveSpace>>, Option<Res<ActiveProduct>>),
     mut players: Query<&mut PlayerMotion>,
 ) {
+    let Some(inradius) = product
+        .map(|p| p.inradius)
+        .or_else(|| active.map(|a| a.inradius))
+    else {
+        return;
+    };
     let dt = time.delta_secs_f64();
     let axis = |plus: KeyCode, minus: KeyCode| {
         f64::from(u8::from(keys.pressed(plus))) - f64::from(u8::from(keys.pressed(minus)))
@@ -74,7 +80,7 @@ pub(crate) fn read_input(
         axis(b.backward, b.forward),
     );
     let direction = direction.normalize_or_zero();
-    let step = settings.speed * active.inradius * dt;
+    let step = settings.speed * inradius * dt;
     let looking = look.grabbed || settings.look_without_grab;
     let mouse = if looking {
         motion.delta.as_dvec2() * settings.mouse_sensitivity

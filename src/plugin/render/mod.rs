@@ -160,12 +160,20 @@ type CurvedCameras<'w, 's> = Query<
     ),
 >;
 
+/// The space the cameras show.
+#[derive(Clone, Copy)]
+enum Shown<'a> {
+    Constant(&'a crate::plugin::components::ActiveSpace),
+    Product(&'a crate::plugin::components::ActiveProduct),
+}
+
 fn extract_curved_views(
     mut commands: Commands,
     scene: Extract<Option<Res<PreparedScene>>>,
     settings: Extract<Option<Res<crate::plugin::components::TracerSettings>>>,
     stereo: Extract<Option<Res<StereoSettings>>>,
     active: Extract<Option<Res<crate::plugin::components::ActiveSpace>>>,
+    product: Extract<Option<Res<crate::plugin::components::ActiveProduct>>>,
     time: Extract<Option<Res<Time>>>,
     views: Extract<CurvedCameras>,
 ) {
@@ -177,8 +185,13 @@ fn extract_curved_views(
         .as_ref()
         .map_or(1.0, |s| s.resolution_scale)
         .clamp(0.05, 1.0);
-    let (Some(scene), Some(active)) = (scene.as_ref(), active.as_ref()) else {
+    let Some(scene) = scene.as_ref() else {
         return;
+    };
+    let shown = match (product.as_deref(), active.as_deref()) {
+        (Some(p), _) => Shown::Product(p),
+        (None, Some(a)) => Shown::Constant(a),
+        (None, None) => return,
     };
     let stereo = stereo.as_deref().copied().unwrap_or_default();
     for (entity, camera, frame, eye) in &views {
@@ -188,11 +201,27 @@ fn extract_curved_views(
         } else {
             stereo.mode
         };
-        let eyes = if mode.is_stereo() {
-            let ipd = stereo.ipd_for(active.inradius);
-            eye_frames(&active.space, frame.0, ipd).map(|e| e.frame)
-        } else {
-            [frame.0; 2]
+        let eyes = match shown {
+            _ if !mode.is_stereo() => [frame.0; 2],
+            Shown::Constant(a) => {
+                eye_frames(&a.space, frame.0, stereo.ipd_for(a.inradius)).map(|e| e.frame)
+            }
+            // Each eye half the eye distance along the head's right, the frames carried.
+            Shown::Product(p) => {
+                let half = 0.5 * stereo.ipd_for(p.inradius);
+                let g = p.space.base();
+                [-half, half].map(|t| {
+                    crate::space::product::motion::transport(g, frame.0, frame.0.x_axis, t)
+                })
+            }
+        };
+        let extras = match shown {
+            Shown::Constant(a) => ViewExtras::new(&a.space, &scene.0, frame.0, seconds),
+            // No avatar in a product space.
+            Shown::Product(_) => ViewExtras {
+                time: seconds,
+                ..ViewExtras::default()
+            },
         };
         commands.entity(entity).insert(ExtractedCurvedView {
             eyes,
@@ -202,7 +231,7 @@ fn extract_curved_views(
             lens: eye.map(|e| e.lens),
             resolution_scale,
             scene: scene.0.clone(),
-            extras: ViewExtras::new(&active.space, &scene.0, frame.0, seconds),
+            extras,
         });
     }
 }

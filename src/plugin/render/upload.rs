@@ -70,12 +70,7 @@ pub(crate) fn upload_scene(
     share: Option<Res<crate::plugin::frame_rate::BudgetShare>>,
     mut cache: Local<UploadCache>,
     mut commands: Commands,
-    product: Option<Res<ProductShown>>,
 ) {
-    // A product space's packed scene is shown as it was packed.
-    if product.is_some() {
-        return;
-    }
     let static_changed = prepared.is_none()
         || active.is_changed()
         || settings.is_changed()
@@ -167,11 +162,6 @@ pub(crate) fn upload_scene(
         }
     }
 }
-
-/// While this resource exists, the tracer shows the [`PreparedScene`] of a product space
-/// that was inserted with it, and the plugin's own packing stands aside.
-#[derive(Resource, Clone, Copy, Debug, Default)]
-pub struct ProductShown;
 
 /// The scene the tracer shows now (with the entities' objects and every image), for the
 /// CPU side: the panel's ray inspector traces it.

@@ -147,3 +147,63 @@ pub(super) fn stereo_controls(
         stereo.swap_eyes = swap;
     }
 }
+
+/// The fog, the quality and the crossing budget (automatic or fixed); `default_fog` is the
+/// space's own fog distance.
+pub(super) fn tracer_controls(
+    ui: &mut egui::Ui,
+    settings: &mut ResMut<TracerSettings>,
+    status: &TracerStatus,
+    default_fog: f64,
+) {
+    let in_use = if status.fog_distance > 0.0 { status.fog_distance } else { default_fog };
+    let mut fog = settings.fog_distance.unwrap_or(in_use);
+    if ui
+        .add(
+            egui::Slider::new(&mut fog, 0.05 * default_fog..=4.0 * default_fog)
+                .text("fog distance"),
+        )
+        .changed()
+    {
+        settings.fog_distance = Some(fog);
+    }
+    let mut quality = settings.quality;
+    egui::ComboBox::from_label("quality")
+        .selected_text(format!("{quality:?}"))
+        .show_ui(ui, |ui| {
+            for q in Quality::ALL {
+                ui.selectable_value(&mut quality, q, format!("{q:?}"));
+            }
+        });
+    if quality != settings.quality {
+        settings.quality = quality;
+        settings.resolution_scale = quality.resolution_scale();
+    }
+    let mut automatic = settings.max_crossings.is_none();
+    ui.horizontal(|ui| {
+        ui.checkbox(&mut automatic, "automatic crossing budget");
+        if let Some(auto) = status.auto_budget {
+            ui.label(format!(
+                "{} ({:.1} % of rays short)",
+                auto.budget,
+                100.0 * auto.missed_fraction
+            ))
+            .on_hover_text(
+                "The smallest budget with which the quality's share of sampled rays \
+                 at most shows fog instead of a far object",
+            );
+        }
+    });
+    if automatic != settings.max_crossings.is_none() {
+        settings.max_crossings = (!automatic).then_some(status.budget.max(1));
+    }
+    if let Some(fixed) = settings.max_crossings {
+        let mut budget = fixed;
+        if ui
+            .add(egui::Slider::new(&mut budget, 1..=256).text("crossing budget"))
+            .changed()
+        {
+            settings.max_crossings = Some(budget);
+        }
+    }
+}

@@ -2,7 +2,7 @@
 //! a screenshot (without the panel) to the working directory.
 
 use crate::plugin::components::{
-    ActiveSpace, CurvedSpaceCamera, Quality, TracerSettings, TracerStatus,
+    ActiveProduct, ActiveSpace, CurvedSpaceCamera, Quality, TracerSettings, TracerStatus,
 };
 use crate::plugin::components::{PlayerFrame, PlayerSettings};
 use crate::plugin::components::{PointerOverUi, StereoSettings};
@@ -19,11 +19,12 @@ use bevy_egui::{EguiContexts, EguiPlugin, EguiPrimaryContextPass, egui};
 mod controls;
 mod minimap;
 mod picker;
+mod product;
 
-use controls::{colour_by_controls, stereo_controls, wall_controls};
+use controls::{colour_by_controls, stereo_controls, tracer_controls, wall_controls};
 use minimap::{inspector, minimap};
 pub use picker::SpacePicker;
-use picker::space_picker;
+use picker::{space_picker, switch_space};
 
 /// Whether the panel is shown.
 #[derive(Resource, Clone, Copy, Debug, PartialEq, Eq)]
@@ -76,7 +77,13 @@ impl Plugin for CurvedSpacesUiPlugin {
                     toggle_avatar,
                 ),
             )
-            .add_systems(EguiPrimaryContextPass, panel);
+            .add_systems(
+                EguiPrimaryContextPass,
+                (
+                    panel.run_if(resource_exists::<ActiveSpace>),
+                    product::product_panel.run_if(resource_exists::<ActiveProduct>),
+                ),
+            );
     }
 }
 
@@ -120,7 +127,8 @@ fn next_stereo_mode(
 fn take_screenshot(
     keys: Res<ButtonInput<KeyCode>>,
     ui: Res<UiKeys>,
-    active: Res<ActiveSpace>,
+    active: Option<Res<ActiveSpace>>,
+    product: Option<Res<ActiveProduct>>,
     mut shown: ResMut<PanelVisible>,
     mut commands: Commands,
 ) {
@@ -132,7 +140,11 @@ fn take_screenshot(
     let stamp = std::time::SystemTime::now()
         .duration_since(std::time::UNIX_EPOCH)
         .map_or(0, |d| d.as_secs());
-    let path = format!("curved-spaces-{}-{stamp}.png", active.id);
+    let id = product
+        .map(|p| p.id.clone())
+        .or_else(|| active.map(|a| a.id.clone()))
+        .unwrap_or_default();
+    let path = format!("curved-spaces-{}-{stamp}.png", id.replace(['/', '\\'], "_"));
     info!("saving a screenshot to {path}");
     commands.spawn(Screenshot::primary_window()).observe(
         move |captured: On<ScreenshotCaptured>| {
@@ -153,7 +165,7 @@ fn panel(
     mut contexts: EguiContexts,
     shown: Res<PanelVisible>,
     mut over_ui: ResMut<PointerOverUi>,
-    mut active: ResMut<ActiveSpace>,
+    active: Res<ActiveSpace>,
     mut settings: ResMut<TracerSettings>,
     mut player: ResMut<PlayerSettings>,
     status: Res<TracerStatus>,
@@ -167,8 +179,11 @@ fn panel(
     mut picker: Local<SpacePicker>,
     entities: Res<crate::plugin::objects::EntityObjects>,
     shown_scene: Option<Res<crate::plugin::render::upload::ShownScene>>,
-    windows: Query<&Window, With<bevy::window::PrimaryWindow>>,
-    look: Res<crate::plugin::components::MouseLook>,
+    (windows, look, mut commands): (
+        Query<&Window, With<bevy::window::PrimaryWindow>>,
+        Res<crate::plugin::components::MouseLook>,
+        Commands,
+    ),
 ) -> Result {
     let ctx = contexts.ctx_mut()?;
     if !shown.0 {
@@ -181,72 +196,17 @@ fn panel(
         .vscroll(true)
         .default_height(690.0)
         .show(ctx, |ui| {
-            if let Some(id) = space_picker(ui, &active, &mut picker)
+            if let Some(id) = space_picker(ui, &active.id, active.space.description(), &mut picker)
                 && id != active.id
             {
-                match ActiveSpace::named(&id) {
-                    Ok(space) => {
-                        *active = space;
-                        picker.error = None;
-                    }
-                    Err(e) => {
-                        error!("{e}");
-                        picker.error = Some(e);
-                    }
+                picker.error = switch_space(&id, &mut commands).err();
+                if let Some(e) = &picker.error {
+                    error!("{e}");
                 }
             }
             ui.separator();
             let default_fog = crate::scene::Shading::default_fog_distance(&active.space);
-            let in_use = if status.fog_distance > 0.0 { status.fog_distance } else { default_fog };
-            let mut fog = settings.fog_distance.unwrap_or(in_use);
-            if ui
-                .add(
-                    egui::Slider::new(&mut fog, 0.05 * default_fog..=4.0 * default_fog)
-                        .text("fog distance"),
-                )
-                .changed()
-            {
-                settings.fog_distance = Some(fog);
-            }
-            let mut quality = settings.quality;
-            egui::ComboBox::from_label("quality")
-                .selected_text(format!("{quality:?}"))
-                .show_ui(ui, |ui| {
-                    for q in Quality::ALL {
-                        ui.selectable_value(&mut quality, q, format!("{q:?}"));
-                    }
-                });
-            if quality != settings.quality {
-                settings.quality = quality;
-                settings.resolution_scale = quality.resolution_scale();
-            }
-            let mut automatic = settings.max_crossings.is_none();
-            ui.horizontal(|ui| {
-                ui.checkbox(&mut automatic, "automatic crossing budget");
-                if let Some(auto) = status.auto_budget {
-                    ui.label(format!(
-                        "{} ({:.1} % of rays short)",
-                        auto.budget,
-                        100.0 * auto.missed_fraction
-                    ))
-                    .on_hover_text(
-                        "The smallest budget with which the quality's share of sampled rays \
-                         at most shows fog instead of a far object",
-                    );
-                }
-            });
-            if automatic != settings.max_crossings.is_none() {
-                settings.max_crossings = (!automatic).then_some(status.budget.max(1));
-            }
-            if let Some(fixed) = settings.max_crossings {
-                let mut budget = fixed;
-                if ui
-                    .add(egui::Slider::new(&mut budget, 1..=256).text("crossing budget"))
-                    .changed()
-                {
-                    settings.max_crossings = Some(budget);
-                }
-            }
+            tracer_controls(ui, &mut settings, &status, default_fog);
             let mut hold = frame_rate.target_ms.is_some();
             let mut fps = frame_rate.target_ms.map_or(30.0, |ms| 1e3 / ms);
             ui.horizontal(|ui| {

@@ -48,22 +48,28 @@ pub(super) const LIBRARY_FIXED: &[&str] = &[
 
 /// The space picker: the seed spaces and library members in a list, the families with
 /// parameters as fields, and a path field for a `.gen` or JSON file. Returns the id chosen.
+/// `active_id` is the space shown and `description` a line about it.
 pub(super) fn space_picker(
     ui: &mut egui::Ui,
-    active: &ActiveSpace,
+    active_id: &str,
+    description: &str,
     picker: &mut SpacePicker,
 ) -> Option<String> {
     let mut chosen = None;
     egui::ComboBox::from_label("space")
-        .selected_text(active.id.as_str())
+        .selected_text(active_id)
         .show_ui(ui, |ui| {
-            for seed in SEED_SPACES {
-                let r = ui
-                    .selectable_label(active.id == seed.id, seed.id)
-                    .on_hover_text(seed.summary);
-                if r.clicked() {
-                    chosen = Some(seed.id.to_string());
+            let mut item = |ui: &mut egui::Ui, id: &str, summary: &str| {
+                if ui
+                    .selectable_label(active_id == id, id)
+                    .on_hover_text(summary)
+                    .clicked()
+                {
+                    chosen = Some(id.to_string());
                 }
+            };
+            for seed in SEED_SPACES {
+                item(ui, seed.id, seed.summary);
             }
             ui.separator();
             for &id in LIBRARY_FIXED {
@@ -71,19 +77,17 @@ pub(super) fn space_picker(
                     .iter()
                     .find(|f| f.pattern == id)
                     .map_or("", |f| f.summary);
-                if ui
-                    .selectable_label(active.id == id, id)
-                    .on_hover_text(summary)
-                    .clicked()
-                {
-                    chosen = Some(id.to_string());
-                }
+                item(ui, id, summary);
+            }
+            ui.separator();
+            for alias in crate::space::product::PRODUCT_ALIASES {
+                item(ui, alias.id, alias.summary);
             }
         });
-    if let Some(summary) = SEED_SPACES.iter().find(|s| s.id == active.id) {
+    if let Some(summary) = SEED_SPACES.iter().find(|s| s.id == active_id) {
         ui.label(egui::RichText::new(summary.summary).small());
-    } else if !active.space.description().is_empty() {
-        ui.label(egui::RichText::new(active.space.description()).small());
+    } else if !description.is_empty() {
+        ui.label(egui::RichText::new(description).small());
     }
     ui.collapsing("families and files", |ui| {
         ui.horizontal(|ui| {
@@ -141,4 +145,22 @@ pub(super) fn space_picker(
         }
     });
     chosen
+}
+
+/// Shows the space an id names: a product space (H²×R, S²×R) takes the place of the
+/// [`ActiveSpace`], and any other space the place of the [`ActiveProduct`]; players go to
+/// its start view. An error names what is wrong with the id.
+pub(super) fn switch_space(id: &str, commands: &mut Commands) -> Result<(), String> {
+    match ActiveProduct::named(id) {
+        Some(Ok(product)) => {
+            commands.insert_resource(product);
+            commands.remove_resource::<ActiveSpace>();
+        }
+        Some(Err(e)) => return Err(e),
+        None => {
+            commands.insert_resource(ActiveSpace::named(id)?);
+            commands.remove_resource::<ActiveProduct>();
+        }
+    }
+    Ok(())
 }

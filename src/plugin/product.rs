@@ -1,0 +1,162 @@
+//! Product spaces (H²×R, S²×R) in the plugin: while an [`ActiveProduct`] is the space
+//! shown, these systems take the place of the constant-curvature ones. Players move with
+//! [`step_product_frame`] (the fibre up, unless [`PlayerSettings::fibre_up`] is off), wrap
+//! through the sides, the top and the bottom with [`wrap_product_frame`] (recorded in each
+//! camera's [`Holonomy`]: the pairings' linear parts), and the scene is packed for the
+//! tracer's `PRODUCT` variant when the space or the settings change.
+
+use crate::plugin::components::{
+    AUTO_BUDGET_SAMPLES, ActiveProduct, ActiveSpace, BaseProductScene, BaseScene, PlayerFrame,
+    PlayerMotion, PlayerSettings, TracerSettings, TracerStatus,
+};
+use crate::plugin::render::PreparedScene;
+use crate::plugin::render::gpu::{GpuScene, MAX_GPU_BUDGET};
+use crate::space::Holonomy;
+use crate::space::product::motion::{ProductMotion, step_product_frame, wrap_product_frame};
+use crate::trace::product::{ProductScene, default_scene, product_auto_budget};
+use bevy::prelude::*;
+use std::sync::Arc;
+
+/// Whether a product space is shown (the run condition of this module's systems).
+pub(crate) fn product_shown(product: Option<Res<ActiveProduct>>) -> bool {
+    product.is_some()
+}
+
+/// Applies each player's motion to its frame in the product space.
+pub(crate) fn move_product_players(
+    active: Res<ActiveProduct>,
+    settings: Res<PlayerSettings>,
+    mut players: Query<(&mut PlayerFrame, &PlayerMotion)>,
+) {
+    let g = active.space.base();
+    for (mut frame, motion) in &mut players {
+        if *motion != PlayerMotion::default() {
+            frame.0 = step_product_frame(
+                g,
+                frame.0,
+                &ProductMotion {
+                    translation: motion.translation,
+                    rotation: motion.rotation,
+                    level: settings.fibre_up,
+                },
+            );
+        }
+    }
+}
+
+/// Wraps players that left the product cell and puts every frame back on the model.
+pub(crate) fn wrap_product_players(
+    active: Res<ActiveProduct>,
+    settings: Res<PlayerSettings>,
+    mut players: Query<(&mut PlayerFrame, &mut Holonomy)>,
+) {
+    for (mut frame, mut holonomy) in &mut players {
+        let (wrapped, crossed) = wrap_product_frame(&active.space, frame.0, settings.wrap_margin);
+        for c in crossed {
+            holonomy.record(c.face, c.pairing);
+        }
+        frame.0 = wrapped;
+    }
+}
+
+/// Puts every player at the new space's start view when the space shown changes (either
+/// kind, either way); not on the first frame, which keeps frames set before it.
+pub(crate) fn reset_players_on_switch(
+    active: Option<Res<ActiveSpace>>,
+    product: Option<Res<ActiveProduct>>,
+    base: Res<BaseScene>,
+    mut started: Local<bool>,
+    mut players: Query<(&mut PlayerFrame, &mut Holonomy)>,
+) {
+    if !*started {
+        *started = true;
+        return;
+    }
+    let start = match (&product, &active) {
+        (Some(p), _) if p.is_changed() => p.start_frame(),
+        (None, Some(a)) if a.is_changed() => base.start_frame(a),
+        _ => return,
+    };
+    for (mut frame, mut holonomy) in &mut players {
+        frame.0 = start;
+        *holonomy = Holonomy::default();
+    }
+}
+
+/// What the packed product scene was made from.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct ProductKey {
+    space: usize,
+    fog: Option<f64>,
+    max_crossings: Option<u32>,
+    quality: crate::plugin::components::Quality,
+    scene: Option<ProductScene>,
+}
+
+/// The scene shown in a product space: the base product scene or the default one, with
+/// the fog set in the settings.
+#[must_use]
+pub fn product_scene(
+    active: &ActiveProduct,
+    settings: &TracerSettings,
+    base: Option<&BaseProductScene>,
+) -> ProductScene {
+    let mut scene = base.map_or_else(|| default_scene(&active.space), |b| b.0.clone());
+    if let Some(fog) = settings.fog_distance.filter(|f| f.is_finite() && *f > 0.0) {
+        scene.fog_distance = fog;
+    }
+    scene
+}
+
+/// Packs the product scene for the GPU when the space, the scene, the fog, the budget or
+/// the quality changed, with the automatic crossing budget sampled from the start view.
+pub(crate) fn upload_product_scene(
+    active: Res<ActiveProduct>,
+    settings: Res<TracerSettings>,
+    base: Option<Res<BaseProductScene>>,
+    prepared: Option<Res<PreparedScene>>,
+    mut status: ResMut<TracerStatus>,
+    mut last: Local<Option<ProductKey>>,
+    mut commands: Commands,
+) {
+    let key = ProductKey {
+        space: Arc::as_ptr(&active.space) as usize,
+        fog: settings.fog_distance,
+        max_crossings: settings.max_crossings,
+        quality: settings.quality,
+        scene: base.as_ref().map(|b| b.0.clone()),
+    };
+    if prepared.is_some() && !active.is_changed() && last.as_ref() == Some(&key) {
+        return;
+    }
+    let scene = product_scene(&active, &settings, base.as_deref());
+    let (budget, choice) = match settings.max_crossings {
+        Some(b) => (b.clamp(1, MAX_GPU_BUDGET), None),
+        None => {
+            let eye = active.start_frame().w_axis;
+            let choice = product_auto_budget(
+                &active.space,
+                &scene,
+                eye,
+                settings.quality.miss_fraction(),
+                AUTO_BUDGET_SAMPLES,
+            );
+            (choice.budget.clamp(1, MAX_GPU_BUDGET), Some(choice))
+        }
+    };
+    *last = Some(key);
+    match GpuScene::product(&active.space, &scene, budget) {
+        Ok(gpu) => {
+            commands.insert_resource(PreparedScene(Arc::new(gpu)));
+            status.error = None;
+        }
+        Err(e) => {
+            let message = format!("{}: {e}", active.id);
+            error!("{message}");
+            status.error = Some(message);
+        }
+    }
+    status.budget = budget;
+    status.fog_distance = scene.fog_distance;
+    status.auto_budget = choice;
+}

@@ -1,0 +1,134 @@
+//! The panel while a product space (H²×R, S²×R) is shown: the picker, the tracer's knobs,
+//! the walk's feel and the space's invariants.
+
+use super::*;
+use crate::plugin::components::BaseProductScene;
+
+#[allow(clippy::too_many_arguments)]
+pub(super) fn product_panel(
+    mut contexts: EguiContexts,
+    shown: Res<PanelVisible>,
+    mut over_ui: ResMut<PointerOverUi>,
+    active: Res<ActiveProduct>,
+    base: Option<Res<BaseProductScene>>,
+    mut settings: ResMut<TracerSettings>,
+    mut player: ResMut<PlayerSettings>,
+    status: Res<TracerStatus>,
+    mut stereo: ResMut<StereoSettings>,
+    diagnostics: Res<DiagnosticsStore>,
+    mut cameras: Query<(&mut CurvedSpaceCamera, &PlayerFrame, &Holonomy)>,
+    mut picker: Local<SpacePicker>,
+    mut commands: Commands,
+) -> Result {
+    let ctx = contexts.ctx_mut()?;
+    if !shown.0 {
+        over_ui.0 = false;
+        return Ok(());
+    }
+    let space = &active.space;
+    egui::Window::new("Curved spaces")
+        .default_pos((12.0, 12.0))
+        .default_width(300.0)
+        .vscroll(true)
+        .show(ctx, |ui| {
+            if let Some(id) = space_picker(ui, &active.id, space.description(), &mut picker)
+                && id != active.id
+            {
+                picker.error = switch_space(&id, &mut commands).err();
+                if let Some(e) = &picker.error {
+                    error!("{e}");
+                }
+            }
+            ui.separator();
+            let default_fog = base.as_ref().map_or_else(
+                || crate::trace::product::default_scene(space).fog_distance,
+                |b| b.0.fog_distance,
+            );
+            tracer_controls(ui, &mut settings, &status, default_fog);
+            let mut scale = settings.resolution_scale;
+            if ui
+                .add(egui::Slider::new(&mut scale, 0.125..=1.0).text("resolution scale"))
+                .changed()
+            {
+                settings.resolution_scale = scale;
+            }
+            ui.add(
+                egui::Slider::new(&mut player.speed, 0.01..=20.0)
+                    .logarithmic(true)
+                    .text("speed (inradii/s)"),
+            );
+            ui.checkbox(&mut player.fibre_up, "keep the fibre up")
+                .on_hover_text(
+                    "Walk horizontally and turn about the fibre, with Space and Shift \
+                     climbing along it; off, fly freely",
+                );
+            for (mut camera, _, _) in &mut cameras {
+                let mut fov = camera.fov_y_degrees;
+                if ui
+                    .add(egui::Slider::new(&mut fov, 20.0..=120.0).text("field of view (°)"))
+                    .changed()
+                {
+                    camera.fov_y_degrees = fov;
+                }
+            }
+            ui.separator();
+            stereo_controls(ui, &mut stereo, active.inradius);
+            ui.separator();
+            let fps = diagnostics
+                .get(&FrameTimeDiagnosticsPlugin::FPS)
+                .and_then(|d| d.smoothed());
+            let ms = diagnostics
+                .get(&FrameTimeDiagnosticsPlugin::FRAME_TIME)
+                .and_then(|d| d.smoothed());
+            if let (Some(fps), Some(ms)) = (fps, ms) {
+                ui.label(format!("{fps:.0} fps, {ms:.1} ms per frame"));
+            }
+            for (_, frame, holonomy) in &cameras {
+                let p = frame.0.w_axis;
+                ui.label(format!(
+                    "position in the cell: ({:+.3}, {:+.3}, {:+.3})",
+                    p.x / p.w,
+                    p.y / p.w,
+                    p.z
+                ));
+                let last = holonomy.last_face.map_or_else(
+                    || "none".to_string(),
+                    |f| match f.checked_sub(space.polygon().sides.len()) {
+                        Some(0) => "top".to_string(),
+                        Some(_) => "bottom".to_string(),
+                        None => format!("side {f}"),
+                    },
+                );
+                ui.label(format!(
+                    "crossings: {} (last {last})",
+                    holonomy.crossings
+                ));
+            }
+            ui.label(format!(
+                "{} geometry, volume {:.6}, base χ = {}, {}",
+                space.geometry_name(),
+                active.volume,
+                space.euler_characteristic(),
+                if space.orientable() {
+                    "orientable"
+                } else {
+                    "non-orientable"
+                }
+            ));
+            match active.injectivity_radius {
+                Some(r) => ui.label(format!("injectivity radius {r:.6}")),
+                None => ui.label("injectivity radius: not enumerated"),
+            };
+            for e in [&status.error, &status.stereo_error].into_iter().flatten() {
+                ui.colored_label(egui::Color32::LIGHT_RED, e);
+            }
+            ui.label(
+                egui::RichText::new(
+                    "click: mouse look · Esc: release · WASD, Space/Shift (along the fibre), Q/E · scroll: speed · F1: panel · F3: stereo mode · F12: screenshot",
+                )
+                .small(),
+            );
+        });
+    over_ui.0 = ctx.is_pointer_over_egui();
+    Ok(())
+}
