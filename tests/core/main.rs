@@ -21,6 +21,7 @@ mod layers;
 mod objects;
 mod player;
 mod product_motion;
+mod product_player;
 mod products;
 mod render;
 mod spaces;

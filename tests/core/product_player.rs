@@ -1,0 +1,200 @@
+//! The plugin in a product space (H²×R, S²×R): `CurvedSpacesPlugin { space:
+//! "bitorus-circle" }` shows an `ActiveProduct`, its players walk with the fibre up, climb
+//! along it through the top (with the turn), and switching to and from a constant-curvature
+//! space at run time puts them at the new start view. Headless: MinimalPlugins, fake keys.
+
+use bevy::input::InputPlugin;
+use bevy::prelude::*;
+use bevy::time::TimeUpdateStrategy;
+use bevy_curved_spaces::geometry::Ray;
+use bevy_curved_spaces::plugin::components::PlayerSettings;
+use bevy_curved_spaces::prelude::*;
+use bevy_curved_spaces::space::Limit;
+use bevy_curved_spaces::space::product::ProductWalker;
+use bevy_curved_spaces::space::product::motion::product_dot;
+use glam::{DMat4, DVec4};
+use std::time::Duration;
+
+const DT: f64 = 0.02;
+
+fn test_app(space: &str) -> (App, Entity) {
+    let mut app = App::new();
+    app.add_plugins((MinimalPlugins, InputPlugin))
+        .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f64(
+            DT,
+        )))
+        .add_plugins(CurvedSpacesPlugin {
+            space: space.into(),
+            ..default()
+        });
+    let camera = app.world_mut().spawn(CurvedSpaceCamera::default()).id();
+    app.update();
+    (app, camera)
+}
+
+fn frame(app: &App, camera: Entity) -> DMat4 {
+    app.world().get::<PlayerFrame>(camera).expect("a frame").0
+}
+
+fn holonomy(app: &App, camera: Entity) -> Holonomy {
+    *app.world().get::<Holonomy>(camera).expect("holonomy")
+}
+
+/// Speed such that one update moves `step`.
+fn set_step(app: &mut App, step: f64) {
+    let r = app.world().resource::<ActiveProduct>().inradius;
+    app.world_mut().resource_mut::<PlayerSettings>().speed = step / (r * DT);
+}
+
+fn hold(app: &mut App, key: KeyCode, updates: usize) {
+    app.world_mut()
+        .resource_mut::<ButtonInput<KeyCode>>()
+        .press(key);
+    for _ in 0..updates {
+        app.update();
+    }
+    app.world_mut()
+        .resource_mut::<ButtonInput<KeyCode>>()
+        .release(key);
+    app.update();
+}
+
+/// The largest deviation of the frame from orthonormal in the product metric.
+fn frame_defect(app: &App, f: DMat4) -> f64 {
+    let g = app.world().resource::<ActiveProduct>().space.base();
+    let cols = [f.x_axis, f.y_axis, f.z_axis];
+    let mut worst: f64 = 0.0;
+    for i in 0..3 {
+        for j in 0..3 {
+            let want = if i == j { 1.0 } else { 0.0 };
+            worst = worst.max((product_dot(g, cols[i], cols[j]) - want).abs());
+        }
+    }
+    worst
+}
+
+#[test]
+fn the_plugin_starts_in_a_named_product_space_at_its_default_view() {
+    let (app, camera) = test_app("bitorus-circle");
+    assert!(app.world().get_resource::<ActiveSpace>().is_none());
+    let active = app.world().resource::<ActiveProduct>();
+    assert_eq!(active.space.geometry_name(), "H2xR");
+    let f = frame(&app, camera);
+    assert!((f.w_axis - active.start_frame().w_axis).length() < 1e-9);
+    assert!(active.space.outside_by(f.w_axis) < 0.0);
+}
+
+#[test]
+fn walking_ahead_keeps_the_height_and_follows_the_horizontal_geodesic() {
+    for id in ["bitorus-circle", "crosscaps-circle", "sphere-circle-turn"] {
+        let (mut app, camera) = test_app(id);
+        let space = app.world().resource::<ActiveProduct>().space.clone();
+        let start = frame(&app, camera);
+        // The default view looks down a little: walking follows its horizontal part.
+        let back = start.z_axis;
+        let ahead = -DVec4::new(back.x, back.y, 0.0, back.w);
+        let g = space.base();
+        let ahead = ahead / product_dot(g, ahead, ahead).sqrt();
+        let (steps, step) = (400, 0.01);
+        set_step(&mut app, step);
+        hold(&mut app, KeyCode::KeyW, steps);
+        let f = frame(&app, camera);
+        let h = holonomy(&app, camera);
+        // The whole sphere has no sides: a horizontal walk never leaves its cell.
+        let sides = space.polygon().sides.len();
+        assert_eq!(
+            h.crossings > 0,
+            sides > 0,
+            "{id}: {} crossings in {}",
+            h.crossings,
+            steps as f64 * step
+        );
+        assert!(
+            (f.w_axis.z - start.w_axis.z).abs() < 1e-9,
+            "{id}: the height went from {} to {}",
+            start.w_axis.z,
+            f.w_axis.z
+        );
+        let walker = ProductWalker::<DVec4>::new(&space);
+        let (end, _) = walker.walk(
+            Ray {
+                point: start.w_axis,
+                tangent: ahead,
+            },
+            Limit::Distance(steps as f64 * step),
+            |_| true,
+        );
+        let gap = (f.w_axis - end.point).length();
+        assert!(gap < 1e-7, "{id}: {gap} from the walker's geodesic");
+        assert!(space.outside_by(f.w_axis) < 1e-3, "{id}: outside the cell");
+        assert!(frame_defect(&app, f) < 1e-9, "{id}");
+    }
+}
+
+#[test]
+fn climbing_the_fibre_crosses_the_top_and_applies_the_turn() {
+    let (mut app, camera) = test_app("sphere-circle-turn");
+    let space = app.world().resource::<ActiveProduct>().space.clone();
+    let start = frame(&app, camera);
+    let sides = space.polygon().sides.len();
+    let length = space.length();
+    let steps: u32 = 250;
+    set_step(&mut app, length / f64::from(steps));
+    hold(&mut app, KeyCode::Space, steps as usize);
+    let f = frame(&app, camera);
+    let h = holonomy(&app, camera);
+    assert_eq!(h.crossings, 1, "one circle up crosses the top once");
+    assert_eq!(h.last_face, Some(sides), "the top is face {sides}");
+    // Back at the same height, the base point turned by the top's pairing R⁻¹.
+    assert!((f.w_axis.z - start.w_axis.z).abs() < 1e-9);
+    let turned = h.matrix * DVec4::new(start.w_axis.x, start.w_axis.y, 0.0, start.w_axis.w);
+    let got = DVec4::new(f.w_axis.x, f.w_axis.y, 0.0, f.w_axis.w);
+    assert!(
+        (turned - got).length() < 1e-9,
+        "turned {turned:?}, got {got:?}"
+    );
+    let angle = f64::atan2(got.y, got.x) - f64::atan2(start.w_axis.y, start.w_axis.x);
+    let turn = std::f64::consts::TAU / f64::from(space.turn());
+    let off = (angle.rem_euclid(std::f64::consts::TAU) - (std::f64::consts::TAU - turn)).abs();
+    assert!(off < 1e-9, "the base point turned by {angle}, not −2π/{}", space.turn());
+}
+
+#[test]
+fn switching_between_product_and_constant_curvature_spaces_resets_the_players() {
+    let (mut app, camera) = test_app("bitorus-circle");
+    set_step(&mut app, 0.02);
+    hold(&mut app, KeyCode::KeyW, 250);
+    assert!(holonomy(&app, camera).crossings > 0);
+    // To a constant-curvature space and back, as the panel's picker does it.
+    app.world_mut()
+        .insert_resource(ActiveSpace::seed("seifert-weber").expect("seed space"));
+    app.world_mut().remove_resource::<ActiveProduct>();
+    app.update();
+    assert_eq!(holonomy(&app, camera).crossings, 0);
+    let active = app.world().resource::<ActiveSpace>();
+    let f = frame(&app, camera);
+    assert!(active.space.outside_by(f.w_axis) < 0.0);
+    assert!(active.space.geometry().frame_defect(f) < 1e-12);
+    hold(&mut app, KeyCode::KeyW, 5);
+    let product = ActiveProduct::named("projective-plane-circle")
+        .expect("a product id")
+        .expect("a valid product space");
+    app.world_mut().insert_resource(product);
+    app.world_mut().remove_resource::<ActiveSpace>();
+    app.update();
+    let active = app.world().resource::<ActiveProduct>();
+    let f = frame(&app, camera);
+    assert!((f.w_axis - active.start_frame().w_axis).length() < 1e-9);
+    assert_eq!(holonomy(&app, camera).crossings, 0);
+    // A flat word is not a product space: it is the flat space ActiveSpace shows.
+    assert!(ActiveProduct::named("surface-abAB-circle-1").is_none());
+    assert!(matches!(ActiveProduct::named("surface-abc-circle-1"), Some(Err(_))));
+}
+
+#[test]
+fn a_bad_product_id_falls_back_to_the_default_space() {
+    let (app, _) = test_app("surface-aab-circle-1");
+    assert!(app.world().get_resource::<ActiveProduct>().is_none());
+    assert!(app.world().get_resource::<ActiveSpace>().is_some());
+}
+
