@@ -99,8 +99,8 @@ pub mod bench;
 
 pub use plugin::CurvedSpacesPlugin;
 pub use plugin::components::{
-    ActiveProduct, ActiveSpace, BaseProductScene, BaseScene, CurvedSpaceCamera, CurvedSpaceEye, CurvedSpacesSystems, Quality,
-    SceneObjects, TracerSettings, TracerStatus,
+    ActiveProduct, ActiveSpace, BaseProductScene, BaseScene, CurvedSpaceCamera, CurvedSpaceEye,
+    CurvedSpacesSystems, Quality, SceneObjects, TracerSettings, TracerStatus,
 };
 
 /// The types most programs need.
@@ -108,9 +108,9 @@ pub mod prelude {
     pub use crate::geometry::{Geometry, GeometryError, ORIGIN, Ray, chart_ray};
     pub use crate::plugin::CurvedSpacesPlugin;
     pub use crate::plugin::components::{
-        ActiveProduct, ActiveSpace, BaseProductScene, BaseScene, CurvedSpaceCamera, CurvedSpaceEye, CurvedSpacesSystems,
-        KeyBindings, PlayerFrame, PlayerSettings, Quality, SceneObjects, StereoSettings,
-        TracerSettings, TracerStatus,
+        ActiveProduct, ActiveSpace, BaseProductScene, BaseScene, CurvedSpaceCamera, CurvedSpaceEye,
+        CurvedSpacesSystems, KeyBindings, PlayerFrame, PlayerSettings, Quality, SceneObjects,
+        StereoSettings, TracerSettings, TracerStatus,
     };
     pub use crate::plugin::objects::{
         ActiveSightlines, CurvedObject, CurvedShape, CurvedTransform, CurvedVelocity,

@@ -180,7 +180,7 @@ impl ActiveProduct {
     pub fn new(id: impl Into<String>, space: crate::space::product::ProductSpace) -> Self {
         Self {
             id: id.into(),
-            inradius: space.base_inradius().min(0.5 * space.length()),
+            inradius: space.scale(),
             volume: space.volume(),
             injectivity_radius: space.injectivity_radius(PRODUCT_GROUP_LIMIT),
             space: Arc::new(space),

@@ -6,7 +6,8 @@ use crate::plugin::CurvedSpacesPlugin;
 use crate::plugin::components::PlayerFrame;
 use crate::plugin::components::StereoSettings;
 use crate::plugin::components::{
-    ActiveProduct, ActiveSpace, BaseProductScene, BaseScene, CurvedSpaceCamera, SceneObjects, TracerSettings,
+    ActiveProduct, ActiveSpace, BaseProductScene, BaseScene, CurvedSpaceCamera, SceneObjects,
+    TracerSettings,
 };
 use crate::plugin::render::FramesTraced;
 use crate::plugin::screenshot::image_to_rgb;
@@ -298,7 +299,8 @@ impl OffscreenRenderer {
         // The switch puts players at the start view in this update, before the camera.
         self.app.update();
         let frame = crate::space::product::motion::camera_frame(camera.point, camera.frame);
-        let (handle, entity) = spawn_camera(self.app.world_mut(), (w, h), camera.fov_y_degrees, frame);
+        let (handle, entity) =
+            spawn_camera(self.app.world_mut(), (w, h), camera.fov_y_degrees, frame);
         let result = self.capture(&handle);
         let world = self.app.world_mut();
         world.despawn(entity);

@@ -15,8 +15,8 @@
 //! ```
 
 use crate::plugin::components::{
-    ActiveProduct, ActiveSpace, BaseScene, CurvedSpaceCamera, CurvedSpacesSystems, KeyBindings, MouseLook,
-    PlayerFrame, PlayerSettings, Quality, SceneObjects, StereoSettings, TracerSettings,
+    ActiveProduct, ActiveSpace, BaseScene, CurvedSpaceCamera, CurvedSpacesSystems, KeyBindings,
+    MouseLook, PlayerFrame, PlayerSettings, Quality, SceneObjects, StereoSettings, TracerSettings,
     TracerStatus,
 };
 use crate::plugin::frame_rate::{BudgetShare, FrameRateTarget, hold_frame_rate};

@@ -156,7 +156,11 @@ fn climbing_the_fibre_crosses_the_top_and_applies_the_turn() {
     let angle = f64::atan2(got.y, got.x) - f64::atan2(start.w_axis.y, start.w_axis.x);
     let turn = std::f64::consts::TAU / f64::from(space.turn());
     let off = (angle.rem_euclid(std::f64::consts::TAU) - (std::f64::consts::TAU - turn)).abs();
-    assert!(off < 1e-9, "the base point turned by {angle}, not −2π/{}", space.turn());
+    assert!(
+        off < 1e-9,
+        "the base point turned by {angle}, not −2π/{}",
+        space.turn()
+    );
 }
 
 #[test]
@@ -188,7 +192,10 @@ fn switching_between_product_and_constant_curvature_spaces_resets_the_players() 
     assert_eq!(holonomy(&app, camera).crossings, 0);
     // A flat word is not a product space: it is the flat space ActiveSpace shows.
     assert!(ActiveProduct::named("surface-abAB-circle-1").is_none());
-    assert!(matches!(ActiveProduct::named("surface-abc-circle-1"), Some(Err(_))));
+    assert!(matches!(
+        ActiveProduct::named("surface-abc-circle-1"),
+        Some(Err(_))
+    ));
 }
 
 #[test]
@@ -197,4 +204,3 @@ fn a_bad_product_id_falls_back_to_the_default_space() {
     assert!(app.world().get_resource::<ActiveProduct>().is_none());
     assert!(app.world().get_resource::<ActiveSpace>().is_some());
 }
-

@@ -36,6 +36,11 @@ pub(super) fn flight(args: &FlightArgs) -> Result<(), String> {
     let name = args.file.display().to_string();
     let file = load_flight_file(&args.file)?;
     let base = args.file.parent().unwrap_or(Path::new(""));
+    if let Some(space) = &file.space
+        && let Some(product) = super::product(space)?
+    {
+        return flight_product(args, &name, &file, &product);
+    }
     let chosen: Chosen = match (&file.scene, &file.space) {
         (Some(scene), _) => choose_scene("", Some(&base.join(scene)), None)?,
         (None, Some(space)) => choose_scene(space, None, None)?,
@@ -44,18 +49,7 @@ pub(super) fn flight(args: &FlightArgs) -> Result<(), String> {
     let space = &chosen.space;
     let flight = Flight::new(space, &file).map_err(|e| format!("{name}: {e}"))?;
     let total = flight.frame_count(args.fps);
-    let (first, last) = match args.frames {
-        Some((a, b)) if a > total => {
-            return Err(format!(
-                "--frames {a}..{b}: the flight has {total} frames at {} fps",
-                args.fps
-            ));
-        }
-        Some((a, b)) => (a, b.min(total)),
-        None => (1, total),
-    };
-    std::fs::create_dir_all(&args.out)
-        .map_err(|e| format!("cannot create folder {}: {e}", args.out.display()))?;
+    let (first, last, todo) = frames_to_do(args, total)?;
     let budget = match args.crossings {
         Some(n) => n,
         None => {
@@ -89,23 +83,7 @@ pub(super) fn flight(args: &FlightArgs) -> Result<(), String> {
     } else {
         Some(OffscreenRenderer::new().map_err(|e| e.to_string())?)
     };
-    let todo: Vec<usize> = (first..=last)
-        .filter(|&n| !frame_path(&args.out, n).exists())
-        .collect();
-    if todo.len() < last + 1 - first {
-        say!(
-            "{} of the frames are rendered already; rendering the other {}",
-            last + 1 - first - todo.len(),
-            todo.len()
-        );
-    }
-    let progress = indicatif::ProgressBar::new(todo.len() as u64);
-    progress.set_style(
-        indicatif::ProgressStyle::with_template(
-            "{bar:30} {pos}/{len} frames ({elapsed} elapsed, eta {eta}) {msg}",
-        )
-        .map_err(|e| e.to_string())?,
-    );
+    let progress = frame_progress(todo.len())?;
     // One active space for every frame: its invariants are computed once.
     let active = ActiveSpace::new(&chosen.id, space.clone());
     let walls = args.walls.style(chosen.scene.shading.walls)?;
@@ -159,9 +137,58 @@ pub(super) fn flight(args: &FlightArgs) -> Result<(), String> {
         progress.inc(1);
     }
     progress.finish_and_clear();
+    finish_frames(args, todo.len(), started, (first, last, total));
+    Ok(())
+}
+
+/// The frames to render: `--frames` within the flight's `total`, less those on disk.
+fn frames_to_do(args: &FlightArgs, total: usize) -> Result<(usize, usize, Vec<usize>), String> {
+    let (first, last) = match args.frames {
+        Some((a, b)) if a > total => {
+            return Err(format!(
+                "--frames {a}..{b}: the flight has {total} frames at {} fps",
+                args.fps
+            ));
+        }
+        Some((a, b)) => (a, b.min(total)),
+        None => (1, total),
+    };
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| format!("cannot create folder {}: {e}", args.out.display()))?;
+    let todo: Vec<usize> = (first..=last)
+        .filter(|&n| !frame_path(&args.out, n).exists())
+        .collect();
+    if todo.len() < last + 1 - first {
+        say!(
+            "{} of the frames are rendered already; rendering the other {}",
+            last + 1 - first - todo.len(),
+            todo.len()
+        );
+    }
+    Ok((first, last, todo))
+}
+
+/// A progress bar over `n` frames.
+fn frame_progress(n: usize) -> Result<indicatif::ProgressBar, String> {
+    let progress = indicatif::ProgressBar::new(n as u64);
+    progress.set_style(
+        indicatif::ProgressStyle::with_template(
+            "{bar:30} {pos}/{len} frames ({elapsed} elapsed, eta {eta}) {msg}",
+        )
+        .map_err(|e| e.to_string())?,
+    );
+    Ok(progress)
+}
+
+/// The summary after the frames, and the video once all are there.
+fn finish_frames(
+    args: &FlightArgs,
+    done: usize,
+    started: Instant,
+    (first, last, total): (usize, usize, usize),
+) {
     say!(
-        "rendered {} frames in {:.1} s into {}",
-        todo.len(),
+        "rendered {done} frames in {:.1} s into {}",
         started.elapsed().as_secs_f64(),
         args.out.display()
     );
@@ -172,6 +199,80 @@ pub(super) fn flight(args: &FlightArgs) -> Result<(), String> {
             "frames {first}..{last} of {total}: the video is made when all are rendered (run without --frames, or ffmpeg by hand)"
         );
     }
+}
+
+/// `flight` in a product space (H²×R, S²×R): its default scene along the flight.
+fn flight_product(
+    args: &FlightArgs,
+    name: &str,
+    file: &bevy_curved_spaces::scene::flight::FlightFile,
+    space: &bevy_curved_spaces::space::product::ProductSpace,
+) -> Result<(), String> {
+    use bevy_curved_spaces::trace::product::flight::ProductFlight;
+    use bevy_curved_spaces::trace::product::{default_scene, product_auto_budget, render_product};
+    if args.walls.walls.is_some() || args.colour_by != super::ColourByArg::Shading {
+        return Err(
+            "--walls and --colour-by are not available in the product spaces (H²×R, S²×R) yet"
+                .into(),
+        );
+    }
+    let flight = ProductFlight::new(space, file).map_err(|e| format!("{name}: {e}"))?;
+    let total = flight.frame_count(args.fps);
+    let (first, last, todo) = frames_to_do(args, total)?;
+    let scene = default_scene(space);
+    let budget = match args.crossings {
+        Some(n) => n,
+        None => {
+            let eye = flight.camera(space, 0.0).point;
+            product_auto_budget(
+                space,
+                &scene,
+                eye,
+                Quality::High.miss_fraction(),
+                AUTO_BUDGET_SAMPLES,
+            )
+            .budget as usize
+        }
+    };
+    if !args.cpu && !(1..=MAX_GPU_BUDGET as usize).contains(&budget) {
+        return Err(format!(
+            "the GPU tracer takes a crossing budget from 1 to {MAX_GPU_BUDGET}, got {budget} (use --cpu for more)"
+        ));
+    }
+    say!(
+        "flight {name}: {} ({}), {total} frames at {} fps ({:.2} s), frames {first}..{last} at {}×{} by the {} tracer, ≤ {budget} crossings, into {}",
+        space.name(),
+        space.geometry_name(),
+        args.fps,
+        flight.duration(),
+        args.size.0,
+        args.size.1,
+        if args.cpu { "f64 CPU" } else { "GPU" },
+        args.out.display()
+    );
+    let mut renderer = if args.cpu {
+        None
+    } else {
+        Some(OffscreenRenderer::new().map_err(|e| e.to_string())?)
+    };
+    let progress = frame_progress(todo.len())?;
+    let started = Instant::now();
+    for &n in &todo {
+        let t = (n - 1) as f64 / args.fps;
+        let camera = flight.camera(space, t);
+        let image = match renderer.as_mut() {
+            None => render_product(space, &scene, &camera, args.size.0, args.size.1, budget),
+            Some(r) => r
+                .render_product(space, &scene, &camera, args.size, budget as u32)
+                .map_err(|e| format!("frame {n}: {e}"))?,
+        };
+        let path = frame_path(&args.out, n);
+        bevy_curved_spaces::files::write_png(&path, &image)
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        progress.inc(1);
+    }
+    progress.finish_and_clear();
+    finish_frames(args, todo.len(), started, (first, last, total));
     Ok(())
 }
 

@@ -366,7 +366,7 @@ struct WalkArgs {
 }
 
 /// `--colour-by`'s values.
-#[derive(Clone, Copy, Default, ValueEnum)]
+#[derive(Clone, Copy, Default, PartialEq, Eq, ValueEnum)]
 enum ColourByArg {
     /// The plain picture.
     #[default]

@@ -157,7 +157,8 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
         "curved spaces: {}",
         active.space.name()
     ))));
-    app.insert_resource(chosen.base.clone()).insert_resource(active);
+    app.insert_resource(chosen.base.clone())
+        .insert_resource(active);
     add_walk_plugins(&mut app, args, stereo, walls).add_systems(
         Startup,
         |mut commands: Commands| {
@@ -227,19 +228,19 @@ pub(super) fn add_walk_plugins<'a>(
     walls: Option<bevy_curved_spaces::scene::WallStyle>,
 ) -> &'a mut App {
     app.add_plugins(CurvedSpacesPlugin {
-            fog_distance: args.fog,
-            max_crossings: args.crossings,
-            quality: args.quality.into(),
-            ui: true,
-            stereo,
-            avatar: !args.no_avatar,
-            // A screenshot shows the quality's resolution, not one chosen by timing.
-            target_fps: (args.screenshot.is_none() && args.fps > 0.0).then_some(args.fps),
-            colour_by: args.view.colour_by.into(),
-            walls,
-            ..default()
-        })
-        .insert_resource(bevy_curved_spaces::plugin::ui::PanelVisible(!args.no_ui))
+        fog_distance: args.fog,
+        max_crossings: args.crossings,
+        quality: args.quality.into(),
+        ui: true,
+        stereo,
+        avatar: !args.no_avatar,
+        // A screenshot shows the quality's resolution, not one chosen by timing.
+        target_fps: (args.screenshot.is_none() && args.fps > 0.0).then_some(args.fps),
+        colour_by: args.view.colour_by.into(),
+        walls,
+        ..default()
+    })
+    .insert_resource(bevy_curved_spaces::plugin::ui::PanelVisible(!args.no_ui))
 }
 
 pub(super) fn exit_result(exit: AppExit) -> Result<(), String> {
@@ -262,9 +263,10 @@ pub(super) fn walk_xr(args: &WalkArgs, chosen: &Chosen) -> Result<(), String> {
         active.space.name()
     );
     let mut app = App::new();
-    app.add_plugins(add_xr_plugins(DefaultPlugins).set(window_titled(format!(
-        "curved spaces (XR mirror): {name}"
-    ))));
+    app.add_plugins(
+        add_xr_plugins(DefaultPlugins)
+            .set(window_titled(format!("curved spaces (XR mirror): {name}"))),
+    );
     app.insert_resource(active);
     add_walk_plugins(&mut app, args, stereo, walls);
     if xr_available(app.world()) {

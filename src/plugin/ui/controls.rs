@@ -156,7 +156,11 @@ pub(super) fn tracer_controls(
     status: &TracerStatus,
     default_fog: f64,
 ) {
-    let in_use = if status.fog_distance > 0.0 { status.fog_distance } else { default_fog };
+    let in_use = if status.fog_distance > 0.0 {
+        status.fog_distance
+    } else {
+        default_fog
+    };
     let mut fog = settings.fog_distance.unwrap_or(in_use);
     if ui
         .add(

@@ -276,6 +276,13 @@ impl ProductSpace {
         self.word.euler_characteristic()
     }
 
+    /// A length of the cell's size: the smaller of the polygon's inradius and half the
+    /// circle. Walking speeds, eye distances and flight keys' positions are in this unit.
+    #[must_use]
+    pub fn scale(&self) -> f64 {
+        self.base_inradius().min(0.5 * self.length)
+    }
+
     /// The inradius of the surface's polygon (its distance from the centre to a side; π for
     /// the sphere, π/2 for the hemisphere).
     #[must_use]

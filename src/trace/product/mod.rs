@@ -11,6 +11,8 @@
 //! minimum. The minimum is found by golden-section search and the root by bisection, each
 //! run to the last bit of `f64` (60 halvings): bracketed and safeguarded, never marched.
 
+pub mod flight;
+
 use crate::geometry::{Geometry, Ray};
 use crate::space::product::{ProductSpace, ProductWalker};
 use crate::space::walk::NO_FACE;

@@ -1,0 +1,164 @@
+//! A camera flight in a product space (H²×R, S²×R): a flight file's keys as points of the
+//! product's universal cover, the camera between two keys on the product geodesic between
+//! them, looking at the point between their targets with the fibre up, and brought back
+//! into the cell through the faces it passed.
+//!
+//! A key's `position` and `look_at` are `(x, y, z)` in units of [`ProductSpace::scale`]:
+//! the surface point at distance `|(x, y)|` from the cell's centre in the direction of
+//! `(x, y)` (side 0 is at `+x`), at height `z`. The keys' `up` is not used: the fibre is up.
+
+use super::{ProductCamera, along, tangent_towards};
+use crate::geometry::{Geometry, Ray};
+use crate::scene::flight::FlightFile;
+use crate::space::product::ProductSpace;
+use crate::space::product::motion::{camera_frame, wrap_product_frame};
+use glam::{DMat4, DVec3, DVec4};
+
+/// A flight through a product space: its keys as points of the universal cover.
+#[derive(Clone, Debug)]
+pub struct ProductFlight {
+    geometry: Geometry,
+    /// Time, position and target of each key.
+    keys: Vec<(f64, DVec4, DVec4)>,
+    /// Vertical field of view in degrees.
+    pub fov: f64,
+}
+
+/// The point of the product at key coordinates `p` (in units of `scale`).
+fn point_at(space: &ProductSpace, p: DVec3, what: &str) -> Result<DVec4, String> {
+    let g = space.base();
+    let scale = space.scale();
+    let d = p.truncate().length() * scale;
+    if g == Geometry::Spherical && d >= 0.999 * std::f64::consts::PI {
+        return Err(format!(
+            "{what} {:?} is π or more round the sphere from the centre (at most {:.3} in this \
+             space's units)",
+            p.to_array(),
+            0.999 * std::f64::consts::PI / scale
+        ));
+    }
+    let (c, s) = g.cs(d);
+    let dir = p.truncate().normalize_or_zero();
+    let point = DVec4::new(s * dir.x, s * dir.y, p.z * scale, c);
+    if !point.is_finite() || point.abs().max_element() > 1e12 {
+        return Err(format!(
+            "{what} {:?} is too far from the centre to be held in f64",
+            p.to_array()
+        ));
+    }
+    Ok(point)
+}
+
+/// The point a fraction `s` of the way along the product geodesic from `a` to `b`.
+fn between(g: Geometry, a: DVec4, b: DVec4, s: f64) -> DVec4 {
+    let v = tangent_towards(g, a, b);
+    let db = super::surface_distance(g, a, b);
+    let dz = b.z - a.z;
+    let d = (db * db + dz * dz).sqrt();
+    if d < 1e-12 {
+        return a;
+    }
+    along(
+        g,
+        &Ray {
+            point: a,
+            tangent: v,
+        },
+        s * d,
+    )
+}
+
+impl ProductFlight {
+    /// The flight of a file's keys in `space`.
+    pub fn new(space: &ProductSpace, file: &FlightFile) -> Result<Self, String> {
+        let g = space.base();
+        let mut keys = Vec::with_capacity(file.keys.len());
+        for (i, &(time, position, target)) in file.keys.iter().enumerate() {
+            let p = point_at(space, position, &format!("key {}: position", i + 1))?;
+            let t = point_at(space, target, &format!("key {}: look_at", i + 1))?;
+            if g == Geometry::Spherical
+                && super::surface_distance(g, p, t) >= 0.999 * std::f64::consts::PI
+            {
+                return Err(format!(
+                    "key {}: look_at is opposite the position on the sphere: no one geodesic \
+                     joins them",
+                    i + 1
+                ));
+            }
+            keys.push((time, p, t));
+        }
+        for w in keys.windows(2) {
+            let (a, b) = (w[0].1, w[1].1);
+            if g == Geometry::Spherical
+                && super::surface_distance(g, a, b) >= 0.999 * std::f64::consts::PI
+            {
+                return Err(format!(
+                    "the keys at {} s and {} s are opposite on the sphere: no one geodesic \
+                     joins them",
+                    w[0].0, w[1].0
+                ));
+            }
+        }
+        Ok(Self {
+            geometry: g,
+            keys,
+            fov: file.fov,
+        })
+    }
+
+    /// The time of the last key.
+    #[must_use]
+    pub fn duration(&self) -> f64 {
+        self.keys.last().map_or(0.0, |k| k.0)
+    }
+
+    /// How many frames the flight has at `fps` (one at least).
+    #[must_use]
+    pub fn frame_count(&self, fps: f64) -> usize {
+        ((self.duration() * fps).round() as usize).max(1)
+    }
+
+    /// The camera at time `t` in the universal cover (before wrapping).
+    #[must_use]
+    pub fn cover_camera(&self, t: f64) -> ProductCamera {
+        let g = self.geometry;
+        let i = self.keys.partition_point(|k| k.0 <= t);
+        let (p, target) = if i == 0 {
+            (self.keys[0].1, self.keys[0].2)
+        } else if i == self.keys.len() {
+            (self.keys[i - 1].1, self.keys[i - 1].2)
+        } else {
+            let (a, b) = (self.keys[i - 1], self.keys[i]);
+            let s = (t - a.0) / (b.0 - a.0);
+            (between(g, a.1, b.1, s), between(g, a.2, b.2, s))
+        };
+        ProductCamera::looking_at(g, p, target, self.fov)
+    }
+
+    /// The camera frame at time `t` in the cell (columns right, up, back and the eye): the
+    /// cover's frame brought back through the faces it passed.
+    #[must_use]
+    pub fn frame(&self, space: &ProductSpace, t: f64) -> DMat4 {
+        let c = self.cover_camera(t);
+        let mut frame = camera_frame(c.point, c.frame);
+        for _ in 0..64 {
+            let (wrapped, crossed) = wrap_product_frame(space, frame, 0.0);
+            frame = wrapped;
+            if crossed.is_empty() {
+                break;
+            }
+        }
+        frame
+    }
+
+    /// [`ProductFlight::frame`] as a camera.
+    #[must_use]
+    pub fn camera(&self, space: &ProductSpace, t: f64) -> ProductCamera {
+        let f = self.frame(space, t);
+        ProductCamera {
+            point: f.w_axis,
+            frame: [f.x_axis, f.y_axis, f.z_axis],
+            fov_y_degrees: self.fov,
+        }
+    }
+}

@@ -1,0 +1,114 @@
+//! Flights through product spaces (`trace::product::flight`): the camera at a key is at the
+//! key's point, frames between keys stay in the cell and orthonormal, a flight up the fibre
+//! arrives turned by the top's gluing, and keys no geodesic joins are refused by name.
+
+use bevy_curved_spaces::scene::flight::{load_flight_file, parse_flight};
+use bevy_curved_spaces::space::product::motion::product_dot;
+use bevy_curved_spaces::space::product::{ProductOrFlat, ProductSpace, product_space};
+use bevy_curved_spaces::trace::product::flight::ProductFlight;
+use glam::{DMat4, DVec4};
+use std::path::Path;
+
+fn product(id: &str) -> ProductSpace {
+    match product_space(id) {
+        Some(Ok(ProductOrFlat::Product(p))) => *p,
+        other => panic!("{id} is not a product space: {other:?}"),
+    }
+}
+
+fn asset(name: &str) -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("assets/flights")
+        .join(name)
+}
+
+fn defect(space: &ProductSpace, f: DMat4) -> f64 {
+    let g = space.base();
+    let cols = [f.x_axis, f.y_axis, f.z_axis];
+    let mut worst: f64 = 0.0;
+    for i in 0..3 {
+        for j in 0..3 {
+            let want = if i == j { 1.0 } else { 0.0 };
+            worst = worst.max((product_dot(g, cols[i], cols[j]) - want).abs());
+        }
+    }
+    worst
+}
+
+#[test]
+fn the_shipped_flights_stay_in_the_cell_and_start_at_their_first_key() {
+    for name in [
+        "bitorus_through_a_side.toml",
+        "turned_sphere_up_the_fibre.toml",
+    ] {
+        let file = load_flight_file(&asset(name)).expect("a flight file");
+        let space = product(file.space.as_deref().expect("a space"));
+        let flight = ProductFlight::new(&space, &file).expect("a product flight");
+        // The first key, in the cell: the camera is there, looking at its target.
+        let (_, p, _) = file.keys[0];
+        let s = space.scale();
+        let start = flight.frame(&space, 0.0).w_axis;
+        let base = (start.x.powi(2) + start.y.powi(2)).sqrt();
+        let d = match space.base() {
+            bevy_curved_spaces::geometry::Geometry::Spherical => base.asin(),
+            _ => base.asinh(),
+        };
+        assert!((d - p.truncate().length() * s).abs() < 1e-9, "{name}: {d}");
+        assert!((start.z - p.z * s).abs() < 1e-12, "{name}");
+        let mut t = 0.0;
+        while t <= flight.duration() {
+            let f = flight.frame(&space, t);
+            assert!(
+                space.outside_by(f.w_axis) <= 1e-9,
+                "{name} at {t} s: outside"
+            );
+            assert!(
+                defect(&space, f) < 1e-9,
+                "{name} at {t} s: {}",
+                defect(&space, f)
+            );
+            // The fibre is up: the view's right is horizontal.
+            assert!(f.x_axis.z.abs() < 1e-9, "{name} at {t} s: rolled");
+            t += 0.05;
+        }
+    }
+}
+
+#[test]
+fn flying_up_through_the_top_arrives_turned() {
+    let file = load_flight_file(&asset("turned_sphere_up_the_fibre.toml")).expect("flight");
+    let space = product("sphere-circle-turn");
+    let flight = ProductFlight::new(&space, &file).expect("flight");
+    let end = flight.duration();
+    let cover = flight.cover_camera(end).point;
+    let cell = flight.frame(&space, end).w_axis;
+    // Once through the top: (p, z) ↦ (R⁻¹p, z − L).
+    assert!(cover.z > 0.5 * space.length());
+    assert!((cell.z - (cover.z - space.length())).abs() < 1e-9);
+    let turned = space.top_pairing().round_f64() * DVec4::new(cover.x, cover.y, 0.0, cover.w);
+    let got = DVec4::new(cell.x, cell.y, 0.0, cell.w);
+    assert!((turned - got).length() < 1e-9, "{turned:?} against {got:?}");
+    assert!((turned - DVec4::new(cover.x, cover.y, 0.0, cover.w)).length() > 0.1);
+}
+
+#[test]
+fn keys_no_geodesic_joins_are_refused() {
+    let space = product("sphere-circle");
+    let opposite = "space = \"sphere-circle\"\n[[key]]\ntime = 0\nposition = [0.5, 0, 0]\nlook_at = [0, 0, 0]\n[[key]]\ntime = 1\nposition = [-0.5, 0.0, 0]\nlook_at = [0, 0, 0]\n";
+    let s = space.scale();
+    // Half a turn of the sphere each way: 0.5 is π/2 when the scale is π (no circle limit).
+    let file = parse_flight(
+        &opposite.replace("0.5", &format!("{}", 0.5 * std::f64::consts::PI / s)),
+        "opposite.toml",
+    )
+    .expect("parses");
+    let e = ProductFlight::new(&space, &file).expect_err("opposite keys");
+    assert!(e.contains("opposite"), "{e}");
+    let far = "space = \"sphere-circle\"\n[[key]]\ntime = 0\nposition = [90, 0, 0]\nlook_at = [0, 0, 0]\n";
+    let file = parse_flight(far, "far.toml").expect("parses");
+    let e = ProductFlight::new(&space, &file).expect_err("past the antipode");
+    assert!(
+        e.contains("key 1: position") && e.contains("π or more"),
+        "{e}"
+    );
+}
