@@ -290,6 +290,11 @@ fn first_meeting(i: u32, ray: Ray, t_max: f32) -> f32 {
         if fc <= 0.0 || fd <= 0.0 || b - a <= 1e-6 * max(t_max, 1.0) {
             break;
         }
+        // The minimum lies in [a, b], where the distance is at least either probe's less
+        // the bracket's length: past the radius, a miss.
+        if sqrt(max(fc, fd) + r2) - (b - a) > r {
+            return FAR;
+        }
         if fc < fd {
             b = d;
             d = c;
@@ -376,7 +381,8 @@ fn trace_product(start: Ray) -> vec3<f32> {
         var nearest = FAR;
         var object = NONE;
         for (var i = 0u; i < min(u32(space.product.y), #{PRODUCT_OBJECTS}u); i += 1u) {
-            let t = first_meeting(i, ray, t_max);
+            // Only a meeting before the nearest so far matters.
+            let t = first_meeting(i, ray, min(t_max, nearest));
             if t < nearest {
                 nearest = t;
                 object = i;

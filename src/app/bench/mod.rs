@@ -13,6 +13,7 @@ pub mod harness;
 mod accuracy;
 mod edge_work;
 mod plot;
+mod products;
 mod report;
 mod rows;
 mod runs;
@@ -37,13 +38,14 @@ use timing::*;
 pub use harness::{BASELINE_WGSL, DeviceInfo, Frame, Harness, HarnessError, Output, Program};
 
 pub use plot::{Chart, Corner, PlotError, Series, write_chart};
+pub use products::{PRODUCT_REFERENCE_SPACE, ProductRow, check_products};
 pub use rows::{
     AutoBudgetRow, BenchReport, ConditioningPoint, ConditioningRow, CutoffRow, DriftRow, EdgesRow,
     ErrorRow, MeshRow, SpecialisationRow, StereoRow, StraightforwardRow, TimingRow,
 };
 #[cfg(feature = "scene-files")]
 pub use runs::run_scene;
-pub use runs::{DEFAULT_FOG_FACTOR, run, run_edges, run_straightforward};
+pub use runs::{DEFAULT_FOG_FACTOR, run, run_edges, run_products, run_straightforward};
 
 /// The crossing budget of the "exact" reference: far more than any ray of the default
 /// scenes needs before the fog cut-off.
@@ -88,6 +90,10 @@ pub struct BenchConfig {
     /// Triangle counts of the mesh scenes (a cube for 12, torus knots otherwise).
     #[serde(default)]
     pub mesh_triangles: Vec<usize>,
+    /// Product spaces (H²×R, S²×R) by library id ([`ProductRow`]); absent from older
+    /// configurations.
+    #[serde(default)]
+    pub products: Vec<String>,
 }
 
 impl BenchConfig {
@@ -120,6 +126,10 @@ impl BenchConfig {
             budget_samples: 4096,
             cpu_only: false,
             mesh_triangles: vec![12, 960, 4608, 19_200, 76_800, 307_200],
+            products: crate::space::product::PRODUCT_ALIASES
+                .iter()
+                .map(|a| a.id.to_string())
+                .collect(),
         }
     }
 
@@ -141,6 +151,7 @@ impl BenchConfig {
             budget_samples: 512,
             cpu_only: false,
             mesh_triangles: vec![12, 960],
+            products: vec!["projective-plane-circle".into()],
         }
     }
 }
@@ -174,6 +185,21 @@ pub enum BenchError {
     /// The scene file could not be loaded (its error attached).
     #[error("{0}")]
     SceneFile(String),
+    /// A product space id is wrong (the reason is attached).
+    #[error("{0}")]
+    Product(String),
+}
+
+/// Shows what the benchmark is doing: on the bar, or (no terminal) as a log line.
+fn announce(progress: &ProgressBar, message: String) {
+    if progress.is_hidden() {
+        eprintln!(
+            "[{}/{}] {message}",
+            progress.position(),
+            progress.length().unwrap_or(0)
+        );
+    }
+    progress.set_message(message);
 }
 
 /// The automatic budgets chosen for a space: (fog factor, quality, budget).

@@ -46,7 +46,7 @@ pub fn write_report(
 ) -> Result<Vec<PathBuf>, BenchError> {
     let config = serde_json::to_value(config).map_err(|e| write_error(dir, &e))?;
     let mut written = vec![write_json(dir, config, report)?];
-    let tables: [(&str, Vec<serde_json::Value>); 12] = [
+    let tables: [(&str, Vec<serde_json::Value>); 13] = [
         ("timings", to_values(&report.timings)),
         ("errors", to_values(&report.errors)),
         ("conditioning", to_values(&report.conditioning)),
@@ -59,6 +59,7 @@ pub fn write_report(
         ("meshes", to_values(&report.meshes)),
         ("edges", to_values(&report.edges)),
         ("straightforward", to_values(&report.straightforward)),
+        ("products", to_values(&report.products)),
     ];
     for (name, rows) in tables {
         written.push(write_text(dir, &format!("{name}.csv"), &to_csv(&rows))?);
@@ -106,8 +107,9 @@ pub fn write_scene_report(
     Ok(vec![json, csv, summary])
 }
 
-/// Writes an edges-only or straightforward-only benchmark ([`super::run_edges`],
-/// [`super::run_straightforward`]): `bench.json`, `edges.csv` or `straightforward.csv`
+/// Writes an edges-only, straightforward-only or products-only benchmark
+/// ([`super::run_edges`], [`super::run_straightforward`], [`super::run_products`]):
+/// `bench.json`, `edges.csv`, `straightforward.csv` or `products.csv`
 /// and a `summary.md` with the table.
 pub fn write_edges_report(
     report: &BenchReport,
@@ -131,6 +133,13 @@ pub fn write_edges_report(
             &to_csv(&to_values(&report.straightforward)),
         )?);
     }
+    if !report.products.is_empty() {
+        written.push(write_text(
+            dir,
+            "products.csv",
+            &to_csv(&to_values(&report.products)),
+        )?);
+    }
     let device = report.device.as_ref().map_or_else(
         || "no GPU".to_string(),
         |d| format!("{} ({})", d.name, d.driver),
@@ -138,6 +147,7 @@ pub fn write_edges_report(
     let mut md = format!("Device: {device}. Build: {}.\n", report.build);
     edges_section(&mut md, report);
     straightforward_section(&mut md, report);
+    products_section(&mut md, report);
     written.push(write_text(dir, "summary.md", &md)?);
     Ok(written)
 }
@@ -204,6 +214,7 @@ pub fn summary_markdown(report: &BenchReport) -> String {
     work_section(&mut md, report);
     edges_section(&mut md, report);
     straightforward_section(&mut md, report);
+    products_section(&mut md, report);
     specialisation_section(&mut md, report);
     stereo_section(&mut md, report);
     mesh_section(&mut md, report);

@@ -286,6 +286,9 @@ pub struct BenchReport {
     /// The tracer against a straightforward one on the plainest view.
     #[serde(default)]
     pub straightforward: Vec<StraightforwardRow>,
+    /// The product spaces (absent from reports written before they existed).
+    #[serde(default)]
+    pub products: Vec<super::ProductRow>,
 }
 
 /// The tracer against a straightforward tracer of the same walk (the shader variant

@@ -140,18 +140,6 @@ fn crossings_per_pixel(ids: &[[u32; 4]]) -> (f64, f64) {
     (mean, p90)
 }
 
-/// Shows what the benchmark is doing: on the bar, or (no terminal) as a log line.
-fn announce(progress: &ProgressBar, message: String) {
-    if progress.is_hidden() {
-        eprintln!(
-            "[{}/{}] {message}",
-            progress.position(),
-            progress.length().unwrap_or(0)
-        );
-    }
-    progress.set_message(message);
-}
-
 /// The fog factor (λ / inradius) of the spaces' default fog.
 pub const DEFAULT_FOG_FACTOR: f64 = crate::scene::Shading::DEFAULT_FOG_INRADII;
 
@@ -178,7 +166,12 @@ pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, 
         0
     };
     let per_space = gpu_steps + 2 + config.fog_factors.len();
-    progress.set_length((per_space * subjects.len()) as u64);
+    let product_steps = if harness.is_some() {
+        config.products.len()
+    } else {
+        0
+    };
+    progress.set_length((per_space * subjects.len() + product_steps) as u64);
     progress.set_style(
         ProgressStyle::with_template(
             "{spinner} [{elapsed_precise}] {bar:30} {pos}/{len} {msg} (eta {eta})",
@@ -191,6 +184,9 @@ pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, 
         if let Some(harness) = harness.as_mut() {
             gpu_measurements(harness, subject, &budgets, config, progress, &mut report)?;
         }
+    }
+    if let Some(harness) = harness.as_mut() {
+        report.products = products::product_rows(harness, config, progress)?;
     }
     progress.finish_and_clear();
     Ok(report)
@@ -394,4 +390,23 @@ fn gpu_measurements(
         progress.inc(1);
     }
     Ok(())
+}
+
+/// Measures only the product spaces ([`ProductRow`]): each default view timed against
+/// [`products::PRODUCT_REFERENCE_SPACE`]'s in the same rounds, the GPU against the CPU
+/// reference, and the walks against double-double.
+pub fn run_products(
+    config: &BenchConfig,
+    progress: &ProgressBar,
+) -> Result<BenchReport, BenchError> {
+    if config.products.is_empty() || config.sizes.is_empty() {
+        return Err(BenchError::Empty("no product spaces or sizes were named"));
+    }
+    products::check_products(&config.products)?;
+    let mut harness = Harness::new()?;
+    progress.set_length(config.products.len() as u64);
+    let mut report = BenchReport::empty(Some(&harness));
+    report.products = products::product_rows(&mut harness, config, progress)?;
+    progress.finish_and_clear();
+    Ok(report)
 }

@@ -66,7 +66,13 @@ pub(super) fn bench(args: &BenchArgs) -> Result<(), String> {
             "note: this is a debug build; for representative timings run `cargo run --release -- bench`"
         );
     }
-    if let Some(scene) = &args.scene {
+    if let Some(products) = &args.products {
+        eprintln!(
+            "benchmarking product spaces {products:?} at {:?} against {}…",
+            config.sizes,
+            bevy_curved_spaces::bench::PRODUCT_REFERENCE_SPACE
+        );
+    } else if let Some(scene) = &args.scene {
         eprintln!(
             "benchmarking the start view of {} at {} size(s), budgets {:?}…",
             scene.display(),
@@ -84,6 +90,38 @@ pub(super) fn bench(args: &BenchArgs) -> Result<(), String> {
     }
     let started = Instant::now();
     let progress = indicatif::ProgressBar::new(0);
+    if let Some(products) = &args.products {
+        if products.len() == 1 && products[0] == "all" {
+            config.products = bevy_curved_spaces::space::product::PRODUCT_ALIASES
+                .iter()
+                .map(|a| a.id.to_string())
+                .collect();
+        } else {
+            config.products.clone_from(products);
+        }
+        bevy_curved_spaces::bench::check_products(&config.products).map_err(|e| e.to_string())?;
+        let report = bevy_curved_spaces::bench::run_products(&config, &progress)
+            .map_err(|e| e.to_string())?;
+        for r in &report.products {
+            say!(
+                "{:<26} {}: {:>8.2} ms, {:.2}× {} ({} crossings), {:.2} crossings a pixel, {:.2} % of pixels differ from the CPU, walks f64 {:.2} / f32 {:.2} × conditioning (median)",
+                r.space,
+                r.geometry,
+                r.tracer_ms,
+                r.ratio,
+                r.reference_space,
+                r.budget,
+                r.crossings_per_pixel,
+                100.0 * r.differing_pixels,
+                r.f64_median,
+                r.f32_median
+            );
+        }
+        let written = bevy_curved_spaces::bench::write_edges_report(&report, &config, &args.out)
+            .map_err(|e| e.to_string())?;
+        say_written(&written, &args.out, started);
+        return Ok(());
+    }
     if args.straightforward {
         if args.budgets.is_none() {
             config.budgets = vec![16, 32];

@@ -304,6 +304,12 @@ struct BenchArgs {
     /// the middle of --sizes); writes straightforward.csv and summary.md.
     #[arg(long, conflicts_with_all = ["cpu_only", "from", "scene", "entities", "edges"])]
     straightforward: bool,
+    /// Measure only the product spaces (H²×R, S²×R): each default view timed against
+    /// Seifert–Weber's in the same rounds, crossings a pixel, the GPU against the CPU
+    /// reference, the walks against double-double (comma-separated library ids; `all` for
+    /// every named one); writes products.csv and summary.md. The full run measures them too.
+    #[arg(long, value_delimiter = ',', conflicts_with_all = ["cpu_only", "from", "scene", "entities", "edges", "straightforward", "spaces"])]
+    products: Option<Vec<String>>,
     /// Time only what the cell's edges cost: the default view with its edges culled,
     /// unculled and absent, in turn, per space (at the first of --budgets, default 32, and
     /// the middle of --sizes); writes edges.csv and summary.md.

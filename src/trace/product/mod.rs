@@ -10,6 +10,11 @@
 //! iff `F`'s minimum on it is negative, and then first at the one root of `F` before the
 //! minimum. The minimum is found by golden-section search and the root by bisection, each
 //! run to the last bit of `f64` (60 halvings): bracketed and safeguarded, never marched.
+//!
+//! Two exact shortcuts, because `d` is 1-Lipschitz along a unit-speed geodesic: the search
+//! stops with a miss once the larger of its two probes' distances, less the bracket's
+//! length, exceeds the radius (the minimum lies in the bracket); and each object is
+//! searched only up to the nearest meeting found so far in the segment.
 
 pub mod flight;
 
@@ -184,9 +189,15 @@ fn first_meeting(g: Geometry, object: &ProductObject, ray: &Ray<DVec4>, t_max: f
     let mut c = b - ratio * (b - a);
     let mut d = a + ratio * (b - a);
     let (mut fc, mut fd) = (f(c), f(d));
+    let r2 = object.radius * object.radius;
     for _ in 0..80 {
         if fc <= 0.0 || fd <= 0.0 {
             break;
+        }
+        // The minimum lies in [a, b], where the distance is at least either probe's less
+        // the bracket's length (1-Lipschitz): past the radius, a miss.
+        if (fc.max(fd) + r2).sqrt() - (b - a) > object.radius {
+            return None;
         }
         if fc < fd {
             b = d;
@@ -447,7 +458,9 @@ pub fn first_product_hit<'a>(
         let t_max = exit.distance.min(cutoff - distance);
         let mut nearest: Option<(f64, &ProductObject)> = None;
         for object in &scene.objects {
-            if let Some(t) = first_meeting(g, object, &ray, t_max)
+            // Only a meeting before the nearest so far matters.
+            let before = nearest.map_or(t_max, |(best, _)| best);
+            if let Some(t) = first_meeting(g, object, &ray, before)
                 && nearest.is_none_or(|(best, _)| t < best)
             {
                 nearest = Some((t, object));

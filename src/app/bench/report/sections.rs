@@ -399,3 +399,37 @@ pub(super) fn auto_budget_section(md: &mut String, report: &BenchReport) {
         );
     }
 }
+
+/// The product spaces: speed against a constant-curvature view, and error.
+pub(super) fn products_section(md: &mut String, report: &BenchReport) {
+    use std::fmt::Write as _;
+    if report.products.is_empty() {
+        return;
+    }
+    let reference = &report.products[0].reference_space;
+    let _ = writeln!(
+        *md,
+        "\n### Product spaces (H²×R, S²×R): each default view timed in the same rounds as {reference}'s default view at the same size (both at their automatic budgets, quality High); crossings a pixel makes; the GPU picture against the f64 CPU reference (pixels off by more than 10/255); the f64 and f32 walks against double-double over 100 crossings, as error / conditioning limit\n\n| space | geometry | size | budget | ms | {reference} ms | × {reference} | crossings / pixel | pixels differing | mean error /255 | f64 median / worst | f32 median / worst |\n|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+    );
+    for r in &report.products {
+        let _ = writeln!(
+            *md,
+            "| {} | {} | {}×{} | {} | {:.2} | {:.2} | {:.2}× | {:.2} | {} % | {:.2} | {:.2} / {:.2} | {:.2} / {:.2} |",
+            r.space,
+            r.geometry,
+            r.width,
+            r.height,
+            r.budget,
+            r.tracer_ms,
+            r.reference_ms,
+            r.ratio,
+            r.crossings_per_pixel,
+            super::pct(r.differing_pixels),
+            r.mean_error,
+            r.f64_median,
+            r.f64_worst,
+            r.f32_median,
+            r.f32_worst
+        );
+    }
+}
