@@ -10,5 +10,6 @@ mod cli;
 mod fuzz;
 mod gpu;
 mod hostile_models;
+mod products;
 mod scenes;
 mod shaders;

@@ -70,7 +70,7 @@ fn product(id: &str) -> Result<ProductSpace, BenchError> {
     match product_space(id) {
         Some(Ok(ProductOrFlat::Product(p))) => Ok(*p),
         Some(Ok(ProductOrFlat::Flat(_))) => Err(BenchError::Product(format!(
-            "{id} is a flat space (its word is flat): bench it with --spaces"
+            "{id} is a flat space (its word is flat), not a product space: --spaces benches the seed spaces"
         ))),
         Some(Err(e)) => Err(BenchError::Product(e)),
         None => Err(BenchError::Product(format!(

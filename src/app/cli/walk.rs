@@ -292,7 +292,6 @@ fn walk_product(
 ) -> Result<(), String> {
     use bevy_curved_spaces::ActiveProduct;
     for (given, what) in [
-        (args.scene.is_some(), "--scene"),
         (args.replay.is_some(), "--replay"),
         (args.record.is_some(), "--record"),
         (args.xr, "--xr"),

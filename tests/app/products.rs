@@ -1,0 +1,161 @@
+//! The product spaces (H²×R, S²×R) through the command line: `walk` without a display
+//! renders instead, `flight` renders a product flight on the CPU and the GPU alike, `bench
+//! --products` measures them, and what they do not take yet is named.
+
+use std::process::{Command, Output};
+
+fn run(args: &[&str]) -> Output {
+    let _gpu = ["render", "walk", "bench", "flight"]
+        .iter()
+        .any(|c| args.first() == Some(c) && !args.contains(&"--cpu"))
+        .then(crate::common::gpu_lock);
+    Command::new(env!("CARGO_BIN_EXE_curved-spaces"))
+        .args(args)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .expect("the binary runs")
+}
+
+fn ok(args: &[&str]) -> String {
+    let out = run(args);
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    format!(
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    )
+}
+
+fn fails_with(args: &[&str], needle: &str) {
+    let out = run(args);
+    assert!(!out.status.success(), "{args:?} should fail");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains(needle), "{args:?}: `{err}` lacks `{needle}`");
+    assert!(!err.contains("panicked"), "{err}");
+}
+
+fn flight_file() -> String {
+    concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/flights/bitorus_through_a_side.toml"
+    )
+    .into()
+}
+
+#[test]
+fn product_flights_render_alike_on_the_cpu_and_the_gpu() {
+    let dir = crate::common::scratch_dir("products-flight");
+    let (cpu, gpu) = (dir.join("cpu"), dir.join("gpu"));
+    let file = flight_file();
+    for (out, extra) in [(&cpu, Some("--cpu")), (&gpu, None)] {
+        let mut args = vec![
+            "flight",
+            file.as_str(),
+            "--size",
+            "64x36",
+            "--fps",
+            "1",
+            "--frames",
+            "1..2",
+            "--crossings",
+            "24",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        args.extend(extra);
+        let said = ok(&args);
+        assert!(said.contains("bitorus-circle (H2xR)"), "{said}");
+    }
+    for n in 1..=2 {
+        let name = format!("frame-{n:05}.png");
+        let a = image::open(cpu.join(&name)).expect("CPU frame").to_rgb8();
+        let b = image::open(gpu.join(&name)).expect("GPU frame").to_rgb8();
+        assert_eq!(a.dimensions(), (64, 36));
+        let differing = a
+            .pixels()
+            .zip(b.pixels())
+            .filter(|(p, q)| (0..3).any(|k| p.0[k].abs_diff(q.0[k]) > 10))
+            .count();
+        assert!(
+            differing <= 23,
+            "frame {n}: {differing} of 2304 pixels differ"
+        );
+        // Not an empty picture: the scene's objects show.
+        let distinct: std::collections::BTreeSet<[u8; 3]> = a.pixels().map(|p| p.0).collect();
+        assert!(distinct.len() > 20, "frame {n}: {} colours", distinct.len());
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn walking_a_product_space_without_a_display_renders_it() {
+    let dir = crate::common::scratch_dir("products-walk");
+    let out = Command::new(env!("CARGO_BIN_EXE_curved-spaces"))
+        .args(["walk", "projective-plane-circle", "--crossings", "16"])
+        .current_dir(&dir)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .expect("runs");
+    let said = String::from_utf8_lossy(&out.stderr).to_string();
+    assert!(out.status.success(), "{said}");
+    assert!(said.contains("no display found"), "{said}");
+    assert!(dir.join("curved-spaces.png").exists(), "{said}");
+    fails_with(
+        &["walk", "bitorus-circle", "--record", "x.toml"],
+        "--record is not available in the product spaces",
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn bench_products_measures_speed_against_error() {
+    let dir = crate::common::scratch_dir("products-bench");
+    let said = ok(&[
+        "bench",
+        "--quick",
+        "--products",
+        "projective-plane-circle,crosscaps-circle",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(said.contains("crossings a pixel"), "{said}");
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("bench.json")).unwrap()).unwrap();
+    let rows = json["report"]["products"].as_array().unwrap().clone();
+    assert_eq!(rows.len(), 2, "{rows:?}");
+    for r in &rows {
+        let f = |k: &str| r[k].as_f64().unwrap_or(f64::NAN);
+        assert!(
+            f("tracer_ms") > 0.0 && f("reference_ms") > 0.0 && f("ratio") > 0.0,
+            "{r}"
+        );
+        assert!(f("crossings_per_pixel") >= 1.0, "{r}");
+        assert!(f("crossings_per_pixel") <= f("budget"), "{r}");
+        assert!(f("differing_pixels") < 0.01, "{r}");
+        // The f32 walk stays within the accuracy target relative to its conditioning.
+        assert!(f("f32_median") <= 2.0 && f("f32_worst") <= 5.0, "{r}");
+    }
+    let csv = std::fs::read_to_string(dir.join("products.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 3, "{csv}");
+    assert!(
+        std::fs::read_to_string(dir.join("summary.md"))
+            .unwrap()
+            .contains("Product spaces")
+    );
+    fails_with(&["bench", "--products", "nowhere"], "not a product space");
+    fails_with(
+        &["bench", "--products", "surface-abAB-circle-1"],
+        "flat space",
+    );
+    fails_with(
+        &["bench", "--products", "surface-abc-circle-1"],
+        "surface-abc-circle-1",
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
