@@ -537,13 +537,22 @@ fn flight_texts() -> Vec<String> {
                     look_at = [0.1, 0.0, -0.3]\nup = [0.1, 0.5, 0.2]\n\n[[key]]\ntime = 1.5\n\
                     position = [0.1, 0.2, -0.6]\nlook_at = [0.1, 0.2, -1.1]\nup = [0.1, 0.7, -0.6]\n"
         .to_string();
-    vec![shipped, recorded]
+    let product =
+        |name: &str| std::fs::read_to_string(manifest().join("assets/flights").join(name)).unwrap();
+    vec![
+        shipped,
+        recorded,
+        product("bitorus_through_a_side.toml"),
+        product("turned_sphere_up_the_fibre.toml"),
+    ]
 }
 
 /// A flight text parsed, made for its space and sampled: a flight or an error, never a
 /// panic, within the time bound.
 fn flight_outcome(text: &str) {
     use bevy_curved_spaces::scene::flight::{Flight, parse_flight};
+    use bevy_curved_spaces::space::product::{ProductOrFlat, product_space};
+    use bevy_curved_spaces::trace::product::flight::ProductFlight;
     let started = Instant::now();
     if let Ok(file) = parse_flight(text, "fuzz.toml")
         && let Some(id) = &file.space
@@ -554,6 +563,21 @@ fn flight_outcome(text: &str) {
         for t in [0.0, 0.5 * flight.duration(), flight.duration(), 1e9] {
             let f = flight.frame(&space, t);
             assert!(f.is_finite(), "a non-finite frame at {t} s from:\n{text}");
+        }
+    }
+    // A product space's flight: the frames stay finite and in the cell.
+    if let Ok(file) = parse_flight(text, "fuzz.toml")
+        && let Some(id) = &file.space
+        && let Some(Ok(ProductOrFlat::Product(space))) = product_space(id)
+        && let Ok(flight) = ProductFlight::new(&space, &file)
+    {
+        for t in [0.0, 0.5 * flight.duration(), flight.duration(), 1e9] {
+            let f = flight.frame(&space, t);
+            assert!(f.is_finite(), "a non-finite frame at {t} s from:\n{text}");
+            assert!(
+                space.outside_by(f.w_axis) < 1e-6,
+                "a frame outside the cell at {t} s from:\n{text}"
+            );
         }
     }
     let seconds = started.elapsed().as_secs_f64();
@@ -569,7 +593,7 @@ proptest! {
 
     /// A number of a flight file replaced by a hostile one.
     #[test]
-    fn flight_files_with_hostile_numbers(which in 0usize..2, slot in 0usize..64, value in 0usize..HOSTILE.len()) {
+    fn flight_files_with_hostile_numbers(which in 0usize..4, slot in 0usize..64, value in 0usize..HOSTILE.len()) {
         let texts = flight_texts();
         let text = &texts[which];
         let spots = numbers(text);
@@ -579,7 +603,7 @@ proptest! {
 
     /// A flight file cut short, or with random characters inserted.
     #[test]
-    fn flight_files_cut_and_scrambled(which in 0usize..2, cut in 0.0f64..1.0, junk in "[ -~\\n]{0,24}") {
+    fn flight_files_cut_and_scrambled(which in 0usize..4, cut in 0.0f64..1.0, junk in "[ -~\\n]{0,24}") {
         let texts = flight_texts();
         let text = &texts[which];
         let mut at = (cut * text.len() as f64) as usize;

@@ -175,3 +175,27 @@ fn turning_about_the_fibre_keeps_up() {
     }
     assert!((back - f).to_cols_array().iter().all(|x| x.abs() < 1e-12));
 }
+
+/// A height many circles up comes back in one wrap, turned by the turn's power: 4001
+/// circles with a quarter turn is one quarter turn.
+#[test]
+fn a_far_height_wraps_back_at_once_with_the_turns_power() {
+    let space = product("sphere-circle-turn");
+    let f = start(&space);
+    let circles = 4001.0;
+    let mut far = f;
+    far.w_axis.z += circles * space.length();
+    let (wrapped, crossed) = wrap_product_frame(&space, far, 1e-9);
+    assert_eq!(crossed.len(), 1, "{crossed:?}");
+    let sides = space.polygon().sides.len();
+    assert_eq!(crossed[0].face, sides, "the top (of {sides} sides)");
+    assert!((wrapped.w_axis.z - f.w_axis.z).abs() < 1e-9);
+    // Once up through the top is R⁻¹ (a quarter turn back).
+    let (once, _) = {
+        let mut up = f;
+        up.w_axis.z += space.length();
+        wrap_product_frame(&space, up, 1e-9)
+    };
+    assert!((wrapped.w_axis - once.w_axis).length() < 1e-9);
+    assert!(space.outside_by(wrapped.w_axis) < 0.0);
+}

@@ -155,7 +155,8 @@ pub struct ProductCrossing {
 /// The frame back inside the cell: while its position is past a face by more than `margin`
 /// (side faces by the unit base point's `N·X`, the top and bottom by `|z| − L/2`), the
 /// face's pairing is applied to every column (a side's maps the face onto its partner; the
-/// top's is `R⁻¹` with `z − L`, the bottom's `R` with `z + L`). A pairing that reverses
+/// top's is `R⁻¹` with `z − L`, the bottom's `R` with `z + L`; a height k circles past
+/// is brought back at once, as one crossing with `R⁻ᵏ` or `Rᵏ`). A pairing that reverses
 /// orientation leaves a left-handed frame, which the view follows as it is. Then the frame
 /// is put back onto the model and made orthonormal. At most 16 wraps.
 #[must_use]
@@ -185,10 +186,24 @@ pub fn wrap_product_frame(
                 worst = Some((k, past));
             }
         }
+        // Past the top or bottom by k circles at once (a far height): k crossings in one,
+        // the turn's k-th power.
+        let circles = |z: f64| {
+            let k = ((z.abs() - half) / space.length()).ceil().max(1.0);
+            let turns = (k % f64::from(space.turn().max(1))) as u32;
+            (k, turns)
+        };
+        let power = |m: DMat4, n: u32| (0..n).fold(DMat4::IDENTITY, |acc, _| m * acc);
         let (face, pairing, shift) = match worst {
             Some((k, _)) => (k, walker.pairings[k], 0.0),
-            None if p.z > half + margin => (sides, walker.up.0, -space.length()),
-            None if p.z < -half - margin => (sides + 1, walker.down.0, space.length()),
+            None if p.z > half + margin => {
+                let (k, n) = circles(p.z);
+                (sides, power(walker.up.0, n), -k * space.length())
+            }
+            None if p.z < -half - margin => {
+                let (k, n) = circles(p.z);
+                (sides + 1, power(walker.down.0, n), k * space.length())
+            }
             None => break,
         };
         f = pairing * f;

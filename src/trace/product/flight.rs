@@ -24,6 +24,10 @@ pub struct ProductFlight {
     pub fov: f64,
 }
 
+/// How many times round the circle a key may be from the cell (its height keeps ten digits
+/// of the cell's size in f64).
+pub const MAX_CIRCLES: f64 = 1e6;
+
 /// The point of the product at key coordinates `p` (in units of `scale`).
 fn point_at(space: &ProductSpace, p: DVec3, what: &str) -> Result<DVec4, String> {
     let g = space.base();
@@ -35,6 +39,13 @@ fn point_at(space: &ProductSpace, p: DVec3, what: &str) -> Result<DVec4, String>
              space's units)",
             p.to_array(),
             0.999 * std::f64::consts::PI / scale
+        ));
+    }
+    if (p.z * scale).abs() > MAX_CIRCLES * space.length() {
+        return Err(format!(
+            "{what} {:?} is more than {MAX_CIRCLES} circles up or down the fibre: too far to be \
+             held in f64 to the cell's precision",
+            p.to_array()
         ));
     }
     let (c, s) = g.cs(d);
