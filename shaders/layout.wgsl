@@ -96,7 +96,8 @@ struct Tube {
 struct ProductObject {
     // A ball's or a fibre tube's point, or a slice tube's line covector.
     shape: vec4<f32>,
-    // Kind (0 ball, 1 fibre tube, 2 slice tube), radius, the slice's height, unused.
+    // Kind (0 ball, 1 fibre tube, 2 slice tube, 3 horizontal disc), radius, the slice's
+    // height (a disc's too; its centre is `shape`), unused.
     info: vec4<f32>,
     // Albedo (rgb), unused.
     colour: vec4<f32>,

@@ -267,6 +267,18 @@ fn object_normal(i: u32, x: vec4<f32>) -> vec4<f32> {
 // one and a bisection the first root before it (Rust: `trace::product::first_meeting`).
 fn first_meeting(i: u32, ray: Ray, t_max: f32) -> f32 {
     let r = space.product_objects[i].info.y;
+    if u32(space.product_objects[i].info.x) == 3u {
+        // A horizontal disc: where the height reaches its slice, if within it.
+        let mu = ray.tangent.z;
+        if mu == 0.0 {
+            return FAR;
+        }
+        let t = (space.product_objects[i].info.z - ray.point.z) / mu;
+        if t < 0.0 || t > t_max || surface_distance(along(ray, t), space.product_objects[i].shape) > r {
+            return FAR;
+        }
+        return t;
+    }
     // The distance is 1-Lipschitz: a segment whose midpoint is further than half its
     // length plus the radius cannot meet it.
     if object_distance(i, along(ray, 0.5 * t_max)) > 0.5 * t_max + r {
@@ -390,7 +402,11 @@ fn trace_product(start: Ray) -> vec3<f32> {
         }
         if object != NONE {
             let at = along(ray, nearest);
-            let normal = object_normal(object, at);
+            var normal = object_normal(object, at);
+            if u32(space.product_objects[object].info.x) == 3u {
+                // A disc faces the side the ray comes from (the height speed keeps its sign).
+                normal = vec4<f32>(0.0, 0.0, -sign(ray.tangent.z), 0.0);
+            }
             let light = space.product_light;
             let to_light = tangent_towards(at, light);
             let db = surface_distance(at, light);

@@ -1263,7 +1263,9 @@ fn the_globe_and_the_galaxy_render_alike_on_gpu_and_cpu() {
 #[test]
 fn product_spaces_render_on_the_gpu_like_the_cpu_reference() {
     use bevy_curved_spaces::space::product::{ProductOrFlat, product_space};
-    use bevy_curved_spaces::trace::product::{default_camera, default_scene, render_product};
+    use bevy_curved_spaces::trace::product::{
+        ProductObject, ProductShape, default_camera, default_scene, render_product,
+    };
     let _gpu = gpu_lock();
     let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
     let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("gpu-vs-cpu");
@@ -1280,11 +1282,36 @@ fn product_spaces_render_on_the_gpu_like_the_cpu_reference() {
         };
         let scene = default_scene(&space);
         let camera = default_camera(&space);
-        let cpu = render_product(&space, &scene, &camera, w, h, 24);
+        let plain = render_product(&space, &scene, &camera, w, h, 24);
         let gpu = renderer
             .render_product(&space, &scene, &camera, (w, h), 24)
             .unwrap_or_else(|e| panic!("{id}: {e}"));
-        judge(id, &gpu, &cpu, &out, &mut failures);
+        judge(id, &gpu, &plain, &out, &mut failures);
+        // Horizontal discs: a floor below the view and a smaller one above, met where the
+        // ray's height reaches their slice (and through the faces, in the next cells).
+        let mut floors = scene.clone();
+        let r = space.base_inradius().min(1.2);
+        for (height, radius, colour) in [
+            (-0.3, 0.8 * r, [0.3, 0.8, 0.4]),
+            (0.45, 0.4 * r, [0.9, 0.3, 0.3]),
+        ] {
+            floors.objects.push(ProductObject {
+                shape: ProductShape::Disc(glam::DVec4::new(0.0, 0.0, height * space.length(), 1.0)),
+                radius,
+                colour: glam::DVec3::from_array(colour),
+            });
+        }
+        let cpu = render_product(&space, &floors, &camera, w, h, 24);
+        let gpu = renderer
+            .render_product(&space, &floors, &camera, (w, h), 24)
+            .unwrap_or_else(|e| panic!("{id} with discs: {e}"));
+        let shown = cpu
+            .pixels()
+            .zip(plain.pixels())
+            .filter(|(p, q)| p != q)
+            .count();
+        assert!(shown > 20, "{id}: the discs change {shown} pixels");
+        judge(&format!("{id}-discs"), &gpu, &cpu, &out, &mut failures);
     }
     // The renderer goes back to constant curvature afterwards.
     let space = bevy_curved_spaces::space::seed_space("torus").expect("seed");

@@ -40,6 +40,10 @@ pub enum ProductShape {
         /// The slice's height.
         height: f64,
     },
+    /// A horizontal disc: the points of the slice at `centre.z` within the object's radius
+    /// (a surface distance) of `centre`. It has no thickness: a ray meets it where its
+    /// height reaches the slice's, exactly, and one along the slice does not see it.
+    Disc(DVec4),
 }
 
 /// An object: every point within `radius` of its shape.
@@ -127,6 +131,8 @@ impl ProductObject {
                 let (away, db) = away_from(g, x, c);
                 (db, away)
             }
+            // The normal is the fibre, up (the side facing a ray is chosen where it is met).
+            ProductShape::Disc(c) => ((x.z - c.z).abs(), DVec4::Z),
             ProductShape::Geodesic { covector, height } => {
                 let xb = base(x);
                 let norm = (g.kappa() * base_form(g, xb, xb)).abs().sqrt();
@@ -170,6 +176,17 @@ fn along(g: Geometry, ray: &Ray<DVec4>, t: f64) -> DVec4 {
 
 /// The first `t` in `[0, t_max]` where the segment meets the object, if it does.
 fn first_meeting(g: Geometry, object: &ProductObject, ray: &Ray<DVec4>, t_max: f64) -> Option<f64> {
+    if let ProductShape::Disc(c) = object.shape {
+        // Where the height reaches the slice's, if within the disc.
+        let mu = ray.tangent.z;
+        if mu == 0.0 {
+            return None;
+        }
+        let t = (c.z - ray.point.z) / mu;
+        return ((0.0..=t_max).contains(&t)
+            && surface_distance(g, along(g, ray, t), c) <= object.radius)
+            .then_some(t);
+    }
     let f = |t: f64| {
         let d = object.distance(g, along(g, ray, t)).0;
         d * d - object.radius * object.radius
@@ -518,7 +535,12 @@ pub fn trace_product_pixel(
     else {
         return scene.fog_colour;
     };
-    let (_, normal) = object.distance(g, at);
+    let (_, mut normal) = object.distance(g, at);
+    if let ProductShape::Disc(_) = object.shape {
+        // The side the ray comes from: no gluing turns the fibre over, so its height speed
+        // keeps its sign all the way.
+        normal = -DVec4::Z * start.tangent.z.signum();
+    }
     let to_light = tangent_towards(g, at, scene.light);
     let dl = {
         let db = surface_distance(g, at, scene.light);

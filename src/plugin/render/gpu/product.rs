@@ -89,6 +89,7 @@ impl GpuScene {
                 ProductShape::Point(c) => (c, 0.0, 0.0),
                 ProductShape::Fibre(c) => (c, 1.0, 0.0),
                 ProductShape::Geodesic { covector, height } => (covector, 2.0, height),
+                ProductShape::Disc(c) => (c, 3.0, c.z),
             };
             out.push(&vec4(shape));
             out.push(&vec4(DVec4::new(kind, o.radius, height, 0.0)));
