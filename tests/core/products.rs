@@ -462,7 +462,7 @@ fn every_named_product_space_renders() {
         assert_eq!(image, render_product(&space, &scene, &camera, w, h, 24));
         // The ray through the middle meets the centre ball, first, inside the cell.
         let walker = ProductWalker::<DVec4>::new(&space);
-        let middle = trace_product_pixel(&walker, &scene, camera.ray(w / 2, h / 2, w, h), 24);
+        let middle = trace_product_pixel(&walker, None, &scene, camera.ray(w / 2, h / 2, w, h), 24);
         let ball = scene.objects.last().unwrap().colour;
         assert!(
             middle.dot(ball) > 0.05 && middle.max_element() > 0.1,

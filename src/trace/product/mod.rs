@@ -17,6 +17,7 @@
 //! searched only up to the nearest meeting found so far in the segment.
 
 pub mod flight;
+pub mod walls;
 
 use crate::geometry::{Geometry, Ray};
 use crate::space::product::{ProductSpace, ProductWalker};
@@ -70,6 +71,8 @@ pub struct ProductScene {
     pub fog_distance: f64,
     /// The fog's colour.
     pub fog_colour: DVec3,
+    /// The cell's walls with windows ([`walls`]), if drawn.
+    pub walls: Option<crate::scene::walls::WallStyle>,
 }
 
 impl ProductScene {
@@ -414,6 +417,7 @@ pub fn default_scene(space: &ProductSpace) -> ProductScene {
         ambient: 0.3,
         fog_distance: 3.0 * size.max(0.5 * h),
         fog_colour: DVec3::new(0.04, 0.05, 0.08),
+        walls: None,
     }
 }
 
@@ -460,6 +464,18 @@ pub fn first_product_hit<'a>(
     scene: &'a ProductScene,
     start: Ray<DVec4>,
     max_crossings: usize,
+) -> ProductRayEnd<'a> {
+    walk_to_hit(walker, scene, start, max_crossings, |_, _, _| true)
+}
+
+/// [`first_product_hit`], handing each face crossing to `crossed` (the face entered, the
+/// ray there and the distance from the eye); `false` ends the ray in the fog.
+fn walk_to_hit<'a>(
+    walker: &ProductWalker<DVec4>,
+    scene: &'a ProductScene,
+    start: Ray<DVec4>,
+    max_crossings: usize,
+    mut crossed: impl FnMut(usize, &Ray<DVec4>, f64) -> bool,
 ) -> ProductRayEnd<'a> {
     let g = walker.base;
     let cutoff = scene.cutoff_distance();
@@ -510,6 +526,14 @@ pub fn first_product_hit<'a>(
         if crossings > max_crossings {
             return ProductRayEnd::Budget(max_crossings);
         }
+        let entered = skip.unwrap_or(if exit.face == walker.top() {
+            walker.bottom()
+        } else {
+            walker.top()
+        });
+        if !crossed(entered, &ray, distance) {
+            break;
+        }
     }
     ProductRayEnd::Fog
 }
@@ -518,22 +542,31 @@ pub fn first_product_hit<'a>(
 /// light's nearest copy (Lambert, falloff by the square of the distance, never nearer than
 /// a tenth of the ball's radius) and fog; the fog colour where nothing is met before the
 /// fog's cut-off or within the crossing budget.
+///
+/// With `walls` ([`walls::ProductWalls`], the scene's walls built once), every panel the
+/// ray passes adds its colour and takes its share of the light, as in the
+/// constant-curvature cells.
 #[must_use]
 pub fn trace_product_pixel(
     walker: &ProductWalker<DVec4>,
+    walls: Option<&walls::ProductWalls>,
     scene: &ProductScene,
     start: Ray<DVec4>,
     max_crossings: usize,
 ) -> DVec3 {
     let g = walker.base;
+    let mut veil = crate::scene::walls::Veil::CLEAR;
+    let end = walk_to_hit(walker, scene, start, max_crossings, |face, ray, d| {
+        walls.is_none_or(|w| w.cross(&mut veil, scene, face, ray.point, ray.tangent, d))
+    });
     let ProductRayEnd::Hit {
         distance,
         at,
         object,
         ..
-    } = first_product_hit(walker, scene, start, max_crossings)
+    } = end
     else {
-        return scene.fog_colour;
+        return veil.over(scene.fog_colour);
     };
     let (_, mut normal) = object.distance(g, at);
     if let ProductShape::Disc(_) = object.shape {
@@ -551,7 +584,7 @@ pub fn trace_product_pixel(
     let lit = scene.ambient + (1.0 - scene.ambient) * lambert / (dl * dl).max(1.0);
     let surface = (object.colour * lit).min(DVec3::ONE);
     let w = (-distance / scene.fog_distance).exp();
-    w * surface + (1.0 - w) * scene.fog_colour
+    veil.over(w * surface + (1.0 - w) * scene.fog_colour)
 }
 
 /// The crossing budget that shows a product scene from `eye` as a budget without limit
@@ -602,6 +635,10 @@ pub fn render_product(
     max_crossings: usize,
 ) -> RgbImage {
     let walker = ProductWalker::<DVec4>::new(space);
+    // Rays stop behind walls that let less light through than the fog's cut-off weight.
+    let walls = scene
+        .walls
+        .and_then(|style| walls::ProductWalls::new(space, style, crate::scene::DEFAULT_CUTOFF_WEIGHT));
     let rows: Vec<Vec<u8>> = (0..height)
         .into_par_iter()
         .map(|j| {
@@ -609,6 +646,7 @@ pub fn render_product(
                 .flat_map(|i| {
                     let c = trace_product_pixel(
                         &walker,
+                        walls.as_ref(),
                         scene,
                         camera.ray(i, j, width, height),
                         max_crossings,
