@@ -367,6 +367,58 @@ fn product_ray(point: vec4<f32>, direction: vec4<f32>) -> Ray {
     return normalized(Ray(point, direction));
 }
 
+#ifdef WALLS
+// What the walls crossed so far added and let through (Rust: `scene::walls::Veil`).
+var<private> veil_colour: vec3<f32>;
+var<private> veil_through: f32;
+
+// The wall a ray meets entering the cell through `face` (the sides, then the top and the
+// bottom), at distance d from the eye, added to the veil (Rust:
+// `trace::product::walls::ProductWalls::cross`).
+fn product_wall(face: u32, ray: Ray, d: f32) {
+    let x = ray.point;
+    let margin = space.wall_colours[face].w;
+    let look = space.wall_looks[face];
+    var on_panel = false;
+    var facing = abs(ray.tangent.z);
+    if face < face_count() {
+        let along = look.z - surface_distance(x, space.wall_units[face]);
+        let up = space.product.x - abs(x.z);
+        on_panel = min(along, up) < margin;
+        let c = space.covectors[face];
+        let unit = c / sqrt(abs(c.x * c.x + c.y * c.y + kappa() * c.w * c.w));
+        facing = abs(dot(unit, ray.tangent));
+    } else if face_count() == 0u {
+        on_panel = surface_distance(x, vec4<f32>(0.0, 0.0, 0.0, 1.0)) > margin;
+    } else {
+        for (var k = 0u; k < face_count(); k += 1u) {
+            let c = space.covectors[k];
+            let unit = c / sqrt(abs(c.x * c.x + c.y * c.y + kappa() * c.w * c.w));
+            if line_offset(x, -unit) < margin {
+                on_panel = true;
+            }
+        }
+    }
+    if !on_panel {
+        return;
+    }
+    let lit = min(space.wall_colours[face].rgb * (0.55 + 0.45 * min(facing, 1.0)), vec3<f32>(1.0));
+    let w = exp(-d / space.shading.params.x);
+    let seen = w * lit + (1.0 - w) * space.shading.fog.rgb;
+    veil_colour += veil_through * look.x * seen;
+    veil_through *= 1.0 - look.x;
+}
+#endif
+
+// What lies behind the walls, seen through them.
+fn behind_walls(c: vec3<f32>) -> vec3<f32> {
+#ifdef WALLS
+    return veil_colour + veil_through * c;
+#else
+    return c;
+#endif
+}
+
 // One camera ray's colour: the nearest object in each segment of the walk, shaded with the
 // light (Lambert, falloff by the square of the distance, never nearer than 1) and fog; the
 // fog colour past the cut-off or the crossing budget (Rust: `trace_product_pixel`).
@@ -381,6 +433,10 @@ fn trace_product(start: Ray) -> vec3<f32> {
     var skip = NONE;
     var crossings = 0u;
     var steps = 0u;
+#ifdef WALLS
+    veil_colour = vec3<f32>(0.0);
+    veil_through = 1.0;
+#endif
     for (var guard = 0u; guard < 4u * budget + 256u; guard += 1u) {
         if travelled >= cutoff {
             break;
@@ -416,7 +472,7 @@ fn trace_product(start: Ray) -> vec3<f32> {
             let lit = ambient + (1.0 - ambient) * lambert / max(dl2, 1.0);
             let surface = min(space.product_objects[object].colour.rgb * lit, vec3<f32>(1.0));
             let w = exp(-(travelled + nearest) / lambda_fog);
-            return w * surface + (1.0 - w) * fog;
+            return behind_walls(w * surface + (1.0 - w) * fog);
         }
         if exit.distance >= cutoff - travelled {
             break;
@@ -436,6 +492,16 @@ fn trace_product(start: Ray) -> vec3<f32> {
         if crossings > budget {
             break;
         }
+#ifdef WALLS
+        var entered = skip;
+        if skip == NONE {
+            entered = select(face_count(), face_count() + 1u, exit.face == face_count());
+        }
+        product_wall(entered, ray, travelled);
+        if veil_through < space.wall_style.x {
+            break;
+        }
+#endif
     }
-    return fog;
+    return behind_walls(fog);
 }

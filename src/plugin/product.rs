@@ -88,6 +88,7 @@ pub(crate) fn reset_players_on_switch(
 pub(crate) struct ProductKey {
     space: usize,
     fog: Option<f64>,
+    walls: Option<crate::scene::WallStyle>,
     max_crossings: Option<u32>,
     quality: crate::plugin::components::Quality,
     scene: Option<ProductScene>,
@@ -105,6 +106,8 @@ pub fn product_scene(
     if let Some(fog) = settings.fog_distance.filter(|f| f.is_finite() && *f > 0.0) {
         scene.fog_distance = fog;
     }
+    // The walls set here, else the base scene's own; an opening of 1 turns them off.
+    scene.walls = settings.walls.or(scene.walls).filter(|w| w.opening < 1.0);
     scene
 }
 
@@ -122,6 +125,7 @@ pub(crate) fn upload_product_scene(
     let key = ProductKey {
         space: Arc::as_ptr(&active.space) as usize,
         fog: settings.fog_distance,
+        walls: settings.walls,
         max_crossings: settings.max_crossings,
         quality: settings.quality,
         scene: base.as_ref().map(|b| b.0.clone()),

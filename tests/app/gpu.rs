@@ -1312,6 +1312,20 @@ fn product_spaces_render_on_the_gpu_like_the_cpu_reference() {
             .count();
         assert!(shown > 20, "{id}: the discs change {shown} pixels");
         judge(&format!("{id}-discs"), &gpu, &cpu, &out, &mut failures);
+        // Walls with windows half open: panels met where the ray crosses a face.
+        let mut walled = scene.clone();
+        walled.walls = Some(bevy_curved_spaces::scene::WallStyle::new(0.5).expect("style"));
+        let cpu = render_product(&space, &walled, &camera, w, h, 24);
+        let gpu = renderer
+            .render_product(&space, &walled, &camera, (w, h), 24)
+            .unwrap_or_else(|e| panic!("{id} with walls: {e}"));
+        let shown = cpu
+            .pixels()
+            .zip(plain.pixels())
+            .filter(|(p, q)| p != q)
+            .count();
+        assert!(shown > 200, "{id}: the walls change {shown} pixels");
+        judge(&format!("{id}-walls"), &gpu, &cpu, &out, &mut failures);
     }
     // The renderer goes back to constant curvature afterwards.
     let space = bevy_curved_spaces::space::seed_space("torus").expect("seed");

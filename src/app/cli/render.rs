@@ -122,6 +122,7 @@ fn render_product_command(
     if let Some(fog) = args.fog {
         scene.fog_distance = fog;
     }
+    scene.walls = args.view.walls.style(None)?.filter(|w| w.opening < 1.0);
     let mut camera = default_camera(space);
     if let Some(fov) = args.fov {
         camera.fov_y_degrees = fov;

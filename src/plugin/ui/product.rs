@@ -45,6 +45,7 @@ pub(super) fn product_panel(
                 |b| b.0.fog_distance,
             );
             tracer_controls(ui, &mut settings, &status, default_fog);
+            wall_controls(ui, &mut settings, base.as_ref().and_then(|b| b.0.walls));
             let mut scale = settings.resolution_scale;
             if ui
                 .add(egui::Slider::new(&mut scale, 0.125..=1.0).text("resolution scale"))

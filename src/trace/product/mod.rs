@@ -636,9 +636,9 @@ pub fn render_product(
 ) -> RgbImage {
     let walker = ProductWalker::<DVec4>::new(space);
     // Rays stop behind walls that let less light through than the fog's cut-off weight.
-    let walls = scene
-        .walls
-        .and_then(|style| walls::ProductWalls::new(space, style, crate::scene::DEFAULT_CUTOFF_WEIGHT));
+    let walls = scene.walls.and_then(|style| {
+        walls::ProductWalls::new(space, style, crate::scene::DEFAULT_CUTOFF_WEIGHT)
+    });
     let rows: Vec<Vec<u8>> = (0..height)
         .into_par_iter()
         .map(|j| {

@@ -7,6 +7,7 @@ use super::VIEW_WORDS;
 use super::{DataSources, GpuScene, GpuSceneError, MAX_UNIFORM_BYTES, ShaderKey};
 use crate::plugin::render::layout::{GpuShading, UniformWriter, Vec4F, colour, vec4};
 use crate::space::product::{ProductSpace, ProductWalker};
+use crate::trace::product::walls::ProductWalls;
 use crate::trace::product::{ProductScene, ProductShape};
 use glam::{DVec4, Mat4, Vec4};
 use std::sync::Arc;
@@ -23,7 +24,11 @@ impl GpuScene {
         super::check_budget(max_crossings)?;
         let walker = ProductWalker::<Vec4>::new(space);
         let sides = walker.covectors.len();
+        let walls = scene
+            .walls
+            .and_then(|style| ProductWalls::new(space, style, crate::scene::DEFAULT_CUTOFF_WEIGHT));
         let key = ShaderKey {
+            walls: walls.is_some(),
             faces: sides as u32,
             step_cap: walker.step_cap,
             product: true,
@@ -97,6 +102,21 @@ impl GpuScene {
         }
         if scene.objects.is_empty() {
             out.push(&[[0.0f32; 4]; 3]);
+        }
+        // The walls: per face slot the side's midpoint, the colour and margin (a huge
+        // number for a solid wall), the opacity and half the side's length; then the share
+        // of light below which a ray stops.
+        if let Some(walls) = &walls {
+            for w in &walls.faces {
+                out.push(&vec4(w.midpoint));
+            }
+            for w in &walls.faces {
+                out.push(&colour(w.colour, w.margin.min(1e30)));
+            }
+            for w in &walls.faces {
+                out.push(&vec4(DVec4::new(walls.opacity, 0.0, w.half_side, 0.0)));
+            }
+            out.push(&vec4(DVec4::new(walls.stop_below, 0.0, 0.0, 0.0)));
         }
         let words = out.words;
         debug_assert_eq!(words.len() * 4 + VIEW_WORDS * 4, bytes);
