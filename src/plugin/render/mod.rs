@@ -160,6 +160,12 @@ type CurvedCameras<'w, 's> = Query<
     ),
 >;
 
+/// The main world's space resources: one of the two exists.
+type ShownSpaces<'w, 's> = (
+    Extract<'w, 's, Option<Res<'static, crate::plugin::components::ActiveSpace>>>,
+    Extract<'w, 's, Option<Res<'static, crate::plugin::components::ActiveProduct>>>,
+);
+
 /// The space the cameras show.
 #[derive(Clone, Copy)]
 enum Shown<'a> {
@@ -172,8 +178,7 @@ fn extract_curved_views(
     scene: Extract<Option<Res<PreparedScene>>>,
     settings: Extract<Option<Res<crate::plugin::components::TracerSettings>>>,
     stereo: Extract<Option<Res<StereoSettings>>>,
-    active: Extract<Option<Res<crate::plugin::components::ActiveSpace>>>,
-    product: Extract<Option<Res<crate::plugin::components::ActiveProduct>>>,
+    (active, product): ShownSpaces,
     time: Extract<Option<Res<Time>>>,
     views: Extract<CurvedCameras>,
 ) {
