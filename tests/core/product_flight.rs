@@ -3,7 +3,6 @@
 //! arrives turned by the top's gluing, and keys no geodesic joins are refused by name.
 
 use bevy_curved_spaces::scene::flight::{load_flight_file, parse_flight};
-use bevy_curved_spaces::space::product::motion::product_dot;
 use bevy_curved_spaces::space::product::{ProductOrFlat, ProductSpace, product_space};
 use bevy_curved_spaces::trace::product::flight::ProductFlight;
 use glam::{DMat4, DVec4};
@@ -23,16 +22,7 @@ fn asset(name: &str) -> std::path::PathBuf {
 }
 
 fn defect(space: &ProductSpace, f: DMat4) -> f64 {
-    let g = space.base();
-    let cols = [f.x_axis, f.y_axis, f.z_axis];
-    let mut worst: f64 = 0.0;
-    for i in 0..3 {
-        for j in 0..3 {
-            let want = if i == j { 1.0 } else { 0.0 };
-            worst = worst.max((product_dot(g, cols[i], cols[j]) - want).abs());
-        }
-    }
-    worst
+    crate::common::product_frame_defect(space.base(), f)
 }
 
 #[test]

@@ -6,8 +6,7 @@ use bevy_curved_spaces::geometry::Ray;
 use bevy_curved_spaces::random::SplitMix64;
 use bevy_curved_spaces::space::Limit;
 use bevy_curved_spaces::space::product::motion::{
-    ProductMotion, camera_frame, product_dot, step_product_frame, turn_about_fibre,
-    wrap_product_frame,
+    ProductMotion, camera_frame, step_product_frame, turn_about_fibre, wrap_product_frame,
 };
 use bevy_curved_spaces::space::product::{
     ProductOrFlat, ProductSpace, ProductWalker, product_space,
@@ -31,17 +30,9 @@ fn start(space: &ProductSpace) -> DMat4 {
 /// of the position from the surface's model.
 fn frame_error(space: &ProductSpace, f: DMat4) -> f64 {
     let g = space.base();
-    let cols = [f.x_axis, f.y_axis, f.z_axis];
-    let mut worst: f64 = 0.0;
-    for i in 0..3 {
-        for j in 0..3 {
-            let want = if i == j { 1.0 } else { 0.0 };
-            worst = worst.max((product_dot(g, cols[i], cols[j]) - want).abs());
-        }
-    }
     let p = f.w_axis;
     let on = p.x * p.x + p.y * p.y + g.kappa() * p.w * p.w - g.kappa();
-    worst.max(on.abs())
+    crate::common::product_frame_defect(g, f).max(on.abs())
 }
 
 #[test]

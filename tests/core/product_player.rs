@@ -59,18 +59,10 @@ fn hold(app: &mut App, key: KeyCode, updates: usize) {
     app.update();
 }
 
-/// The largest deviation of the frame from orthonormal in the product metric.
+/// The frame's defect from orthonormal in the active product space's metric.
 fn frame_defect(app: &App, f: DMat4) -> f64 {
     let g = app.world().resource::<ActiveProduct>().space.base();
-    let cols = [f.x_axis, f.y_axis, f.z_axis];
-    let mut worst: f64 = 0.0;
-    for i in 0..3 {
-        for j in 0..3 {
-            let want = if i == j { 1.0 } else { 0.0 };
-            worst = worst.max((product_dot(g, cols[i], cols[j]) - want).abs());
-        }
-    }
-    worst
+    crate::common::product_frame_defect(g, f)
 }
 
 #[test]

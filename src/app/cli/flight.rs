@@ -67,23 +67,13 @@ pub(super) fn flight(args: &FlightArgs) -> Result<(), String> {
             "the GPU tracer takes a crossing budget from 1 to {MAX_GPU_BUDGET}, got {budget} (use --cpu for more)"
         ));
     }
-    say!(
-        "flight {name}: {} ({}), {total} frames at {} fps ({:.2} s), frames {first}..{last} at {}×{} by the {} tracer, ≤ {budget} crossings, into {}",
-        chosen.id,
-        space.geometry().name(),
-        args.fps,
-        flight.duration(),
-        args.size.0,
-        args.size.1,
-        if args.cpu { "f64 CPU" } else { "GPU" },
-        args.out.display()
-    );
-    let mut renderer = if args.cpu {
-        None
-    } else {
-        Some(OffscreenRenderer::new().map_err(|e| e.to_string())?)
-    };
-    let progress = frame_progress(todo.len())?;
+    let (mut renderer, progress) = start_frames(
+        args,
+        &format!("flight {name}: {} ({})", chosen.id, space.geometry().name()),
+        (total, flight.duration()),
+        (first, last, todo.len()),
+        budget,
+    )?;
     // One active space for every frame: its invariants are computed once.
     let active = ActiveSpace::new(&chosen.id, space.clone());
     let walls = args.walls.style(chosen.scene.shading.walls)?;
@@ -168,6 +158,31 @@ fn frames_to_do(args: &FlightArgs, total: usize) -> Result<(usize, usize, Vec<us
     Ok((first, last, todo))
 }
 
+/// Says what the flight renders (`what` names the file and the space), starts the GPU
+/// renderer unless `--cpu`, and a progress bar over the frames to do.
+fn start_frames(
+    args: &FlightArgs,
+    what: &str,
+    (total, duration): (usize, f64),
+    (first, last, todo): (usize, usize, usize),
+    budget: usize,
+) -> Result<(Option<OffscreenRenderer>, indicatif::ProgressBar), String> {
+    say!(
+        "{what}, {total} frames at {} fps ({duration:.2} s), frames {first}..{last} at {}×{} by the {} tracer, ≤ {budget} crossings, into {}",
+        args.fps,
+        args.size.0,
+        args.size.1,
+        if args.cpu { "f64 CPU" } else { "GPU" },
+        args.out.display()
+    );
+    let renderer = if args.cpu {
+        None
+    } else {
+        Some(OffscreenRenderer::new().map_err(|e| e.to_string())?)
+    };
+    Ok((renderer, frame_progress(todo)?))
+}
+
 /// A progress bar over `n` frames.
 fn frame_progress(n: usize) -> Result<indicatif::ProgressBar, String> {
     let progress = indicatif::ProgressBar::new(n as u64);
@@ -239,23 +254,17 @@ fn flight_product(
             "the GPU tracer takes a crossing budget from 1 to {MAX_GPU_BUDGET}, got {budget} (use --cpu for more)"
         ));
     }
-    say!(
-        "flight {name}: {} ({}), {total} frames at {} fps ({:.2} s), frames {first}..{last} at {}×{} by the {} tracer, ≤ {budget} crossings, into {}",
-        space.name(),
-        space.geometry_name(),
-        args.fps,
-        flight.duration(),
-        args.size.0,
-        args.size.1,
-        if args.cpu { "f64 CPU" } else { "GPU" },
-        args.out.display()
-    );
-    let mut renderer = if args.cpu {
-        None
-    } else {
-        Some(OffscreenRenderer::new().map_err(|e| e.to_string())?)
-    };
-    let progress = frame_progress(todo.len())?;
+    let (mut renderer, progress) = start_frames(
+        args,
+        &format!(
+            "flight {name}: {} ({})",
+            space.name(),
+            space.geometry_name()
+        ),
+        (total, flight.duration()),
+        (first, last, todo.len()),
+        budget,
+    )?;
     let started = Instant::now();
     for &n in &todo {
         let t = (n - 1) as f64 / args.fps;
