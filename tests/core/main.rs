@@ -20,6 +20,7 @@ mod headset;
 mod layers;
 mod objects;
 mod player;
+#[cfg(feature = "scene-files")]
 mod product_flight;
 mod product_motion;
 mod product_player;

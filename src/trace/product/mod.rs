@@ -16,6 +16,7 @@
 //! length, exceeds the radius (the minimum lies in the bracket); and each object is
 //! searched only up to the nearest meeting found so far in the segment.
 
+#[cfg(feature = "scene-files")]
 pub mod flight;
 pub mod walls;
 
