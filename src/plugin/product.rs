@@ -91,7 +91,8 @@ pub(crate) struct ProductKey {
     walls: Option<crate::scene::WallStyle>,
     max_crossings: Option<u32>,
     quality: crate::plugin::components::Quality,
-    scene: Option<ProductScene>,
+    /// Whether a base scene is shown (its changes are caught by change detection).
+    base: bool,
 }
 
 /// The scene shown in a product space: the base product scene or the default one, with
@@ -128,9 +129,10 @@ pub(crate) fn upload_product_scene(
         walls: settings.walls,
         max_crossings: settings.max_crossings,
         quality: settings.quality,
-        scene: base.as_ref().map(|b| b.0.clone()),
+        base: base.is_some(),
     };
-    if prepared.is_some() && !active.is_changed() && last.as_ref() == Some(&key) {
+    let base_changed = base.as_ref().is_some_and(|b| b.is_changed());
+    if prepared.is_some() && !active.is_changed() && !base_changed && last.as_ref() == Some(&key) {
         return;
     }
     let scene = product_scene(&active, &settings, base.as_deref());
