@@ -419,8 +419,18 @@ fn behind_walls(c: vec3<f32>) -> vec3<f32> {
 #endif
 }
 
+// The product's falloff: the geodesic sphere's area per solid angle at the light, r² S(ρ)/ρ
+// for a point ρ away on the surface (Rust: `light_spread`).
+fn light_spread(db: f32, dz: f32) -> f32 {
+    var ratio = 1.0 - kappa() * db * db / 6.0;
+    if db >= 1.0e-2 {
+        ratio = cs(db).y / db;
+    }
+    return (db * db + dz * dz) * max(ratio, 0.0);
+}
+
 // One camera ray's colour: the nearest object in each segment of the walk, shaded with the
-// light (Lambert, falloff by the square of the distance, never nearer than 1) and fog; the
+// light (Lambert, the product's falloff, never more than at distance 1) and fog; the
 // fog colour past the cut-off or the crossing budget (Rust: `trace_product_pixel`).
 fn trace_product(start: Ray) -> vec3<f32> {
     let fog = space.shading.fog.rgb;
@@ -465,11 +475,9 @@ fn trace_product(start: Ray) -> vec3<f32> {
             }
             let light = space.product_light;
             let to_light = tangent_towards(at, light);
-            let db = surface_distance(at, light);
-            let dz = at.z - light.z;
-            let dl2 = db * db + dz * dz;
+            let spread = light_spread(surface_distance(at, light), at.z - light.z);
             let lambert = max(base_form(normal, to_light) + normal.z * to_light.z, 0.0);
-            let lit = ambient + (1.0 - ambient) * lambert / max(dl2, 1.0);
+            let lit = ambient + (1.0 - ambient) * lambert / max(spread, 1.0);
             let surface = min(space.product_objects[object].colour.rgb * lit, vec3<f32>(1.0));
             let w = exp(-(travelled + nearest) / lambda_fog);
             return behind_walls(w * surface + (1.0 - w) * fog);

@@ -210,10 +210,42 @@ impl ActiveProduct {
 }
 
 /// The scene shown in a product space instead of its default one
-/// ([`crate::trace::product::default_scene`]); the fog of [`TracerSettings::fog_distance`]
-/// still applies where it is set.
+/// ([`crate::trace::product::default_scene`]), and where players start; the fog of
+/// [`TracerSettings::fog_distance`] still applies where it is set.
 #[derive(Resource, Clone, Debug, PartialEq)]
-pub struct BaseProductScene(pub crate::trace::product::ProductScene);
+pub struct BaseProductScene {
+    /// The scene.
+    pub scene: crate::trace::product::ProductScene,
+    /// The start view (`None`: the space's default camera).
+    pub start: Option<crate::trace::product::ProductCamera>,
+}
+
+impl BaseProductScene {
+    /// A scene, players starting at the space's default view.
+    #[must_use]
+    pub fn new(scene: crate::trace::product::ProductScene) -> Self {
+        Self { scene, start: None }
+    }
+
+    /// A product scene file's scene and start view.
+    #[cfg(feature = "scene-files")]
+    #[must_use]
+    pub fn from_file(file: &crate::trace::product::file::ProductSceneFile) -> Self {
+        Self {
+            scene: file.scene.clone(),
+            start: file.start,
+        }
+    }
+
+    /// Where players start in `active`: the scene's start view, else the space's default.
+    #[must_use]
+    pub fn start_frame(base: Option<&Self>, active: &ActiveProduct) -> DMat4 {
+        match base.and_then(|b| b.start) {
+            Some(c) => crate::space::product::motion::camera_frame(c.point, c.frame),
+            None => active.start_frame(),
+        }
+    }
+}
 
 /// The tracer's knobs, changeable at run time.
 #[derive(Resource, Clone, Copy, Debug, PartialEq)]

@@ -266,8 +266,31 @@ impl OffscreenRenderer {
         space: &crate::space::product::ProductSpace,
         scene: &crate::trace::product::ProductScene,
         camera: &crate::trace::product::ProductCamera,
+        size: (u32, u32),
+        max_crossings: u32,
+    ) -> Result<RgbImage, OffscreenError> {
+        self.render_product_stereo(
+            space,
+            scene,
+            camera,
+            size,
+            max_crossings,
+            StereoSettings::default(),
+        )
+    }
+
+    /// [`OffscreenRenderer::render_product`] in a stereo mode: the eyes half the eye
+    /// distance either side of the camera along its right
+    /// ([`crate::space::product::motion::product_eye_frames`]), as the CPU reference's
+    /// [`crate::trace::product::render_product_view`] places them.
+    pub fn render_product_stereo(
+        &mut self,
+        space: &crate::space::product::ProductSpace,
+        scene: &crate::trace::product::ProductScene,
+        camera: &crate::trace::product::ProductCamera,
         (w, h): (u32, u32),
         max_crossings: u32,
+        stereo: StereoSettings,
     ) -> Result<RgbImage, OffscreenError> {
         if !(1..=8192).contains(&w) || !(1..=8192).contains(&h) {
             return Err(OffscreenError::BadSize(w, h));
@@ -283,8 +306,8 @@ impl OffscreenRenderer {
             world.insert_resource(ActiveProduct::new(space.name(), space.clone()));
             world.remove_resource::<ActiveSpace>();
         }
-        world.insert_resource(BaseProductScene(scene.clone()));
-        world.insert_resource(StereoSettings::default());
+        world.insert_resource(BaseProductScene::new(scene.clone()));
+        world.insert_resource(stereo);
         // Every pixel traced, none scaled up: the picture the CPU reference draws.
         world.insert_resource(TracerSettings {
             fog_distance: None,

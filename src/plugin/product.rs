@@ -65,6 +65,7 @@ pub(crate) fn reset_players_on_switch(
     active: Option<Res<ActiveSpace>>,
     product: Option<Res<ActiveProduct>>,
     base: Res<BaseScene>,
+    product_base: Option<Res<BaseProductScene>>,
     mut started: Local<bool>,
     mut players: Query<(&mut PlayerFrame, &mut Holonomy)>,
 ) {
@@ -73,7 +74,7 @@ pub(crate) fn reset_players_on_switch(
         return;
     }
     let start = match (&product, &active) {
-        (Some(p), _) if p.is_changed() => p.start_frame(),
+        (Some(p), _) if p.is_changed() => BaseProductScene::start_frame(product_base.as_deref(), p),
         (None, Some(a)) if a.is_changed() => base.start_frame(a),
         _ => return,
     };
@@ -103,7 +104,7 @@ pub fn product_scene(
     settings: &TracerSettings,
     base: Option<&BaseProductScene>,
 ) -> ProductScene {
-    let mut scene = base.map_or_else(|| default_scene(&active.space), |b| b.0.clone());
+    let mut scene = base.map_or_else(|| default_scene(&active.space), |b| b.scene.clone());
     if let Some(fog) = settings.fog_distance.filter(|f| f.is_finite() && *f > 0.0) {
         scene.fog_distance = fog;
     }
@@ -139,7 +140,7 @@ pub(crate) fn upload_product_scene(
     let (budget, choice) = match settings.max_crossings {
         Some(b) => (b.clamp(1, MAX_GPU_BUDGET), None),
         None => {
-            let eye = active.start_frame().w_axis;
+            let eye = BaseProductScene::start_frame(base.as_deref(), &active).w_axis;
             let choice = product_auto_budget(
                 &active.space,
                 &scene,

@@ -15,9 +15,9 @@
 //! ```
 
 use crate::plugin::components::{
-    ActiveProduct, ActiveSpace, BaseScene, CurvedSpaceCamera, CurvedSpacesSystems, KeyBindings,
-    MouseLook, PlayerFrame, PlayerSettings, Quality, SceneObjects, StereoSettings, TracerSettings,
-    TracerStatus,
+    ActiveProduct, ActiveSpace, BaseProductScene, BaseScene, CurvedSpaceCamera,
+    CurvedSpacesSystems, KeyBindings, MouseLook, PlayerFrame, PlayerSettings, Quality,
+    SceneObjects, StereoSettings, TracerSettings, TracerStatus,
 };
 use crate::plugin::frame_rate::{BudgetShare, FrameRateTarget, hold_frame_rate};
 use crate::plugin::player;
@@ -217,12 +217,13 @@ fn start_camera(
     active: Option<Res<ActiveSpace>>,
     product: Option<Res<ActiveProduct>>,
     base: Res<BaseScene>,
+    product_base: Option<Res<BaseProductScene>>,
     mut commands: Commands,
     frames: Query<&PlayerFrame>,
 ) {
     let mut entity = commands.entity(add.entity);
     let start = match (&product, &active) {
-        (Some(p), _) => Some(p.start_frame()),
+        (Some(p), _) => Some(BaseProductScene::start_frame(product_base.as_deref(), p)),
         (None, Some(a)) => Some(base.start_frame(a)),
         (None, None) => None,
     };
@@ -234,9 +235,14 @@ fn start_camera(
         entity.insert(PlayerFrame(start));
     }
     // The scene's start view includes its field of view.
-    if let Some(fov) = base
+    let product_fov = product_base
+        .as_ref()
+        .and_then(|b| b.start)
+        .filter(|_| product.is_some())
+        .map(|c| c.fov_y_degrees);
+    if let Some(fov) = product_fov.or(base
         .fov
-        .filter(|_| product.is_none() && active.as_ref().is_some_and(|a| a.id == base.space_id))
+        .filter(|_| product.is_none() && active.as_ref().is_some_and(|a| a.id == base.space_id)))
     {
         entity.insert(CurvedSpaceCamera { fov_y_degrees: fov });
     }

@@ -495,6 +495,12 @@ const KEYS: &[&str] = &[
 /// An unknown-field message with the nearest known key, if one is close (`color` →
 /// `colour`).
 fn with_suggestion(message: &str) -> String {
+    suggest_key(message, KEYS)
+}
+
+/// An unknown-field message of `toml` with the nearest of `keys`, if one is within two
+/// edits.
+pub(crate) fn suggest_key(message: &str, keys: &[&str]) -> String {
     let unknown = message
         .strip_prefix("unknown field `")
         .and_then(|rest| rest.split('`').next());
@@ -517,7 +523,7 @@ fn with_suggestion(message: &str) -> String {
         }
         row[b.len()]
     };
-    match KEYS
+    match keys
         .iter()
         .map(|k| (distance(word, k), *k))
         .min()
@@ -538,7 +544,7 @@ fn resolve_space(id: &str, base: &Path) -> Result<Space, String> {
 }
 
 /// A colour (or emission) from a file: finite, negative channels taken as 0.
-fn colour(c: [f64; 3]) -> Result<DVec3, String> {
+pub(crate) fn colour(c: [f64; 3]) -> Result<DVec3, String> {
     let v = DVec3::from_array(c);
     if !v.is_finite() {
         return Err(format!("colours must be finite numbers, got {c:?}"));

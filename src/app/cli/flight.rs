@@ -36,10 +36,13 @@ pub(super) fn flight(args: &FlightArgs) -> Result<(), String> {
     let name = args.file.display().to_string();
     let file = load_flight_file(&args.file)?;
     let base = args.file.parent().unwrap_or(Path::new(""));
-    if let Some(space) = &file.space
-        && let Some(product) = super::product(space)?
-    {
-        return flight_product(args, &name, &file, &product);
+    let product = match (&file.scene, &file.space) {
+        (Some(scene), _) => super::render::choose_product("", Some(&base.join(scene)))?,
+        (None, Some(space)) => super::render::choose_product(space, None)?,
+        (None, None) => None,
+    };
+    if let Some(product) = product {
+        return flight_product(args, &name, &file, product);
     }
     let chosen: Chosen = match (&file.scene, &file.space) {
         (Some(scene), _) => choose_scene("", Some(&base.join(scene)), None)?,
@@ -216,15 +219,17 @@ fn finish_frames(
     }
 }
 
-/// `flight` in a product space (H²×R, S²×R): its default scene along the flight.
+/// `flight` in a product space (H²×R, S²×R): its default scene or its scene file's along
+/// the flight.
 fn flight_product(
     args: &FlightArgs,
     name: &str,
     file: &bevy_curved_spaces::scene::flight::FlightFile,
-    space: &bevy_curved_spaces::space::product::ProductSpace,
+    chosen: super::render::ProductChoice,
 ) -> Result<(), String> {
     use bevy_curved_spaces::trace::product::flight::ProductFlight;
-    use bevy_curved_spaces::trace::product::{default_scene, product_auto_budget, render_product};
+    use bevy_curved_spaces::trace::product::{product_auto_budget, render_product};
+    let space = &chosen.space;
     if args.walls.walls.is_some() || args.colour_by != super::ColourByArg::Shading {
         return Err(
             "--walls and --colour-by are not available in the product spaces (H²×R, S²×R) yet"
@@ -234,7 +239,7 @@ fn flight_product(
     let flight = ProductFlight::new(space, file).map_err(|e| format!("{name}: {e}"))?;
     let total = flight.frame_count(args.fps);
     let (first, last, todo) = frames_to_do(args, total)?;
-    let scene = default_scene(space);
+    let scene = chosen.scene;
     let budget = match args.crossings {
         Some(n) => n,
         None => {

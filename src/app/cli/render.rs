@@ -111,25 +111,85 @@ struct View {
     scene: CurvedScene,
 }
 
-/// `render` of a product space (H²×R, S²×R): its default scene and view, on the GPU or
-/// with the CPU reference (`--cpu`).
-fn render_product_command(
-    args: &RenderArgs,
-    space: &bevy_curved_spaces::space::product::ProductSpace,
-) -> Result<(), String> {
-    use bevy_curved_spaces::trace::product::{default_camera, default_scene, render_product};
-    let mut scene = default_scene(space);
+/// A product scene to render: a scene file's, or the space's default scene and view.
+pub(super) struct ProductChoice {
+    pub(super) space: bevy_curved_spaces::space::product::ProductSpace,
+    pub(super) scene: bevy_curved_spaces::trace::product::ProductScene,
+    pub(super) camera: bevy_curved_spaces::trace::product::ProductCamera,
+    /// A scene file's start view and scene, for the plugin.
+    pub(super) base: Option<bevy_curved_spaces::BaseProductScene>,
+}
+
+/// The product scene `render` and `walk` show: the scene file's where `--scene` names a
+/// product scene file, the default scene of `space_arg` where it names a product space;
+/// `None` for the constant-curvature spaces and their scene files.
+pub(super) fn choose_product(
+    space_arg: &str,
+    scene: Option<&Path>,
+) -> Result<Option<ProductChoice>, String> {
+    use bevy_curved_spaces::trace::product::{default_camera, default_scene};
+    if let Some(path) = scene {
+        let Some(file) = bevy_curved_spaces::trace::product::file::load_product_scene_file(path)
+            .map_err(|e| e.to_string())?
+        else {
+            return Ok(None);
+        };
+        let camera = file.start.unwrap_or_else(|| default_camera(&file.space));
+        return Ok(Some(ProductChoice {
+            base: Some(bevy_curved_spaces::BaseProductScene::from_file(&file)),
+            scene: file.scene,
+            camera,
+            space: file.space,
+        }));
+    }
+    Ok(super::product(space_arg)?.map(|space| ProductChoice {
+        scene: default_scene(&space),
+        camera: default_camera(&space),
+        base: None,
+        space,
+    }))
+}
+
+/// `render` of a product space (H²×R, S²×R): its default scene and view or a scene file's,
+/// mono or stereo, on the GPU or with the CPU reference (`--cpu`).
+fn render_product_command(args: &RenderArgs, chosen: ProductChoice) -> Result<(), String> {
+    use bevy_curved_spaces::space::product::motion::{camera_frame, product_eye_frames};
+    use bevy_curved_spaces::trace::product::render_product_view;
+    let ProductChoice {
+        space,
+        mut scene,
+        mut camera,
+        ..
+    } = chosen;
+    if args.eye.is_some() || args.look_at.is_some() || args.time != 0.0 {
+        return Err(
+            "--eye, --look-at and --time are not available in the product spaces (H²×R, S²×R): \
+             a product scene file's [start] sets the view"
+                .into(),
+        );
+    }
+    if args.view.colour_by != super::ColourByArg::Shading || args.view.changes_parts() {
+        return Err(
+            "--colour-by and the scene-part switches are not available in the product spaces \
+             (H²×R, S²×R); a product scene file's edges and centre_ball choose the parts"
+                .into(),
+        );
+    }
     if let Some(fog) = args.fog {
         scene.fog_distance = fog;
     }
-    scene.walls = args.view.walls.style(None)?.filter(|w| w.opening < 1.0);
-    let mut camera = default_camera(space);
+    scene.walls = args
+        .view
+        .walls
+        .style(scene.walls)?
+        .filter(|w| w.opening < 1.0);
     if let Some(fov) = args.fov {
         camera.fov_y_degrees = fov;
     }
     let budget = args.crossings.unwrap_or(64);
+    let stereo = args.stereo.settings_for(space.scale())?;
     say!(
-        "rendering {} ({}) at {}×{} with the {} (fog λ = {:.3}, ≤ {budget} crossings)…",
+        "rendering {} ({}) at {}×{} with the {} (fog λ = {:.3}, ≤ {budget} crossings{})…",
         space.name(),
         space.geometry_name(),
         args.size.0,
@@ -139,11 +199,34 @@ fn render_product_command(
         } else {
             "GPU tracer"
         },
-        scene.fog_distance
+        scene.fog_distance,
+        if stereo.mode.is_stereo() {
+            format!(
+                ", stereo {}: eyes {:.4} apart",
+                stereo.mode,
+                stereo.ipd_for(space.scale())
+            )
+        } else {
+            String::new()
+        }
     );
     let started = Instant::now();
     let image = if args.cpu {
-        render_product(space, &scene, &camera, args.size.0, args.size.1, budget)
+        let head = camera_frame(camera.point, camera.frame);
+        let eyes = if stereo.mode.is_stereo() {
+            product_eye_frames(&space, head, stereo.ipd_for(space.scale()))
+        } else {
+            [head; 2]
+        };
+        let layout = ViewLayout::new(
+            stereo.mode,
+            stereo.swap_eyes,
+            eyes,
+            camera.fov_y_degrees,
+            args.size.0,
+            args.size.1,
+        );
+        render_product_view(&space, &scene, &layout, budget)
     } else {
         let gpu_budget = u32::try_from(budget)
             .ok()
@@ -154,7 +237,9 @@ fn render_product_command(
                 )
             })?;
         bevy_curved_spaces::plugin::offscreen::OffscreenRenderer::new()
-            .and_then(|mut r| r.render_product(space, &scene, &camera, args.size, gpu_budget))
+            .and_then(|mut r| {
+                r.render_product_stereo(&space, &scene, &camera, args.size, gpu_budget, stereo)
+            })
             .map_err(|e| e.to_string())?
     };
     save(&image, &args.out)?;
@@ -170,8 +255,8 @@ fn render_product_command(
 }
 
 pub(super) fn render_command(args: &RenderArgs) -> Result<(), String> {
-    if let Some(p) = super::product(&args.space)? {
-        return render_product_command(args, &p);
+    if let Some(chosen) = choose_product(&args.space, args.scene.as_deref())? {
+        return render_product_command(args, chosen);
     }
     let mut chosen = choose_scene(&args.space, args.scene.as_deref(), args.fog)?.at(args.time)?;
     if args.view.changes_parts() {

@@ -104,7 +104,7 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
         }
         None => args,
     };
-    if let Some(product) = super::product(&args.space)? {
+    if let Some(product) = super::render::choose_product(&args.space, args.scene.as_deref())? {
         return walk_product(args, product);
     }
     let chosen = choose_scene(&args.space, args.scene.as_deref(), args.fog)?;
@@ -135,6 +135,7 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
             args.space
         );
         let mut render = RenderArgs::of(&args.space);
+        render.scene = args.scene.clone();
         render.fog = args.fog;
         render.scene = args.scene.clone();
         render.stereo = stereo_args;
@@ -268,6 +269,9 @@ pub(super) fn walk_xr(args: &WalkArgs, chosen: &Chosen) -> Result<(), String> {
             .set(window_titled(format!("curved spaces (XR mirror): {name}"))),
     );
     app.insert_resource(active);
+    if let Some(base) = chosen.base {
+        app.insert_resource(base);
+    }
     add_walk_plugins(&mut app, args, stereo, walls);
     if xr_available(app.world()) {
         app.add_plugins(CurvedSpacesXrPlugin::default());
@@ -286,10 +290,7 @@ pub(super) fn walk_xr(args: &WalkArgs, chosen: &Chosen) -> Result<(), String> {
 
 /// `walk` in a product space (H²×R, S²×R): its default scene, the fibre up; offscreen to a
 /// picture where there is no display.
-fn walk_product(
-    args: &WalkArgs,
-    product: bevy_curved_spaces::space::product::ProductSpace,
-) -> Result<(), String> {
+fn walk_product(args: &WalkArgs, chosen: super::render::ProductChoice) -> Result<(), String> {
     use bevy_curved_spaces::ActiveProduct;
     for (given, what) in [
         (args.replay.is_some(), "--replay"),
@@ -309,6 +310,7 @@ fn walk_product(
             args.space
         );
         let mut render = RenderArgs::of(&args.space);
+        render.scene = args.scene.clone();
         render.fog = args.fog;
         render.crossings = args.crossings.map(|c| c as usize);
         if !gpu_available() {
@@ -317,7 +319,11 @@ fn walk_product(
         }
         return render_command(&render);
     }
-    let active = ActiveProduct::new(&args.space, product);
+    let id = args
+        .scene
+        .as_ref()
+        .map_or_else(|| args.space.clone(), |_| chosen.space.name().to_string());
+    let active = ActiveProduct::new(id, chosen.space);
     let stereo = args.stereo.settings_for(active.inradius)?;
     eprintln!(
         "walking in {} ({}): click to look around, WASD to walk, Space/Shift along the fibre, Esc releases the mouse, F1 the panel",
@@ -330,6 +336,9 @@ fn walk_product(
         active.space.name()
     ))));
     app.insert_resource(active);
+    if let Some(base) = chosen.base {
+        app.insert_resource(base);
+    }
     add_walk_plugins(&mut app, args, stereo, None).add_systems(
         Startup,
         |mut commands: Commands| {

@@ -211,14 +211,11 @@ fn extract_curved_views(
             Shown::Constant(a) => {
                 eye_frames(&a.space, frame.0, stereo.ipd_for(a.inradius)).map(|e| e.frame)
             }
-            // Each eye half the eye distance along the head's right, the frames carried.
-            Shown::Product(p) => {
-                let half = 0.5 * stereo.ipd_for(p.inradius);
-                let g = p.space.base();
-                [-half, half].map(|t| {
-                    crate::space::product::motion::transport(g, frame.0, frame.0.x_axis, t)
-                })
-            }
+            Shown::Product(p) => crate::space::product::motion::product_eye_frames(
+                &p.space,
+                frame.0,
+                stereo.ipd_for(p.inradius),
+            ),
         };
         let extras = match shown {
             Shown::Constant(a) => ViewExtras::new(&a.space, &scene.0, frame.0, seconds),

@@ -42,10 +42,10 @@ pub(super) fn product_panel(
             ui.separator();
             let default_fog = base.as_ref().map_or_else(
                 || crate::trace::product::default_scene(space).fog_distance,
-                |b| b.0.fog_distance,
+                |b| b.scene.fog_distance,
             );
             tracer_controls(ui, &mut settings, &status, default_fog);
-            wall_controls(ui, &mut settings, base.as_ref().and_then(|b| b.0.walls));
+            wall_controls(ui, &mut settings, base.as_ref().and_then(|b| b.scene.walls));
             let mut scale = settings.resolution_scale;
             if ui
                 .add(egui::Slider::new(&mut scale, 0.125..=1.0).text("resolution scale"))

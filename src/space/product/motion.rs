@@ -251,3 +251,15 @@ pub fn orthonormal(g: Geometry, frame: DMat4) -> DMat4 {
 pub fn camera_frame(point: DVec4, [right, up, back]: [DVec4; 3]) -> DMat4 {
     DMat4::from_cols(right, up, back, point)
 }
+
+/// The two eyes of a head in a product space: each half of `ipd` along the head's right
+/// (left first), its frame carried there by [`transport`] and brought back into the cell
+/// where it left it (the stereo views of the CLI and the plugin).
+#[must_use]
+pub fn product_eye_frames(space: &ProductSpace, head: DMat4, ipd: f64) -> [DMat4; 2] {
+    let g = space.base();
+    [-0.5 * ipd, 0.5 * ipd].map(|t| {
+        let eye = transport(g, head, head.x_axis, t);
+        wrap_product_frame(space, eye, 0.0).0
+    })
+}

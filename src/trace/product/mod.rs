@@ -17,6 +17,8 @@
 //! searched only up to the nearest meeting found so far in the segment.
 
 #[cfg(feature = "scene-files")]
+pub mod file;
+#[cfg(feature = "scene-files")]
 pub mod flight;
 pub mod walls;
 
@@ -351,12 +353,37 @@ fn surface_basis(g: Geometry, p: DVec4) -> [DVec4; 2] {
     [out[0], out[1]]
 }
 
+/// Which parts of the default scene a product scene has ([`scene_with_parts`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ProductParts {
+    /// The cell's vertical and horizontal edges (the sphere's ring of balls instead).
+    pub edges: bool,
+    /// The ball at the centre.
+    pub centre_ball: bool,
+}
+
+impl Default for ProductParts {
+    /// Both parts: the default scene.
+    fn default() -> Self {
+        Self {
+            edges: true,
+            centre_ball: true,
+        }
+    }
+}
+
 /// The default scene: a ball at the centre, the cell's vertical edges (fibre tubes over the
 /// polygon's corners) and its horizontal edges (the polygon's sides in the top and bottom
 /// slices), a light above and beside the ball. The sphere has neither edge: a ring of balls
 /// round the equator marks its directions.
 #[must_use]
 pub fn default_scene(space: &ProductSpace) -> ProductScene {
+    scene_with_parts(space, ProductParts::default())
+}
+
+/// The default scene's light, ambient light and fog with the parts asked for.
+#[must_use]
+pub fn scene_with_parts(space: &ProductSpace, parts: ProductParts) -> ProductScene {
     let g = space.base();
     let walker = ProductWalker::<DVec4>::new(space);
     let size = space
@@ -368,7 +395,9 @@ pub fn default_scene(space: &ProductSpace) -> ProductScene {
     let n = polygon.sides.len();
     let edge = 0.04 * size;
     let h = 0.5 * space.length();
-    if n > 0 && !space.hemisphere() {
+    if !parts.edges {
+        // No edges: only what else is asked for.
+    } else if n > 0 && !space.hemisphere() {
         let r = crate::geometry::Real::to_f64(polygon.circumradius);
         let (c, s) = g.cs(r);
         for m in 0..n {
@@ -406,11 +435,13 @@ pub fn default_scene(space: &ProductSpace) -> ProductScene {
             });
         }
     }
-    objects.push(ProductObject {
-        shape: ProductShape::Point(DVec4::W),
-        radius: 0.25 * size,
-        colour: DVec3::new(1.0, 0.78, 0.45),
-    });
+    if parts.centre_ball {
+        objects.push(ProductObject {
+            shape: ProductShape::Point(DVec4::W),
+            radius: 0.25 * size,
+            colour: DVec3::new(1.0, 0.78, 0.45),
+        });
+    }
     let (c, s) = g.cs(0.5 * size);
     ProductScene {
         objects,
@@ -539,9 +570,31 @@ fn walk_to_hit<'a>(
     ProductRayEnd::Fog
 }
 
+/// The product's falloff of a point light: the area, per unit solid angle at the light, of
+/// the geodesic sphere through a point `db` away on the surface and `dz` along the fibre.
+///
+/// A geodesic leaving the light at elevation `θ` reaches distance `r` at surface distance
+/// `ρ = r cos θ` and height `r sin θ`; in these coordinates the volume is
+/// `S(ρ) dρ dφ dz = r S(r cos θ) dr dθ dφ`, so the sphere's area per solid angle
+/// `cos θ dθ dφ` is `r S(ρ) / cos θ = r² S(ρ)/ρ`, with `S` = sinh (H²×R) or sin (S²×R).
+/// It is `r²` near the light and along the fibre (where the product looks Euclidean),
+/// grows like `r² e^ρ/ρ` across H², and falls to 0 where the geodesics from the light
+/// meet again on S² (`ρ = π`): the caller clamps it from below.
+#[must_use]
+pub fn light_spread(g: Geometry, db: f64, dz: f64) -> f64 {
+    let r2 = db * db + dz * dz;
+    let ratio = if db < 1e-4 {
+        // S(ρ)/ρ = 1 + κ' ρ²/6 + …, κ' = +1 for sinh, −1 for sin.
+        1.0 - g.kappa() * db * db / 6.0
+    } else {
+        g.s(db) / db
+    };
+    r2 * ratio.max(0.0)
+}
+
 /// The colour seen along one ray: its first object ([`first_product_hit`]) shaded with the
-/// light's nearest copy (Lambert, falloff by the square of the distance, never nearer than
-/// a tenth of the ball's radius) and fog; the fog colour where nothing is met before the
+/// light (Lambert, the product's falloff [`light_spread`], never more than at distance 1)
+/// and fog; the fog colour where nothing is met before the
 /// fog's cut-off or within the crossing budget.
 ///
 /// With `walls` ([`walls::ProductWalls`], the scene's walls built once), every panel the
@@ -576,13 +629,13 @@ pub fn trace_product_pixel(
         normal = -DVec4::Z * start.tangent.z.signum();
     }
     let to_light = tangent_towards(g, at, scene.light);
-    let dl = {
-        let db = surface_distance(g, at, scene.light);
-        let dz = at.z - scene.light.z;
-        (db * db + dz * dz).sqrt().max(0.1)
-    };
     let lambert = dot(g, normal, to_light).max(0.0);
-    let lit = scene.ambient + (1.0 - scene.ambient) * lambert / (dl * dl).max(1.0);
+    let spread = light_spread(
+        g,
+        surface_distance(g, at, scene.light),
+        at.z - scene.light.z,
+    );
+    let lit = scene.ambient + (1.0 - scene.ambient) * lambert / spread.max(1.0);
     let surface = (object.colour * lit).min(DVec3::ONE);
     let w = (-distance / scene.fog_distance).exp();
     veil.over(w * surface + (1.0 - w) * scene.fog_colour)
@@ -625,7 +678,7 @@ pub fn product_auto_budget(
     super::budget::choose_from_needed(needed, miss_fraction, miss_fraction)
 }
 
-/// Renders a product space's scene on the CPU (rows in parallel).
+/// Renders a product space's scene on the CPU from one camera (rows in parallel).
 #[must_use]
 pub fn render_product(
     space: &ProductSpace,
@@ -635,23 +688,55 @@ pub fn render_product(
     height: u32,
     max_crossings: usize,
 ) -> RgbImage {
+    let frame = crate::space::product::motion::camera_frame(camera.point, camera.frame);
+    let lens = crate::view::Lens::symmetric(
+        camera.fov_y_degrees,
+        f64::from(width.max(1)) / f64::from(height.max(1)),
+    );
+    let layout = crate::view::ViewLayout::mono(frame, lens, width, height);
+    render_product_view(space, scene, &layout, max_crossings)
+}
+
+/// Renders a product space's scene on the CPU over a view layout: mono, or the two eyes
+/// of a stereo mode ([`crate::view::ViewLayout::new`] with frames from
+/// [`crate::space::product::motion::product_eye_frames`]), rows in parallel. Pixel `(i, j)`
+/// of each eye's picture sees along `x·right + y·up − back` of the eye's frame, `(x, y)`
+/// from the layout's lens.
+#[must_use]
+pub fn render_product_view(
+    space: &ProductSpace,
+    scene: &ProductScene,
+    layout: &crate::view::ViewLayout,
+    max_crossings: usize,
+) -> RgbImage {
     let walker = ProductWalker::<DVec4>::new(space);
     // Rays stop behind walls that let less light through than the fog's cut-off weight.
     let walls = scene.walls.and_then(|style| {
         walls::ProductWalls::new(space, style, crate::scene::DEFAULT_CUTOFF_WEIGHT)
     });
+    let (width, height) = (layout.size[0] as u32, layout.size[1] as u32);
+    let colour = |eye: usize, [u, v]: [f64; 2]| {
+        let f = layout.frames[eye];
+        let (x, y) = layout.lens.at(u, v);
+        let ray = Ray {
+            point: f.w_axis,
+            tangent: f.x_axis * x + f.y_axis * y - f.z_axis,
+        };
+        trace_product_pixel(&walker, walls.as_ref(), scene, ray, max_crossings)
+            .clamp(DVec3::ZERO, DVec3::ONE)
+    };
     let rows: Vec<Vec<u8>> = (0..height)
         .into_par_iter()
         .map(|j| {
             (0..width)
                 .flat_map(|i| {
-                    let c = trace_product_pixel(
-                        &walker,
-                        walls.as_ref(),
-                        scene,
-                        camera.ray(i, j, width, height),
-                        max_crossings,
-                    );
+                    let (eye, uv) = layout.eye_at(f64::from(i) + 0.5, f64::from(j) + 0.5);
+                    let c = match layout.kind {
+                        crate::view::ViewKind::Anaglyph => {
+                            layout.mix_anaglyph(colour(0, uv), colour(1, uv))
+                        }
+                        _ => colour(eye, uv),
+                    };
                     c.to_array().map(super::to_byte)
                 })
                 .collect()

@@ -1,0 +1,536 @@
+//! Scene files of the product spaces (H²×R, S²×R): the same TOML shape as the
+//! constant-curvature scene files ([`crate::scene::file`]), with the product's own objects.
+//! `render --scene FILE` and `walk --scene FILE` read either kind: the file's `space` says
+//! which.
+//!
+//! Positions are `(x, y, z)` in units of [`ProductSpace::scale`] (the smaller of the base
+//! polygon's inradius and half the circle), as in product flights: the surface point at
+//! distance `|(x, y)|` from the cell's centre in the direction of `(x, y)` (side 0 is at
+//! `+x`), at height `z`. Radii are in the same units. `docs/surfaces.md` lists every key.
+//!
+//! ```toml
+//! space = "bitorus-circle"
+//! edges = true            # the cell's vertical and horizontal edges (default true)
+//! centre_ball = false     # the default scene's ball at the centre (default false)
+//! fog = 3.0               # fog distance, in units of the scale
+//! walls = 0.6             # walls with windows: how far open (0 solid, 1 none)
+//!
+//! [start]
+//! position = [0.6, 0.2, 0.1]
+//! look_at = [0.0, 0.0, 0.0]
+//! fov = 70
+//!
+//! [[object]]
+//! type = "ball"           # ball: position [x, y, z]; fibre: position [x, y] (a vertical
+//! position = [0, 0, 0]    # tube); disc: position [x, y, z] (horizontal); geodesic: from
+//! radius = 0.3            # [x, y], to [x, y] and height (a horizontal tube)
+//! colour = [1.0, 0.8, 0.4]
+//!
+//! [[light]]               # one light at most (the default scene's where there is none)
+//! position = [0.3, 0.2, 0.3]
+//! ```
+//!
+//! Every object must fit in the cell (its distance from each face at least its radius;
+//! a fibre tube and a horizontal geodesic run through the cell and are cut by its faces),
+//! because the tracer meets objects in the cell only: one reaching through a face would be
+//! cut off there. An error names the file and the line.
+
+use super::{
+    ProductCamera, ProductObject, ProductParts, ProductScene, ProductShape, scene_with_parts,
+};
+use crate::geometry::Geometry;
+use crate::scene::file::{SceneFileError, colour, suggest_key};
+use crate::space::product::motion::camera_frame;
+use crate::space::product::{ProductOrFlat, ProductSpace, product_space};
+use glam::{DMat4, DVec2, DVec3, DVec4};
+use serde::Deserialize;
+use std::path::Path;
+use toml::Spanned;
+
+/// A loaded product scene file: the space, its scene and the start view.
+#[derive(Clone, Debug)]
+pub struct ProductSceneFile {
+    /// The space's id, as written.
+    pub space_id: String,
+    /// The space.
+    pub space: ProductSpace,
+    /// The whole scene: the file's objects with the default parts it asks for.
+    pub scene: ProductScene,
+    /// The start view (`None`: the space's default camera).
+    pub start: Option<ProductCamera>,
+}
+
+impl ProductSceneFile {
+    /// The start view as a player frame (columns right, up, back and the eye), if the file
+    /// has one.
+    #[must_use]
+    pub fn start_frame(&self) -> Option<DMat4> {
+        self.start.map(|c| camera_frame(c.point, c.frame))
+    }
+}
+
+/// The keys a product scene file knows (for "did you mean").
+const KEYS: &[&str] = &[
+    "space",
+    "fog",
+    "edges",
+    "centre_ball",
+    "walls",
+    "wall_opacity",
+    "ambient",
+    "fog_colour",
+    "start",
+    "object",
+    "light",
+    "position",
+    "look_at",
+    "fov",
+    "type",
+    "radius",
+    "colour",
+    "from",
+    "to",
+    "height",
+];
+
+fn default_true() -> bool {
+    true
+}
+
+fn white() -> [f64; 3] {
+    [1.0; 3]
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileSpec {
+    space: Spanned<String>,
+    fog: Option<Spanned<f64>>,
+    #[serde(default = "default_true")]
+    edges: bool,
+    #[serde(default)]
+    centre_ball: bool,
+    walls: Option<Spanned<f64>>,
+    wall_opacity: Option<Spanned<f64>>,
+    ambient: Option<Spanned<f64>>,
+    fog_colour: Option<Spanned<[f64; 3]>>,
+    start: Option<Spanned<StartSpec>>,
+    #[serde(default, rename = "object")]
+    objects: Vec<Spanned<ObjectSpec>>,
+    #[serde(default, rename = "light")]
+    lights: Vec<Spanned<LightSpec>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct StartSpec {
+    position: [f64; 3],
+    look_at: Option<[f64; 3]>,
+    fov: Option<f64>,
+}
+
+#[derive(Deserialize)]
+#[serde(tag = "type", rename_all = "kebab-case", deny_unknown_fields)]
+enum ObjectSpec {
+    Ball {
+        position: [f64; 3],
+        radius: f64,
+        #[serde(default = "white")]
+        colour: [f64; 3],
+    },
+    Fibre {
+        position: [f64; 2],
+        radius: f64,
+        #[serde(default = "white")]
+        colour: [f64; 3],
+    },
+    Disc {
+        position: [f64; 3],
+        radius: f64,
+        #[serde(default = "white")]
+        colour: [f64; 3],
+    },
+    Geodesic {
+        from: [f64; 2],
+        to: [f64; 2],
+        height: f64,
+        radius: f64,
+        #[serde(default = "white")]
+        colour: [f64; 3],
+    },
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LightSpec {
+    position: [f64; 3],
+}
+
+/// Only the `space` key, to tell the two kinds of scene file apart.
+#[derive(Deserialize)]
+struct SpaceOnly {
+    space: Spanned<String>,
+}
+
+/// Reads a scene file if its space is a product space; `Ok(None)` for any other file (a
+/// constant-curvature scene file, or one whose `space` cannot be read: the
+/// constant-curvature loader says what is wrong with it).
+pub fn load_product_scene_file(path: &Path) -> Result<Option<ProductSceneFile>, SceneFileError> {
+    let name = path.display().to_string();
+    let text = crate::files::read_text(path, crate::files::MAX_SCENE_FILE_BYTES).map_err(|e| {
+        SceneFileError {
+            file: name.clone(),
+            line: None,
+            message: format!("cannot read the scene file: {e}"),
+        }
+    })?;
+    let Ok(peek) = toml::from_str::<SpaceOnly>(&text) else {
+        return Ok(None);
+    };
+    match product_space(peek.space.get_ref()) {
+        Some(Ok(ProductOrFlat::Product(_)) | Err(_)) => parse_product_scene(&text, &name).map(Some),
+        Some(Ok(ProductOrFlat::Flat(_))) | None => Ok(None),
+    }
+}
+
+/// Parses a product scene file's text; errors name `file` and the line.
+pub fn parse_product_scene(text: &str, file: &str) -> Result<ProductSceneFile, SceneFileError> {
+    let line_of = |offset: usize| text[..offset.min(text.len())].matches('\n').count() + 1;
+    let fail = |span: Option<std::ops::Range<usize>>, message: String| SceneFileError {
+        file: file.to_string(),
+        line: span.map(|s| line_of(s.start)),
+        message,
+    };
+    let spec: FileSpec = toml::from_str(text).map_err(|e| {
+        let message = suggest_key(e.message(), KEYS);
+        fail(e.span(), message)
+    })?;
+    let space_id = spec.space.get_ref().clone();
+    let space = match product_space(&space_id) {
+        Some(Ok(ProductOrFlat::Product(p))) => *p,
+        Some(Ok(ProductOrFlat::Flat(_))) => {
+            return Err(fail(
+                Some(spec.space.span()),
+                format!(
+                    "{space_id} is flat (E²×R is E³): write its scene as a constant-curvature \
+                     scene file"
+                ),
+            ));
+        }
+        Some(Err(e)) => return Err(fail(Some(spec.space.span()), e)),
+        None => {
+            return Err(fail(
+                Some(spec.space.span()),
+                format!(
+                    "{space_id} is not a product space (H²×R or S²×R); `curved-spaces list` \
+                     names them"
+                ),
+            ));
+        }
+    };
+    let scale = space.scale();
+    let mut scene = scene_with_parts(
+        &space,
+        ProductParts {
+            edges: spec.edges,
+            centre_ball: spec.centre_ball,
+        },
+    );
+    if let Some(f) = &spec.fog {
+        let f = positive_finite(*f.get_ref(), "the fog distance")
+            .map_err(|m| fail(Some(f.span()), m))?;
+        scene.fog_distance = f * scale;
+    }
+    if let Some(a) = &spec.ambient {
+        if !(0.0..=1.0).contains(a.get_ref()) {
+            return Err(fail(
+                Some(a.span()),
+                format!("ambient must be between 0 and 1, got {}", a.get_ref()),
+            ));
+        }
+        scene.ambient = *a.get_ref();
+    }
+    if let Some(c) = &spec.fog_colour {
+        scene.fog_colour = colour(*c.get_ref())
+            .map_err(|m| fail(Some(c.span()), format!("fog_colour: {m}")))?
+            .min(DVec3::ONE);
+    }
+    scene.walls = match (&spec.walls, &spec.wall_opacity) {
+        (Some(opening), opacity) => {
+            let style = crate::scene::WallStyle::with_opacity(
+                *opening.get_ref(),
+                opacity
+                    .as_ref()
+                    .map_or(crate::scene::walls::DEFAULT_WALL_OPACITY, |o| *o.get_ref()),
+            )
+            .map_err(|e| {
+                let span = match (&e, opacity) {
+                    (crate::scene::WallError::Opacity(_), Some(o)) => o.span(),
+                    _ => opening.span(),
+                };
+                fail(Some(span), e.to_string())
+            })?;
+            Some(style).filter(|w| w.opening < 1.0)
+        }
+        (None, Some(o)) => {
+            return Err(fail(
+                Some(o.span()),
+                "wall_opacity needs walls = OPENING (0 solid to 1 none) beside it".into(),
+            ));
+        }
+        (None, None) => None,
+    };
+    match spec.lights.as_slice() {
+        [] => {}
+        [light] => {
+            let p = inside(&space, light.get_ref().position, 0.0, "the light")
+                .map_err(|m| fail(Some(light.span()), m))?;
+            scene.light = p;
+        }
+        [_, second, ..] => {
+            return Err(fail(
+                Some(second.span()),
+                format!(
+                    "a product scene has one light, this file has {}",
+                    spec.lights.len()
+                ),
+            ));
+        }
+    }
+    for object in &spec.objects {
+        let o = build_object(&space, object.get_ref()).map_err(|m| fail(Some(object.span()), m))?;
+        scene.objects.push(o);
+    }
+    let start = match &spec.start {
+        Some(s) => Some(start_camera(&space, s.get_ref()).map_err(|m| fail(Some(s.span()), m))?),
+        None => None,
+    };
+    Ok(ProductSceneFile {
+        space_id,
+        space,
+        scene,
+        start,
+    })
+}
+
+fn positive_finite(x: f64, what: &str) -> Result<f64, String> {
+    if x > 0.0 && x.is_finite() {
+        Ok(x)
+    } else {
+        Err(format!(
+            "{what} must be a positive number (in units of the space's scale), got {x}"
+        ))
+    }
+}
+
+/// The surface point at `xy` (units of `scale`) at height `z` (model units).
+fn surface_point(space: &ProductSpace, xy: DVec2, z: f64, what: &str) -> Result<DVec4, String> {
+    let g = space.base();
+    if !xy.is_finite() || !z.is_finite() {
+        return Err(format!("{what}: positions must be finite numbers"));
+    }
+    let d = xy.length() * space.scale();
+    let (c, s) = g.cs(d);
+    let dir = xy.normalize_or_zero();
+    Ok(DVec4::new(s * dir.x, s * dir.y, z, c))
+}
+
+/// How far the surface point `p` (of the base) is inside the polygon: its least distance
+/// to a side line (negative outside); infinite for the whole sphere.
+fn base_room(space: &ProductSpace, p: DVec4) -> f64 {
+    let g = space.base();
+    space
+        .side_faces()
+        .iter()
+        .map(|f| {
+            let n = space.side_covector(f).round_f64();
+            let x = n.x * p.x + n.y * p.y + n.w * p.w;
+            match g {
+                Geometry::Spherical => -x.clamp(-1.0, 1.0).asin(),
+                _ => -x.asinh(),
+            }
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// The point at `position` (units of the scale), checked to lie `radius` or more inside
+/// every face.
+fn inside(
+    space: &ProductSpace,
+    position: [f64; 3],
+    radius: f64,
+    what: &str,
+) -> Result<DVec4, String> {
+    let scale = space.scale();
+    let p = surface_point(
+        space,
+        DVec2::new(position[0], position[1]),
+        position[2] * scale,
+        what,
+    )?;
+    let room_base = base_room(space, p);
+    let room_top = 0.5 * space.length() - p.z.abs();
+    let room = room_base.min(room_top);
+    if !(room >= radius) {
+        let too = if radius > 0.0 {
+            format!(" by {:.3}", (radius - room) / scale)
+        } else {
+            String::new()
+        };
+        return Err(format!(
+            "{what} at {position:?} does not fit in the cell{too} (units of the scale {scale:.4}): \
+             the cell reaches {:.3} from the centre to a side and {:.3} up and down",
+            space.base_inradius() / scale,
+            0.5 * space.length() / scale
+        ));
+    }
+    Ok(p)
+}
+
+/// A radius in units of the scale, checked against the cell: at most the polygon's
+/// inradius, and with `vertical` (a ball, a horizontal tube) half the circle too.
+fn radius_of(space: &ProductSpace, r: f64, vertical: bool) -> Result<f64, String> {
+    let r = positive_finite(r, "radius")? * space.scale();
+    let mut most = space.base_inradius();
+    if vertical {
+        most = most.min(0.5 * space.length());
+    }
+    if r > most {
+        return Err(format!(
+            "radius {:.3} is larger than the cell (at most {:.3} in units of the scale)",
+            r / space.scale(),
+            most / space.scale()
+        ));
+    }
+    Ok(r)
+}
+
+fn build_object(space: &ProductSpace, spec: &ObjectSpec) -> Result<ProductObject, String> {
+    let g = space.base();
+    let scale = space.scale();
+    let h = 0.5 * space.length();
+    let (shape, radius, c) = match spec {
+        ObjectSpec::Ball {
+            position,
+            radius,
+            colour,
+        } => {
+            let r = radius_of(space, *radius, true)?;
+            (
+                ProductShape::Point(inside(space, *position, r, "the ball")?),
+                r,
+                colour,
+            )
+        }
+        ObjectSpec::Fibre {
+            position,
+            radius,
+            colour,
+        } => {
+            let r = radius_of(space, *radius, false)?;
+            let p = surface_point(space, DVec2::from_array(*position), 0.0, "the fibre")?;
+            let room = base_room(space, p);
+            if !(room >= r) {
+                return Err(format!(
+                    "the fibre tube at {position:?} does not fit in the polygon by {:.3} (units \
+                     of the scale {scale:.4})",
+                    (r - room) / scale
+                ));
+            }
+            (ProductShape::Fibre(p), r, colour)
+        }
+        ObjectSpec::Disc {
+            position,
+            radius,
+            colour,
+        } => {
+            let r = radius_of(space, *radius, false)?;
+            let p = inside(space, *position, 0.0, "the disc")?;
+            let room = base_room(space, p);
+            if !(room >= r) || p.z.abs() >= h {
+                return Err(format!(
+                    "the disc at {position:?} does not fit in the cell by {:.3} (units of the \
+                     scale {scale:.4})",
+                    (r - room) / scale
+                ));
+            }
+            (ProductShape::Disc(p), r, colour)
+        }
+        ObjectSpec::Geodesic {
+            from,
+            to,
+            height,
+            radius,
+            colour,
+        } => {
+            let r = radius_of(space, *radius, true)?;
+            let z = height * scale;
+            if !(z.abs() <= h) {
+                return Err(format!(
+                    "height {height} is outside the cell (it reaches {:.3} up and down in units \
+                     of the scale)",
+                    h / scale
+                ));
+            }
+            let p = surface_point(space, DVec2::from_array(*from), z, "from")?;
+            let q = surface_point(space, DVec2::from_array(*to), z, "to")?;
+            // The plane through the origin spanned by p and q cuts the surface in the
+            // geodesic: its normal is their cross product, made a unit covector.
+            let n = DVec3::new(p.x, p.y, p.w).cross(DVec3::new(q.x, q.y, q.w));
+            let norm = n.x * n.x + n.y * n.y + g.kappa() * n.z * n.z;
+            if !(norm > 1e-18) {
+                return Err(format!(
+                    "the geodesic's from {from:?} and to {to:?} name no one line (the same \
+                     point, or opposite on the sphere)"
+                ));
+            }
+            let n = n / norm.sqrt();
+            (
+                ProductShape::Geodesic {
+                    covector: DVec4::new(n.x, n.y, 0.0, n.z),
+                    height: z,
+                },
+                r,
+                colour,
+            )
+        }
+    };
+    Ok(ProductObject {
+        shape,
+        radius,
+        colour: colour(*c)?.min(DVec3::ONE),
+    })
+}
+
+fn start_camera(space: &ProductSpace, start: &StartSpec) -> Result<ProductCamera, String> {
+    let g = space.base();
+    let eye = inside(space, start.position, 0.0, "the start position")?;
+    let target = match start.look_at {
+        Some(t) => {
+            let scale = space.scale();
+            surface_point(space, DVec2::new(t[0], t[1]), t[2] * scale, "look_at")?
+        }
+        None => DVec4::W,
+    };
+    if super::surface_distance(g, eye, target) < 1e-9 && (eye.z - target.z).abs() < 1e-9 {
+        return Err("look_at is the start position: nothing to look towards".into());
+    }
+    if g == Geometry::Spherical
+        && super::surface_distance(g, eye, target) >= 0.999 * std::f64::consts::PI
+    {
+        return Err(
+            "look_at is opposite the start position on the sphere: no one geodesic joins them"
+                .into(),
+        );
+    }
+    let fov = match start.fov {
+        Some(f) if f > 0.0 && f < 180.0 => f,
+        Some(f) => {
+            return Err(format!(
+                "fov must be an angle between 0 and 180 degrees, got {f}"
+            ));
+        }
+        None => super::default_camera(space).fov_y_degrees,
+    };
+    Ok(ProductCamera::looking_at(g, eye, target, fov))
+}
