@@ -91,6 +91,10 @@ fn scene_is_finite(file: &bevy_curved_spaces::scene::file::SceneFile) -> bool {
 /// Parses a mutated scene text within the time bound; `true` for a scene, `false` for an
 /// error. A scene must be finite.
 fn outcome(text: &str, base: &Path) -> bool {
+    use bevy_curved_spaces::trace::product::file::names_product_space;
+    if names_product_space(text) {
+        return product_outcome(text);
+    }
     let started = Instant::now();
     let result = parse_scene(text, base, "fuzz.toml");
     let seconds = started.elapsed().as_secs_f64();
@@ -110,6 +114,47 @@ fn outcome(text: &str, base: &Path) -> bool {
             assert!(
                 started.elapsed().as_secs_f64() < 20.0,
                 "moving objects took too long:\n{text}"
+            );
+            true
+        }
+        Err(e) => {
+            assert!(e.to_string().starts_with("fuzz.toml"), "{e}");
+            false
+        }
+    }
+}
+
+/// A mutated product scene text: a finite scene that traces a small picture without a
+/// panic or a hang, or an error naming the file.
+fn product_outcome(text: &str) -> bool {
+    use bevy_curved_spaces::trace::product::file::parse_product_scene;
+    use bevy_curved_spaces::trace::product::{ProductShape, default_camera, render_product};
+    let started = Instant::now();
+    match parse_product_scene(text, "fuzz.toml") {
+        Ok(file) => {
+            let s = &file.scene;
+            assert!(
+                s.objects.iter().all(|o| {
+                    let centre = match o.shape {
+                        ProductShape::Point(c) | ProductShape::Fibre(c) | ProductShape::Disc(c) => {
+                            c
+                        }
+                        ProductShape::Geodesic { covector, height } => {
+                            covector + glam::DVec4::Z * height
+                        }
+                    };
+                    centre.is_finite() && o.radius.is_finite() && o.colour.is_finite()
+                }) && s.light.is_finite()
+                    && s.fog_distance.is_finite(),
+                "a non-finite product scene from:\n{text}"
+            );
+            let camera = file.start.unwrap_or_else(|| default_camera(&file.space));
+            assert!(camera.point.is_finite() && camera.frame.iter().all(|v| v.is_finite()));
+            let image = render_product(&file.space, s, &camera, 8, 4, 16);
+            assert_eq!(image.dimensions(), (8, 4));
+            assert!(
+                started.elapsed().as_secs_f64() < 10.0,
+                "slow product scene:\n{text}"
             );
             true
         }
@@ -296,9 +341,15 @@ fn the_regression_corpus_is_refused_cleanly() {
         let started = Instant::now();
         let message = match path.extension().and_then(|e| e.to_str()) {
             Some("glb" | "gltf") => load(&path).err().map(|e| e.to_string()),
-            Some("toml") => bevy_curved_spaces::scene::file::load_scene_file(&path)
-                .err()
-                .map(|e| e.to_string()),
+            Some("toml") => {
+                match bevy_curved_spaces::trace::product::file::load_product_scene_file(&path) {
+                    Err(e) => Some(e.to_string()),
+                    Ok(Some(_)) => None,
+                    Ok(None) => bevy_curved_spaces::scene::file::load_scene_file(&path)
+                        .err()
+                        .map(|e| e.to_string()),
+                }
+            }
             Some("json") => bevy_curved_spaces::space::file::load_space_file(&path)
                 .err()
                 .map(|e| e.to_string()),

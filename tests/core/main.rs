@@ -24,6 +24,8 @@ mod player;
 mod product_flight;
 mod product_motion;
 mod product_player;
+#[cfg(feature = "scene-files")]
+mod product_scenes;
 mod products;
 mod render;
 mod spaces;

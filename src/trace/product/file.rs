@@ -184,13 +184,25 @@ pub fn load_product_scene_file(path: &Path) -> Result<Option<ProductSceneFile>, 
             message: format!("cannot read the scene file: {e}"),
         }
     })?;
-    let Ok(peek) = toml::from_str::<SpaceOnly>(&text) else {
-        return Ok(None);
-    };
-    match product_space(peek.space.get_ref()) {
-        Some(Ok(ProductOrFlat::Product(_)) | Err(_)) => parse_product_scene(&text, &name).map(Some),
-        Some(Ok(ProductOrFlat::Flat(_))) | None => Ok(None),
+    if names_product_space(&text) {
+        parse_product_scene(&text, &name).map(Some)
+    } else {
+        Ok(None)
     }
+}
+
+/// Whether a scene file's text names a product space in its `space` key (or a product id
+/// that is wrong: its loader says what is wrong with it); `false` where the key cannot be
+/// read.
+#[must_use]
+pub fn names_product_space(text: &str) -> bool {
+    let Ok(peek) = toml::from_str::<SpaceOnly>(text) else {
+        return false;
+    };
+    matches!(
+        product_space(peek.space.get_ref()),
+        Some(Ok(ProductOrFlat::Product(_)) | Err(_))
+    )
 }
 
 /// Parses a product scene file's text; errors name `file` and the line.
@@ -323,16 +335,13 @@ fn positive_finite(x: f64, what: &str) -> Result<f64, String> {
     }
 }
 
-/// The surface point at `xy` (units of `scale`) at height `z` (model units).
+/// The surface point at `xy` (units of the scale) at height `z` (units of the scale),
+/// refused where it cannot be held ([`super::flight::point_at`]).
 fn surface_point(space: &ProductSpace, xy: DVec2, z: f64, what: &str) -> Result<DVec4, String> {
-    let g = space.base();
     if !xy.is_finite() || !z.is_finite() {
         return Err(format!("{what}: positions must be finite numbers"));
     }
-    let d = xy.length() * space.scale();
-    let (c, s) = g.cs(d);
-    let dir = xy.normalize_or_zero();
-    Ok(DVec4::new(s * dir.x, s * dir.y, z, c))
+    super::flight::point_at(space, xy.extend(z), what)
 }
 
 /// How far the surface point `p` (of the base) is inside the polygon: its least distance
@@ -365,7 +374,7 @@ fn inside(
     let p = surface_point(
         space,
         DVec2::new(position[0], position[1]),
-        position[2] * scale,
+        position[2],
         what,
     )?;
     let room_base = base_room(space, p);
@@ -394,6 +403,10 @@ fn radius_of(space: &ProductSpace, r: f64, vertical: bool) -> Result<f64, String
     let mut most = space.base_inradius();
     if vertical {
         most = most.min(0.5 * space.length());
+    }
+    if space.base() == Geometry::Spherical {
+        // The tracer's search needs the distance convex along each step (π/4 of arc).
+        most = most.min(0.25 * std::f64::consts::PI);
     }
     if r > most {
         return Err(format!(
@@ -472,8 +485,8 @@ fn build_object(space: &ProductSpace, spec: &ObjectSpec) -> Result<ProductObject
                     h / scale
                 ));
             }
-            let p = surface_point(space, DVec2::from_array(*from), z, "from")?;
-            let q = surface_point(space, DVec2::from_array(*to), z, "to")?;
+            let p = surface_point(space, DVec2::from_array(*from), *height, "from")?;
+            let q = surface_point(space, DVec2::from_array(*to), *height, "to")?;
             // The plane through the origin spanned by p and q cuts the surface in the
             // geodesic: its normal is their cross product, made a unit covector.
             let n = DVec3::new(p.x, p.y, p.w).cross(DVec3::new(q.x, q.y, q.w));
@@ -506,10 +519,7 @@ fn start_camera(space: &ProductSpace, start: &StartSpec) -> Result<ProductCamera
     let g = space.base();
     let eye = inside(space, start.position, 0.0, "the start position")?;
     let target = match start.look_at {
-        Some(t) => {
-            let scale = space.scale();
-            surface_point(space, DVec2::new(t[0], t[1]), t[2] * scale, "look_at")?
-        }
+        Some(t) => surface_point(space, DVec2::new(t[0], t[1]), t[2], "look_at")?,
         None => DVec4::W,
     };
     if super::surface_distance(g, eye, target) < 1e-9 && (eye.z - target.z).abs() < 1e-9 {

@@ -28,8 +28,9 @@ pub struct ProductFlight {
 /// of the cell's size in f64).
 pub const MAX_CIRCLES: f64 = 1e6;
 
-/// The point of the product at key coordinates `p` (in units of `scale`).
-fn point_at(space: &ProductSpace, p: DVec3, what: &str) -> Result<DVec4, String> {
+/// The point of the product at key coordinates `p` (in units of `scale`): refused where it
+/// is π or more round the sphere, or too far to hold in f64.
+pub(super) fn point_at(space: &ProductSpace, p: DVec3, what: &str) -> Result<DVec4, String> {
     let g = space.base();
     let scale = space.scale();
     let d = p.truncate().length() * scale;

@@ -350,7 +350,11 @@ fn surface_basis(g: Geometry, p: DVec4) -> [DVec4; 2] {
             out.push(v / len);
         }
     }
-    [out[0], out[1]]
+    // A point off the model (not finite) has no basis: the axes stand in, never a panic.
+    [
+        out.first().copied().unwrap_or(DVec4::X),
+        out.get(1).copied().unwrap_or(DVec4::Y),
+    ]
 }
 
 /// Which parts of the default scene a product scene has ([`scene_with_parts`]).

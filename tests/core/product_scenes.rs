@@ -1,0 +1,334 @@
+//! Product scenes (H²×R, S²×R): scene files (the shipped one, every error with its line),
+//! the light's falloff against the geodesic sphere's area measured from the exponential
+//! map, and stereo renders against one eye's mono render.
+
+use bevy_curved_spaces::geometry::Geometry;
+use bevy_curved_spaces::space::product::motion::{camera_frame, product_dot, product_eye_frames};
+use bevy_curved_spaces::space::product::{ProductOrFlat, ProductSpace, product_space};
+use bevy_curved_spaces::trace::product::file::{load_product_scene_file, parse_product_scene};
+use bevy_curved_spaces::trace::product::{
+    ProductCamera, ProductParts, ProductShape, default_scene, light_spread, render_product,
+    render_product_view, scene_with_parts,
+};
+use bevy_curved_spaces::view::ViewLayout;
+use bevy_curved_spaces::view::stereo::StereoMode;
+use glam::{DVec3, DVec4};
+use std::path::PathBuf;
+
+fn product(id: &str) -> ProductSpace {
+    match product_space(id) {
+        Some(Ok(ProductOrFlat::Product(p))) => *p,
+        _ => panic!("{id} is a product space"),
+    }
+}
+
+/// Points at distance `r` round `c` in the product (a ball's surface), 26 directions.
+fn ball_surface(g: Geometry, c: DVec4, r: f64) -> Vec<DVec4> {
+    let mut out = Vec::new();
+    for i in -1i32..=1 {
+        for j in -1i32..=1 {
+            for k in -1i32..=1 {
+                if (i, j, k) == (0, 0, 0) {
+                    continue;
+                }
+                let d = DVec3::new(f64::from(i), f64::from(j), f64::from(k)).normalize();
+                // Surface distance r·|d.xy| from c, height r·d.z: walk it from c's frame.
+                let rho = r * d.truncate().length();
+                let cb = DVec3::new(c.x, c.y, c.w);
+                // A unit surface tangent at c along the direction (d.x, d.y) of the chart.
+                let raw = DVec3::new(d.x, d.y, 0.0);
+                let form = |a: DVec3, b: DVec3| a.x * b.x + a.y * b.y + g.kappa() * a.z * b.z;
+                let t = raw - cb * (form(raw, cb) / form(cb, cb));
+                let point = if form(t, t) > 0.0 {
+                    let t = t / form(t, t).sqrt();
+                    let (co, si) = g.cs(rho);
+                    cb * co + t * si
+                } else {
+                    cb
+                };
+                out.push(DVec4::new(point.x, point.y, c.z + r * d.z, point.z));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn the_shipped_product_scene_loads_and_fits_in_its_cell() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/bitorus_pillars.toml");
+    let file = load_product_scene_file(&path)
+        .expect("loads")
+        .expect("a product scene file");
+    assert_eq!(file.space.name(), "bitorus-circle");
+    let edges = scene_with_parts(
+        &file.space,
+        ProductParts {
+            edges: true,
+            centre_ball: false,
+        },
+    )
+    .objects
+    .len();
+    assert_eq!(file.scene.objects.len(), edges + 6);
+    let g = file.space.base();
+    let scale = file.space.scale();
+    for o in &file.scene.objects[edges..] {
+        match o.shape {
+            ProductShape::Point(c) => {
+                for p in ball_surface(g, c, o.radius) {
+                    assert!(
+                        file.space.outside_by(p) <= 1e-12,
+                        "{o:?} reaches out at {p}"
+                    );
+                }
+            }
+            ProductShape::Fibre(c) | ProductShape::Disc(c) => {
+                for p in ball_surface(g, DVec4::new(c.x, c.y, 0.0, c.w), o.radius) {
+                    let flat = DVec4::new(p.x, p.y, 0.0, p.w);
+                    assert!(file.space.outside_by(flat) <= 1e-12, "{o:?}");
+                }
+            }
+            ProductShape::Geodesic { height, .. } => {
+                assert!((height - 0.45 * scale).abs() < 1e-12);
+            }
+        }
+    }
+    // The start view: at its position, looking towards its target, the fibre up.
+    let start = file.start.expect("a start view");
+    assert!((start.fov_y_degrees - 75.0).abs() < 1e-12);
+    assert!((start.point.z - 0.3 * scale).abs() < 1e-12);
+    let frame = file.start_frame().unwrap();
+    assert!(crate::common::product_frame_defect(g, frame) < 1e-12);
+    assert!(
+        product_dot(g, start.frame[0], DVec4::Z).abs() < 1e-12,
+        "level"
+    );
+    assert!(
+        product_dot(g, start.frame[1], DVec4::Z) > 0.5,
+        "the fibre up"
+    );
+    assert!(file.scene.light.is_finite() && file.space.outside_by(file.scene.light) < 0.0);
+}
+
+#[test]
+fn a_geodesic_object_runs_through_both_its_points() {
+    for id in ["bitorus-circle", "sphere-circle"] {
+        let space = product(id);
+        let text = format!(
+            "space = \"{id}\"\nedges = false\n[[object]]\ntype = \"geodesic\"\nfrom = [0.3, -0.2]\n\
+             to = [-0.1, 0.4]\nheight = 0.25\nradius = 0.05\n"
+        );
+        let file = parse_product_scene(&text, "g.toml").unwrap();
+        let ProductShape::Geodesic { covector, height } = file.scene.objects[0].shape else {
+            panic!("a geodesic");
+        };
+        let g = space.base();
+        assert!((height - 0.25 * space.scale()).abs() < 1e-15);
+        for xy in [[0.3, -0.2], [-0.1, 0.4]] {
+            let d = glam::DVec2::from_array(xy);
+            let (c, s) = g.cs(d.length() * space.scale());
+            let p = DVec4::new(s * d.x / d.length(), s * d.y / d.length(), 0.0, c);
+            assert!(covector.dot(p).abs() < 1e-14, "{id}: {xy:?} off the line");
+        }
+        // A unit covector: S(distance) = covector · point.
+        let dual = covector.x.powi(2) + covector.y.powi(2) + g.kappa() * covector.w.powi(2);
+        assert!((dual - 1.0).abs() < 1e-14, "{id}");
+    }
+}
+
+#[test]
+fn product_scene_file_errors_name_the_line() {
+    let cases: &[(&str, usize, &str)] = &[
+        (
+            "space = \"bitorus-circle\"\nfog = 2\ncolor = [1, 0, 0]\n",
+            3,
+            "did you mean `colour`",
+        ),
+        ("space = \"surface-abAB-circle-1\"\n", 1, "flat"),
+        ("space = \"surface-abcA-circle-1\"\n", 1, "letter"),
+        ("space = \"bitorus-circle\"\nfog = -1\n", 2, "positive"),
+        (
+            "space = \"bitorus-circle\"\nambient = 2\n",
+            2,
+            "between 0 and 1",
+        ),
+        (
+            "space = \"bitorus-circle\"\nwall_opacity = 0.5\n",
+            2,
+            "needs walls",
+        ),
+        (
+            "space = \"bitorus-circle\"\n\n[[object]]\ntype = \"ball\"\nposition = [0, 0, 0.9]\nradius = 0.3\n",
+            3,
+            "does not fit",
+        ),
+        (
+            "space = \"bitorus-circle\"\n[[object]]\ntype = \"ball\"\nposition = [2, 0, 0]\nradius = 0.1\n",
+            2,
+            "does not fit",
+        ),
+        (
+            "space = \"bitorus-circle\"\n[[object]]\ntype = \"ball\"\nposition = [0, 0, 0]\nradius = 0\n",
+            2,
+            "positive",
+        ),
+        (
+            "space = \"bitorus-circle\"\n[[object]]\ntype = \"fibre\"\nposition = [1.5, 0]\nradius = 0.1\n",
+            2,
+            "polygon",
+        ),
+        (
+            "space = \"bitorus-circle\"\n[[object]]\ntype = \"geodesic\"\nfrom = [0.1, 0]\nto = [0.1, 0]\nheight = 0\nradius = 0.1\n",
+            2,
+            "no one line",
+        ),
+        (
+            "space = \"bitorus-circle\"\n[[object]]\ntype = \"cone\"\n",
+            3,
+            "cone",
+        ),
+        (
+            "space = \"bitorus-circle\"\n[[light]]\nposition = [0, 0, 0]\n[[light]]\nposition = [0, 0, 0.1]\n",
+            4,
+            "one light",
+        ),
+        (
+            "space = \"bitorus-circle\"\n[[light]]\nposition = [0, 0, 5]\n",
+            2,
+            "the light",
+        ),
+        (
+            "space = \"bitorus-circle\"\n[start]\nposition = [0.1, 0, 0]\nlook_at = [0.1, 0, 0]\n",
+            2,
+            "nothing to look towards",
+        ),
+        (
+            "space = \"bitorus-circle\"\n[start]\nposition = [0.1, 0, 0]\nfov = 190\n",
+            2,
+            "fov",
+        ),
+        (
+            "space = \"sphere-circle\"\n[start]\nposition = [0.1, 0, 0]\nlook_at = [-1.9, 0, 0]\n",
+            2,
+            "opposite",
+        ),
+        (
+            "space = \"bitorus-circle\"\n[[object]]\ntype = \"ball\"\nposition = [nan, 0, 0]\nradius = 0.1\n",
+            2,
+            "finite",
+        ),
+    ];
+    for (text, line, says) in cases {
+        let e = parse_product_scene(text, "s.toml")
+            .err()
+            .unwrap_or_else(|| panic!("accepted:\n{text}"));
+        assert_eq!(e.line, Some(*line), "{e}\n{text}");
+        assert!(
+            e.to_string().starts_with(&format!("s.toml:{line}: ")),
+            "{e}"
+        );
+        assert!(e.message.contains(says), "{e} (wanted {says:?})");
+    }
+}
+
+/// The geodesic sphere's area per solid angle at the light, measured from the exponential
+/// map by central differences: `|∂θX ∧ ∂φX| / cos θ` in the product metric.
+fn measured_spread(g: Geometry, r: f64, theta: f64) -> f64 {
+    let exp = |t: f64, p: f64| {
+        let rho = r * t.cos();
+        let (c, s) = g.cs(rho);
+        DVec4::new(s * p.cos(), s * p.sin(), r * t.sin(), c)
+    };
+    let (phi, h) = (0.7, 1e-5);
+    let dt = (exp(theta + h, phi) - exp(theta - h, phi)) / (2.0 * h);
+    let dp = (exp(theta, phi + h) - exp(theta, phi - h)) / (2.0 * h);
+    let m = |a: DVec4, b: DVec4| a.x * b.x + a.y * b.y + a.z * b.z + g.kappa() * a.w * b.w;
+    let area = (m(dt, dt) * m(dp, dp) - m(dt, dp).powi(2)).sqrt();
+    area / theta.cos()
+}
+
+#[test]
+fn the_lights_falloff_is_the_geodesic_spheres_area() {
+    for g in [Geometry::Hyperbolic, Geometry::Spherical] {
+        for r in [0.05, 0.5, 1.3, 2.5] {
+            for theta in [-1.2, -0.4, 0.0, 0.3, 1.0, 1.5] {
+                let rho = r * f64::cos(theta);
+                if g == Geometry::Spherical && rho >= 3.0 {
+                    continue;
+                }
+                let want = measured_spread(g, r, theta);
+                let got = light_spread(g, rho, r * f64::sin(theta));
+                assert!(
+                    ((got - want) / want).abs() < 1e-7,
+                    "{g:?} r {r} θ {theta}: {got} against {want}"
+                );
+            }
+        }
+        // Near the light and straight up the fibre it is the Euclidean r².
+        assert!((light_spread(g, 0.0, 0.7) - 0.49).abs() < 1e-15);
+        assert!((light_spread(g, 1e-6, 0.0) - 1e-12).abs() < 1e-24);
+    }
+    // Across H² it grows like e^ρ; on S² it closes up at the antipode.
+    assert!(light_spread(Geometry::Hyperbolic, 6.0, 0.0) > 36.0 * 30.0);
+    assert!(light_spread(Geometry::Spherical, std::f64::consts::PI, 0.0) < 1e-14);
+}
+
+#[test]
+fn a_stereo_render_is_each_eyes_mono_render_side_by_side() {
+    for id in ["bitorus-circle", "sphere-circle-turn"] {
+        let space = product(id);
+        let scene = default_scene(&space);
+        let camera = bevy_curved_spaces::trace::product::default_camera(&space);
+        let head = camera_frame(camera.point, camera.frame);
+        let ipd = 0.2 * space.scale();
+        let eyes = product_eye_frames(&space, head, ipd);
+        let g = space.base();
+        // The eyes are ipd apart, either side of the head along its right, level.
+        for (e, sign) in eyes.iter().zip([-1.0, 1.0]) {
+            let away = e.w_axis - head.w_axis;
+            assert!(sign * product_dot(g, away, head.x_axis) > 0.0, "{id}");
+            assert!(crate::common::product_frame_defect(g, *e) < 1e-12, "{id}");
+            assert!((e.w_axis.z - head.w_axis.z).abs() < 1e-12, "{id}");
+        }
+        let (w, h) = (32u32, 12u32);
+        let layout = ViewLayout::new(
+            StereoMode::SideBySide,
+            false,
+            eyes,
+            camera.fov_y_degrees,
+            w,
+            h,
+        );
+        let both = render_product_view(&space, &scene, &layout, 12);
+        for (k, eye) in eyes.iter().enumerate() {
+            let mono = render_product(
+                &space,
+                &scene,
+                &ProductCamera {
+                    point: eye.w_axis,
+                    frame: [eye.x_axis, eye.y_axis, eye.z_axis],
+                    fov_y_degrees: camera.fov_y_degrees,
+                },
+                w / 2,
+                h,
+                12,
+            );
+            for j in 0..h {
+                for i in 0..w / 2 {
+                    assert_eq!(
+                        both.get_pixel(i + k as u32 * w / 2, j),
+                        mono.get_pixel(i, j),
+                        "{id}: eye {k} pixel ({i}, {j})"
+                    );
+                }
+            }
+        }
+        // The two eyes see different pictures (the eyes are apart).
+        let (left, right) = (both.view(0, 0, w / 2, h), both.view(w / 2, 0, w / 2, h));
+        use image::GenericImageView;
+        assert!(
+            left.pixels().zip(right.pixels()).any(|(a, b)| a.2 != b.2),
+            "{id}"
+        );
+    }
+}
