@@ -92,6 +92,95 @@ fn product_flights_render_alike_on_the_cpu_and_the_gpu() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Pixels of two pictures differing by more than 10 in a channel.
+fn differing(a: &image::RgbImage, b: &image::RgbImage) -> usize {
+    assert_eq!(a.dimensions(), b.dimensions());
+    a.pixels()
+        .zip(b.pixels())
+        .filter(|(p, q)| (0..3).any(|k| p.0[k].abs_diff(q.0[k]) > 10))
+        .count()
+}
+
+#[test]
+fn product_scene_files_render_alike_on_the_cpu_and_the_gpu_in_mono_and_stereo() {
+    let dir = crate::common::scratch_dir("products-scene");
+    let scene = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/scenes/bitorus_pillars.toml"
+    );
+    for stereo in ["mono", "side-by-side"] {
+        let mut pictures = Vec::new();
+        for cpu in [true, false] {
+            let out = dir.join(format!("{stereo}-{cpu}.png"));
+            let mut args = vec![
+                "render",
+                "--scene",
+                scene,
+                "--size",
+                "64x36",
+                "--crossings",
+                "24",
+                "--stereo",
+                stereo,
+                "--out",
+                out.to_str().unwrap(),
+            ];
+            if cpu {
+                args.push("--cpu");
+            }
+            let said = ok(&args);
+            assert!(said.contains("bitorus-circle (H2xR)"), "{said}");
+            assert_eq!(said.contains("eyes 0.04"), stereo != "mono", "{said}");
+            pictures.push(image::open(&out).expect("a picture").to_rgb8());
+        }
+        let d = differing(&pictures[0], &pictures[1]);
+        assert!(d <= 23, "{stereo}: {d} of 2304 pixels differ");
+        let distinct: std::collections::BTreeSet<[u8; 3]> =
+            pictures[0].pixels().map(|p| p.0).collect();
+        assert!(distinct.len() > 20, "{stereo}: {} colours", distinct.len());
+    }
+    // The scene file's view, not the space's default one.
+    let default = dir.join("default.png");
+    ok(&[
+        "render",
+        "bitorus-circle",
+        "--size",
+        "64x36",
+        "--crossings",
+        "24",
+        "--cpu",
+        "--out",
+        default.to_str().unwrap(),
+    ]);
+    let default = image::open(&default).unwrap().to_rgb8();
+    let from_file = image::open(dir.join("mono-true.png")).unwrap().to_rgb8();
+    assert!(differing(&default, &from_file) > 500);
+    fails_with(
+        &[
+            "render",
+            "--scene",
+            scene,
+            "--eye",
+            "0,0,0",
+            "--look-at",
+            "1,0,0",
+            "--cpu",
+        ],
+        "[start] sets the view",
+    );
+    let bad = dir.join("bad.toml");
+    std::fs::write(
+        &bad,
+        "space = \"bitorus-circle\"\n[[object]]\ntype = \"ball\"\nposition = [0, 0, 0.95]\nradius = 0.2\n",
+    )
+    .unwrap();
+    fails_with(
+        &["render", "--scene", bad.to_str().unwrap(), "--cpu"],
+        "bad.toml:2: the ball at [0.0, 0.0, 0.95] does not fit in the cell",
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn walking_a_product_space_without_a_display_renders_it() {
     let dir = crate::common::scratch_dir("products-walk");
