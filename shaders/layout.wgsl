@@ -96,11 +96,18 @@ struct Tube {
 struct ProductObject {
     // A ball's or a fibre tube's point, or a slice tube's line covector.
     shape: vec4<f32>,
-    // Kind (0 ball, 1 fibre tube, 2 slice tube, 3 horizontal disc), radius, the slice's
-    // height (a disc's too; its centre is `shape`), unused.
+    // Kind (0 ball, 1 fibre tube, 2 slice tube, 3 horizontal disc, 4 horizontal triangle,
+    // 5 vertical triangle), radius, the slice's height (a disc's and a horizontal
+    // triangle's too; a disc's centre is `shape`), unused. A vertical triangle keeps the
+    // second row of its barycentric map in z and w.
     info: vec4<f32>,
     // Albedo (rgb), unused.
     colour: vec4<f32>,
+    // A triangle's further data (Rust: `ProductTriangle`): a horizontal one's first edge
+    // covector is `shape`, its other two these; a vertical one's plane covector is `shape`,
+    // then its origin, its direction along, and (s, z) of its first corner with the first
+    // row of its barycentric map.
+    more: array<vec4<f32>, 3>,
 }
 #endif
 

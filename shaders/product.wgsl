@@ -8,7 +8,7 @@
 // of a geodesic on the surface is the surface geodesic at speed λ, its height z + μt.
 #define_import_path curved_spaces::product
 
-#import curved_spaces::layout::{face_count, kappa, space}
+#import curved_spaces::layout::{ProductObject, face_count, kappa, space}
 #import curved_spaces::geometry::distance_from_ratio
 #import curved_spaces::walk::{Ray, partner, transform_compensated}
 
@@ -232,12 +232,88 @@ fn object_distance(i: u32, x: vec4<f32>) -> f32 {
     return sqrt(db * db + dz * dz);
 }
 
-// The unit normal of object i's surface at x (the gradient of the distance).
+// A vertical triangle's arclength coordinate of x along its geodesic (Rust: `arclength`).
+fn arclength(o: ProductObject, x: vec4<f32>) -> f32 {
+    let xb = base_of(x);
+    let s = base_form(xb, o.more[1]);
+#ifdef HYPERBOLIC
+    return asinh(s);
+#else
+    return atan2(s, base_form(xb, o.more[0]));
+#endif
+}
+
+// Whether x (on the triangle's slice or plane) is in triangle object o
+// (Rust: `ProductTriangle::contains`).
+fn triangle_contains(o: ProductObject, x: vec4<f32>) -> bool {
+    if u32(o.info.x) == 4u {
+        return dot(o.shape, x) >= 0.0 && dot(o.more[0], x) >= 0.0 && dot(o.more[1], x) >= 0.0;
+    }
+    let ds = arclength(o, x) - o.more[2].x;
+    let dz = x.z - o.more[2].y;
+    let l1 = o.more[2].z * ds + o.more[2].w * dz;
+    let l2 = o.info.z * ds + o.info.w * dz;
+    return l1 >= 0.0 && l2 >= 0.0 && l1 + l2 <= 1.0;
+}
+
+// Where the ray meets triangle object o's slice or plane in [0, t_max], or FAR
+// (Rust: `ProductTriangle::plane_meeting`).
+fn triangle_plane_meeting(o: ProductObject, ray: Ray, t_max: f32) -> f32 {
+    var t = FAR;
+    if u32(o.info.x) == 4u {
+        let mu = ray.tangent.z;
+        if mu == 0.0 {
+            return FAR;
+        }
+        t = (o.info.z - ray.point.z) / mu;
+    } else {
+        let vb = base_of(ray.tangent);
+        let lambda = sqrt(max(speed_squared(ray.point, vb), 0.0));
+        if lambda <= 0.0 {
+            return FAR;
+        }
+        let a = dot(o.shape, base_of(ray.point));
+        let b = dot(o.shape, vb) / lambda;
+#ifdef HYPERBOLIC
+        let r = -a / b;
+        if !(r >= 0.0 && r < 1.0) {
+            return FAR;
+        }
+        t = atanh(r) / lambda;
+#else
+        var u = 1.5707963267948966;
+        if b != 0.0 {
+            u = atan(-a / b);
+        }
+        if u < 0.0 {
+            u += 3.141592653589793;
+        }
+        t = u / lambda;
+#endif
+    }
+    if !(t >= 0.0 && t <= t_max) {
+        return FAR;
+    }
+    return t;
+}
+
+// The unit normal of object i's surface at x (the gradient of the distance; a flat
+// piece's either side).
 fn object_normal(i: u32, x: vec4<f32>) -> vec4<f32> {
     let o = space.product_objects[i];
     let kind = u32(o.info.x);
     if kind == 1u {
         return away_from(x, o.shape);
+    }
+    if kind == 3u || kind == 4u {
+        return vec4<f32>(0.0, 0.0, 1.0, 0.0);
+    }
+    if kind == 5u {
+        let xb = base_of(x);
+        let m = vec4<f32>(o.shape.x, o.shape.y, 0.0, kappa() * o.shape.w);
+        let t = m - xb * (base_form(m, xb) / base_form(xb, xb));
+        let len = sqrt(max(base_form(t, t), 0.0));
+        return select(vec4<f32>(0.0, 0.0, 1.0, 0.0), t / len, len > 0.0);
     }
     var away = vec4<f32>(0.0);
     var db = 0.0;
@@ -267,6 +343,15 @@ fn object_normal(i: u32, x: vec4<f32>) -> vec4<f32> {
 // one and a bisection the first root before it (Rust: `trace::product::first_meeting`).
 fn first_meeting(i: u32, ray: Ray, t_max: f32) -> f32 {
     let r = space.product_objects[i].info.y;
+    let kind = u32(space.product_objects[i].info.x);
+    if kind == 4u || kind == 5u {
+        let o = space.product_objects[i];
+        let t = triangle_plane_meeting(o, ray, t_max);
+        if t == FAR || !triangle_contains(o, along(ray, t)) {
+            return FAR;
+        }
+        return t;
+    }
     if u32(space.product_objects[i].info.x) == 3u {
         // A horizontal disc: where the height reaches its slice, if within it.
         let mu = ray.tangent.z;
@@ -467,11 +552,13 @@ fn trace_product(start: Ray) -> vec3<f32> {
             }
         }
         if object != NONE {
-            let at = along(ray, nearest);
+            let hit = moved(ray, nearest, false, 0.0, 1.0);
+            let at = hit.point;
             var normal = object_normal(object, at);
-            if u32(space.product_objects[object].info.x) == 3u {
-                // A disc faces the side the ray comes from (the height speed keeps its sign).
-                normal = vec4<f32>(0.0, 0.0, -sign(ray.tangent.z), 0.0);
+            if u32(space.product_objects[object].info.x) >= 3u
+                && base_form(normal, hit.tangent) + normal.z * hit.tangent.z > 0.0 {
+                // A flat piece is lit on the side the ray comes from.
+                normal = -normal;
             }
             let light = space.product_light;
             let to_light = tangent_towards(at, light);

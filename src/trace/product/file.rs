@@ -35,6 +35,7 @@
 //! because the tracer meets objects in the cell only: one reaching through a face would be
 //! cut off there. An error names the file and the line.
 
+use super::triangle::ProductTriangle;
 use super::{
     ProductCamera, ProductObject, ProductParts, ProductScene, ProductShape, scene_with_parts,
 };
@@ -91,6 +92,11 @@ const KEYS: &[&str] = &[
     "from",
     "to",
     "height",
+    "vertices",
+    "triangles",
+    "corners",
+    "bottom",
+    "top",
 ];
 
 fn default_true() -> bool {
@@ -158,7 +164,23 @@ enum ObjectSpec {
         #[serde(default = "white")]
         colour: [f64; 3],
     },
+    Mesh {
+        vertices: Vec<[f64; 3]>,
+        triangles: Vec<[usize; 3]>,
+        #[serde(default = "white")]
+        colour: [f64; 3],
+    },
+    Prism {
+        corners: Vec<[f64; 2]>,
+        bottom: f64,
+        top: f64,
+        #[serde(default = "white")]
+        colour: [f64; 3],
+    },
 }
+
+/// The most triangles a product scene file may hold (each is one object of the tracer).
+pub const MAX_PRODUCT_TRIANGLES: usize = 512;
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -309,9 +331,21 @@ pub fn parse_product_scene(text: &str, file: &str) -> Result<ProductSceneFile, S
             ));
         }
     }
+    let mut triangles = 0;
     for object in &spec.objects {
-        let o = build_object(&space, object.get_ref()).map_err(|m| fail(Some(object.span()), m))?;
-        scene.objects.push(o);
+        let at = |m: String| fail(Some(object.span()), m);
+        let made = build_object(&space, object.get_ref()).map_err(at)?;
+        triangles += made
+            .iter()
+            .filter(|o| matches!(o.shape, ProductShape::Triangle(_)))
+            .count();
+        if triangles > MAX_PRODUCT_TRIANGLES {
+            return Err(at(format!(
+                "the file's meshes have more than {MAX_PRODUCT_TRIANGLES} triangles \
+                 ({triangles} so far): each is one object of the tracer"
+            )));
+        }
+        scene.objects.extend(made);
     }
     let start = match &spec.start {
         Some(s) => Some(start_camera(&space, s.get_ref()).map_err(|m| fail(Some(s.span()), m))?),
@@ -418,7 +452,113 @@ fn radius_of(space: &ProductSpace, r: f64, vertical: bool) -> Result<f64, String
     Ok(r)
 }
 
-fn build_object(space: &ProductSpace, spec: &ObjectSpec) -> Result<ProductObject, String> {
+/// A mesh's triangles: every vertex in the cell, every index a vertex.
+fn mesh(
+    space: &ProductSpace,
+    vertices: &[[f64; 3]],
+    triangles: &[[usize; 3]],
+    colour: [f64; 3],
+) -> Result<Vec<ProductObject>, String> {
+    if triangles.is_empty() {
+        return Err("the mesh has no triangles".into());
+    }
+    let mut points = Vec::with_capacity(vertices.len());
+    for (i, v) in vertices.iter().enumerate() {
+        points.push(inside(space, *v, 0.0, &format!("vertex {i}"))?);
+    }
+    for (k, t) in triangles.iter().enumerate() {
+        if let Some(i) = t.iter().find(|&&i| i >= points.len()) {
+            return Err(format!(
+                "triangle {k} names vertex {i}, but the mesh has {} (counted from 0)",
+                points.len()
+            ));
+        }
+    }
+    exact_triangles(space, &points, triangles, colour)
+}
+
+/// A prism's triangles: two per side wall, a fan on the bottom and the top; its corners
+/// must make a convex polygon, in order.
+fn prism(
+    space: &ProductSpace,
+    corners: &[[f64; 2]],
+    bottom: f64,
+    top: f64,
+    colour: [f64; 3],
+) -> Result<Vec<ProductObject>, String> {
+    let n = corners.len();
+    if n < 3 {
+        return Err(format!("a prism needs 3 corners or more, got {n}"));
+    }
+    if !(bottom < top) {
+        return Err(format!(
+            "the prism's bottom {bottom} must be below its top {top}"
+        ));
+    }
+    let mut points = Vec::with_capacity(2 * n);
+    for z in [bottom, top] {
+        for (i, xy) in corners.iter().enumerate() {
+            points.push(inside(
+                space,
+                [xy[0], xy[1], z],
+                0.0,
+                &format!("corner {i}"),
+            )?);
+        }
+    }
+    // Convex, in order: every corner on one side of every edge's geodesic.
+    let b = |i: usize| DVec3::new(points[i].x, points[i].y, points[i].w);
+    let mut sign = 0.0;
+    for i in 0..n {
+        let edge = b(i).cross(b((i + 1) % n));
+        for k in (0..n).filter(|&k| k != i && k != (i + 1) % n) {
+            let side = edge.dot(b(k));
+            if !(side.abs() >= 1e-12) || (sign != 0.0 && side.signum() != sign) {
+                return Err(
+                    "the prism's corners must make a convex polygon, in order round it".into(),
+                );
+            }
+            sign = side.signum();
+        }
+    }
+    let mut faces = Vec::new();
+    for i in 0..n {
+        let j = (i + 1) % n;
+        faces.push([i, j, n + j]);
+        faces.push([i, n + j, n + i]);
+    }
+    for i in 1..n - 1 {
+        faces.push([0, i, i + 1]);
+        faces.push([n, n + i, n + i + 1]);
+    }
+    exact_triangles(space, &points, &faces, colour)
+}
+
+/// Triangles of `points`, each checked exact ([`ProductTriangle::new`]).
+fn exact_triangles(
+    space: &ProductSpace,
+    points: &[DVec4],
+    faces: &[[usize; 3]],
+    c: [f64; 3],
+) -> Result<Vec<ProductObject>, String> {
+    let colour = colour(c)?.min(DVec3::ONE);
+    faces
+        .iter()
+        .enumerate()
+        .map(|(k, t)| {
+            let triangle = ProductTriangle::new(space.base(), t.map(|i| points[i]))
+                .map_err(|e| format!("triangle {k}: {e}"))?;
+            Ok(ProductObject {
+                shape: ProductShape::Triangle(triangle),
+                radius: 0.0,
+                colour,
+            })
+        })
+        .collect()
+}
+
+/// An object's pieces: one, or a mesh's or prism's triangles.
+fn build_object(space: &ProductSpace, spec: &ObjectSpec) -> Result<Vec<ProductObject>, String> {
     let g = space.base();
     let scale = space.scale();
     let h = 0.5 * space.length();
@@ -469,6 +609,17 @@ fn build_object(space: &ProductSpace, spec: &ObjectSpec) -> Result<ProductObject
             }
             (ProductShape::Disc(p), r, colour)
         }
+        ObjectSpec::Mesh {
+            vertices,
+            triangles,
+            colour,
+        } => return mesh(space, vertices, triangles, *colour),
+        ObjectSpec::Prism {
+            corners,
+            bottom,
+            top,
+            colour,
+        } => return prism(space, corners, *bottom, *top, *colour),
         ObjectSpec::Geodesic {
             from,
             to,
@@ -508,11 +659,11 @@ fn build_object(space: &ProductSpace, spec: &ObjectSpec) -> Result<ProductObject
             )
         }
     };
-    Ok(ProductObject {
+    Ok(vec![ProductObject {
         shape,
         radius,
         colour: colour(*c)?.min(DVec3::ONE),
-    })
+    }])
 }
 
 fn start_camera(space: &ProductSpace, start: &StartSpec) -> Result<ProductCamera, String> {

@@ -20,6 +20,7 @@
 pub mod file;
 #[cfg(feature = "scene-files")]
 pub mod flight;
+pub mod triangle;
 pub mod walls;
 
 use crate::geometry::{Geometry, Ray};
@@ -48,6 +49,9 @@ pub enum ProductShape {
     /// (a surface distance) of `centre`. It has no thickness: a ray meets it where its
     /// height reaches the slice's, exactly, and one along the slice does not see it.
     Disc(DVec4),
+    /// A mesh triangle in a slice or over a surface geodesic ([`triangle`]), met exactly;
+    /// the object's radius is not used.
+    Triangle(triangle::ProductTriangle),
 }
 
 /// An object: every point within `radius` of its shape.
@@ -139,6 +143,8 @@ impl ProductObject {
             }
             // The normal is the fibre, up (the side facing a ray is chosen where it is met).
             ProductShape::Disc(c) => ((x.z - c.z).abs(), DVec4::Z),
+            // Only the normal is asked of a triangle (on its slice or plane).
+            ProductShape::Triangle(t) => (0.0, t.normal(g, x)),
             ProductShape::Geodesic { covector, height } => {
                 let xb = base(x);
                 let norm = (g.kappa() * base_form(g, xb, xb)).abs().sqrt();
@@ -180,6 +186,19 @@ fn along(g: Geometry, ray: &Ray<DVec4>, t: f64) -> DVec4 {
     DVec4::new(p.x, p.y, ray.point.z + ray.tangent.z * t, p.w)
 }
 
+/// The unit tangent at distance `t` along a ray of the product.
+fn along_tangent(g: Geometry, ray: &Ray<DVec4>, t: f64) -> DVec4 {
+    let vb = base(ray.tangent);
+    let lambda = base_form(g, vb, vb).max(0.0).sqrt();
+    let (c, s) = g.cs(lambda * t);
+    let v = if lambda > 0.0 {
+        base(ray.point) * (-g.kappa() * lambda * s) + vb * c
+    } else {
+        DVec4::ZERO
+    };
+    DVec4::new(v.x, v.y, ray.tangent.z, v.w)
+}
+
 /// The first `t` in `[0, t_max]` where the segment meets the object, if it does.
 fn first_meeting(g: Geometry, object: &ProductObject, ray: &Ray<DVec4>, t_max: f64) -> Option<f64> {
     if let ProductShape::Disc(c) = object.shape {
@@ -192,6 +211,11 @@ fn first_meeting(g: Geometry, object: &ProductObject, ray: &Ray<DVec4>, t_max: f
         return ((0.0..=t_max).contains(&t)
             && surface_distance(g, along(g, ray, t), c) <= object.radius)
             .then_some(t);
+    }
+    if let ProductShape::Triangle(triangle) = object.shape {
+        return triangle
+            .plane_meeting(g, ray, t_max)
+            .filter(|&t| triangle.contains(g, along(g, ray, t)));
     }
     let f = |t: f64| {
         let d = object.distance(g, along(g, ray, t)).0;
@@ -482,6 +506,8 @@ pub enum ProductRayEnd<'a> {
         crossings: usize,
         /// The point met.
         at: DVec4,
+        /// The ray's unit tangent there.
+        tangent: DVec4,
         /// The object met.
         object: &'a ProductObject,
     },
@@ -540,6 +566,7 @@ fn walk_to_hit<'a>(
                 distance: distance + t,
                 crossings,
                 at: along(g, &ray, t),
+                tangent: along_tangent(g, &ray, t),
                 object,
             };
         }
@@ -620,6 +647,7 @@ pub fn trace_product_pixel(
     let ProductRayEnd::Hit {
         distance,
         at,
+        tangent,
         object,
         ..
     } = end
@@ -627,10 +655,13 @@ pub fn trace_product_pixel(
         return veil.over(scene.fog_colour);
     };
     let (_, mut normal) = object.distance(g, at);
-    if let ProductShape::Disc(_) = object.shape {
-        // The side the ray comes from: no gluing turns the fibre over, so its height speed
-        // keeps its sign all the way.
-        normal = -DVec4::Z * start.tangent.z.signum();
+    if matches!(
+        object.shape,
+        ProductShape::Disc(_) | ProductShape::Triangle(_)
+    ) && dot(g, normal, tangent) > 0.0
+    {
+        // A flat piece is lit on the side the ray comes from.
+        normal = -normal;
     }
     let to_light = tangent_towards(g, at, scene.light);
     let lambert = dot(g, normal, to_light).max(0.0);

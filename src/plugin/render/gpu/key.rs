@@ -58,6 +58,9 @@ pub struct ShaderKey {
     pub product_objects: u32,
 }
 
+/// The vec4s of one product object in the uniform (shape, info, colour and three more).
+pub const PRODUCT_OBJECT_VEC4S: usize = 6;
+
 /// Array sizes of the unspecialised variant: faces, balls, tubes.
 pub const GENERAL_CAPACITY: (u32, u32, u32) = (crate::space::MAX_FACES as u32, 256, 256);
 
@@ -242,7 +245,7 @@ impl ShaderKey {
             + self.culling_vecs() * vec4
             + if self.general { vec4 } else { 0 }
             + if self.product {
-                (2 + 3 * count(self.product_objects.max(1))) * vec4
+                (2 + PRODUCT_OBJECT_VEC4S * count(self.product_objects.max(1))) * vec4
             } else {
                 0
             }

@@ -4,9 +4,11 @@
 //! out, the partners, the circle, the light and the objects.
 
 use super::VIEW_WORDS;
+use super::key::PRODUCT_OBJECT_VEC4S;
 use super::{DataSources, GpuScene, GpuSceneError, MAX_UNIFORM_BYTES, ShaderKey};
 use crate::plugin::render::layout::{GpuShading, UniformWriter, Vec4F, colour, vec4};
 use crate::space::product::{ProductSpace, ProductWalker};
+use crate::trace::product::triangle::ProductTriangle;
 use crate::trace::product::walls::ProductWalls;
 use crate::trace::product::{ProductScene, ProductShape};
 use glam::{DVec4, Mat4, Vec4};
@@ -90,18 +92,40 @@ impl GpuScene {
         )));
         out.push(&vec4(scene.light));
         for o in &scene.objects {
+            let mut more = [DVec4::ZERO; 3];
+            let mut info_zw = [0.0, 0.0];
             let (shape, kind, height) = match o.shape {
                 ProductShape::Point(c) => (c, 0.0, 0.0),
                 ProductShape::Fibre(c) => (c, 1.0, 0.0),
                 ProductShape::Geodesic { covector, height } => (covector, 2.0, height),
                 ProductShape::Disc(c) => (c, 3.0, c.z),
+                ProductShape::Triangle(ProductTriangle::Horizontal { edges, height }) => {
+                    more[0] = edges[1];
+                    more[1] = edges[2];
+                    (edges[0], 4.0, height)
+                }
+                ProductShape::Triangle(ProductTriangle::Vertical {
+                    covector,
+                    origin,
+                    along,
+                    corner,
+                    to_barycentric: m,
+                }) => {
+                    more = [origin, along, DVec4::new(corner[0], corner[1], m[0], m[1])];
+                    info_zw = [m[2], m[3]];
+                    (covector, 5.0, 0.0)
+                }
             };
+            let height = if kind == 5.0 { info_zw[0] } else { height };
             out.push(&vec4(shape));
-            out.push(&vec4(DVec4::new(kind, o.radius, height, 0.0)));
+            out.push(&vec4(DVec4::new(kind, o.radius, height, info_zw[1])));
             out.push(&colour(o.colour, 0.0));
+            for m in more {
+                out.push(&vec4(m));
+            }
         }
         if scene.objects.is_empty() {
-            out.push(&[[0.0f32; 4]; 3]);
+            out.push(&[[0.0f32; 4]; PRODUCT_OBJECT_VEC4S]);
         }
         // The walls: per face slot the side's midpoint, the colour and margin (a huge
         // number for a solid wall), the opacity and half the side's length; then the share
