@@ -135,15 +135,16 @@ fn product_outcome(text: &str) -> bool {
             let s = &file.scene;
             assert!(
                 s.objects.iter().all(|o| {
-                    let centre = match o.shape {
+                    let shape = match o.shape {
                         ProductShape::Point(c) | ProductShape::Fibre(c) | ProductShape::Disc(c) => {
-                            c
+                            c.is_finite()
                         }
                         ProductShape::Geodesic { covector, height } => {
-                            covector + glam::DVec4::Z * height
+                            covector.is_finite() && height.is_finite()
                         }
+                        ProductShape::Triangle(t) => t.is_finite(),
                     };
-                    centre.is_finite() && o.radius.is_finite() && o.colour.is_finite()
+                    shape && o.radius.is_finite() && o.colour.is_finite()
                 }) && s.light.is_finite()
                     && s.fog_distance.is_finite(),
                 "a non-finite product scene from:\n{text}"

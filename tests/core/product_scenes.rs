@@ -69,7 +69,8 @@ fn the_shipped_product_scene_loads_and_fits_in_its_cell() {
     )
     .objects
     .len();
-    assert_eq!(file.scene.objects.len(), edges + 6);
+    // Six objects, a prism of 3 sides (6 wall and 2 cap triangles) and a 2-triangle wall.
+    assert_eq!(file.scene.objects.len(), edges + 6 + 8 + 2);
     let g = file.space.base();
     let scale = file.space.scale();
     for o in &file.scene.objects[edges..] {
@@ -90,6 +91,15 @@ fn the_shipped_product_scene_loads_and_fits_in_its_cell() {
             }
             ProductShape::Geodesic { height, .. } => {
                 assert!((height - 0.45 * scale).abs() < 1e-12);
+            }
+            ProductShape::Triangle(t) => {
+                // Every triangle of the block and the wall stands in the cell: its slice
+                // or its plane's points near the corners are inside.
+                assert!(matches!(
+                    t,
+                    bevy_curved_spaces::trace::product::triangle::ProductTriangle::Horizontal { .. }
+                        | bevy_curved_spaces::trace::product::triangle::ProductTriangle::Vertical { .. }
+                ));
             }
         }
     }
@@ -331,4 +341,202 @@ fn a_stereo_render_is_each_eyes_mono_render_side_by_side() {
             "{id}"
         );
     }
+}
+
+/// A surface point at chart-free coordinates: distance `d` from the centre towards angle `a`,
+/// at height `z`.
+fn point(g: Geometry, d: f64, a: f64, z: f64) -> DVec4 {
+    let (c, s) = g.cs(d);
+    DVec4::new(s * a.cos(), s * a.sin(), z, c)
+}
+
+/// The product distance between two points (surface distance and height).
+fn product_distance(g: Geometry, p: DVec4, q: DVec4) -> f64 {
+    let d = DVec4::new(p.x - q.x, p.y - q.y, 0.0, p.w - q.w);
+    let chord = (d.x * d.x + d.y * d.y + g.kappa() * d.w * d.w)
+        .max(0.0)
+        .sqrt();
+    let db = match g {
+        Geometry::Spherical => 2.0 * (0.5 * chord).asin(),
+        _ => 2.0 * (0.5 * chord).asinh(),
+    };
+    (db * db + (p.z - q.z).powi(2)).sqrt()
+}
+
+#[test]
+fn triangles_are_met_where_the_geodesic_to_them_ends() {
+    use bevy_curved_spaces::geometry::Ray;
+    use bevy_curved_spaces::space::product::ProductWalker;
+    use bevy_curved_spaces::trace::product::triangle::ProductTriangle;
+    use bevy_curved_spaces::trace::product::{
+        ProductObject, ProductRayEnd, first_product_hit, tangent_towards,
+    };
+    for id in ["bitorus-circle", "sphere-circle-turn", "crosscaps-circle"] {
+        let space = product(id);
+        let g = space.base();
+        let r = 0.5 * space.scale();
+        let h = 0.2 * space.length();
+        // A slice's triangle and a vertical one over the geodesic through two points.
+        let flat = [
+            point(g, r, 0.2, -h),
+            point(g, r, 2.3, -h),
+            point(g, r, 4.2, -h),
+        ];
+        let (p, q) = (point(g, r, -0.4, 0.0), point(g, 0.8 * r, 1.9, 0.0));
+        let upright = [
+            DVec4::new(p.x, p.y, -h, p.w),
+            DVec4::new(q.x, q.y, -h, q.w),
+            DVec4::new(q.x, q.y, h, q.w),
+        ];
+        for corners in [flat, upright] {
+            let triangle = ProductTriangle::new(g, corners).unwrap_or_else(|e| panic!("{id}: {e}"));
+            // Its corners' centroid by the barycentric weights is inside; a point past a
+            // corner is not.
+            let centroid = match triangle {
+                ProductTriangle::Horizontal { .. } => {
+                    let m = (corners[0] + corners[1] + corners[2]) / 3.0;
+                    let b = DVec4::new(m.x, m.y, 0.0, m.w);
+                    let n = (b.x * b.x + b.y * b.y + g.kappa() * b.w * b.w).abs().sqrt();
+                    DVec4::new(m.x / n, m.y / n, m.z, m.w / n)
+                }
+                ProductTriangle::Vertical { .. } => {
+                    // In (s, z) from p the corners are (0, −h), (D, −h), (D, h): the point
+                    // (2D/3, −h/3) is inside.
+                    let d = product_distance(g, p, q);
+                    let t = tangent_towards(g, p, q);
+                    let (c, sn) = g.cs(2.0 * d / 3.0);
+                    let b = p * c + t * sn;
+                    DVec4::new(b.x, b.y, -h / 3.0, b.w)
+                }
+            };
+            assert!(
+                triangle.contains(g, centroid),
+                "{id}: {triangle:?} lacks {centroid}"
+            );
+            let beyond = point(g, 1.8 * r, 0.2, -h);
+            assert!(
+                !triangle.contains(g, beyond)
+                    || matches!(triangle, ProductTriangle::Vertical { .. })
+            );
+            // A ray from a point of the cell towards the centroid meets the triangle there,
+            // at the product distance (the geodesic's length), to f64's precision.
+            let scene = bevy_curved_spaces::trace::product::ProductScene {
+                objects: vec![ProductObject {
+                    shape: ProductShape::Triangle(triangle),
+                    radius: 0.0,
+                    colour: DVec3::ONE,
+                }],
+                ..scene_with_parts(
+                    &space,
+                    ProductParts {
+                        edges: false,
+                        centre_ball: false,
+                    },
+                )
+            };
+            let walker = ProductWalker::<DVec4>::new(&space);
+            for eye in [
+                point(g, 0.3 * r, 1.0, 0.35 * h),
+                point(g, 0.6 * r, -2.0, -0.1 * h),
+            ] {
+                let ray = Ray {
+                    point: eye,
+                    tangent: tangent_towards(g, eye, centroid),
+                };
+                let want = product_distance(g, eye, centroid);
+                match first_product_hit(&walker, &scene, ray, 4) {
+                    ProductRayEnd::Hit { distance, at, .. } => {
+                        assert!(
+                            (distance - want).abs() < 1e-12,
+                            "{id}: {distance} against {want}"
+                        );
+                        assert!(
+                            (at - centroid).abs().max_element() < 1e-12,
+                            "{id}: {at} against {centroid}"
+                        );
+                    }
+                    other => panic!("{id}: {other:?} instead of the triangle"),
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn only_exact_triangles_are_taken() {
+    use bevy_curved_spaces::trace::product::triangle::ProductTriangle;
+    let g = Geometry::Hyperbolic;
+    let (a, b, c) = (
+        point(g, 0.5, 0.0, 0.0),
+        point(g, 0.5, 2.0, 0.0),
+        point(g, 0.5, 4.0, 0.0),
+    );
+    assert!(ProductTriangle::new(g, [a, b, c]).is_ok());
+    let lifted = DVec4::new(c.x, c.y, 0.3, c.w);
+    let e = ProductTriangle::new(g, [a, b, lifted]).unwrap_err();
+    assert!(e.contains("curved"), "{e}");
+    let e = ProductTriangle::new(g, [a, a, DVec4::new(a.x, a.y, 0.5, a.w)]).unwrap_err();
+    assert!(e.contains("one surface point"), "{e}");
+    let e = ProductTriangle::new(g, [a, b, a]).unwrap_err();
+    assert!(e.contains("no area"), "{e}");
+    // Over a geodesic: corners at p, q and q lifted.
+    let vertical = ProductTriangle::new(g, [a, b, DVec4::new(b.x, b.y, 0.4, b.w)]).unwrap();
+    let ProductTriangle::Vertical { origin, along, .. } = vertical else {
+        panic!("vertical");
+    };
+    // Its arclength coordinate is the surface distance along the geodesic.
+    let form = |x: DVec4, y: DVec4| x.x * y.x + x.y * y.y - x.w * y.w;
+    let at = |s: f64| origin * s.cosh() + along * s.sinh();
+    for s in [0.1, 0.7, 1.3] {
+        let x = at(s);
+        assert!((form(x, along).asinh() - s).abs() < 1e-13);
+    }
+}
+
+#[test]
+fn mesh_and_prism_mistakes_name_their_line() {
+    for (text, says) in [
+        (
+            "[[object]]\ntype = \"mesh\"\nvertices = [[0, 0, 0], [0.3, 0, 0], [0, 0.3, 0.2]]\ntriangles = [[0, 1, 2]]\n",
+            "curved",
+        ),
+        (
+            "[[object]]\ntype = \"mesh\"\nvertices = [[0, 0, 0], [0.3, 0, 0], [0, 0.3, 0]]\ntriangles = [[0, 1, 3]]\n",
+            "names vertex 3",
+        ),
+        (
+            "[[object]]\ntype = \"mesh\"\nvertices = [[0, 0, 0]]\ntriangles = []\n",
+            "no triangles",
+        ),
+        (
+            "[[object]]\ntype = \"mesh\"\nvertices = [[0, 0, 0], [3, 0, 0], [0, 0.3, 0]]\ntriangles = [[0, 1, 2]]\n",
+            "vertex 1",
+        ),
+        (
+            "[[object]]\ntype = \"prism\"\ncorners = [[0, 0], [0.3, 0], [0.3, 0.3], [0.1, 0.05]]\nbottom = 0\ntop = 0.2\n",
+            "convex",
+        ),
+        (
+            "[[object]]\ntype = \"prism\"\ncorners = [[0, 0], [0.3, 0], [0, 0.3]]\nbottom = 0.2\ntop = 0.2\n",
+            "below its top",
+        ),
+        (
+            "[[object]]\ntype = \"prism\"\ncorners = [[0, 0], [0.3, 0]]\nbottom = 0\ntop = 0.2\n",
+            "3 corners",
+        ),
+    ] {
+        let text = format!("space = \"bitorus-circle\"\n{text}");
+        let e = parse_product_scene(&text, "m.toml")
+            .err()
+            .unwrap_or_else(|| panic!("accepted {text}"));
+        assert_eq!(e.line, Some(2), "{e}");
+        assert!(e.message.contains(says), "{e} (wanted {says:?})");
+    }
+    // A prism is its walls (two triangles a side) and two fans.
+    let ok = parse_product_scene(
+        "space = \"bitorus-circle\"\nedges = false\n[[object]]\ntype = \"prism\"\ncorners = [[0, 0], [0.3, 0], [0.3, 0.3], [0, 0.3]]\nbottom = -0.2\ntop = 0.2\n",
+        "p.toml",
+    )
+    .unwrap();
+    assert_eq!(ok.scene.objects.len(), 4 * 2 + 2 * 2);
 }

@@ -163,6 +163,28 @@ impl ProductTriangle {
         })
     }
 
+    /// Whether every number of it is finite.
+    #[must_use]
+    pub fn is_finite(&self) -> bool {
+        match *self {
+            Self::Horizontal { edges, height } => {
+                edges.iter().all(|e| e.is_finite()) && height.is_finite()
+            }
+            Self::Vertical {
+                covector,
+                origin,
+                along,
+                corner,
+                to_barycentric,
+            } => {
+                covector.is_finite()
+                    && origin.is_finite()
+                    && along.is_finite()
+                    && corner.iter().chain(&to_barycentric).all(|x| x.is_finite())
+            }
+        }
+    }
+
     /// Whether the model point `x` (on the triangle's slice or plane) is in the triangle.
     #[must_use]
     pub fn contains(&self, g: Geometry, x: DVec4) -> bool {
