@@ -573,4 +573,8 @@ impl Vector4 for DdVec4 {
     fn matrix_from_columns(cols: [Self; 4]) -> DdMat4 {
         DdMat4(cols)
     }
+
+    fn matrix_to_dd(m: &DdMat4) -> DdMat4 {
+        *m
+    }
 }

@@ -199,6 +199,12 @@ pub trait Vector4:
             Self::column(m, j).to_f64().to_array()
         }))
     }
+    /// A matrix in double-double, exactly (the walkers split their pairings into the
+    /// matrix they use and the rest left out from this).
+    #[must_use]
+    fn matrix_to_dd(m: &Self::Matrix) -> crate::geometry::DdMat4 {
+        crate::geometry::DdMat4::from_f64(Self::matrix_to_f64(m))
+    }
     /// `(hi + lo) · x` with the products and sums of `hi · x` compensated (Ogita, Rump and
     /// Oishi's `Dot2`): as accurate as computing in twice the precision and rounding once.
     ///

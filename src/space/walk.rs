@@ -58,7 +58,9 @@ pub struct CellWalker<V: Vector4> {
 pub(crate) fn rounded_with_rest<V: Vector4>(m: &DdMat4) -> (V::Matrix, V::Matrix) {
     let (hi, lo) = m.parts();
     let r = V::matrix_from_f64_pair(hi, lo);
-    let (h2, l2) = (*m - DdMat4::from_f64(V::matrix_to_f64(&r))).parts();
+    // What the matrix used leaves out: nothing for double-double, which holds `m` itself
+    // (rounding it to f64 here once made the reference apply `m` plus its own low part).
+    let (h2, l2) = (*m - V::matrix_to_dd(&r)).parts();
     (r, V::matrix_from_f64_pair(h2, l2))
 }
 

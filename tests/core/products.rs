@@ -559,14 +559,12 @@ fn product_injectivity_radii() {
 }
 
 /// The product walks against the double-double walk of the same cell, in units of the
-/// conditioning limit. The target of the constant-curvature walk (2× median, 5× worst) is
-/// not met yet in H²×R: crossing a side loses about a digit in f64 (5–12× at the first
-/// crossing from the centre, with the exit ratio and distance right to an ulp; see
-/// docs/surfaces.md). This guards the present level against getting worse.
+/// conditioning limit: the target of the constant-curvature walk (2× median, 5× worst), in
+/// both geometries and both precisions.
 #[test]
 fn product_walks_stay_near_the_conditioning_limit() {
-    const MEDIAN_BOUND: f64 = 16.0;
-    const WORST_BOUND: f64 = 120.0;
+    const MEDIAN_BOUND: f64 = 2.0;
+    const WORST_BOUND: f64 = 5.0;
     use bevy_curved_spaces::space::accuracy::summarize;
     use bevy_curved_spaces::space::product::accuracy::product_walk_accuracy;
     let mut rng = SplitMix64(0xacc);
