@@ -217,18 +217,20 @@ fn line_offset(x: vec4<f32>, m: vec4<f32>) -> f32 {
 
 // The distance from x to object i's shape.
 fn object_distance(i: u32, x: vec4<f32>) -> f32 {
-    let o = space.product_objects[i];
-    let kind = u32(o.info.x);
+    // The two vectors it needs, not the whole object (this is the searches' inner loop).
+    let shape = space.product_objects[i].shape;
+    let info = space.product_objects[i].info;
+    let kind = u32(info.x);
     if kind == 1u {
-        return surface_distance(x, o.shape);
+        return surface_distance(x, shape);
     }
     if kind == 2u {
-        let db = line_offset(x, o.shape);
-        let dz = x.z - o.info.z;
+        let db = line_offset(x, shape);
+        let dz = x.z - info.z;
         return sqrt(db * db + dz * dz);
     }
-    let db = surface_distance(x, o.shape);
-    let dz = x.z - o.shape.z;
+    let db = surface_distance(x, shape);
+    let dz = x.z - shape.z;
     return sqrt(db * db + dz * dz);
 }
 
