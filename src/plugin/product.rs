@@ -96,6 +96,15 @@ pub(crate) struct ProductKey {
     base: bool,
 }
 
+/// What the last automatic budget was chosen for (the entities' objects do not choose it:
+/// they move every frame).
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct BudgetFor {
+    key: ProductKey,
+    budget: u32,
+    choice: Option<crate::trace::BudgetChoice>,
+}
+
 /// The scene shown in a product space: the base product scene or the default one, with
 /// the fog set in the settings.
 #[must_use]
@@ -115,13 +124,17 @@ pub fn product_scene(
 
 /// Packs the product scene for the GPU when the space, the scene, the fog, the budget or
 /// the quality changed, with the automatic crossing budget sampled from the start view.
+// A Bevy system takes its resources as arguments.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn upload_product_scene(
     active: Res<ActiveProduct>,
     settings: Res<TracerSettings>,
     base: Option<Res<BaseProductScene>>,
+    entities: Res<crate::plugin::objects::product::ProductEntityObjects>,
     prepared: Option<Res<PreparedScene>>,
     mut status: ResMut<TracerStatus>,
-    mut last: Local<Option<ProductKey>>,
+    mut last: Local<Option<(ProductKey, u64)>>,
+    mut budget_for: Local<Option<BudgetFor>>,
     mut commands: Commands,
 ) {
     let key = ProductKey {
@@ -133,13 +146,18 @@ pub(crate) fn upload_product_scene(
         base: base.is_some(),
     };
     let base_changed = base.as_ref().is_some_and(|b| b.is_changed());
-    if prepared.is_some() && !active.is_changed() && !base_changed && last.as_ref() == Some(&key) {
+    let now = (key.clone(), entities.generation);
+    if prepared.is_some() && !active.is_changed() && !base_changed && last.as_ref() == Some(&now) {
         return;
     }
-    let scene = product_scene(&active, &settings, base.as_deref());
-    let (budget, choice) = match settings.max_crossings {
-        Some(b) => (b.clamp(1, MAX_GPU_BUDGET), None),
-        None => {
+    let mut scene = product_scene(&active, &settings, base.as_deref());
+    // The budget is chosen for the scene without the entities, and kept while only they
+    // change.
+    let fresh = active.is_changed() || base_changed;
+    let (budget, choice) = match (settings.max_crossings, budget_for.as_ref()) {
+        (Some(b), _) => (b.clamp(1, MAX_GPU_BUDGET), None),
+        (None, Some(b)) if !fresh && b.key == key => (b.budget, b.choice),
+        (None, _) => {
             let eye = BaseProductScene::start_frame(base.as_deref(), &active).w_axis;
             let choice = product_auto_budget(
                 &active.space,
@@ -148,10 +166,17 @@ pub(crate) fn upload_product_scene(
                 settings.quality.miss_fraction(),
                 AUTO_BUDGET_SAMPLES,
             );
-            (choice.budget.clamp(1, MAX_GPU_BUDGET), Some(choice))
+            let budget = choice.budget.clamp(1, MAX_GPU_BUDGET);
+            *budget_for = Some(BudgetFor {
+                key: key.clone(),
+                budget,
+                choice: Some(choice),
+            });
+            (budget, Some(choice))
         }
     };
-    *last = Some(key);
+    scene.objects.extend(entities.objects.iter().copied());
+    *last = Some(now);
     match GpuScene::product(&active.space, &scene, budget) {
         Ok(gpu) => {
             commands.insert_resource(PreparedScene(Arc::new(gpu)));

@@ -174,7 +174,9 @@ impl Plugin for CurvedSpacesPlugin {
                     upload_scene
                         .after(crate::plugin::objects::collect_objects)
                         .run_if(constant_curvature),
-                    crate::plugin::product::upload_product_scene.run_if(product_shown),
+                    crate::plugin::product::upload_product_scene
+                        .after(crate::plugin::objects::product::collect_product_objects)
+                        .run_if(product_shown),
                     check_stereo_settings,
                 )
                     .in_set(CurvedSpacesSystems::Upload),

@@ -196,3 +196,93 @@ fn a_bad_product_id_falls_back_to_the_default_space() {
     assert!(app.world().get_resource::<ActiveProduct>().is_none());
     assert!(app.world().get_resource::<ActiveSpace>().is_some());
 }
+
+#[test]
+fn entities_fly_through_the_product_cell_and_are_drawn_with_their_images() {
+    use bevy_curved_spaces::plugin::objects::product::ProductEntityObjects;
+    use bevy_curved_spaces::plugin::objects::{CurvedObject, CurvedTransform, CurvedVelocity};
+    use bevy_curved_spaces::trace::product::ProductShape;
+    use glam::DVec3;
+    let (mut app, _camera) = test_app("bitorus-circle");
+    let space = app
+        .world()
+        .resource::<bevy_curved_spaces::ActiveProduct>()
+        .space
+        .clone();
+    let g = space.base();
+    // Along its own right (+x, towards side 0) and a little up the fibre, turning slowly.
+    let ball = app
+        .world_mut()
+        .spawn((
+            CurvedObject::ball(0.1, DVec3::new(0.9, 0.2, 0.2)),
+            CurvedTransform(DMat4::IDENTITY),
+            CurvedVelocity(bevy_curved_spaces::space::motion::Velocity {
+                linear: DVec3::new(2.0, 0.0, 0.7),
+                angular: DVec3::new(0.0, 0.0, 0.5),
+            }),
+        ))
+        .id();
+    // A horizontal disc is drawn; one standing on its edge is not (product discs lie in
+    // a slice).
+    app.world_mut().spawn((
+        CurvedObject::disc(0.3, DVec3::ONE),
+        CurvedTransform(DMat4::from_cols(
+            DVec4::X,
+            DVec4::Y,
+            DVec4::Z,
+            DVec4::new(0.0, 0.0, -0.5, 1.0),
+        )),
+    ));
+    app.world_mut().spawn((
+        CurvedObject::disc(0.3, DVec3::ONE),
+        CurvedTransform(DMat4::from_cols(DVec4::X, DVec4::Z, -DVec4::Y, DVec4::W)),
+    ));
+    let mut most = 0;
+    let mut generations = std::collections::BTreeSet::new();
+    for _ in 0..150 {
+        app.update();
+        let objects = app.world().resource::<ProductEntityObjects>();
+        generations.insert(objects.generation);
+        let balls = objects
+            .objects
+            .iter()
+            .filter(|o| matches!(o.shape, ProductShape::Point(_)))
+            .count();
+        most = most.max(balls);
+        assert_eq!(
+            objects
+                .objects
+                .iter()
+                .filter(|o| matches!(o.shape, ProductShape::Disc(_)))
+                .count(),
+            1,
+            "only the horizontal disc"
+        );
+        let f = app.world().get::<CurvedTransform>(ball).unwrap().0;
+        let margin = app.world().resource::<PlayerSettings>().wrap_margin;
+        assert!(
+            space.outside_by(f.w_axis) <= margin + 1e-9,
+            "left the cell: {f}"
+        );
+        assert!(crate::common::product_frame_defect(g, f) < 1e-9);
+    }
+    // 3 s at 2.1 a second: through sides and the top, each crossing recorded.
+    let crossings = app.world().get::<Holonomy>(ball).unwrap().crossings;
+    assert!(crossings >= 2, "{crossings} crossings");
+    // Near a face the ball is drawn with its image through it.
+    assert!(most >= 2, "never more than {most} copies of the ball");
+    assert!(
+        generations.len() > 50,
+        "the objects were gathered {} times",
+        generations.len()
+    );
+    // The packed scene holds them: the default scene's objects and the entities'.
+    let default = bevy_curved_spaces::trace::product::default_scene(&space)
+        .objects
+        .len();
+    let drawn = app.world().resource::<ProductEntityObjects>().objects.len();
+    let prepared = app
+        .world()
+        .resource::<bevy_curved_spaces::plugin::render::PreparedScene>();
+    assert_eq!(prepared.0.key.product_objects as usize, default + drawn);
+}

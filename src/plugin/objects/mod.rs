@@ -56,6 +56,7 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 mod meshes;
+pub mod product;
 mod ready;
 mod systems;
 
@@ -346,14 +347,26 @@ pub(crate) fn add_systems(app: &mut App) {
     app.init_resource::<EntityObjects>()
         .init_resource::<TracedMeshes>()
         .init_resource::<ActiveSightlines>()
+        .init_resource::<product::ProductEntityObjects>()
         .add_message::<ObjectCrossedFace>()
-        // Objects move through constant-curvature cells only: in a product space they
-        // wait.
         .add_systems(
             FixedUpdate,
-            (move_objects, wrap_objects)
-                .chain()
-                .run_if(resource_exists::<ActiveSpace>),
+            (
+                (move_objects, wrap_objects)
+                    .chain()
+                    .run_if(resource_exists::<ActiveSpace>),
+                (product::move_product_objects, product::wrap_product_objects)
+                    .chain()
+                    .run_if(resource_exists::<crate::plugin::components::ActiveProduct>),
+            ),
+        )
+        .add_systems(
+            Update,
+            (
+                product::wrap_product_objects.in_set(CurvedSpacesSystems::Wrap),
+                product::collect_product_objects.in_set(CurvedSpacesSystems::Upload),
+            )
+                .run_if(resource_exists::<crate::plugin::components::ActiveProduct>),
         )
         .add_systems(
             Update,

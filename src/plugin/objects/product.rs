@@ -1,0 +1,270 @@
+//! A game's entities in a product space (H²×R, S²×R): while an [`ActiveProduct`] is shown,
+//! [`CurvedObject`]s move along the product's geodesics ([`move_product_objects`]), come back
+//! into the cell through the sides, the top and the bottom ([`wrap_product_objects`], with
+//! their [`Holonomy`] and an [`ObjectCrossedFace`] each), and are drawn as product objects
+//! ([`collect_product_objects`] into [`ProductEntityObjects`]).
+//!
+//! A product scene has balls and horizontal discs among its shapes, so those are what an
+//! entity can be here: a [`CurvedShape::Ball`] is a ball at the entity's position, a
+//! [`CurvedShape::Disc`] whose normal (the entity's own `z`) is the fibre is a horizontal
+//! disc. Other shapes are left out, each with one warning naming the entity. A ball within
+//! its radius of a face is drawn with its image through that face too (the part past the
+//! face seen from the partner side), so one flying through a face is never cut off; near a
+//! corner the images through two faces are added, not their composition.
+
+use super::{CurvedObject, CurvedShape, CurvedTransform, CurvedVelocity, ObjectCrossedFace};
+use crate::geometry::Geometry;
+use crate::plugin::components::{ActiveProduct, PlayerSettings};
+use crate::space::Holonomy;
+use crate::space::product::motion::{
+    ProductMotion, orthonormal, step_product_frame, wrap_product_frame,
+};
+use crate::space::product::{ProductSpace, ProductWalker};
+use crate::trace::product::{ProductObject, ProductShape};
+use bevy::prelude::*;
+use glam::{DMat3, DMat4, DVec4};
+use std::collections::HashSet;
+
+/// The entities' objects in the product space shown, gathered when they change (read by
+/// the product scene's upload). `generation` counts the changes.
+#[derive(Resource, Clone, Debug, Default, PartialEq)]
+pub struct ProductEntityObjects {
+    /// The objects, images through the faces included.
+    pub objects: Vec<ProductObject>,
+    /// Bumped whenever `objects` changes.
+    pub generation: u64,
+}
+
+/// The frame after `dt` seconds of `velocity`: translated along the product geodesic of
+/// its linear part (in the frame's own axes), then turned by its angular part about the
+/// frame's own axes, exactly.
+#[must_use]
+pub fn step_product_object(
+    g: Geometry,
+    frame: DMat4,
+    velocity: &crate::space::motion::Velocity,
+    dt: f64,
+) -> DMat4 {
+    if !velocity.is_finite() || !dt.is_finite() {
+        return frame;
+    }
+    let moved = step_product_frame(
+        g,
+        frame,
+        &ProductMotion {
+            translation: velocity.linear * dt,
+            rotation: glam::DVec3::ZERO,
+            level: false,
+        },
+    );
+    let rate = velocity.angular.length();
+    if rate == 0.0 {
+        return moved;
+    }
+    let r = DMat3::from_axis_angle(velocity.angular / rate, rate * dt);
+    let cols = [moved.x_axis, moved.y_axis, moved.z_axis];
+    let turned = |c: glam::DVec3| cols[0] * c.x + cols[1] * c.y + cols[2] * c.z;
+    orthonormal(
+        g,
+        DMat4::from_cols(
+            turned(r.x_axis),
+            turned(r.y_axis),
+            turned(r.z_axis),
+            moved.w_axis,
+        ),
+    )
+}
+
+/// Moves every object with a velocity by one fixed step in the product space.
+pub fn move_product_objects(
+    time: Res<Time>,
+    active: Res<ActiveProduct>,
+    mut objects: Query<(&mut CurvedTransform, &CurvedVelocity)>,
+) {
+    let g = active.space.base();
+    let dt = time.delta_secs_f64();
+    for (mut transform, velocity) in &mut objects {
+        if !velocity.0.is_zero() {
+            transform.0 = step_product_object(g, transform.0, &velocity.0, dt);
+        }
+    }
+}
+
+/// Brings objects that left the product cell back in ([`wrap_product_frame`], the player's
+/// margin), recording each crossing in their [`Holonomy`] and as an [`ObjectCrossedFace`]
+/// (faces numbered as the walk does: the sides, then the top, then the bottom).
+pub fn wrap_product_objects(
+    active: Res<ActiveProduct>,
+    settings: Res<PlayerSettings>,
+    mut objects: Query<(Entity, &mut CurvedTransform, &mut Holonomy), With<CurvedObject>>,
+    mut crossed_faces: MessageWriter<ObjectCrossedFace>,
+) {
+    for (entity, mut transform, mut holonomy) in &mut objects {
+        if !(transform.is_changed() || active.is_changed()) {
+            continue;
+        }
+        let (wrapped, crossed) =
+            wrap_product_frame(&active.space, transform.0, settings.wrap_margin);
+        if crossed.is_empty() {
+            continue;
+        }
+        for c in crossed {
+            holonomy.record(c.face, c.pairing);
+            crossed_faces.write(ObjectCrossedFace {
+                entity,
+                face: c.face,
+                pairing: c.pairing,
+                crossings: holonomy.crossings,
+            });
+        }
+        transform.0 = wrapped;
+    }
+}
+
+/// The objects whose shape or frame changed since the last run.
+type Changed<'w, 's> = Query<
+    'w,
+    's,
+    (),
+    Or<(
+        bevy::prelude::Changed<CurvedObject>,
+        bevy::prelude::Changed<CurvedTransform>,
+    )>,
+>;
+
+/// The product object of an entity's shape at `frame`, or why it has none.
+fn product_object(
+    g: Geometry,
+    object: &CurvedObject,
+    frame: DMat4,
+) -> Result<ProductObject, String> {
+    let colour = object.colour.unwrap_or(glam::DVec3::ONE) + object.emission;
+    let positive = |x: f64| {
+        if x > 0.0 && x.is_finite() {
+            Ok(x)
+        } else {
+            Err(format!("its radius must be a positive number, got {x}"))
+        }
+    };
+    if !frame.is_finite() {
+        return Err("its frame is not finite".into());
+    }
+    let p = frame.w_axis;
+    match &object.shape {
+        CurvedShape::Ball { radius } => Ok(ProductObject {
+            shape: ProductShape::Point(p),
+            radius: positive(*radius)?,
+            colour,
+        }),
+        CurvedShape::Disc { radius } => {
+            let n = frame.z_axis;
+            let len = crate::space::product::motion::product_dot(g, n, n).sqrt();
+            if !(n.z.abs() >= (1.0 - 1e-9) * len) {
+                return Err(
+                    "a disc in a product space lies in a slice: its normal (the entity's own z) \
+                     must be the fibre"
+                        .into(),
+                );
+            }
+            Ok(ProductObject {
+                shape: ProductShape::Disc(p),
+                radius: positive(*radius)?,
+                colour,
+            })
+        }
+        _ => Err(
+            "product spaces draw balls and horizontal discs of a game's entities; other shapes \
+             are left out"
+                .into(),
+        ),
+    }
+}
+
+/// The images of a ball through the faces it reaches past (within its radius): the point
+/// the pairing of each such face carries it to.
+fn images_through_faces(
+    space: &ProductSpace,
+    walker: &ProductWalker<DVec4>,
+    object: &ProductObject,
+) -> Vec<ProductObject> {
+    let ProductShape::Point(p) = object.shape else {
+        return Vec::new();
+    };
+    let g = space.base();
+    let pb = DVec4::new(p.x, p.y, 0.0, p.w);
+    let norm = (pb.x * pb.x + pb.y * pb.y + g.kappa() * pb.w * pb.w)
+        .abs()
+        .sqrt();
+    let unit = pb / norm.max(f64::MIN_POSITIVE);
+    let half = 0.5 * space.length();
+    let mut out = Vec::new();
+    for (k, n) in walker.covectors.iter().enumerate() {
+        let x = n.dot(unit);
+        // The distance past the side's line (negative inside).
+        let past = match g {
+            Geometry::Spherical => x.clamp(-1.0, 1.0).asin(),
+            _ => x.asinh(),
+        };
+        if past > -object.radius {
+            out.push(ProductObject {
+                shape: ProductShape::Point(walker.pairings[k] * p),
+                ..*object
+            });
+        }
+    }
+    if p.z > half - object.radius {
+        let mut q = walker.up.0 * p;
+        q.z = p.z - space.length();
+        out.push(ProductObject {
+            shape: ProductShape::Point(q),
+            ..*object
+        });
+    }
+    if p.z < -half + object.radius {
+        let mut q = walker.down.0 * p;
+        q.z = p.z + space.length();
+        out.push(ProductObject {
+            shape: ProductShape::Point(q),
+            ..*object
+        });
+    }
+    out
+}
+
+/// Gathers the entities' objects (and the images of balls reaching through faces) into
+/// [`ProductEntityObjects`] when any of them or the space changed.
+pub fn collect_product_objects(
+    active: Res<ActiveProduct>,
+    objects: Query<(Entity, &CurvedObject, &CurvedTransform)>,
+    changed: Changed,
+    mut removed: RemovedComponents<CurvedObject>,
+    mut warned: Local<HashSet<Entity>>,
+    mut out: ResMut<ProductEntityObjects>,
+) {
+    let removed_any = removed.read().count() > 0;
+    if !(active.is_changed() || removed_any || !changed.is_empty()) {
+        return;
+    }
+    let g = active.space.base();
+    let walker = ProductWalker::<DVec4>::new(&active.space);
+    let mut sorted: Vec<_> = objects.iter().collect();
+    sorted.sort_by_key(|(e, _, _)| *e);
+    let mut gathered = Vec::with_capacity(sorted.len());
+    for (entity, object, transform) in sorted {
+        match product_object(g, object, transform.0) {
+            Ok(o) => {
+                gathered.extend(images_through_faces(&active.space, &walker, &o));
+                gathered.push(o);
+            }
+            Err(why) => {
+                if warned.insert(entity) {
+                    warn!("{entity} is not drawn in {}: {why}", active.id);
+                }
+            }
+        }
+    }
+    if gathered != out.objects {
+        out.objects = gathered;
+        out.generation += 1;
+    }
+}
