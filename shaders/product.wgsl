@@ -11,6 +11,7 @@
 #import curved_spaces::layout::{ProductObject, face_count, kappa, space}
 #import curved_spaces::geometry::distance_from_ratio
 #import curved_spaces::walk::{Ray, partner, transform_compensated}
+#import curved_spaces::shading::{colour_by_tint, recolour}
 
 // A step without crossing (S²: at most π/4 of surface arc).
 const CAP: u32 = 0xfffffffeu;
@@ -530,6 +531,15 @@ fn trace_product(start: Ray) -> vec3<f32> {
     var skip = NONE;
     var crossings = 0u;
     var steps = 0u;
+#ifdef COLOUR_BY
+    var last_face = NONE;
+    var held = mat4x4<f32>(
+        vec4<f32>(1.0, 0.0, 0.0, 0.0),
+        vec4<f32>(0.0, 1.0, 0.0, 0.0),
+        vec4<f32>(0.0, 0.0, 1.0, 0.0),
+        vec4<f32>(0.0, 0.0, 0.0, 1.0),
+    );
+#endif
 #ifdef WALLS
     veil_colour = vec3<f32>(0.0);
     veil_through = 1.0;
@@ -567,7 +577,10 @@ fn trace_product(start: Ray) -> vec3<f32> {
             let spread = light_spread(surface_distance(at, light), at.z - light.z);
             let lambert = max(base_form(normal, to_light) + normal.z * to_light.z, 0.0);
             let lit = ambient + (1.0 - ambient) * lambert / max(spread, 1.0);
-            let surface = min(space.product_objects[object].colour.rgb * lit, vec3<f32>(1.0));
+            var surface = min(space.product_objects[object].colour.rgb * lit, vec3<f32>(1.0));
+#ifdef COLOUR_BY
+            surface = recolour(colour_by_tint(crossings, last_face, held), surface);
+#endif
             let w = exp(-(travelled + nearest) / lambda_fog);
             return behind_walls(w * surface + (1.0 - w) * fog);
         }
@@ -589,6 +602,10 @@ fn trace_product(start: Ray) -> vec3<f32> {
         if crossings > budget {
             break;
         }
+#ifdef COLOUR_BY
+        last_face = exit.face;
+        held = space.pairings[exit.face] * held;
+#endif
 #ifdef WALLS
         var entered = skip;
         if skip == NONE {

@@ -316,7 +316,7 @@ impl OffscreenRenderer {
             resolution_scale: 1.0,
             parts: SceneParts::default(),
             time: Some(0.0),
-            colour_by: crate::scene::ColourBy::Shading,
+            colour_by: scene.colour_by,
             walls: None,
         });
         // The switch puts players at the start view in this update, before the camera.

@@ -90,6 +90,7 @@ pub(crate) struct ProductKey {
     space: usize,
     fog: Option<f64>,
     walls: Option<crate::scene::WallStyle>,
+    colour_by: crate::scene::ColourBy,
     max_crossings: Option<u32>,
     quality: crate::plugin::components::Quality,
     /// Whether a base scene is shown (its changes are caught by change detection).
@@ -119,6 +120,7 @@ pub fn product_scene(
     }
     // The walls set here, else the base scene's own; an opening of 1 turns them off.
     scene.walls = settings.walls.or(scene.walls).filter(|w| w.opening < 1.0);
+    scene.colour_by = settings.colour_by;
     scene
 }
 
@@ -141,6 +143,7 @@ pub(crate) fn upload_product_scene(
         space: Arc::as_ptr(&active.space) as usize,
         fog: settings.fog_distance,
         walls: settings.walls,
+        colour_by: settings.colour_by,
         max_crossings: settings.max_crossings,
         quality: settings.quality,
         base: base.is_some(),

@@ -182,6 +182,46 @@ fn product_scene_files_render_alike_on_the_cpu_and_the_gpu_in_mono_and_stereo() 
 }
 
 #[test]
+fn the_teaching_views_colour_product_spaces_alike_on_the_cpu_and_the_gpu() {
+    let dir = crate::common::scratch_dir("products-colour-by");
+    // The bitorus's pairings turn by multiples of 45°, which lie between the holonomy
+    // view's 30° bins: f32 and f64 may round such a tie either way.
+    for (mode, most) in [("crossings", 23), ("face", 23), ("holonomy", 60)] {
+        let mut pictures = Vec::new();
+        for cpu in [true, false] {
+            let out = dir.join(format!("{mode}-{cpu}.png"));
+            let mut args = vec![
+                "render",
+                "bitorus-circle",
+                "--colour-by",
+                mode,
+                "--size",
+                "64x36",
+                "--crossings",
+                "24",
+                "--out",
+                out.to_str().unwrap(),
+            ];
+            if cpu {
+                args.push("--cpu");
+            }
+            ok(&args);
+            pictures.push(image::open(&out).expect("a picture").to_rgb8());
+        }
+        let d = differing(&pictures[0], &pictures[1]);
+        assert!(d <= most, "{mode}: {d} of 2304 pixels differ");
+    }
+    // Each view tints the picture its own way.
+    let read = |m: &str| {
+        image::open(dir.join(format!("{m}-true.png")))
+            .unwrap()
+            .to_rgb8()
+    };
+    assert!(differing(&read("crossings"), &read("face")) > 200);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
 fn walking_a_product_space_without_a_display_renders_it() {
     let dir = crate::common::scratch_dir("products-walk");
     let out = Command::new(env!("CARGO_BIN_EXE_curved-spaces"))

@@ -540,3 +540,39 @@ fn mesh_and_prism_mistakes_name_their_line() {
     .unwrap();
     assert_eq!(ok.scene.objects.len(), 4 * 2 + 2 * 2);
 }
+
+#[test]
+fn a_hit_knows_its_crossings_last_face_and_the_copy_it_was_seen_in() {
+    use bevy_curved_spaces::geometry::Ray;
+    use bevy_curved_spaces::scene::{ColourBy, holonomy_bin};
+    use bevy_curved_spaces::space::product::ProductWalker;
+    use bevy_curved_spaces::trace::product::{ProductRayEnd, first_product_hit};
+    let space = product("sphere-circle-turn");
+    let g = space.base();
+    let walker = ProductWalker::<DVec4>::new(&space);
+    let scene = default_scene(&space);
+    // Straight up the fibre from above the centre ball: through the top, in through the
+    // bottom turned by the quarter turn, onto the ball from below.
+    let ball = scene.objects.last().unwrap().radius;
+    let ray = Ray {
+        point: DVec4::new(0.0, 0.0, 1.5 * ball, 1.0),
+        tangent: DVec4::Z,
+    };
+    let ProductRayEnd::Hit {
+        crossings,
+        last_face,
+        held,
+        ..
+    } = first_product_hit(&walker, &scene, ray, 4)
+    else {
+        panic!("the ball is met");
+    };
+    assert_eq!((crossings, last_face), (1, Some(walker.top())));
+    assert!((held - walker.up.0).abs_diff_eq(glam::DMat4::ZERO, 1e-15));
+    // A quarter turn: the holonomy view's 90° bin (3 of 30°), not mirrored.
+    assert_eq!(holonomy_bin(g, held), 3);
+    assert_eq!(
+        ColourBy::Holonomy.tint(g, crossings, last_face, held),
+        bevy_curved_spaces::scene::palette(3)
+    );
+}

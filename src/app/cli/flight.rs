@@ -230,16 +230,12 @@ fn flight_product(
     use bevy_curved_spaces::trace::product::flight::ProductFlight;
     use bevy_curved_spaces::trace::product::{product_auto_budget, render_product};
     let space = &chosen.space;
-    if args.walls.walls.is_some() || args.colour_by != super::ColourByArg::Shading {
-        return Err(
-            "--walls and --colour-by are not available in the product spaces (H²×R, S²×R) yet"
-                .into(),
-        );
-    }
     let flight = ProductFlight::new(space, file).map_err(|e| format!("{name}: {e}"))?;
     let total = flight.frame_count(args.fps);
     let (first, last, todo) = frames_to_do(args, total)?;
-    let scene = chosen.scene;
+    let mut scene = chosen.scene;
+    scene.walls = args.walls.style(scene.walls)?.filter(|w| w.opening < 1.0);
+    scene.colour_by = args.colour_by.into();
     let budget = match args.crossings {
         Some(n) => n,
         None => {

@@ -168,13 +168,14 @@ fn render_product_command(args: &RenderArgs, chosen: ProductChoice) -> Result<()
                 .into(),
         );
     }
-    if args.view.colour_by != super::ColourByArg::Shading || args.view.changes_parts() {
+    if args.view.changes_parts() {
         return Err(
-            "--colour-by and the scene-part switches are not available in the product spaces \
-             (H²×R, S²×R); a product scene file's edges and centre_ball choose the parts"
+            "the scene-part switches are not available in the product spaces (H²×R, S²×R); a \
+             product scene file's edges and centre_ball choose the parts"
                 .into(),
         );
     }
+    scene.colour_by = args.view.colour_by.into();
     if let Some(fog) = args.fog {
         scene.fog_distance = fog;
     }

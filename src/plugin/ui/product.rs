@@ -46,6 +46,8 @@ pub(super) fn product_panel(
             );
             tracer_controls(ui, &mut settings, &status, default_fog);
             wall_controls(ui, &mut settings, base.as_ref().and_then(|b| b.scene.walls));
+            // Faces as the walk numbers them: the sides, the top, the bottom.
+            colour_by_controls(ui, &mut settings, space.face_count());
             let mut scale = settings.resolution_scale;
             if ui
                 .add(egui::Slider::new(&mut scale, 0.125..=1.0).text("resolution scale"))

@@ -80,6 +80,9 @@ pub struct ProductScene {
     pub fog_colour: DVec3,
     /// The cell's walls with windows ([`walls`]), if drawn.
     pub walls: Option<crate::scene::walls::WallStyle>,
+    /// What surfaces are coloured by over their shading (the teaching views; faces are
+    /// numbered as the walk does: the sides, then the top, then the bottom).
+    pub colour_by: crate::scene::ColourBy,
 }
 
 impl ProductScene {
@@ -478,6 +481,7 @@ pub fn scene_with_parts(space: &ProductSpace, parts: ProductParts) -> ProductSce
         fog_distance: 3.0 * size.max(0.5 * h),
         fog_colour: DVec3::new(0.04, 0.05, 0.08),
         walls: None,
+        colour_by: crate::scene::ColourBy::Shading,
     }
 }
 
@@ -508,6 +512,11 @@ pub enum ProductRayEnd<'a> {
         at: DVec4,
         /// The ray's unit tangent there.
         tangent: DVec4,
+        /// The last face the ray left through (`None` before any crossing).
+        last_face: Option<usize>,
+        /// The product of the pairings applied to the ray (their linear parts, the latest
+        /// on the left): the copy of the cell the object was seen in.
+        held: glam::DMat4,
         /// The object met.
         object: &'a ProductObject,
     },
@@ -546,6 +555,8 @@ fn walk_to_hit<'a>(
     let mut skip = None;
     let mut crossings = 0usize;
     let mut steps = 0usize;
+    let mut last_face = None;
+    let mut held = glam::DMat4::IDENTITY;
     while distance < cutoff {
         let Some(exit) = walker.exit(&ray, skip) else {
             break;
@@ -567,6 +578,8 @@ fn walk_to_hit<'a>(
                 crossings,
                 at: along(g, &ray, t),
                 tangent: along_tangent(g, &ray, t),
+                last_face,
+                held,
                 object,
             };
         }
@@ -586,6 +599,15 @@ fn walk_to_hit<'a>(
         }
         steps = 0;
         crossings += 1;
+        last_face = Some(exit.face);
+        let pairing = if exit.face == walker.top() {
+            walker.up.0
+        } else if exit.face == walker.bottom() {
+            walker.down.0
+        } else {
+            walker.pairings[exit.face]
+        };
+        held = pairing * held;
         if crossings > max_crossings {
             return ProductRayEnd::Budget(max_crossings);
         }
@@ -646,10 +668,12 @@ pub fn trace_product_pixel(
     });
     let ProductRayEnd::Hit {
         distance,
+        crossings,
         at,
         tangent,
+        last_face,
+        held,
         object,
-        ..
     } = end
     else {
         return veil.over(scene.fog_colour);
@@ -671,7 +695,11 @@ pub fn trace_product_pixel(
         at.z - scene.light.z,
     );
     let lit = scene.ambient + (1.0 - scene.ambient) * lambert / spread.max(1.0);
-    let surface = (object.colour * lit).min(DVec3::ONE);
+    let mut surface = (object.colour * lit).min(DVec3::ONE);
+    if scene.colour_by != crate::scene::ColourBy::Shading {
+        let tint = scene.colour_by.tint(g, crossings, last_face, held);
+        surface = crate::scene::ColourBy::recolour(tint, surface);
+    }
     let w = (-distance / scene.fog_distance).exp();
     veil.over(w * surface + (1.0 - w) * scene.fog_colour)
 }

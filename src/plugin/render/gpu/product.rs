@@ -35,6 +35,7 @@ impl GpuScene {
             step_cap: walker.step_cap,
             product: true,
             product_objects: scene.objects.len() as u32,
+            colour_by: scene.colour_by.index(),
             ..ShaderKey::empty(space.base())
         };
         let bytes = key.uniform_bytes();
