@@ -501,6 +501,8 @@ pub fn default_camera(space: &ProductSpace) -> ProductCamera {
 /// made, the point met and the object), in the fog (nothing before the fog's cut-off) or
 /// at the crossing budget (the crossings made).
 #[derive(Clone, Copy, Debug, PartialEq)]
+// One per ray, returned by value: a box would cost an allocation per ray.
+#[allow(clippy::large_enum_variant)]
 pub enum ProductRayEnd<'a> {
     /// The ray met an object.
     Hit {
