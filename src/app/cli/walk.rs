@@ -135,7 +135,6 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
             args.space
         );
         let mut render = RenderArgs::of(&args.space);
-        render.scene = args.scene.clone();
         render.fog = args.fog;
         render.scene = args.scene.clone();
         render.stereo = stereo_args;
@@ -269,9 +268,6 @@ pub(super) fn walk_xr(args: &WalkArgs, chosen: &Chosen) -> Result<(), String> {
             .set(window_titled(format!("curved spaces (XR mirror): {name}"))),
     );
     app.insert_resource(active);
-    if let Some(base) = chosen.base {
-        app.insert_resource(base);
-    }
     add_walk_plugins(&mut app, args, stereo, walls);
     if xr_available(app.world()) {
         app.add_plugins(CurvedSpacesXrPlugin::default());
