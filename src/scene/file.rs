@@ -28,18 +28,8 @@ use std::path::Path;
 use std::sync::Arc;
 use toml::Spanned;
 
-/// A scene file could not be used: the file, the line (where one is to blame) and what is
-/// wrong.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{file}{}: {message}", line.map(|l| format!(":{l}")).unwrap_or_default())]
-pub struct SceneFileError {
-    /// The file.
-    pub file: String,
-    /// The line at fault, where known.
-    pub line: Option<usize>,
-    /// What is wrong.
-    pub message: String,
-}
+pub use super::file_support::SceneFileError;
+use super::file_support::{ambient_of, colour, failing, parse_toml, read_scene_text, walls_of};
 
 /// A loaded scene file: the space, its own scene (objects with their images, lights,
 /// shading, meshes), the default parts it asks for and the start view.
@@ -234,31 +224,15 @@ fn one() -> f64 {
 
 /// Reads a scene file.
 pub fn load_scene_file(path: &Path) -> Result<SceneFile, SceneFileError> {
-    let name = path.display().to_string();
-    let text = crate::files::read_text(path, crate::files::MAX_SCENE_FILE_BYTES).map_err(|e| {
-        SceneFileError {
-            file: name.clone(),
-            line: None,
-            message: format!("cannot read the scene file: {e}"),
-        }
-    })?;
+    let (name, text) = read_scene_text(path)?;
     let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
     parse_scene(&text, &base, &name)
 }
 
 /// Parses a scene file's text; paths in it are relative to `base`, errors name `file`.
 pub fn parse_scene(text: &str, base: &Path, file: &str) -> Result<SceneFile, SceneFileError> {
-    let line_of = |offset: usize| text[..offset.min(text.len())].matches('\n').count() + 1;
-    let fail = |span: Option<std::ops::Range<usize>>, message: String| SceneFileError {
-        file: file.to_string(),
-        line: span.map(|s| line_of(s.start)),
-        message,
-    };
-    let spec: FileSpec = toml::from_str(text).map_err(|e| {
-        // The TOML error's first line repeats the position; keep its message.
-        let message = with_suggestion(e.message());
-        fail(e.span(), message)
-    })?;
+    let fail = failing(text, file);
+    let spec: FileSpec = parse_toml(text, file, KEYS)?;
 
     let space_id = spec.space.get_ref().clone();
     let space = resolve_space(&space_id, base).map_err(|m| fail(Some(spec.space.span()), m))?;
@@ -288,38 +262,10 @@ pub fn parse_scene(text: &str, base: &Path, file: &str) -> Result<SceneFile, Sce
         },
     );
     if let Some(a) = &spec.ambient {
-        if !(0.0..=1.0).contains(a.get_ref()) {
-            return Err(fail(
-                Some(a.span()),
-                format!("ambient must be between 0 and 1, got {}", a.get_ref()),
-            ));
-        }
-        scene.shading.ambient = *a.get_ref();
+        scene.shading.ambient = ambient_of(a).map_err(|(s, m)| fail(Some(s), m))?;
     }
-    scene.shading.walls = match (&spec.walls, &spec.wall_opacity) {
-        (Some(opening), opacity) => Some(
-            crate::scene::WallStyle::with_opacity(
-                *opening.get_ref(),
-                opacity
-                    .as_ref()
-                    .map_or(crate::scene::walls::DEFAULT_WALL_OPACITY, |o| *o.get_ref()),
-            )
-            .map_err(|e| {
-                let span = match (&e, opacity) {
-                    (crate::scene::WallError::Opacity(_), Some(o)) => o.span(),
-                    _ => opening.span(),
-                };
-                fail(Some(span), e.to_string())
-            })?,
-        ),
-        (None, Some(o)) => {
-            return Err(fail(
-                Some(o.span()),
-                "wall_opacity needs walls = OPENING (0 solid to 1 none) beside it".into(),
-            ));
-        }
-        (None, None) => None,
-    };
+    scene.shading.walls = walls_of(spec.walls.as_ref(), spec.wall_opacity.as_ref())
+        .map_err(|(s, m)| fail(Some(s), m))?;
     if let Some(c) = spec.fog_colour {
         scene.shading.fog_colour = colour(c)
             .map_err(|m| fail(None, format!("fog_colour: {m}")))?
@@ -492,48 +438,6 @@ const KEYS: &[&str] = &[
     "centrepiece",
 ];
 
-/// An unknown-field message with the nearest known key, if one is close (`color` →
-/// `colour`).
-fn with_suggestion(message: &str) -> String {
-    suggest_key(message, KEYS)
-}
-
-/// An unknown-field message of `toml` with the nearest of `keys`, if one is within two
-/// edits.
-pub(crate) fn suggest_key(message: &str, keys: &[&str]) -> String {
-    let unknown = message
-        .strip_prefix("unknown field `")
-        .and_then(|rest| rest.split('`').next());
-    let Some(word) = unknown else {
-        return message.to_string();
-    };
-    let distance = |a: &str, b: &str| {
-        let b: Vec<char> = b.chars().collect();
-        let mut row: Vec<usize> = (0..=b.len()).collect();
-        for (i, ca) in a.chars().enumerate() {
-            let mut prev = row[0];
-            row[0] = i + 1;
-            for (j, cb) in b.iter().enumerate() {
-                let next = (prev + usize::from(ca != *cb))
-                    .min(row[j] + 1)
-                    .min(row[j + 1] + 1);
-                prev = row[j + 1];
-                row[j + 1] = next;
-            }
-        }
-        row[b.len()]
-    };
-    match keys
-        .iter()
-        .map(|k| (distance(word, k), *k))
-        .min()
-        .filter(|(d, _)| *d <= 2)
-    {
-        Some((_, key)) => format!("{message} (did you mean `{key}`?)"),
-        None => message.to_string(),
-    }
-}
-
 /// A seed space by id, or a space file by path (relative to `base`).
 fn resolve_space(id: &str, base: &Path) -> Result<Space, String> {
     crate::space::resolve_space(
@@ -541,15 +445,6 @@ fn resolve_space(id: &str, base: &Path) -> Result<Space, String> {
         base,
         &crate::space::dirichlet::DirichletOptions::default(),
     )
-}
-
-/// A colour (or emission) from a file: finite, negative channels taken as 0.
-pub(crate) fn colour(c: [f64; 3]) -> Result<DVec3, String> {
-    let v = DVec3::from_array(c);
-    if !v.is_finite() {
-        return Err(format!("colours must be finite numbers, got {c:?}"));
-    }
-    Ok(v.max(DVec3::ZERO))
 }
 
 fn positive(name: &str, x: f64) -> Result<f64, String> {

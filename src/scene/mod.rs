@@ -12,6 +12,8 @@ pub mod culling;
 #[cfg(feature = "scene-files")]
 pub mod file;
 #[cfg(feature = "scene-files")]
+pub(crate) mod file_support;
+#[cfg(feature = "scene-files")]
 pub mod flight;
 #[cfg(feature = "gltf")]
 pub mod gltf;

@@ -284,6 +284,13 @@ fn every_example_scene_file_loads() {
     for entry in std::fs::read_dir(&dir).expect("assets/scenes") {
         let path = entry.expect("entry").path();
         if path.extension().is_some_and(|x| x == "toml") {
+            use bevy_curved_spaces::trace::product::file::load_product_scene_file;
+            if let Some(product) = load_product_scene_file(&path).unwrap_or_else(|e| panic!("{e}"))
+            {
+                assert!(!product.scene.objects.is_empty() && product.start.is_some());
+                n += 1;
+                continue;
+            }
             let file = load_scene_file(&path).unwrap_or_else(|e| panic!("{e}"));
             assert!(
                 !file.base.objects.is_empty() && !file.base.lights.is_empty(),

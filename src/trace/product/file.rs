@@ -40,7 +40,10 @@ use super::{
     ProductCamera, ProductObject, ProductParts, ProductScene, ProductShape, scene_with_parts,
 };
 use crate::geometry::Geometry;
-use crate::scene::file::{SceneFileError, colour, suggest_key};
+use crate::scene::file::SceneFileError;
+use crate::scene::file_support::{
+    ambient_of, colour, failing, parse_toml, read_scene_text, walls_of,
+};
 use crate::space::product::motion::camera_frame;
 use crate::space::product::{ProductOrFlat, ProductSpace, product_space};
 use glam::{DMat4, DVec2, DVec3, DVec4};
@@ -198,14 +201,7 @@ struct SpaceOnly {
 /// constant-curvature scene file, or one whose `space` cannot be read: the
 /// constant-curvature loader says what is wrong with it).
 pub fn load_product_scene_file(path: &Path) -> Result<Option<ProductSceneFile>, SceneFileError> {
-    let name = path.display().to_string();
-    let text = crate::files::read_text(path, crate::files::MAX_SCENE_FILE_BYTES).map_err(|e| {
-        SceneFileError {
-            file: name.clone(),
-            line: None,
-            message: format!("cannot read the scene file: {e}"),
-        }
-    })?;
+    let (name, text) = read_scene_text(path)?;
     if names_product_space(&text) {
         parse_product_scene(&text, &name).map(Some)
     } else {
@@ -229,16 +225,8 @@ pub fn names_product_space(text: &str) -> bool {
 
 /// Parses a product scene file's text; errors name `file` and the line.
 pub fn parse_product_scene(text: &str, file: &str) -> Result<ProductSceneFile, SceneFileError> {
-    let line_of = |offset: usize| text[..offset.min(text.len())].matches('\n').count() + 1;
-    let fail = |span: Option<std::ops::Range<usize>>, message: String| SceneFileError {
-        file: file.to_string(),
-        line: span.map(|s| line_of(s.start)),
-        message,
-    };
-    let spec: FileSpec = toml::from_str(text).map_err(|e| {
-        let message = suggest_key(e.message(), KEYS);
-        fail(e.span(), message)
-    })?;
+    let fail = failing(text, file);
+    let spec: FileSpec = parse_toml(text, file, KEYS)?;
     let space_id = spec.space.get_ref().clone();
     let space = match product_space(&space_id) {
         Some(Ok(ProductOrFlat::Product(p))) => *p,
@@ -276,44 +264,16 @@ pub fn parse_product_scene(text: &str, file: &str) -> Result<ProductSceneFile, S
         scene.fog_distance = f * scale;
     }
     if let Some(a) = &spec.ambient {
-        if !(0.0..=1.0).contains(a.get_ref()) {
-            return Err(fail(
-                Some(a.span()),
-                format!("ambient must be between 0 and 1, got {}", a.get_ref()),
-            ));
-        }
-        scene.ambient = *a.get_ref();
+        scene.ambient = ambient_of(a).map_err(|(s, m)| fail(Some(s), m))?;
     }
     if let Some(c) = &spec.fog_colour {
         scene.fog_colour = colour(*c.get_ref())
             .map_err(|m| fail(Some(c.span()), format!("fog_colour: {m}")))?
             .min(DVec3::ONE);
     }
-    scene.walls = match (&spec.walls, &spec.wall_opacity) {
-        (Some(opening), opacity) => {
-            let style = crate::scene::WallStyle::with_opacity(
-                *opening.get_ref(),
-                opacity
-                    .as_ref()
-                    .map_or(crate::scene::walls::DEFAULT_WALL_OPACITY, |o| *o.get_ref()),
-            )
-            .map_err(|e| {
-                let span = match (&e, opacity) {
-                    (crate::scene::WallError::Opacity(_), Some(o)) => o.span(),
-                    _ => opening.span(),
-                };
-                fail(Some(span), e.to_string())
-            })?;
-            Some(style).filter(|w| w.opening < 1.0)
-        }
-        (None, Some(o)) => {
-            return Err(fail(
-                Some(o.span()),
-                "wall_opacity needs walls = OPENING (0 solid to 1 none) beside it".into(),
-            ));
-        }
-        (None, None) => None,
-    };
+    scene.walls = walls_of(spec.walls.as_ref(), spec.wall_opacity.as_ref())
+        .map_err(|(s, m)| fail(Some(s), m))?
+        .filter(|w| w.opening < 1.0);
     match spec.lights.as_slice() {
         [] => {}
         [light] => {

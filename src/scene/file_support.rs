@@ -1,0 +1,145 @@
+//! What both kinds of scene file share ([`super::file`] for the constant-curvature spaces,
+//! `trace::product::file` for the product ones): reading the text, errors that name the
+//! file and the line, "did you mean" for an unknown key, and the keys both take (colours,
+//! `ambient`, `walls` and `wall_opacity`).
+
+use glam::DVec3;
+use std::path::Path;
+use toml::Spanned;
+
+/// A scene file could not be used: the file, the line (where one is to blame) and what is
+/// wrong.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{file}{}: {message}", line.map(|l| format!(":{l}")).unwrap_or_default())]
+pub struct SceneFileError {
+    /// The file.
+    pub file: String,
+    /// The line at fault, where known.
+    pub line: Option<usize>,
+    /// What is wrong.
+    pub message: String,
+}
+
+/// A scene file's name and text (at most [`crate::files::MAX_SCENE_FILE_BYTES`]), or an
+/// error naming it.
+pub(crate) fn read_scene_text(path: &Path) -> Result<(String, String), SceneFileError> {
+    let name = path.display().to_string();
+    match crate::files::read_text(path, crate::files::MAX_SCENE_FILE_BYTES) {
+        Ok(text) => Ok((name, text)),
+        Err(e) => Err(SceneFileError {
+            file: name,
+            line: None,
+            message: format!("cannot read the scene file: {e}"),
+        }),
+    }
+}
+
+/// The errors of one file's text: the file, the line of a span, the message.
+pub(crate) fn failing<'a>(
+    text: &'a str,
+    file: &'a str,
+) -> impl Fn(Option<std::ops::Range<usize>>, String) -> SceneFileError + 'a {
+    move |span, message| SceneFileError {
+        file: file.to_string(),
+        line: span.map(|s| text[..s.start.min(text.len())].matches('\n').count() + 1),
+        message,
+    }
+}
+
+/// A file's TOML as `T`; an unknown key's error names the nearest of `keys`.
+pub(crate) fn parse_toml<T: serde::de::DeserializeOwned>(
+    text: &str,
+    file: &str,
+    keys: &[&str],
+) -> Result<T, SceneFileError> {
+    toml::from_str(text).map_err(|e| {
+        // The TOML error's first line repeats the position; keep its message.
+        failing(text, file)(e.span(), suggest_key(e.message(), keys))
+    })
+}
+
+/// A span and what is wrong there.
+pub(crate) type SpanError = (std::ops::Range<usize>, String);
+
+/// `ambient`, between 0 and 1.
+pub(crate) fn ambient_of(a: &Spanned<f64>) -> Result<f64, SpanError> {
+    if (0.0..=1.0).contains(a.get_ref()) {
+        Ok(*a.get_ref())
+    } else {
+        Err((
+            a.span(),
+            format!("ambient must be between 0 and 1, got {}", a.get_ref()),
+        ))
+    }
+}
+
+/// The walls of `walls = OPENING` and `wall_opacity = A` (which needs the walls).
+pub(crate) fn walls_of(
+    walls: Option<&Spanned<f64>>,
+    opacity: Option<&Spanned<f64>>,
+) -> Result<Option<crate::scene::WallStyle>, SpanError> {
+    match (walls, opacity) {
+        (Some(opening), opacity) => crate::scene::WallStyle::with_opacity(
+            *opening.get_ref(),
+            opacity.map_or(crate::scene::walls::DEFAULT_WALL_OPACITY, |o| *o.get_ref()),
+        )
+        .map(Some)
+        .map_err(|e| {
+            let span = match (&e, opacity) {
+                (crate::scene::WallError::Opacity(_), Some(o)) => o.span(),
+                _ => opening.span(),
+            };
+            (span, e.to_string())
+        }),
+        (None, Some(o)) => Err((
+            o.span(),
+            "wall_opacity needs walls = OPENING (0 solid to 1 none) beside it".into(),
+        )),
+        (None, None) => Ok(None),
+    }
+}
+
+/// An unknown-field message of `toml` with the nearest of `keys`, if one is within two
+/// edits.
+pub(crate) fn suggest_key(message: &str, keys: &[&str]) -> String {
+    let unknown = message
+        .strip_prefix("unknown field `")
+        .and_then(|rest| rest.split('`').next());
+    let Some(word) = unknown else {
+        return message.to_string();
+    };
+    let distance = |a: &str, b: &str| {
+        let b: Vec<char> = b.chars().collect();
+        let mut row: Vec<usize> = (0..=b.len()).collect();
+        for (i, ca) in a.chars().enumerate() {
+            let mut prev = row[0];
+            row[0] = i + 1;
+            for (j, cb) in b.iter().enumerate() {
+                let next = (prev + usize::from(ca != *cb))
+                    .min(row[j] + 1)
+                    .min(row[j + 1] + 1);
+                prev = row[j + 1];
+                row[j + 1] = next;
+            }
+        }
+        row[b.len()]
+    };
+    match keys
+        .iter()
+        .map(|k| (distance(word, k), *k))
+        .min()
+        .filter(|(d, _)| *d <= 2)
+    {
+        Some((_, key)) => format!("{message} (did you mean `{key}`?)"),
+        None => message.to_string(),
+    }
+}
+
+/// A colour (or emission) from a file: finite, negative channels taken as 0.
+pub(crate) fn colour(c: [f64; 3]) -> Result<DVec3, String> {
+    let v = DVec3::from_array(c);
+    if !v.is_finite() {
+        return Err(format!("colours must be finite numbers, got {c:?}"));
+    }
+    Ok(v.max(DVec3::ZERO))
+}
