@@ -17,6 +17,7 @@ pub(crate) mod file_support;
 pub mod flight;
 #[cfg(feature = "gltf")]
 pub mod gltf;
+pub mod light_images;
 pub mod mesh;
 pub mod model;
 pub mod moving;

@@ -1249,3 +1249,46 @@ fn render_draws_walls_and_centrepieces() {
     assert_ne!(file_walls, no_walls);
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn light_sums_a_lamps_images_and_checks_its_shortcut() {
+    let v = json(&[
+        "light",
+        "torus",
+        "--at",
+        "0.2,0.1,-0.3",
+        "--fog",
+        "1.5",
+        "--reach",
+        "3",
+        "--check",
+        "6",
+        "--json",
+    ]);
+    let total = v["total"].as_f64().unwrap();
+    let (exact, tail) = (v["exact"].as_f64().unwrap(), v["tail"].as_f64().unwrap());
+    assert!((total - exact - tail).abs() < 1e-12 * total);
+    assert!(v["images"].as_u64().unwrap() > 100);
+    // The longer sum is within the stated bounds of the shorter one's tail.
+    let check = &v["check"];
+    let difference = check["difference"].as_f64().unwrap();
+    assert!((total - check["total"].as_f64().unwrap() - difference).abs() < 1e-12);
+    assert!(difference.abs() <= v["bound"].as_f64().unwrap() + check["bound"].as_f64().unwrap());
+    // A spherical space: every image, nothing left over.
+    let p = json(&["light", "poincare", "--at", "0.1,0,0", "--json"]);
+    assert_eq!(
+        (p["images"].as_u64(), p["tail"].as_f64()),
+        (Some(120), Some(0.0))
+    );
+    fails_with(&["light", "torus", "--at", "2,0,0"], "outside the cell");
+    fails_with(
+        &[
+            "light", "torus", "--at", "0.1,0,0", "--reach", "3", "--check", "2",
+        ],
+        "must be longer than the reach",
+    );
+    fails_with(
+        &["light", "bitorus-circle", "--at", "0,0,0"],
+        "product spaces",
+    );
+}

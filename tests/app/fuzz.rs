@@ -382,6 +382,16 @@ fn hostile_numbers_on_the_command_line() {
         let circle = format!("surface-abABcdCD-circle-{value}");
         let turned = format!("surface-aA-circle-1-turn-{value}");
         let cases: Vec<Vec<&str>> = vec![
+            // Every numeric option of the fluence sum.
+            vec!["light", "torus", "--at", &vec3],
+            vec!["light", "torus", "--light", &vec3, "--at", "0.1,0,0"],
+            vec!["light", "torus", "--at", "0.1,0,0", "--fog", value],
+            vec!["light", "torus", "--at", "0.1,0,0", "--reach", value],
+            vec!["light", "torus", "--at", "0.1,0,0", "--radius", value],
+            vec![
+                "light", "torus", "--at", "0.1,0,0", "--reach", "1", "--check", value,
+            ],
+            vec!["light", "poincare", "--at", "0.1,0,0", "--fog", value],
             // A scene with a moving object at a hostile time.
             vec![
                 "render",

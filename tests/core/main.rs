@@ -18,6 +18,7 @@ mod groups;
 mod hard_cases;
 mod headset;
 mod layers;
+mod light_images;
 mod objects;
 mod player;
 #[cfg(feature = "scene-files")]

@@ -4,6 +4,7 @@
 mod bench;
 mod flight;
 mod info;
+mod light;
 mod parse;
 mod render;
 mod trace;
@@ -61,6 +62,10 @@ enum Command {
     },
     /// Trace one geodesic through the cell and list its face crossings.
     Trace(TraceArgs),
+    /// The fluence at a point from a unit lamp: the sum over every image of the lamp in
+    /// the universal cover of e^(−d/λ)/S(d)² (the near ones exactly, the rest by its
+    /// mean, with the error bound of that).
+    Light(LightArgs),
     /// Render a picture of a space's default scene.
     Render(RenderArgs),
     /// Measure speed against error: GPU frame times against a trivial material, accuracy
@@ -89,6 +94,35 @@ enum Command {
 enum Precision {
     F64,
     F32,
+}
+
+#[derive(Args)]
+struct LightArgs {
+    /// Seed space id or space file.
+    space: String,
+    /// The lamp's chart point (inside the cell).
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true, default_value = "0,0,0")]
+    light: DVec3,
+    /// The chart point lit (inside the cell).
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    at: DVec3,
+    /// Fog distance λ (default: the space's, 3 inradii); the light is absorbed as the
+    /// view is fogged.
+    #[arg(long, value_parser = parse_positive, allow_hyphen_values = true)]
+    fog: Option<f64>,
+    /// Sum the images within this distance exactly (default: where about 2000 lie, at
+    /// most 8λ; every image in a spherical space).
+    #[arg(long, value_parser = parse_positive, allow_hyphen_values = true)]
+    reach: Option<f64>,
+    /// The lamp's radius, within which its falloff stops growing (default 0.05).
+    #[arg(long, value_parser = parse_positive, allow_hyphen_values = true)]
+    radius: Option<f64>,
+    /// Also sum the images out to this longer reach and say how far the shortcut is off.
+    #[arg(long, value_parser = parse_positive, allow_hyphen_values = true)]
+    check: Option<f64>,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
 }
 
 #[derive(Args)]
@@ -593,6 +627,7 @@ pub fn run(cli: Cli) -> Result<(), String> {
             None => info::info(&resolve_space(&space)?, json),
         },
         Some(Command::Trace(args)) => trace::trace(&args),
+        Some(Command::Light(args)) => light::light(&args),
         Some(Command::Render(args)) => render::render_command(&args),
         Some(Command::Bench(args)) => bench::bench(&args),
         Some(Command::Flight(args)) => flight::flight(&args),
