@@ -115,6 +115,9 @@ pub enum OffscreenError {
     /// The scene cannot be drawn on the GPU (the reason is attached).
     #[error("the scene cannot be drawn on the GPU: {0}")]
     Scene(String),
+    /// The tracer's shader did not build for this scene (the compiler's message attached).
+    #[error("the GPU tracer's shader did not build: {0}")]
+    Shader(String),
     /// The captured picture has an unexpected format (described in the message).
     #[error("the captured picture has an unexpected format: {0}")]
     Format(String),
@@ -332,6 +335,12 @@ impl OffscreenRenderer {
     }
 
     fn capture(&mut self, handle: &Handle<Image>) -> Result<RgbImage, OffscreenError> {
+        let failure = self
+            .app
+            .world()
+            .resource::<crate::plugin::render::TracerFailure>()
+            .clone();
+        failure.clear();
         let drawn_before = self.frames.get();
         let captured: Arc<Mutex<Option<Image>>> = Arc::default();
         let start = Instant::now();
@@ -340,6 +349,9 @@ impl OffscreenRenderer {
             self.app.update();
             if let Some(image) = captured.lock().expect("capture lock").take() {
                 return image_to_rgb(&image).map_err(OffscreenError::Format);
+            }
+            if let Some(why) = failure.get() {
+                return Err(OffscreenError::Shader(why));
             }
             if start.elapsed() > OFFSCREEN_TIMEOUT {
                 return Err(OffscreenError::Timeout(OFFSCREEN_TIMEOUT));

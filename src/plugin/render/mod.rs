@@ -21,12 +21,12 @@ use bevy::render::{
     Extract, ExtractSchedule, Render, RenderApp, RenderStartup, RenderSystems,
     render_resource::{
         BindGroup, BindGroupEntries, BindGroupLayoutDescriptor, BindGroupLayoutEntries, Buffer,
-        BufferInitDescriptor, BufferUsages, CachedRenderPipelineId, ColorTargetState, ColorWrites,
-        CommandEncoder, Extent3d, FilterMode, FragmentState, Operations, PipelineCache,
-        RenderPassColorAttachment, RenderPassDescriptor, RenderPipeline, RenderPipelineDescriptor,
-        Sampler, SamplerBindingType, SamplerDescriptor, ShaderStages, SpecializedRenderPipeline,
-        SpecializedRenderPipelines, TextureDescriptor, TextureDimension, TextureFormat,
-        TextureSampleType, TextureUsages, TextureView, VertexState,
+        BufferInitDescriptor, BufferUsages, CachedPipelineState, CachedRenderPipelineId,
+        ColorTargetState, ColorWrites, CommandEncoder, Extent3d, FilterMode, FragmentState,
+        Operations, PipelineCache, RenderPassColorAttachment, RenderPassDescriptor, RenderPipeline,
+        RenderPipelineDescriptor, Sampler, SamplerBindingType, SamplerDescriptor, ShaderStages,
+        SpecializedRenderPipeline, SpecializedRenderPipelines, TextureDescriptor, TextureDimension,
+        TextureFormat, TextureSampleType, TextureUsages, TextureView, VertexState,
         binding_types::{
             sampler, storage_buffer_read_only_sized, texture_2d, uniform_buffer_sized,
         },
@@ -68,6 +68,46 @@ impl FramesTraced {
     #[must_use]
     pub fn get(&self) -> u64 {
         self.0.load(Ordering::Acquire)
+    }
+}
+
+/// Why the tracer's pipeline could not be built (a shader that does not compile, with the
+/// compiler's words), readable from the main world: headless renders stop waiting and say
+/// so, and the panel shows it.
+#[derive(Resource, Clone, Debug, Default)]
+pub struct TracerFailure(pub Arc<std::sync::Mutex<Option<String>>>);
+
+impl TracerFailure {
+    /// The failure, if the pipeline of a view failed to build.
+    #[must_use]
+    pub fn get(&self) -> Option<String> {
+        self.0.lock().ok().and_then(|f| f.clone())
+    }
+
+    /// Forgets it (before a new picture is waited for).
+    pub fn clear(&self) {
+        if let Ok(mut f) = self.0.lock() {
+            *f = None;
+        }
+    }
+
+    fn set(&self, why: String) {
+        if let Ok(mut f) = self.0.lock() {
+            *f = Some(why);
+        }
+    }
+}
+
+/// Shows a failed pipeline in the tracer's status (the panel's error line).
+fn report_tracer_failure(
+    failure: Res<TracerFailure>,
+    status: Option<ResMut<crate::plugin::components::TracerStatus>>,
+) {
+    if let (Some(why), Some(mut status)) = (failure.get(), status) {
+        let message = format!("the tracer's shader did not build: {why}");
+        if status.error.as_ref() != Some(&message) {
+            status.error = Some(message);
+        }
     }
 }
 
@@ -125,13 +165,17 @@ impl Plugin for TracerRenderPlugin {
                 .expect("an internal shader id is free");
         }
         let frames = FramesTraced::default();
+        let failure = TracerFailure::default();
         app.insert_resource(frames.clone())
+            .insert_resource(failure.clone())
+            .add_systems(Update, report_tracer_failure)
             .add_plugins(SyncComponentPlugin::<CurvedSpaceCamera>::default());
         let Some(render_app) = app.get_sub_app_mut(RenderApp) else {
             return;
         };
         render_app
             .insert_resource(frames)
+            .insert_resource(failure)
             .init_resource::<SpecializedRenderPipelines<TracerPipeline>>()
             .add_systems(RenderStartup, init_tracer_pipeline)
             .add_systems(ExtractSchedule, extract_curved_views)
@@ -509,16 +553,27 @@ fn trace_views(
     view: ViewQuery<(&ViewTarget, &TracerBindings)>,
     cache: Res<PipelineCache>,
     frames: Res<FramesTraced>,
+    failure: Res<TracerFailure>,
     mut ctx: RenderContext,
 ) {
     let (target, bindings) = view.into_inner();
+    // A pipeline still building draws nothing yet; one that failed says why.
+    let failed = |id: CachedRenderPipelineId| {
+        if let CachedPipelineState::Err(e) = cache.get_render_pipeline_state(id) {
+            failure.set(e.to_string());
+        }
+    };
     let Some(pipeline) = cache.get_render_pipeline(bindings.pipeline) else {
+        failed(bindings.pipeline);
         return;
     };
     let upscale = match &bindings.reduced {
         Some((texture, bind_group, id)) => match cache.get_render_pipeline(*id) {
             Some(p) => Some((texture, bind_group, p)),
-            None => return,
+            None => {
+                failed(*id);
+                return;
+            }
         },
         None => None,
     };
