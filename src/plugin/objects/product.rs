@@ -239,6 +239,7 @@ pub fn collect_product_objects(
     changed: Changed,
     mut removed: RemovedComponents<CurvedObject>,
     mut warned: Local<HashSet<Entity>>,
+    mut walker: Local<Option<(usize, ProductWalker<DVec4>)>>,
     mut out: ResMut<ProductEntityObjects>,
 ) {
     let removed_any = removed.read().count() > 0;
@@ -246,14 +247,21 @@ pub fn collect_product_objects(
         return;
     }
     let g = active.space.base();
-    let walker = ProductWalker::<DVec4>::new(&active.space);
+    // The walker of the space shown, built once per space, not on every frame an object moves.
+    let key = std::sync::Arc::as_ptr(&active.space) as usize;
+    if walker.as_ref().is_none_or(|(k, _)| *k != key) {
+        *walker = Some((key, ProductWalker::<DVec4>::new(&active.space)));
+    }
+    let Some((_, walker)) = walker.as_ref() else {
+        return;
+    };
     let mut sorted: Vec<_> = objects.iter().collect();
     sorted.sort_by_key(|(e, _, _)| *e);
     let mut gathered = Vec::with_capacity(sorted.len());
     for (entity, object, transform) in sorted {
         match product_object(g, object, transform.0) {
             Ok(o) => {
-                gathered.extend(images_through_faces(&active.space, &walker, &o));
+                gathered.extend(images_through_faces(&active.space, walker, &o));
                 gathered.push(o);
             }
             Err(why) => {
