@@ -37,7 +37,11 @@ struct Shading {
 struct Light {
     // Colour × power (rgb), number of images in use.
     colour: vec4<f32>,
-    // The light and its images under the pairings: a point is lit by the nearest.
+    // The reach within which images are summed, the tail's irradiance (¼ of its mean
+    // fluence), unused ×2.
+    info: vec4<f32>,
+    // LIGHT_IMAGES_SUM: the images in the cover, nearest the origin first; otherwise the
+    // light and its images under the pairings (a point is lit by the nearest).
     images: array<vec4<f32>, #{LIGHT_IMAGES}>,
 }
 #endif

@@ -3,7 +3,9 @@
 #define_import_path curved_spaces::shading
 
 #import curved_spaces::layout::{kappa, space}
-#import curved_spaces::geometry::{distance, form, s_of, tangent_towards}
+#ifdef LIGHTS
+#import curved_spaces::lighting::{light_from}
+#endif
 
 // ---------------------------------------------------------------------------------------
 // Shading (trace::Shading::shade)
@@ -89,24 +91,7 @@ fn shade(point: vec4<f32>, normal: vec4<f32>, albedo: vec3<f32>, emission: vec3<
     var lit = vec3<f32>(ambient);
 #ifdef LIGHTS
     for (var i = 0u; i < #{LIGHT_COUNT}u; i += 1u) {
-        let light = space.lights[i];
-        // The nearest of the light's images.
-        var at = light.images[0];
-        var dl = distance(point, at);
-        for (var k = 1u; k < u32(light.colour.w); k += 1u) {
-            let q = light.images[k];
-            let dq = distance(point, q);
-            if dq < dl {
-                dl = dq;
-                at = q;
-            }
-        }
-        if dl > 0.0 {
-            let l = tangent_towards(point, at);
-            let lambert = max(form(normal, l), 0.0);
-            let s = max(abs(s_of(dl)), space.shading.params.z);
-            lit += (1.0 - ambient) * light.colour.rgb * (lambert / (s * s));
-        }
+        lit += (1.0 - ambient) * space.lights[i].colour.rgb * light_from(i, point, normal);
     }
 #endif
     var surface = min(albedo * lit + emission, vec3<f32>(1.0));

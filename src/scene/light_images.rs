@@ -13,10 +13,9 @@
 //! and, on S³, where its light focuses again). It is summed in two parts:
 //!
 //! - **Exactly** over the images within the reach `R` (the deck group's elements whose cell
-//!   comes within `R` of the cell, [`crate::space::invariants::elements_near`], then those
-//!   images nearer than `R`). In a spherical space every image is summed: the group is
-//!   finite, and each image is reached along the short arc `d`, the long one `2π − d`, and
-//!   each of those after any number of whole turns round the great circle: the turns sum to
+//!   comes near enough, [`lamp_images`], then those images nearer than `R`). In a
+//!   spherical space every image is summed: the group is finite, and each image is
+//!   reached along the short arc `d`, the long one `2π − d`, and each of those after any number of whole turns round the great circle: the turns sum to
 //!   `(e^(−d/λ) + e^(−(2π−d)/λ)) / (1 − e^(−2π/λ))`, so nothing is left over.
 //! - **The tail** beyond `R` in E³ and H³, by its mean: images spread through the cover with
 //!   density `1/vol(M)`, and a sphere of radius `r` has area `4π S(r)²`, which cancels the
@@ -157,15 +156,17 @@ pub fn fluence(
             reach: std::f64::consts::PI,
         });
     }
-    let elements = elements_near(space, reach, MAX_IMAGES).ok_or(FluenceError::TooMany {
-        reach,
-        limit: MAX_IMAGES,
-    })?;
+    let near = lamp_images(space, lamp, reach + g.distance(DVec4::W, at), MAX_IMAGES).ok_or(
+        FluenceError::TooMany {
+            reach,
+            limit: MAX_IMAGES,
+        },
+    )?;
     let f = |d: f64| (-d / fog).exp() / s2(d);
     let mut images = 0usize;
     let mut exact = 0.0;
-    for h in &elements {
-        let d = g.distance(at, *h * lamp);
+    for (q, _) in &near {
+        let d = g.distance(at, *q);
         if d <= reach {
             images += 1;
             exact += f(d);
@@ -226,4 +227,60 @@ fn tail_range(
     let lo = start + integrate(&|r| ball_volume(g, r - rho) / vol);
     let hi = start + integrate(&|r| ball_volume(g, r + rho) / vol);
     (lo, hi)
+}
+
+/// The images `g·L` of a lamp at `lamp` (a model point of the cell) that lie within `radius`
+/// of the model's origin, nearest first, each with its distance from the origin; at most
+/// `limit` group elements are visited (`None` if more are needed). In a spherical space
+/// every image (the group is finite; `radius` is not used).
+///
+/// The walk goes from cell to neighbouring cell through the face pairings and keeps the
+/// cells whose centre is within `radius + 2ρ` of the origin (`ρ` the circumradius): a cell
+/// that meets the ball of `radius` has its centre within `radius + ρ`, and the cells a
+/// geodesic from the origin to it passes through all meet the ball too, so none is missed.
+#[must_use]
+pub fn lamp_images(
+    space: &Space,
+    lamp: DVec4,
+    radius: f64,
+    limit: usize,
+) -> Option<Vec<(DVec4, f64)>> {
+    let g = space.geometry;
+    let origin = crate::geometry::ORIGIN;
+    let elements = if g == Geometry::Spherical {
+        elements_near(space, f64::INFINITY, limit)?
+    } else {
+        let rho = circumradius(space);
+        let keep = radius + 2.0 * rho;
+        let generators: Vec<glam::DMat4> = space.faces.iter().map(|f| f.pairing).collect();
+        let mut seen = crate::space::orbit::OrbitPoints::new(g, 1e-5);
+        seen.push(origin);
+        let mut out = vec![glam::DMat4::IDENTITY];
+        let mut queue = std::collections::VecDeque::from([glam::DMat4::IDENTITY]);
+        while let Some(m) = queue.pop_front() {
+            for generator in &generators {
+                let next = m * *generator;
+                let centre = next * origin;
+                if !(g.distance(origin, centre) <= keep) || !seen.insert(centre) {
+                    continue;
+                }
+                out.push(next);
+                if out.len() > limit {
+                    return None;
+                }
+                queue.push_back(next);
+            }
+        }
+        out
+    };
+    let mut images: Vec<(DVec4, f64)> = elements
+        .iter()
+        .map(|h| {
+            let q = g.project_point(*h * lamp);
+            (q, g.distance(origin, q))
+        })
+        .filter(|(_, d)| g == Geometry::Spherical || *d <= radius)
+        .collect();
+    images.sort_by(|a, b| a.1.total_cmp(&b.1));
+    Some(images)
 }

@@ -18,6 +18,7 @@ pub mod flight;
 #[cfg(feature = "gltf")]
 pub mod gltf;
 pub mod light_images;
+pub mod lighting;
 pub mod mesh;
 pub mod model;
 pub mod moving;
@@ -27,6 +28,7 @@ pub mod texture;
 pub mod walls;
 
 pub use culling::FaceCulling;
+pub use lighting::{LightPaths, Lighting};
 pub use mesh::Model;
 pub use model::{
     Avatar, Centrepiece, CurvedScene, MAX_AVATAR_IMAGES, MAX_IMAGES, PlaceError, SceneParts,

@@ -263,6 +263,19 @@ impl CurvedScene {
         })
     }
 
+    /// Gathers the lamps' light as `lighting` says ([`crate::scene::lighting`]): sets it in
+    /// the shading and finds each lamp's images in the cover within its reach. The message
+    /// names a setting out of range.
+    pub fn set_lighting(&mut self, space: &Space, lighting: super::Lighting) -> Result<(), String> {
+        lighting.check()?;
+        let reach = lighting.reach(space);
+        for light in &mut self.lights {
+            *light = light.with_reach(space, reach);
+        }
+        self.shading.lighting = lighting;
+        Ok(())
+    }
+
     /// Puts the avatar at the player's `frame`, with its images under the pairings where it
     /// sticks out of the cell ([`avatar_instances`]).
     pub fn set_avatar_frame(&mut self, space: &Space, frame: DMat4) {
@@ -403,6 +416,7 @@ impl CurvedScene {
                 cutoff_weight: DEFAULT_CUTOFF_WEIGHT,
                 colour_by: super::ColourBy::Shading,
                 walls: None,
+                lighting: super::Lighting::default(),
             },
         )
         .adding_parts(space, parts)

@@ -1,6 +1,8 @@
 //! Lights, materials and the shading model, defined once for the CPU reference and mirrored
 //! by the shader.
 
+pub use super::lighting::Light;
+use super::lighting::Lighting;
 use super::object::Hit;
 use crate::geometry::Geometry;
 use crate::space::Space;
@@ -9,62 +11,19 @@ use glam::{DVec3, DVec4};
 /// Half a colour step of an 8-bit image.
 pub const DEFAULT_CUTOFF_WEIGHT: f64 = 1.0 / 510.0;
 
-/// A point light, with its copies in the cells around the fundamental cell.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Light {
-    /// Where the light is, inside the cell.
-    pub position: DVec4,
-    /// Colour, linear RGB.
-    pub colour: DVec3,
-    /// Brightness at distance `d` is `power / S(d)²` (`sin²`, `d²`, `sinh²`).
-    pub power: f64,
-    /// The light and its images under the face pairings, in the cell's coordinates: a
-    /// surface point is lit by the nearest of them.
-    pub images: Vec<DVec4>,
-}
-
-impl Light {
-    /// A light at `position` (inside the cell) with its images under the pairings.
-    #[must_use]
-    pub fn new(space: &Space, position: DVec4, colour: DVec3, power: f64) -> Self {
-        let g = space.geometry;
-        let mut images = vec![position];
-        for face in &space.faces {
-            let image = g.project_point(face.pairing * position);
-            if images.iter().all(|q| g.distance(*q, image) > 1e-9) {
-                images.push(image);
-            }
-        }
-        Self {
-            position,
-            colour,
-            power,
-            images,
-        }
-    }
-
-    /// The image nearest to `x` and its distance.
-    #[must_use]
-    pub fn nearest(&self, geometry: Geometry, x: DVec4) -> (DVec4, f64) {
-        self.images
-            .iter()
-            .map(|q| (*q, geometry.distance(x, *q)))
-            .min_by(|a, b| a.1.total_cmp(&b.1))
-            .unwrap_or((self.position, geometry.distance(x, self.position)))
-    }
-}
-
 /// The shading model, in one place (`docs/design.md` §4):
 ///
 /// ```text
-/// lit     = albedo · (ambient + (1 − ambient) · Σ_lights light · power · max(0, ⟨n, l⟩) / max(S(d_L)², S(r₀)²))
+/// lit     = albedo · (ambient + (1 − ambient) · Σ_lights light · power · E_light)
 /// surface = min(lit + emission, 1)                        per channel
 /// colour  = e^(−d/λ) · surface + (1 − e^(−d/λ)) · fog     d = distance along the ray
 /// ```
 ///
-/// `l` is the unit tangent at the hit towards the light's nearest copy (among the light and
-/// its images under the face pairings), `d_L` its distance, `r₀` a small radius that keeps
-/// the falloff finite. No shadows.
+/// `E_light` is what [`Shading::light_from`] gathers as [`Shading::lighting`] says: every
+/// image of the lamp in the cover within a reach, each by Lambert's cosine, the falloff
+/// `1/max(S(d)², S(r₀)²)` (`r₀` a small radius that keeps it finite) and the fog's
+/// absorption `e^(−d/λ)`, the nearest few walked for shadows, and the rest by its mean
+/// ([`crate::scene::lighting`]); or, in the older model, the nearest copy only.
 /// A ray stops at the distance `λ ln(1/w)` where the fog weight `e^(−d/λ)` falls to
 /// `w = cutoff_weight`. Surface and fog colours lie in [0, 1], so whatever lies beyond
 /// changes the pixel by at most `w` per channel: with the default `w = 1/510` that is half a
@@ -85,6 +44,9 @@ pub struct Shading {
     pub colour_by: ColourBy,
     /// The cell's walls with windows ([`crate::scene::walls`]); `None`: no walls.
     pub walls: Option<crate::scene::WallStyle>,
+    /// How the lamps' light reaches surfaces: which images, the tail, shadows
+    /// ([`crate::scene::lighting`]).
+    pub lighting: Lighting,
 }
 
 /// What a teaching view colours each surface by, over its shading: the surface's lit
@@ -208,11 +170,36 @@ impl Default for Shading {
             cutoff_weight: DEFAULT_CUTOFF_WEIGHT,
             colour_by: ColourBy::Shading,
             walls: None,
+            lighting: Lighting::default(),
         }
     }
 }
 
 impl Shading {
+    /// The light a surface point (`point`, unit normal `normal`) gets from `light`, per unit
+    /// of its colour × power, as [`Shading::lighting`] says
+    /// ([`crate::scene::lighting::gather`]); `occluded` walks the shadow rays.
+    #[must_use]
+    pub fn light_from(
+        &self,
+        g: Geometry,
+        light: &Light,
+        point: DVec4,
+        normal: DVec4,
+        occluded: &mut crate::scene::lighting::Occluded<'_>,
+    ) -> f64 {
+        super::lighting::gather(
+            &self.lighting,
+            self.fog_distance,
+            self.near_light,
+            g,
+            light,
+            point,
+            normal,
+            occluded,
+        )
+    }
+
     /// The default fog distance scale λ in inradii: several cells deep in every space.
     pub const DEFAULT_FOG_INRADII: f64 = 3.0;
 
@@ -245,15 +232,25 @@ impl Shading {
         d: f64,
         tint: Option<DVec3>,
     ) -> DVec3 {
+        self.shade_with(geometry, lights, hit, d, tint, &mut |_, _, _| false)
+    }
+
+    /// [`Shading::shade_tinted`] with the shadow rays walked by `occluded` (`shade` and
+    /// `shade_tinted` walk none: they have no cell to walk).
+    #[must_use]
+    pub fn shade_with(
+        &self,
+        geometry: Geometry,
+        lights: &[Light],
+        hit: &Hit,
+        d: f64,
+        tint: Option<DVec3>,
+        occluded: &mut crate::scene::lighting::Occluded<'_>,
+    ) -> DVec3 {
         let mut lit = DVec3::splat(self.ambient);
         for light in lights {
-            let (at, dl) = light.nearest(geometry, hit.point);
-            if dl > 0.0 {
-                let l = geometry.tangent_towards(hit.point, at);
-                let lambert = geometry.form(hit.normal, l).max(0.0);
-                let s = geometry.s(dl).abs().max(geometry.s(self.near_light));
-                lit += (1.0 - self.ambient) * light.colour * (light.power * lambert / (s * s));
-            }
+            let e = self.light_from(geometry, light, hit.point, hit.normal, occluded);
+            lit += (1.0 - self.ambient) * light.colour * (light.power * e);
         }
         let mut surface = (hit.colour * lit + hit.emission).min(DVec3::ONE);
         if let Some(t) = tint {

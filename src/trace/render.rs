@@ -2,7 +2,7 @@
 //! nearest object hit against exit face, crossing by pairings until the fog cut-off or the
 //! crossing budget.
 
-use crate::geometry::{Geometry, Ray};
+use crate::geometry::Ray;
 use crate::scene::{ColourBy, CurvedScene, FaceCulling, Hit, Veil, WallPanels};
 use crate::space::{CellWalker, Space};
 use crate::view::{PixelRays, TraceCamera, ViewLayout};
@@ -286,39 +286,129 @@ pub fn trace_pixel(
 ) -> DVec3 {
     let walls = walls_of(walker, scene);
     colour_of_traced(
-        walker.geometry,
+        ShadowWalk::new(walker, None, max_crossings),
         scene,
         &first_hit_walled(walker, scene, None, walls.as_ref(), start, max_crossings),
     )
 }
 
+/// What a shadow ray walks: the cell, the scene's objects (tested in each cell only where
+/// the segment can come near them, where a [`FaceCulling`] is given) and the crossing
+/// budget.
+#[derive(Clone, Copy)]
+pub struct ShadowWalk<'a> {
+    /// The cell.
+    pub walker: &'a CellWalker<DVec4>,
+    /// The scene's culling, if any.
+    pub culling: Option<&'a FaceCulling>,
+    /// Crossings before a shadow ray gives up (unshadowed).
+    pub max_crossings: usize,
+}
+
+impl<'a> ShadowWalk<'a> {
+    /// A shadow walk through `walker`'s cell.
+    #[must_use]
+    pub fn new(
+        walker: &'a CellWalker<DVec4>,
+        culling: Option<&'a FaceCulling>,
+        max_crossings: usize,
+    ) -> Self {
+        Self {
+            walker,
+            culling,
+            max_crossings,
+        }
+    }
+
+    /// Whether an object of `scene` lies on the geodesic from `point` along the unit
+    /// tangent `tangent` within `length`: the walk of a camera ray through the faces, ended
+    /// by any hit (the avatar's too); past the crossing budget it gives up, unshadowed.
+    /// Walls do not shadow.
+    #[must_use]
+    pub fn occluded(&self, scene: &CurvedScene, point: DVec4, tangent: DVec4, length: f64) -> bool {
+        let walker = self.walker;
+        let g = walker.geometry;
+        let mut ray = walker.normalized(Ray { point, tangent });
+        let mut travelled = 0.0;
+        let mut skip = None;
+        for _ in 0..=self.max_crossings {
+            let Some(exit) = walker.exit(&ray, skip) else {
+                return false;
+            };
+            let (c, s) = g.cs(length - travelled);
+            let s_left = if c > 0.0 { s / c } else { f64::INFINITY };
+            let s_exit = exit.ratio();
+            let s_max = s_exit.min(s_left);
+            if scene
+                .intersect_culled(
+                    g,
+                    ray.point,
+                    ray.tangent,
+                    s_max,
+                    f64::INFINITY,
+                    self.culling,
+                )
+                .is_some()
+            {
+                return true;
+            }
+            if s_left <= s_exit {
+                return false;
+            }
+            let (next, step) = walker.cross(&ray, &exit);
+            travelled += step;
+            if travelled >= length {
+                return false;
+            }
+            ray = next;
+            skip = walker.entered(&exit);
+        }
+        false
+    }
+}
+
 /// The colour of a traced ray, recoloured as the scene's [`ColourBy`] says (fog where it
-/// met nothing).
+/// met nothing), its lights' shadow rays walked by `walk`.
 #[must_use]
-pub fn colour_of_traced(geometry: Geometry, scene: &CurvedScene, traced: &TracedRay) -> DVec3 {
+pub fn colour_of_traced(walk: ShadowWalk<'_>, scene: &CurvedScene, traced: &TracedRay) -> DVec3 {
+    let geometry = walk.walker.geometry;
     let by = scene.shading.colour_by;
     let behind = match &traced.end {
-        RayEnd::Hit(h) if by != ColourBy::Shading => scene.shading.shade_tinted(
-            geometry,
-            &scene.lights,
-            &h.hit,
-            h.distance,
+        RayEnd::Hit(h) if by != ColourBy::Shading => shade_hit(
+            walk,
+            scene,
+            h,
             Some(by.tint(geometry, h.crossings, traced.last_face, traced.holonomy)),
         ),
-        end => colour_of(geometry, scene, end),
+        end => colour_of(walk, scene, end),
     };
     traced.veil.over(behind)
 }
 
-/// The colour of a ray that ended as `end` (fog where it met nothing).
+/// The colour of a ray that ended as `end` (fog where it met nothing), its lights' shadow
+/// rays walked by `walk`.
 #[must_use]
-pub fn colour_of(geometry: Geometry, scene: &CurvedScene, end: &RayEnd) -> DVec3 {
+pub fn colour_of(walk: ShadowWalk<'_>, scene: &CurvedScene, end: &RayEnd) -> DVec3 {
     match end {
-        RayEnd::Hit(h) => scene
-            .shading
-            .shade(geometry, &scene.lights, &h.hit, h.distance),
+        RayEnd::Hit(h) => shade_hit(walk, scene, h, None),
         RayEnd::Fog(_) | RayEnd::Budget(_) => scene.shading.fog_colour,
     }
+}
+
+fn shade_hit(
+    walk: ShadowWalk<'_>,
+    scene: &CurvedScene,
+    h: &SceneHit,
+    tint: Option<DVec3>,
+) -> DVec3 {
+    scene.shading.shade_with(
+        walk.walker.geometry,
+        &scene.lights,
+        &h.hit,
+        h.distance,
+        tint,
+        &mut |p, v, length| walk.occluded(scene, p, v, length),
+    )
 }
 
 /// A colour in [0, 1] as the 8-bit value the renderers write.
@@ -386,7 +476,8 @@ pub fn render_view(
                         ray,
                         settings.max_crossings,
                     );
-                    colour_of_traced(g, scene, &traced).clamp(DVec3::ZERO, DVec3::ONE)
+                    let walk = ShadowWalk::new(&walker, culling.as_ref(), settings.max_crossings);
+                    colour_of_traced(walk, scene, &traced).clamp(DVec3::ZERO, DVec3::ONE)
                 };
                 let c = match layout.rays_at(g, i, j) {
                     PixelRays::One(ray) => colour(ray),

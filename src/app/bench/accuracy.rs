@@ -6,7 +6,7 @@ use crate::geometry::{Geometry, Vector4};
 use crate::plugin::render::gpu::{GpuScene, gpu_object_indices};
 use crate::scene::CurvedScene;
 use crate::space::{CellWalker, Limit};
-use crate::trace::{RayEnd, colour_of, first_hit_traced, sample_rays, to_byte};
+use crate::trace::{RayEnd, ShadowWalk, colour_of, first_hit_traced, sample_rays, to_byte};
 use crate::view::ViewKind;
 use glam::{DVec4, Vec4};
 use rayon::prelude::*;
@@ -53,7 +53,8 @@ impl Reference {
                     ray.tangent = Vec4::from_f64(ray.tangent).to_f64();
                 }
                 let traced = first_hit_traced(&walker, scene, ray, budget);
-                let colour = colour_of(g, scene, &traced.end).to_array().map(to_byte);
+                let walk = ShadowWalk::new(&walker, None, budget);
+                let colour = colour_of(walk, scene, &traced.end).to_array().map(to_byte);
                 let exhausted = matches!(traced.end, RayEnd::Budget(c) if c == budget);
                 (traced.id(|o| index[o]), colour, exhausted)
             })
@@ -331,7 +332,8 @@ pub(super) fn cutoff(subject: &Subject, fog_factor: f64, (w, h): (u32, u32)) -> 
             let ray = layout.ray_at(g, k % w, k / w);
             let cut = first_hit_traced(&walker, &scene, ray, EXACT_BUDGET).end;
             let full = first_hit_traced(&walker, &uncut, ray, EXACT_BUDGET).end;
-            let error = (colour_of(g, &scene, &cut) - colour_of(g, &uncut, &full))
+            let walk = ShadowWalk::new(&walker, None, EXACT_BUDGET);
+            let error = (colour_of(walk, &scene, &cut) - colour_of(walk, &uncut, &full))
                 .abs()
                 .max_element();
             (error, matches!(full, RayEnd::Budget(_)))

@@ -94,6 +94,7 @@ pub(super) fn flight(args: &FlightArgs) -> Result<(), String> {
         scene.time = t;
         scene.shading.colour_by = args.colour_by.into();
         scene.shading.walls = walls;
+        scene.set_lighting(space, args.light.lighting(scene.shading.lighting))?;
         scene.set_avatar_frame(space, frame);
         let image = match renderer.as_mut() {
             None => {

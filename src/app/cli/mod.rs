@@ -14,7 +14,7 @@ use bevy::prelude::*;
 use bevy_curved_spaces::plugin::components::Quality;
 use bevy_curved_spaces::plugin::components::StereoSettings;
 use bevy_curved_spaces::scene::walls::DEFAULT_WALL_OPACITY;
-use bevy_curved_spaces::scene::{Centrepiece, SceneParts, WallStyle};
+use bevy_curved_spaces::scene::{Centrepiece, LightPaths, Lighting, SceneParts, WallStyle};
 use bevy_curved_spaces::space::DEFAULT_SPACE;
 use bevy_curved_spaces::space::Space;
 use bevy_curved_spaces::space::dirichlet::DirichletOptions;
@@ -212,6 +212,73 @@ struct ViewArgs {
     gyroscope: bool,
     #[command(flatten)]
     walls: WallArgs,
+    #[command(flatten)]
+    light: LightingArgs,
+}
+
+/// How the lamps' light is gathered (`render`, `walk`, `flight`; see docs/light.md).
+#[derive(Args, Clone, Copy, Default)]
+struct LightingArgs {
+    /// Which geodesics carry a lamp's light: every image of it in the cover within the
+    /// reach, absorbed by the fog (images), or the nearest copy only, unabsorbed, the older
+    /// model (nearest).
+    #[arg(long, value_enum)]
+    light_paths: Option<LightPathsArg>,
+    /// How far the images are summed exactly, in inradii of the cell (above 0, at most 64;
+    /// default 4). A spherical space sums them all.
+    #[arg(long, value_name = "INRADII", value_parser = parse_reach, allow_negative_numbers = true)]
+    light_reach: Option<f64>,
+    /// Leave out the mean of the images beyond the reach.
+    #[arg(long)]
+    no_light_tail: bool,
+    /// How many images of each lamp, nearest the cell's centre first, are walked for
+    /// shadows (0 to 64; default 4).
+    #[arg(long, value_name = "IMAGES", value_parser = clap::value_parser!(u32).range(0..=64))]
+    shadows: Option<u32>,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum LightPathsArg {
+    Images,
+    Nearest,
+}
+
+impl LightingArgs {
+    /// `base` with the settings asked for.
+    fn lighting(&self, base: Lighting) -> Lighting {
+        Lighting {
+            paths: match self.light_paths {
+                Some(LightPathsArg::Images) => LightPaths::Images,
+                Some(LightPathsArg::Nearest) => LightPaths::Nearest,
+                None => base.paths,
+            },
+            reach_inradii: self.light_reach.unwrap_or(base.reach_inradii),
+            tail: base.tail && !self.no_light_tail,
+            shadows: self.shadows.unwrap_or(base.shadows),
+        }
+    }
+
+    /// Whether any setting is asked for.
+    fn any(&self) -> bool {
+        self.light_paths.is_some()
+            || self.light_reach.is_some()
+            || self.no_light_tail
+            || self.shadows.is_some()
+    }
+}
+
+fn parse_reach(s: &str) -> Result<f64, String> {
+    let r: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("not a number: {s:?}"))?;
+    if r > 0.0 && r <= 64.0 {
+        Ok(r)
+    } else {
+        Err(format!(
+            "the reach must be above 0 and at most 64 inradii, got {s}"
+        ))
+    }
 }
 
 /// The cell's walls with windows (`render`, `walk`, `flight`).
@@ -509,6 +576,8 @@ pub struct FlightArgs {
     colour_by: ColourByArg,
     #[command(flatten)]
     walls: WallArgs,
+    #[command(flatten)]
+    light: LightingArgs,
 }
 
 /// A number in `range`, described as `what` in the error.

@@ -175,6 +175,14 @@ fn render_product_command(args: &RenderArgs, chosen: ProductChoice) -> Result<()
                 .into(),
         );
     }
+    if args.view.light.any() {
+        return Err(
+            "the light switches (--light-paths, --light-reach, --no-light-tail, --shadows) are \
+             not available in the product spaces (H²×R, S²×R) yet: they light by the nearest \
+             copy of the lamp"
+                .into(),
+        );
+    }
     scene.colour_by = args.view.colour_by.into();
     if let Some(fog) = args.fog {
         scene.fog_distance = fog;
@@ -290,6 +298,8 @@ fn view(args: &RenderArgs, chosen: &Chosen) -> Result<View, String> {
     scene.time = args.time;
     scene.shading.colour_by = args.view.colour_by.into();
     scene.shading.walls = args.view.walls.style(scene.shading.walls)?;
+    let lighting = args.view.light.lighting(scene.shading.lighting);
+    scene.set_lighting(space, lighting)?;
     let camera = camera(args, chosen)?;
     scene.set_avatar_frame(space, camera.frame);
     let max_crossings = match args.crossings {

@@ -26,8 +26,14 @@ pub struct ShaderKey {
     pub instances: u32,
     /// Point lights.
     pub lights: u32,
-    /// Images per light (the light and its copies through the faces).
+    /// Images per light (the light and its copies through the faces, or with `light_sum` its
+    /// images in the cover).
     pub light_images: u32,
+    /// Whether every image within the reach is summed ([`crate::scene::LightPaths::Images`];
+    /// shader def `LIGHT_IMAGES_SUM`) rather than the nearest taken.
+    pub light_sum: bool,
+    /// Images per light walked for shadows (shader def `SHADOWS`, where above 0).
+    pub shadows: u32,
     /// Whether the player's avatar is drawn.
     pub avatar: bool,
     /// Whether any texture is used.
@@ -79,6 +85,8 @@ impl ShaderKey {
             instances: 0,
             lights: 0,
             light_images: 0,
+            light_sum: false,
+            shadows: 0,
             avatar: false,
             textures: false,
             culling: false,
@@ -149,6 +157,12 @@ impl ShaderKey {
                 "LIGHT_IMAGES".into(),
                 self.light_images.max(1),
             ));
+            if self.light_sum {
+                defs.push("LIGHT_IMAGES_SUM".into());
+            }
+            if self.shadows > 0 {
+                defs.push(ShaderDefVal::UInt("SHADOWS".into(), self.shadows));
+            }
         }
         if self.avatar {
             defs.push("AVATAR".into());
@@ -233,7 +247,7 @@ impl ShaderKey {
         size_of::<GpuView>()
             + size_of::<GpuShading>()
             + vec4 // scene data offsets
-            + count(self.lights) * (1 + count(self.light_images.max(1))) * vec4
+            + count(self.lights) * (2 + count(self.light_images.max(1))) * vec4
             + faces * FACE_BYTES
             + faces.div_ceil(4) * vec4 // partners, four to a vec4
             + if self.walls { (3 * faces + 1) * vec4 } else { 0 }

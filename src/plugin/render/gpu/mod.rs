@@ -37,7 +37,7 @@ pub const TRACER_WGSL: &str = include_str!("../../../../shaders/curved_space.wgs
 /// The tracer's WGSL modules (`#define_import_path curved_spaces::…`), each the twin of a
 /// Rust module, in the order they import each other: the plugin registers them all, so a
 /// game that embeds the crate needs no shader files.
-pub const SHADER_MODULES: [(&str, &str); 13] = [
+pub const SHADER_MODULES: [(&str, &str); 14] = [
     (
         "shaders/layout.wgsl",
         include_str!("../../../../shaders/layout.wgsl"),
@@ -61,6 +61,10 @@ pub const SHADER_MODULES: [(&str, &str); 13] = [
     (
         "shaders/shading.wgsl",
         include_str!("../../../../shaders/shading.wgsl"),
+    ),
+    (
+        "shaders/lighting.wgsl",
+        include_str!("../../../../shaders/lighting.wgsl"),
     ),
     (
         "shaders/hit_id.wgsl",
@@ -293,10 +297,19 @@ impl GpuScene {
             .shading
             .walls
             .and_then(|style| WallPanels::new(space, style, &scene.shading));
+        let lighting = scene.shading.lighting;
+        let summed = lighting.paths == crate::scene::LightPaths::Images;
+        let images_of = |l: &crate::scene::Light| {
+            if summed {
+                l.cover.clone()
+            } else {
+                l.images.clone()
+            }
+        };
         let light_images = scene
             .lights
             .iter()
-            .map(|l| l.images.len())
+            .map(|l| images_of(l).len())
             .max()
             .unwrap_or(0) as u32;
         let key = ShaderKey {
@@ -309,6 +322,8 @@ impl GpuScene {
             instances: instances.len() as u32,
             lights: scene.lights.len() as u32,
             light_images,
+            light_sum: summed,
+            shadows: lighting.shadows,
             avatar: scene.avatar.is_some(),
             textures: !scene.textures.is_empty(),
             culling: culling.is_some() && balls.len() + tubes.len() > 0,
@@ -344,14 +359,21 @@ impl GpuScene {
         });
         out.push(&offsets);
         for light in &scene.lights {
-            out.push(&colour(
-                light.colour * light.power,
-                light.images.len() as f64,
-            ));
+            let images = images_of(light);
+            out.push(&colour(light.colour * light.power, images.len() as f64));
+            let tail = if lighting.tail {
+                0.25 * crate::scene::lighting::tail_fluence(
+                    g,
+                    light.reach,
+                    shading.fog_distance,
+                    light.volume,
+                )
+            } else {
+                0.0
+            };
+            out.push(&vec4(DVec4::new(light.reach, tail, 0.0, 0.0)));
             for k in 0..light_images as usize {
-                out.push(&vec4(
-                    light.images.get(k).copied().unwrap_or(light.position),
-                ));
+                out.push(&vec4(images.get(k).copied().unwrap_or(light.position)));
             }
         }
         // The faces, or for the 3-sphere (no face) one unused slot: WGSL has no empty arrays.
@@ -519,7 +541,7 @@ impl GpuScene {
         ];
         // Shading, data offsets and the lights.
         let header = words_of(size_of::<GpuShading>())
-            + vec4_words * (1 + k.lights as usize * (1 + k.light_images.max(1) as usize));
+            + vec4_words * (1 + k.lights as usize * (2 + k.light_images.max(1) as usize));
         let mut words = unculled.words[..header].to_vec();
         let mut at = header;
         for (size, count, capacity) in arrays {
