@@ -59,14 +59,6 @@ pub const SHADER_MODULES: [(&str, &str); 14] = [
         include_str!("../../../../shaders/mesh.wgsl"),
     ),
     (
-        "shaders/shading.wgsl",
-        include_str!("../../../../shaders/shading.wgsl"),
-    ),
-    (
-        "shaders/lighting.wgsl",
-        include_str!("../../../../shaders/lighting.wgsl"),
-    ),
-    (
         "shaders/hit_id.wgsl",
         include_str!("../../../../shaders/hit_id.wgsl"),
     ),
@@ -81,6 +73,14 @@ pub const SHADER_MODULES: [(&str, &str); 14] = [
     (
         "shaders/scene.wgsl",
         include_str!("../../../../shaders/scene.wgsl"),
+    ),
+    (
+        "shaders/lighting.wgsl",
+        include_str!("../../../../shaders/lighting.wgsl"),
+    ),
+    (
+        "shaders/shading.wgsl",
+        include_str!("../../../../shaders/shading.wgsl"),
     ),
     (
         "shaders/walls.wgsl",
