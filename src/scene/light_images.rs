@@ -235,9 +235,10 @@ fn tail_range(
 /// every image (the group is finite; `radius` is not used).
 ///
 /// The walk goes from cell to neighbouring cell through the face pairings and keeps the
-/// cells whose centre is within `radius + 2ρ` of the origin (`ρ` the circumradius): a cell
-/// that meets the ball of `radius` has its centre within `radius + ρ`, and the cells a
-/// geodesic from the origin to it passes through all meet the ball too, so none is missed.
+/// cells whose centre is within `radius + ρ` of the origin (`ρ` the circumradius): a cell
+/// that meets the ball of `radius` has its centre that near, and the cells that a geodesic
+/// between two points of the ball passes through all meet the ball too (it is convex; a
+/// geodesic moved off the edges and vertices crosses faces only), so none is missed.
 #[must_use]
 pub fn lamp_images(
     space: &Space,
@@ -251,7 +252,7 @@ pub fn lamp_images(
         elements_near(space, f64::INFINITY, limit)?
     } else {
         let rho = circumradius(space);
-        let keep = radius + 2.0 * rho;
+        let keep = radius + rho + 1e-9;
         let generators: Vec<glam::DMat4> = space.faces.iter().map(|f| f.pairing).collect();
         let mut seen = crate::space::orbit::OrbitPoints::new(g, 1e-5);
         seen.push(origin);

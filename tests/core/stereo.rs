@@ -8,6 +8,7 @@ use crate::common::differing_fraction;
 use bevy_curved_spaces::geometry::{Geometry, ORIGIN};
 use bevy_curved_spaces::random::SplitMix64;
 use bevy_curved_spaces::scene::Centrepiece;
+use bevy_curved_spaces::scene::lighting::Lighting;
 use bevy_curved_spaces::scene::{Ball, CurvedScene, Object, SceneParts, Shading};
 use bevy_curved_spaces::space::CellWalker;
 use bevy_curved_spaces::space::invariants::inradius;
@@ -230,7 +231,12 @@ fn eyes_near_a_face_are_wrapped_with_their_own_pairings() {
         head.z_axis,
         (walker_start - DVec3::X).extend(1.0),
     );
-    let scene = CurvedScene::default_for(&space, Shading::default_fog_distance(&space));
+    // Lit by the nearest copy of its lamp (which depends on where in the cell a point is),
+    // a picture seen from outside the cell is wrong, and the test below can tell.
+    let mut scene = CurvedScene::default_for(&space, Shading::default_fog_distance(&space));
+    scene
+        .set_lighting(&space, Lighting::NEAREST)
+        .expect("the nearest-copy lighting");
     let (w, h) = (160, 90);
     let settings = RenderSettings {
         width: w,
