@@ -269,6 +269,11 @@ pub struct TracerSettings {
     /// own (a scene file's `walls`; none in the default scene). An opening of 1 shows no
     /// walls, whatever the base scene says.
     pub walls: Option<crate::scene::WallStyle>,
+    /// How the lamps light the scene ([`crate::scene::lighting`]: every image or the nearest
+    /// copy, how far, the tail, how many shadows); `None`: the base scene's own (a scene
+    /// file's `[lighting]`), else [`Lighting::default`](crate::scene::lighting::Lighting).
+    /// The product spaces light by the nearest copy whatever this says.
+    pub lighting: Option<crate::scene::lighting::Lighting>,
 }
 
 impl TracerSettings {

@@ -60,6 +60,9 @@ pub struct OffscreenRender {
     pub colour_by: crate::scene::ColourBy,
     /// The cell's walls with windows.
     pub walls: Option<crate::scene::WallStyle>,
+    /// The lighting ([`TracerSettings::lighting`]); `None`: the base scene's own, else the
+    /// default.
+    pub lighting: Option<crate::scene::lighting::Lighting>,
 }
 
 impl OffscreenRender {
@@ -90,6 +93,7 @@ impl OffscreenRender {
             entities: Vec::new(),
             colour_by: crate::scene::ColourBy::Shading,
             walls: None,
+            lighting: None,
         }
     }
 }
@@ -197,6 +201,7 @@ impl OffscreenRenderer {
             time: Some(request.time),
             colour_by: request.colour_by,
             walls: request.walls,
+            lighting: request.lighting,
         };
         // A scene the GPU cannot take would only time out below: say why now.
         let space = &request.space.space;
@@ -321,6 +326,7 @@ impl OffscreenRenderer {
             time: Some(0.0),
             colour_by: scene.colour_by,
             walls: None,
+            lighting: None,
         });
         // The switch puts players at the start view in this update, before the camera.
         self.app.update();

@@ -60,6 +60,9 @@ pub struct CurvedSpacesPlugin {
     pub colour_by: crate::scene::ColourBy,
     /// The cell's walls to start with (changeable at run time in [`TracerSettings::walls`]).
     pub walls: Option<crate::scene::WallStyle>,
+    /// The lighting to start with (changeable at run time in [`TracerSettings::lighting`]);
+    /// `None`: the base scene's own, else the default.
+    pub lighting: Option<crate::scene::lighting::Lighting>,
 }
 
 impl Default for CurvedSpacesPlugin {
@@ -76,6 +79,7 @@ impl Default for CurvedSpacesPlugin {
             target_fps: None,
             colour_by: crate::scene::ColourBy::Shading,
             walls: None,
+            lighting: None,
         }
     }
 }
@@ -124,6 +128,7 @@ impl Plugin for CurvedSpacesPlugin {
             time: None,
             colour_by: self.colour_by,
             walls: self.walls,
+            lighting: self.lighting,
         })
         .insert_resource(self.stereo)
         .insert_resource(FrameRateTarget::fps(self.target_fps))

@@ -296,8 +296,7 @@ impl Light {
 #[must_use]
 pub fn gather(
     lighting: &Lighting,
-    fog: f64,
-    near_light: f64,
+    (fog, near_light): (f64, f64),
     g: Geometry,
     light: &Light,
     point: DVec4,

@@ -190,8 +190,7 @@ impl Shading {
     ) -> f64 {
         super::lighting::gather(
             &self.lighting,
-            self.fog_distance,
-            self.near_light,
+            (self.fog_distance, self.near_light),
             g,
             light,
             point,

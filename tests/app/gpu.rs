@@ -213,6 +213,7 @@ fn placed_objects_straddling_faces_render_alike_on_gpu_and_cpu() {
             time: None,
             colour_by: Default::default(),
             walls: None,
+            lighting: None,
         };
         let (scene, problems) = build_scene(&space, &settings, &[ball], None);
         assert_eq!(problems, None, "{id}");
@@ -274,6 +275,7 @@ fn placed_objects_straddling_faces_render_alike_on_gpu_and_cpu() {
         time: None,
         colour_by: Default::default(),
         walls: None,
+        lighting: None,
     };
     let outside = Object::Ball(Ball::new(space.geometry(), far, 0.1, DVec3::ONE));
     let (scene, problems) = build_scene(&space, &settings, &[outside], None);

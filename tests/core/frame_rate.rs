@@ -25,6 +25,7 @@ fn app(fps: f64, quality: Quality) -> App {
             time: None,
             colour_by: Default::default(),
             walls: None,
+            lighting: None,
         })
         .insert_resource(FrameRateTarget::fps(Some(fps)))
         .init_resource::<BudgetShare>()

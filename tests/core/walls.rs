@@ -251,6 +251,7 @@ fn the_plugin_shows_the_settings_walls_else_the_base_scenes() {
         time: Some(0.0),
         colour_by: Default::default(),
         walls: None,
+        lighting: None,
     };
     let shown = |settings: &TracerSettings, base: Option<&CurvedScene>| {
         build_scene(&space, settings, &[], base).0.shading.walls

@@ -121,6 +121,7 @@ pub(super) fn flight(args: &FlightArgs) -> Result<(), String> {
                     time: t,
                     colour_by: args.colour_by.into(),
                     walls,
+                    lighting: Some(scene.shading.lighting),
                     ..OffscreenRender::new(active.clone(), camera, args.size, budget as u32)
                 })
                 .map_err(|e| format!("frame {n}: {e}"))?,

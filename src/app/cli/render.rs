@@ -450,6 +450,7 @@ fn render_gpu(args: &RenderArgs, chosen: &Chosen, view: &View) -> Result<RgbImag
         stereo: view.stereo,
         colour_by: args.view.colour_by.into(),
         walls: view.scene.shading.walls,
+        lighting: Some(view.scene.shading.lighting),
         ..OffscreenRender::new(
             ActiveSpace::new(&chosen.id, space.clone()),
             view.camera,

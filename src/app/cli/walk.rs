@@ -147,6 +147,7 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
     }
     let stereo = stereo_args.settings(&space)?;
     let walls = args.view.walls.style(chosen.scene.shading.walls)?;
+    let lighting = walk_lighting(args, &chosen)?;
     let active = ActiveSpace::new(&chosen.id, space);
     eprintln!(
         "walking in {}: click to look around, WASD to move, Esc releases the mouse, F1 the panel",
@@ -159,7 +160,7 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
     ))));
     app.insert_resource(chosen.base.clone())
         .insert_resource(active);
-    add_walk_plugins(&mut app, args, stereo, walls).add_systems(
+    add_walk_plugins(&mut app, args, stereo, walls, lighting).add_systems(
         Startup,
         |mut commands: Commands| {
             commands.spawn((Camera3d::default(), CurvedSpaceCamera::default()));
@@ -226,6 +227,7 @@ pub(super) fn add_walk_plugins<'a>(
     args: &WalkArgs,
     stereo: StereoSettings,
     walls: Option<bevy_curved_spaces::scene::WallStyle>,
+    lighting: Option<bevy_curved_spaces::scene::lighting::Lighting>,
 ) -> &'a mut App {
     app.add_plugins(CurvedSpacesPlugin {
         fog_distance: args.fog,
@@ -238,9 +240,24 @@ pub(super) fn add_walk_plugins<'a>(
         target_fps: (args.screenshot.is_none() && args.fps > 0.0).then_some(args.fps),
         colour_by: args.view.colour_by.into(),
         walls,
+        lighting,
         ..default()
     })
     .insert_resource(bevy_curved_spaces::plugin::ui::PanelVisible(!args.no_ui))
+}
+
+/// The lighting the walk starts with: the light switches over the chosen scene's own, or
+/// `None` (the scene's own) where none is given.
+fn walk_lighting(
+    args: &WalkArgs,
+    chosen: &Chosen,
+) -> Result<Option<bevy_curved_spaces::scene::lighting::Lighting>, String> {
+    if !args.view.light.any() {
+        return Ok(None);
+    }
+    let lighting = args.view.light.lighting(chosen.scene.shading.lighting);
+    lighting.check()?;
+    Ok(Some(lighting))
 }
 
 pub(super) fn exit_result(exit: AppExit) -> Result<(), String> {
@@ -256,6 +273,7 @@ pub(super) fn walk_xr(args: &WalkArgs, chosen: &Chosen) -> Result<(), String> {
     use bevy_curved_spaces::plugin::xr::{CurvedSpacesXrPlugin, add_xr_plugins, xr_available};
     let stereo = args.stereo.settings(&chosen.space)?;
     let walls = args.view.walls.style(chosen.scene.shading.walls)?;
+    let lighting = walk_lighting(args, chosen)?;
     let active = ActiveSpace::new(&chosen.id, chosen.space.clone());
     let name = active.space.name().to_string();
     eprintln!(
@@ -268,7 +286,7 @@ pub(super) fn walk_xr(args: &WalkArgs, chosen: &Chosen) -> Result<(), String> {
             .set(window_titled(format!("curved spaces (XR mirror): {name}"))),
     );
     app.insert_resource(active);
-    add_walk_plugins(&mut app, args, stereo, walls);
+    add_walk_plugins(&mut app, args, stereo, walls, lighting);
     if xr_available(app.world()) {
         app.add_plugins(CurvedSpacesXrPlugin::default());
     } else {
@@ -292,6 +310,10 @@ fn walk_product(args: &WalkArgs, chosen: super::render::ProductChoice) -> Result
         (args.replay.is_some(), "--replay"),
         (args.record.is_some(), "--record"),
         (args.xr, "--xr"),
+        (
+            args.view.light.any(),
+            "--light-paths, --light-reach, --no-light-tail or --shadows",
+        ),
     ] {
         if given {
             return Err(format!(
@@ -335,7 +357,7 @@ fn walk_product(args: &WalkArgs, chosen: super::render::ProductChoice) -> Result
     if let Some(base) = chosen.base {
         app.insert_resource(base);
     }
-    add_walk_plugins(&mut app, args, stereo, None).add_systems(
+    add_walk_plugins(&mut app, args, stereo, None, None).add_systems(
         Startup,
         |mut commands: Commands| {
             commands.spawn((Camera3d::default(), CurvedSpaceCamera::default()));

@@ -37,16 +37,19 @@ pub fn build_scene(
         .walls
         .or(scene.shading.walls)
         .filter(|w| w.opening < 1.0);
-    let problems: Vec<String> = objects
-        .iter()
-        .enumerate()
-        .filter_map(|(i, o)| {
-            scene
-                .place(space, *o)
-                .err()
-                .map(|e| format!("scene object {i}: {e}"))
-        })
-        .collect();
+    let mut problems: Vec<String> = Vec::new();
+    if let Some(lighting) = settings.lighting
+        && lighting != scene.shading.lighting
+        && let Err(e) = scene.set_lighting(space, lighting)
+    {
+        problems.push(format!("lighting: {e}"));
+    }
+    problems.extend(objects.iter().enumerate().filter_map(|(i, o)| {
+        scene
+            .place(space, *o)
+            .err()
+            .map(|e| format!("scene object {i}: {e}"))
+    }));
     for p in &problems {
         warn!("{p}");
     }

@@ -41,6 +41,45 @@ pub(super) fn wall_controls(
     }
 }
 
+/// How the lamps light the scene: every image in the cover or the nearest copy, how far the
+/// images are summed, the tail beyond, how many are shadowed. `shown` is the lighting of
+/// the scene on screen (the settings' or the base scene's own).
+pub(super) fn lighting_controls(
+    ui: &mut egui::Ui,
+    settings: &mut ResMut<TracerSettings>,
+    shown: Option<crate::scene::lighting::Lighting>,
+) {
+    use crate::scene::lighting::{LightPaths, Lighting};
+    let current = settings.lighting.or(shown).unwrap_or_default();
+    let mut wanted = current;
+    egui::ComboBox::from_label("light paths")
+        .selected_text(wanted.paths.name())
+        .show_ui(ui, |ui| {
+            for p in [LightPaths::Images, LightPaths::Nearest] {
+                ui.selectable_value(&mut wanted.paths, p, p.name());
+            }
+        });
+    if wanted.paths == LightPaths::Images {
+        ui.add(
+            egui::Slider::new(&mut wanted.reach_inradii, 0.5..=12.0).text("light reach (inradii)"),
+        );
+        ui.checkbox(&mut wanted.tail, "the images beyond, by their mean");
+    }
+    ui.add(egui::Slider::new(&mut wanted.shadows, 0..=16).text("shadowed images"));
+    if wanted != current && wanted.check().is_ok() {
+        settings.lighting = Some(wanted);
+    }
+    if ui
+        .add_enabled(
+            current != Lighting::default(),
+            egui::Button::new("default lighting"),
+        )
+        .clicked()
+    {
+        settings.lighting = Some(Lighting::default());
+    }
+}
+
 /// The teaching view and its legend: what each tint means.
 pub(super) fn colour_by_controls(
     ui: &mut egui::Ui,

@@ -21,7 +21,9 @@ mod minimap;
 mod picker;
 mod product;
 
-use controls::{colour_by_controls, stereo_controls, tracer_controls, wall_controls};
+use controls::{
+    colour_by_controls, lighting_controls, stereo_controls, tracer_controls, wall_controls,
+};
 use minimap::{inspector, minimap};
 pub use picker::SpacePicker;
 use picker::{space_picker, switch_space};
@@ -272,6 +274,12 @@ fn panel(
                 .walls
                 .or(shown_walls)
                 .is_some_and(|w| w.opening < 1.0);
+            ui.separator();
+            lighting_controls(
+                ui,
+                &mut settings,
+                shown_scene.as_ref().map(|s| s.0.shading.lighting),
+            );
             ui.separator();
             stereo_controls(ui, &mut stereo, active.inradius);
             colour_by_controls(ui, &mut settings, active.space.faces.len());
