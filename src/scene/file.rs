@@ -111,6 +111,9 @@ struct FileSpec {
     objects: Vec<Spanned<ObjectSpec>>,
     #[serde(default, rename = "light")]
     lights: Vec<Spanned<LightSpec>>,
+    /// How the lamps light the scene: every image or the nearest copy, how far, the tail,
+    /// how many shadows.
+    lighting: Option<Spanned<super::file_support::LightingSpec>>,
 }
 
 #[derive(Deserialize)]
@@ -299,6 +302,12 @@ pub fn parse_scene(text: &str, base: &Path, file: &str) -> Result<SceneFile, Sce
             l.intensity * g.s(r).powi(2),
         ));
     }
+    if let Some(l) = &spec.lighting {
+        let lighting = super::file_support::lighting_of(l).map_err(|(s, m)| fail(Some(s), m))?;
+        scene
+            .set_lighting(&space, lighting)
+            .map_err(|m| fail(Some(l.span()), m))?;
+    }
     let mut moving = Vec::new();
     for object in &spec.objects {
         let at = |m: String| fail(Some(object.span()), m);
@@ -436,6 +445,11 @@ const KEYS: &[&str] = &[
     "walls",
     "wall_opacity",
     "centrepiece",
+    "lighting",
+    "paths",
+    "reach",
+    "tail",
+    "shadows",
 ];
 
 /// A seed space by id, or a space file by path (relative to `base`).

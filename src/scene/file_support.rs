@@ -143,3 +143,62 @@ pub(crate) fn colour(c: [f64; 3]) -> Result<DVec3, String> {
     }
     Ok(v.max(DVec3::ZERO))
 }
+
+/// A scene file's `[lighting]` table (constant-curvature spaces): how the lamps light the
+/// scene ([`crate::scene::lighting::Lighting`]).
+#[derive(serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct LightingSpec {
+    /// `"images"` (every image in the cover) or `"nearest"` (the nearest copy).
+    paths: Option<Spanned<String>>,
+    /// How far the images are summed exactly, in inradii.
+    reach: Option<Spanned<f64>>,
+    /// The images beyond the reach by their mean.
+    tail: Option<bool>,
+    /// How many of the nearest images are shadowed.
+    shadows: Option<Spanned<i64>>,
+}
+
+/// The lighting of a `[lighting]` table: its keys over the defaults, each checked.
+pub(crate) fn lighting_of(
+    spec: &Spanned<LightingSpec>,
+) -> Result<crate::scene::lighting::Lighting, SpanError> {
+    use crate::scene::lighting::{LightPaths, Lighting};
+    let mut lighting = Lighting::default();
+    let l = spec.get_ref();
+    if let Some(p) = &l.paths {
+        lighting.paths = LightPaths::from_name(p.get_ref()).ok_or_else(|| {
+            (
+                p.span(),
+                format!(
+                    "light paths must be \"images\" or \"nearest\", got {:?}",
+                    p.get_ref()
+                ),
+            )
+        })?;
+    }
+    if let Some(r) = &l.reach {
+        lighting.reach_inradii = *r.get_ref();
+    }
+    if let Some(t) = l.tail {
+        lighting.tail = t;
+    }
+    if let Some(k) = &l.shadows {
+        lighting.shadows = u32::try_from(*k.get_ref())
+            .ok()
+            .filter(|k| *k <= Lighting::MAX_SHADOWS)
+            .ok_or_else(|| {
+                (
+                    k.span(),
+                    format!(
+                        "shadows must be 0 to {} shadowed images, got {}",
+                        Lighting::MAX_SHADOWS,
+                        k.get_ref()
+                    ),
+                )
+            })?;
+    }
+    let span = l.reach.as_ref().map_or_else(|| spec.span(), Spanned::span);
+    lighting.check().map_err(|m| (span, m))?;
+    Ok(lighting)
+}

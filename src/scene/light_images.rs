@@ -277,7 +277,13 @@ pub fn lamp_images(
     let mut images: Vec<(DVec4, f64)> = elements
         .iter()
         .map(|h| {
-            let q = g.project_point(*h * lamp);
+            // Not `project_point`: in S³ it takes a point to the hemisphere w > 0 (a cell's
+            // chart), and −1 in the group would fold each image onto its antipode's.
+            let q = *h * lamp;
+            let q = match g {
+                Geometry::Spherical => q / q.length(),
+                _ => g.project_point(q),
+            };
             (q, g.distance(origin, q))
         })
         .filter(|(_, d)| g == Geometry::Spherical || *d <= radius)

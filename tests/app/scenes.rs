@@ -331,6 +331,36 @@ fn bad_scene_files_get_errors_naming_the_line_and_the_problem() {
         ),
         ("space = \"torus\"\nwall_opacity = 0.5\n", 2, "needs walls"),
         (
+            "space = \"torus\"\n[lighting]\npaths = \"all\"\n",
+            3,
+            "light paths must be \"images\" or \"nearest\"",
+        ),
+        (
+            "space = \"torus\"\n[lighting]\nreach = 0\n",
+            3,
+            "the light reach must be more than 0",
+        ),
+        (
+            "space = \"torus\"\n[lighting]\nreach = 1e300\n",
+            3,
+            "at most 64 inradii",
+        ),
+        (
+            "space = \"torus\"\n[lighting]\nshadows = -1\n",
+            3,
+            "shadows must be 0 to 64",
+        ),
+        (
+            "space = \"torus\"\n[lighting]\nshadows = 65\n",
+            3,
+            "shadows must be 0 to 64",
+        ),
+        (
+            "space = \"torus\"\n[lighting]\nshadow = 2\n",
+            2,
+            "unknown field `shadow`",
+        ),
+        (
             "space = \"torus\"\ncentrepiece = \"comet\"\n",
             2,
             "unknown centrepiece `comet`; choose one of none, ball, globe, gyroscope, galaxy",
@@ -556,4 +586,36 @@ fn scene_files_choose_walls_and_a_centrepiece() {
         assert_eq!(file.parts.centrepiece, expected, "{text}");
         assert_eq!(file.base.shading.walls, None);
     }
+}
+
+#[test]
+fn scene_files_choose_the_lighting() {
+    use bevy_curved_spaces::scene::lighting::{LightPaths, Lighting};
+    let here = manifest();
+    let read = |text: &str| {
+        parse_scene(text, &here, "a.toml")
+            .unwrap_or_else(|e| panic!("{e}"))
+            .base
+    };
+    let plain = read("space = \"torus\"\n[[light]]\nposition = [0.1, 0.2, 0.0]\n");
+    assert_eq!(plain.shading.lighting, Lighting::default());
+    let lit = read(
+        "space = \"torus\"\n[lighting]\nreach = 1.5\ntail = false\nshadows = 9\n\n[[light]]\nposition = [0.1, 0.2, 0.0]\n",
+    );
+    assert_eq!(
+        lit.shading.lighting,
+        Lighting {
+            paths: LightPaths::Images,
+            reach_inradii: 1.5,
+            tail: false,
+            shadows: 9,
+        }
+    );
+    // The lamp's images in the cover follow the reach: a shorter one keeps fewer.
+    let (short, long) = (&lit.lights[0], &plain.lights[0]);
+    assert!((short.reach - 0.75).abs() < 1e-12, "{}", short.reach);
+    assert!(short.cover.len() < long.cover.len());
+    let nearest =
+        read("space = \"torus\"\n[lighting]\npaths = \"nearest\"\ntail = false\nshadows = 0\n");
+    assert_eq!(nearest.shading.lighting, Lighting::NEAREST);
 }

@@ -19,6 +19,7 @@ mod hard_cases;
 mod headset;
 mod layers;
 mod light_images;
+mod lighting;
 mod objects;
 mod player;
 #[cfg(feature = "scene-files")]
