@@ -1352,3 +1352,95 @@ fn product_spaces_render_on_the_gpu_like_the_cpu_reference() {
         failures.join("\n")
     );
 }
+
+/// Shadows walked through the faces: a ball between the lamp and the centre ball shadows it
+/// (and its images shadow the lamp's other images), on the GPU as on the CPU, in the three
+/// geometries; the shadows are there to see (turned off, the picture changes).
+#[test]
+fn shadows_through_the_faces_render_alike_on_gpu_and_cpu() {
+    let _gpu = gpu_lock();
+    use bevy_curved_spaces::plugin::components::TracerSettings;
+    use bevy_curved_spaces::plugin::render::upload::build_scene;
+    use bevy_curved_spaces::scene::lighting::Lighting;
+    use bevy_curved_spaces::scene::{Ball, Object};
+    use bevy_curved_spaces::space::invariants::inradius;
+    use glam::DVec3;
+    let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
+    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("gpu-vs-cpu");
+    let mut failures = Vec::new();
+    for id in ["torus", "seifert-weber", "poincare"] {
+        let space = bevy_curved_spaces::space::seed_space(id).expect("builds");
+        let g = space.geometry();
+        let r = inradius(&space);
+        // On the way from the default lamp to the centre.
+        let towards_lamp = DVec3::new(0.45, 0.8, 0.4);
+        let centre = g.translation(towards_lamp, 0.4 * r) * space.centre();
+        let ball = Object::Ball(Ball::new(g, centre, 0.12 * r, DVec3::new(0.9, 0.6, 0.3)));
+        let parts = SceneParts {
+            edges: true,
+            centrepiece: Centrepiece::Ball,
+            avatar: false,
+            clifford: false,
+        };
+        let picture = |shadows: u32, gpu: bool, renderer: &mut OffscreenRenderer| {
+            let lighting = Lighting {
+                shadows,
+                ..Lighting::default()
+            };
+            let camera = TraceCamera::default_for(&space);
+            if gpu {
+                let request = OffscreenRender {
+                    parts,
+                    objects: vec![ball],
+                    lighting: Some(lighting),
+                    ..OffscreenRender::new(
+                        ActiveSpace::new(id, space.clone()),
+                        camera,
+                        (WIDTH, HEIGHT),
+                        24,
+                    )
+                };
+                return renderer.render(&request).expect("renders");
+            }
+            let settings = TracerSettings {
+                fog_distance: None,
+                max_crossings: Some(24),
+                quality: bevy_curved_spaces::plugin::components::Quality::High,
+                resolution_scale: 1.0,
+                parts,
+                time: Some(0.0),
+                colour_by: Default::default(),
+                walls: None,
+                lighting: Some(lighting),
+            };
+            let (scene, problems) = build_scene(&space, &settings, &[ball], None);
+            assert_eq!(problems, None, "{id}");
+            assert_eq!(scene.shading.lighting, lighting);
+            render(
+                &space,
+                &scene,
+                &camera,
+                &RenderSettings {
+                    width: WIDTH,
+                    height: HEIGHT,
+                    max_crossings: 24,
+                },
+            )
+        };
+        let shadowed = picture(8, false, &mut renderer);
+        let (unshadowed, _) = compare(&picture(0, false, &mut renderer), &shadowed, TOLERANCE);
+        println!(
+            "{id}: the shadows change {:.2} % of the pixels",
+            100.0 * unshadowed.differing
+        );
+        if unshadowed.differing < 0.005 {
+            failures.push(format!(
+                "{id}: the shadows change only {:.2} % of the pixels",
+                100.0 * unshadowed.differing
+            ));
+        }
+        let gpu = picture(8, true, &mut renderer);
+        judge(&format!("{id}-shadows"), &gpu, &shadowed, &out, &mut failures);
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
