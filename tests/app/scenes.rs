@@ -357,7 +357,7 @@ fn bad_scene_files_get_errors_naming_the_line_and_the_problem() {
         ),
         (
             "space = \"torus\"\n[lighting]\nshadow = 2\n",
-            2,
+            3,
             "unknown field `shadow`",
         ),
         (
