@@ -50,7 +50,7 @@ struct Ball {
     centre: vec4<f32>,
     // Albedo (rgb) and C(ρ) (the radius ρ itself in E³).
     colour: vec4<f32>,
-    // Emission (rgb), unused.
+    // Emission (rgb), reflectance.
     emission: vec4<f32>,
 }
 
@@ -60,7 +60,7 @@ struct Globe {
     colour: vec4<f32>,
     // Emission (rgb), texture index.
     emission: vec4<f32>,
-    // Spin in radians per second, unused ×3.
+    // Spin in radians per second, reflectance, unused ×2.
     spin: vec4<f32>,
     // The inverse of the globe's orientation frame.
     inverse: mat4x4<f32>,
@@ -74,6 +74,7 @@ struct Disc {
     covector: vec4<f32>,
     // Albedo (rgb), radius.
     colour: vec4<f32>,
+    // Emission (rgb), reflectance.
     emission: vec4<f32>,
 }
 

@@ -169,6 +169,6 @@ fn mesh_surface(hit: MeshHit, frame: mat4x4<f32>, material_override: u32, materi
         albedo *= sample_texture(tex, uv);
     }
 #endif
-    return Surface(normal, albedo, m1.rgb);
+    return Surface(normal, albedo, m1.rgb, m1.w);
 }
 #endif

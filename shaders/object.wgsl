@@ -143,4 +143,6 @@ struct Surface {
     normal: vec4<f32>,
     albedo: vec3<f32>,
     emission: vec3<f32>,
+    // The share reflected as a mirror (0: none).
+    reflectance: f32,
 }

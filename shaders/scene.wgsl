@@ -192,17 +192,17 @@ fn intersect_scene(ray: Ray, s_max: f32, travelled: f32) -> SceneHit {
 // The surface at a hit point: outward normal (towards the viewer for discs), albedo and
 // emission (Rust: `Hit`'s normal and material).
 fn surface_at(hit: SceneHit, point: vec4<f32>, v: vec4<f32>) -> Surface {
-    var surface = Surface(vec4<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0));
+    var surface = Surface(vec4<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0), 0.0);
 #ifdef BALLS
     if hit.kind == 1u {
         let ball = space.balls[hit.index];
-        surface = Surface(unit_tangent(point, point - ball.centre), ball.colour.rgb, ball.emission.rgb);
+        surface = Surface(unit_tangent(point, point - ball.centre), ball.colour.rgb, ball.emission.rgb, ball.emission.w);
     }
 #endif
 #ifdef TUBES
     if hit.kind == 2u {
         let tube = space.tubes[hit.index];
-        surface = Surface(unit_tangent(point, point - tube_foot(tube, point)), tube.colour.rgb, tube.emission.rgb);
+        surface = Surface(unit_tangent(point, point - tube_foot(tube, point)), tube.colour.rgb, tube.emission.rgb, 0.0);
     }
 #endif
 #ifdef GLOBES
@@ -212,7 +212,7 @@ fn surface_at(hit: SceneHit, point: vec4<f32>, v: vec4<f32>) -> Surface {
 #ifdef TEXTURES
         albedo *= sample_texture(u32(globe.emission.w), globe_uv(globe, point));
 #endif
-        surface = Surface(unit_tangent(point, point - globe.centre), albedo, globe.emission.rgb);
+        surface = Surface(unit_tangent(point, point - globe.centre), albedo, globe.emission.rgb, globe.spin.y);
     }
 #endif
 #ifdef DISCS
@@ -222,7 +222,7 @@ fn surface_at(hit: SceneHit, point: vec4<f32>, v: vec4<f32>) -> Surface {
         if form(normal, v) > 0.0 {
             normal = -normal;
         }
-        surface = Surface(normal, disc.colour.rgb, disc.emission.rgb);
+        surface = Surface(normal, disc.colour.rgb, disc.emission.rgb, disc.emission.w);
     }
 #endif
 #ifdef INSTANCES

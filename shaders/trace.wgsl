@@ -9,9 +9,8 @@
 #import curved_spaces::hit_id::{FNV_OFFSET, FNV_PRIME, hit_id, object_number}
 #import curved_spaces::walk::{NO_FACE, Ray, cross_face, exit_face, partner}
 #import curved_spaces::scene::{intersect_scene, surface_at}
-#import curved_spaces::walls::{cross_wall, veil_through}
+#import curved_spaces::walls::{cross_wall, veil_colour, veil_through}
 
-#ifdef STRAIGHTFORWARD
 // C(t): cos t, 1 or cosh t.
 fn c_of(t: f32) -> f32 {
 #ifdef SPHERICAL
@@ -27,6 +26,7 @@ fn c_of(t: f32) -> f32 {
     return 1.0;
 }
 
+#ifdef STRAIGHTFORWARD
 // The arc length t > 0 at which C(t)·a + S(t)·b = k along γ(t) = C(t) p + S(t) v, the first
 // root, or NO_HIT: a ball's boundary (a = ⟨p,c⟩, b = ⟨v,c⟩, k = C(ρ) in S³ and H³; in E³
 // a = |p − c|², b = 2 (p − c)·v, k = ρ², the quadric t² + b t + a = k).
@@ -141,6 +141,33 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
     return fog;
 }
 #else
+#ifdef MIRRORS
+// Most mirror bounces (Rust: `trace::MAX_BOUNCES`), and how far along the reflected geodesic
+// the ray starts again (`trace::MIRROR_OFFSET`).
+const MAX_BOUNCES: u32 = 8u;
+const MIRROR_OFFSET: f32 = 1e-3;
+// What the mirrors met so far let through of what the ray sees next, and what they added.
+var<private> mirror_sum: vec3<f32>;
+var<private> mirror_weight: f32;
+#endif
+
+// The colour at the end of the ray's path: `c` seen through the mirrors met on the way (and
+// the walls crossed since the last one, which the caller would add otherwise).
+fn path_end(c: vec3<f32>) -> vec3<f32> {
+#ifdef MIRRORS
+#ifdef WALLS
+    let seen = veil_colour + veil_through * c;
+    veil_colour = vec3<f32>(0.0);
+    veil_through = 1.0;
+    return mirror_sum + mirror_weight * seen;
+#else
+    return mirror_sum + mirror_weight * c;
+#endif
+#else
+    return c;
+#endif
+}
+
 // One camera ray's colour: walk the cell, nearest object hit against exit face, cross by
 // pairings until the fog cut-off or the crossing budget (Rust: `trace::first_hit` and
 // `colour_of`).
@@ -151,6 +178,11 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
     var ray = Ray(start_point, start_tangent);
     var travelled = 0.0;
     var skip = 0xffffffffu;
+#ifdef MIRRORS
+    mirror_sum = vec3<f32>(0.0);
+    mirror_weight = 1.0;
+    var bounces = 0u;
+#endif
 #ifdef HIT_ID
     var path = FNV_OFFSET;
     hit_id = vec4<u32>(0u, 0u, path, 3u);
@@ -177,7 +209,7 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
 #ifdef HIT_ID
                 hit_id = vec4<u32>(0u, crossings, path, 2u);
 #endif
-                return fog;
+                return path_end(fog);
             }
 #ifdef HIT_ID
             hit_id = vec4<u32>(object_number(hit.kind, hit.index) + 1u, crossings, path, 1u);
@@ -186,7 +218,34 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
 #ifdef COLOUR_BY
             colour_tint = colour_by_tint(crossings, last_face, held);
 #endif
-            return shade(point, surface.normal, surface.albedo, surface.emission, d);
+            let shaded = shade(point, surface.normal, surface.albedo, surface.emission, d);
+#ifdef MIRRORS
+            // A mirror: 1 − r of the lit surface, r of what the reflected ray sees, the walk
+            // going on from the hit (Rust: `trace::colour_along`).
+            let r = surface.reflectance;
+            if r > 0.0 && bounces < MAX_BOUNCES && crossings < budget {
+                bounces += 1u;
+#ifdef WALLS
+                mirror_sum += mirror_weight * (veil_colour + veil_through * (1.0 - r) * shaded);
+                mirror_weight *= veil_through * r;
+                veil_colour = vec3<f32>(0.0);
+                veil_through = 1.0;
+#else
+                mirror_sum += mirror_weight * (1.0 - r) * shaded;
+                mirror_weight *= r;
+#endif
+                let v = unit_tangent(point, ray.tangent);
+                let n = surface.normal;
+                let reflected = v - 2.0 * form(v, n) * n;
+                let restart = project_point(c_of(MIRROR_OFFSET) * point + s_of(MIRROR_OFFSET) * reflected);
+                let along = -kappa() * s_of(MIRROR_OFFSET) * point + c_of(MIRROR_OFFSET) * reflected;
+                ray = Ray(restart, unit_tangent(restart, along));
+                travelled = d + MIRROR_OFFSET;
+                skip = 0xffffffffu;
+                continue;
+            }
+#endif
+            return path_end(shaded);
         }
         if crossings == budget {
 #ifdef HIT_ID
@@ -202,7 +261,7 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
 #ifdef HIT_ID
                 hit_id = vec4<u32>(0u, crossings + 1u, (path ^ (exit.face + 1u)) * FNV_PRIME, 2u);
 #endif
-                return fog;
+                return path_end(fog);
             }
         }
 #endif
@@ -225,10 +284,10 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
 #ifdef HIT_ID
             hit_id.w = 2u;
 #endif
-            return fog;
+            return path_end(fog);
         }
         skip = select(partner(exit.face), 0xffffffffu, exit.face == NO_FACE);
     }
-    return fog;
+    return path_end(fog);
 }
 #endif

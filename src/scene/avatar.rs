@@ -46,11 +46,13 @@ pub fn ship() -> Model {
                 colour: DVec3::new(0.85, 0.86, 0.9),
                 texture: None,
                 emission: DVec3::ZERO,
+                reflectance: 0.0,
             },
             SurfaceMaterial {
                 colour: DVec3::new(0.3, 0.15, 0.05),
                 texture: None,
                 emission: DVec3::new(1.0, 0.45, 0.1),
+                reflectance: 0.0,
             },
         ],
         textures: Vec::new(),

@@ -77,6 +77,7 @@ pub fn galaxy_model() -> Model {
         colour: DVec3::ZERO,
         texture: None,
         emission: c,
+        reflectance: 0.0,
     };
     Model {
         source,

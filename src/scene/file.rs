@@ -157,6 +157,9 @@ enum ObjectSpec {
         colour: [f64; 3],
         #[serde(default)]
         emission: [f64; 3],
+        /// The share of light reflected as a mirror, 0 to 1.
+        #[serde(default)]
+        reflectance: f64,
     },
     Globe {
         #[serde(flatten)]
@@ -172,6 +175,9 @@ enum ObjectSpec {
         colour: [f64; 3],
         #[serde(default)]
         emission: [f64; 3],
+        /// The share of light reflected as a mirror, 0 to 1.
+        #[serde(default)]
+        reflectance: f64,
     },
     Tube {
         from: [f64; 3],
@@ -193,6 +199,9 @@ enum ObjectSpec {
         colour: [f64; 3],
         #[serde(default)]
         emission: [f64; 3],
+        /// The share of light reflected as a mirror, 0 to 1.
+        #[serde(default)]
+        reflectance: f64,
     },
     Mesh {
         #[serde(flatten)]
@@ -206,6 +215,9 @@ enum ObjectSpec {
         colour: Option<[f64; 3]>,
         #[serde(default)]
         emission: [f64; 3],
+        /// The share of light reflected as a mirror, 0 to 1.
+        #[serde(default)]
+        reflectance: f64,
     },
 }
 
@@ -446,6 +458,7 @@ const KEYS: &[&str] = &[
     "wall_opacity",
     "centrepiece",
     "lighting",
+    "reflectance",
     "paths",
     "reach",
     "tail",
@@ -565,6 +578,15 @@ impl ObjectSpec {
     }
 }
 
+/// A mirror's share of the light, 0 to 1.
+fn reflectance_of(r: f64) -> Result<f64, String> {
+    if (0.0..=1.0).contains(&r) {
+        Ok(r)
+    } else {
+        Err(format!("reflectance must be between 0 and 1, got {r}"))
+    }
+}
+
 /// The object of a spec and its frame (a tube's: the translation to its midpoint).
 fn build_object(
     space: &Space,
@@ -580,6 +602,7 @@ fn build_object(
             radius,
             colour: c,
             emission,
+            reflectance,
             ..
         } => {
             let radius = positive("radius", *radius)? * r;
@@ -587,7 +610,8 @@ fn build_object(
             (
                 Object::Ball(
                     Ball::new(g, g.project_point(frame.w_axis), radius, colour(*c)?)
-                        .with_emission(colour(*emission)?),
+                        .with_emission(colour(*emission)?)
+                        .with_reflectance(reflectance_of(*reflectance)?),
                 ),
                 frame,
             )
@@ -599,6 +623,7 @@ fn build_object(
             spin,
             colour: c,
             emission,
+            reflectance,
             ..
         } => {
             let radius = positive("radius", *radius)? * r;
@@ -614,6 +639,7 @@ fn build_object(
                 Object::Ball(
                     Ball::new(g, centre, radius, colour(*c)?)
                         .with_emission(colour(*emission)?)
+                        .with_reflectance(reflectance_of(*reflectance)?)
                         .with_texture(BallTexture {
                             texture: scene.textures.len() as u32 - 1,
                             frame,
@@ -653,6 +679,7 @@ fn build_object(
             radius,
             colour: c,
             emission,
+            reflectance,
             ..
         } => {
             let radius = positive("radius", *radius)? * r;
@@ -663,7 +690,9 @@ fn build_object(
                 .map_err(|e| format!("normal: {e}"))?;
             (
                 Object::Disc(
-                    Disc::new(g, centre, n, radius, colour(*c)?).with_emission(colour(*emission)?),
+                    Disc::new(g, centre, n, radius, colour(*c)?)
+                        .with_emission(colour(*emission)?)
+                        .with_reflectance(reflectance_of(*reflectance)?),
                 ),
                 frame,
             )
@@ -674,8 +703,10 @@ fn build_object(
             size,
             colour: c,
             emission,
+            reflectance,
             ..
         } => {
+            let reflectance = reflectance_of(*reflectance)?;
             let size = positive("size", *size)? * r;
             let frame = frame_of(space, at)?;
             let file = base.join(path);
@@ -690,9 +721,13 @@ fn build_object(
                     file.display()
                 ));
             }
+            let first = scene.materials.len();
             let mesh = scene
                 .add_model(g, &model, size / model_radius)
                 .map_err(|e| format!("{}: {e}", file.display()))?;
+            for m in &mut scene.materials[first..] {
+                m.reflectance = reflectance;
+            }
             let radius = scene.meshes[mesh as usize].radius;
             let mut instance = MeshInstance::new(g, mesh, frame, radius);
             if c.is_some() || *emission != [0.0; 3] {
@@ -700,6 +735,7 @@ fn build_object(
                     colour: colour(c.unwrap_or([1.0; 3]))?,
                     texture: None,
                     emission: colour(*emission)?,
+                    reflectance,
                 });
                 instance.material = Some(scene.materials.len() as u32 - 1);
             }

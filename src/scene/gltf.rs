@@ -130,6 +130,7 @@ pub fn load(path: &Path) -> Result<Model, GltfError> {
                     .base_color_texture()
                     .map(|t| t.texture().source().index() as u32),
                 emission: DVec3::new(er.into(), eg.into(), eb.into()),
+                reflectance: 0.0,
             }
         })
         .collect();

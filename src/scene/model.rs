@@ -260,7 +260,19 @@ impl CurvedScene {
             normal,
             colour,
             emission: mat.emission,
+            reflectance: mat.reflectance,
         })
+    }
+
+    /// Whether any surface reflects as a mirror (a ball, disc or material with a
+    /// reflectance above 0).
+    #[must_use]
+    pub fn has_mirrors(&self) -> bool {
+        self.objects.iter().any(|o| match o {
+            Object::Ball(b) => b.reflectance > 0.0,
+            Object::Disc(d) => d.reflectance > 0.0,
+            Object::Tube(_) | Object::Mesh(_) => false,
+        }) || self.materials.iter().any(|m| m.reflectance > 0.0)
     }
 
     /// Gathers the lamps' light as `lighting` says ([`crate::scene::lighting`]): sets it in

@@ -20,6 +20,8 @@ pub struct Ball {
     pub emission: DVec3,
     /// A picture wrapped round the ball (a globe), if any.
     pub texture: Option<BallTexture>,
+    /// The share of light it reflects as a mirror, 0 to 1 ([`Ball::with_reflectance`]).
+    pub reflectance: f64,
     /// `C(radius)`.
     c_radius: f64,
 }
@@ -62,6 +64,7 @@ impl Ball {
             colour,
             emission: DVec3::ZERO,
             texture: None,
+            reflectance: 0.0,
             c_radius: geometry.cs(radius).0,
         }
     }
@@ -70,6 +73,16 @@ impl Ball {
     #[must_use]
     pub fn with_emission(self, emission: DVec3) -> Self {
         Self { emission, ..self }
+    }
+
+    /// The ball as a mirror reflecting `reflectance` of the light (clamped to 0–1; the rest
+    /// is lit as usual). A globe (a textured ball) reflects too.
+    #[must_use]
+    pub fn with_reflectance(self, reflectance: f64) -> Self {
+        Self {
+            reflectance: clamp_reflectance(reflectance),
+            ..self
+        }
     }
 
     /// The ball with a picture on it.
@@ -187,6 +200,8 @@ pub struct Disc {
     pub colour: DVec3,
     /// Emitted colour, linear RGB.
     pub emission: DVec3,
+    /// The share of light it reflects as a mirror, 0 to 1 ([`Disc::with_reflectance`]).
+    pub reflectance: f64,
 }
 
 impl Disc {
@@ -205,6 +220,7 @@ impl Disc {
             radius,
             colour,
             emission: DVec3::ZERO,
+            reflectance: 0.0,
         }
     }
 
@@ -212,6 +228,16 @@ impl Disc {
     #[must_use]
     pub fn with_emission(self, emission: DVec3) -> Self {
         Self { emission, ..self }
+    }
+
+    /// The disc as a mirror reflecting `reflectance` of the light (clamped to 0–1; both
+    /// sides reflect).
+    #[must_use]
+    pub fn with_reflectance(self, reflectance: f64) -> Self {
+        Self {
+            reflectance: clamp_reflectance(reflectance),
+            ..self
+        }
     }
 
     /// The plane's covector `P` for the Euclidean dot product: `P·X = 0` on the plane.
@@ -395,6 +421,13 @@ pub struct Hit {
     pub colour: DVec3,
     /// Emitted colour, linear RGB.
     pub emission: DVec3,
+    /// The share reflected as a mirror (0: none).
+    pub reflectance: f64,
+}
+
+/// A reflectance clamped to 0–1 (NaN taken as 0).
+fn clamp_reflectance(r: f64) -> f64 {
+    if r.is_nan() { 0.0 } else { r.clamp(0.0, 1.0) }
 }
 
 /// The smallest root of `a s² + b s + c = 0` in `(lo, hi)` that passes `accept`, computed
@@ -501,14 +534,15 @@ impl Object {
                     normal,
                     colour: disc.colour,
                     emission: disc.emission,
+                    reflectance: disc.reflectance,
                 });
             }
             Object::Mesh(_) => return None,
         };
         let point = geometry.project_point(p + s * v);
-        let (foot, emission) = match self {
-            Object::Ball(ball) => (ball.centre, ball.emission),
-            Object::Tube(tube) => (tube.foot(geometry, point), tube.emission),
+        let (foot, emission, reflectance) = match self {
+            Object::Ball(ball) => (ball.centre, ball.emission, ball.reflectance),
+            Object::Tube(tube) => (tube.foot(geometry, point), tube.emission, 0.0),
             Object::Disc(_) | Object::Mesh(_) => unreachable!("returned above"),
         };
         // Outward normal: the tangent at the hit pointing away from the nearest point of
@@ -520,6 +554,7 @@ impl Object {
             normal,
             colour,
             emission,
+            reflectance,
         })
     }
 }

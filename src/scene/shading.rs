@@ -269,6 +269,9 @@ pub struct SurfaceMaterial {
     pub texture: Option<u32>,
     /// Emitted colour, linear RGB.
     pub emission: DVec3,
+    /// The share of light the surface reflects as a mirror, 0 to 1 (the rest is lit as
+    /// usual): [`crate::trace::render`] follows the reflected ray.
+    pub reflectance: f64,
 }
 
 impl Default for SurfaceMaterial {
@@ -277,6 +280,7 @@ impl Default for SurfaceMaterial {
             colour: DVec3::splat(0.8),
             texture: None,
             emission: DVec3::ZERO,
+            reflectance: 0.0,
         }
     }
 }

@@ -33,6 +33,8 @@ pub struct SceneHit {
     pub distance: f64,
     /// Face crossings before the hit.
     pub crossings: usize,
+    /// The ray's unit tangent at the hit (where a mirror reflects it).
+    pub tangent: DVec4,
 }
 
 /// How a camera ray ended.
@@ -125,6 +127,66 @@ pub fn first_hit_culled(
     first_hit_walled(walker, scene, culling, None, start, max_crossings)
 }
 
+/// Most mirror bounces a camera ray makes ([`colour_along`]); each also takes a step of the
+/// crossing budget.
+pub const MAX_BOUNCES: usize = 8;
+
+/// How far along the reflected geodesic a ray leaving a mirror starts, so that it does not
+/// meet the mirror again where it left it.
+pub const MIRROR_OFFSET: f64 = 1e-3;
+
+/// The colour seen along a camera ray, mirrors followed: where the ray meets a surface that
+/// reflects a share `r`, it shows `1 − r` of the lit surface and `r` of what the reflected
+/// ray sees, the walk going on from the hit with the tangent turned about the normal
+/// (`v − 2⟨v, n⟩ n`), the fog counted along the whole path, the walls' veils along each
+/// part, every bounce a step of the same crossing budget, at most [`MAX_BOUNCES`]. Without
+/// mirrors this is [`colour_of_traced`] of [`first_hit_walled`].
+#[must_use]
+pub fn colour_along(
+    walker: &CellWalker<DVec4>,
+    scene: &CurvedScene,
+    culling: Option<&FaceCulling>,
+    walls: Option<&WallPanels>,
+    start: Ray<DVec4>,
+    max_crossings: usize,
+) -> DVec3 {
+    let g = walker.geometry;
+    let walk = ShadowWalk::new(walker, culling, max_crossings);
+    let (mut sum, mut weight) = (DVec3::ZERO, 1.0);
+    let (mut ray, mut from, mut left) = (start, 0.0, max_crossings);
+    for bounce in 0..=MAX_BOUNCES {
+        let traced = trace_ray(walker, scene, culling, walls, ray, from, left, |_, _| {});
+        let RayEnd::Hit(h) = traced.end else {
+            return sum + weight * colour_of_traced(walk, scene, &traced);
+        };
+        let r = h.hit.reflectance;
+        if !(r > 0.0) || bounce == MAX_BOUNCES || h.crossings >= left {
+            return sum + weight * colour_of_traced(walk, scene, &traced);
+        }
+        let here = colour_of_traced(
+            walk,
+            scene,
+            &TracedRay {
+                veil: Veil::CLEAR,
+                ..traced
+            },
+        );
+        sum += weight * traced.veil.over((1.0 - r) * here);
+        weight *= traced.veil.through * r;
+        let n = h.hit.normal;
+        let reflected = h.tangent - 2.0 * g.form(h.tangent, n) * n;
+        let (point, along) = g.geodesic(h.hit.point, reflected, MIRROR_OFFSET);
+        let point = g.project_point(point);
+        ray = Ray {
+            point,
+            tangent: g.unit_tangent(point, along),
+        };
+        from = h.distance + MIRROR_OFFSET;
+        left -= h.crossings + 1;
+    }
+    sum
+}
+
 /// [`first_hit_culled`] through the cell's walls ([`WallPanels`], built once per scene with
 /// [`WallPanels::new`]): the ray's [`TracedRay::veil`] holds what the walls it crossed add,
 /// and a ray stops (as fog) once the walls let too little light through to matter.
@@ -143,6 +205,7 @@ pub fn first_hit_walled(
         culling,
         walls,
         start,
+        0.0,
         max_crossings,
         |_, _| {},
     )
@@ -175,13 +238,14 @@ fn trace_ray(
     culling: Option<&FaceCulling>,
     walls: Option<&WallPanels>,
     start: Ray<DVec4>,
+    from: f64,
     max_crossings: usize,
     mut crossed: impl FnMut(usize, f64),
 ) -> TracedRay {
     let g = walker.geometry;
     let cutoff = scene.shading.cutoff_distance();
     let mut ray = walker.normalized(start);
-    let mut distance = 0.0;
+    let mut distance = from;
     let mut skip = None;
     let mut path = PATH_HASH_START;
     let mut last_face = None;
@@ -210,6 +274,7 @@ fn trace_ray(
                     hit,
                     distance: d,
                     crossings,
+                    tangent: g.unit_tangent(hit.point, ray.tangent),
                 })
             };
             return TracedRay {
@@ -285,11 +350,7 @@ pub fn trace_pixel(
     max_crossings: usize,
 ) -> DVec3 {
     let walls = walls_of(walker, scene);
-    colour_of_traced(
-        ShadowWalk::new(walker, None, max_crossings),
-        scene,
-        &first_hit_walled(walker, scene, None, walls.as_ref(), start, max_crossings),
-    )
+    colour_along(walker, scene, None, walls.as_ref(), start, max_crossings)
 }
 
 /// What a shadow ray walks: the cell, the scene's objects (tested in each cell only where
@@ -468,16 +529,15 @@ pub fn render_view(
             let mut row = Vec::with_capacity(3 * w as usize);
             for i in 0..w {
                 let colour = |ray| {
-                    let traced = first_hit_walled(
+                    colour_along(
                         &walker,
                         scene,
                         culling.as_ref(),
                         walls.as_ref(),
                         ray,
                         settings.max_crossings,
-                    );
-                    let walk = ShadowWalk::new(&walker, culling.as_ref(), settings.max_crossings);
-                    colour_of_traced(walk, scene, &traced).clamp(DVec3::ZERO, DVec3::ONE)
+                    )
+                    .clamp(DVec3::ZERO, DVec3::ONE)
                 };
                 let c = match layout.rays_at(g, i, j) {
                     PixelRays::One(ray) => colour(ray),
@@ -517,6 +577,7 @@ pub fn ray_story(
         None,
         None,
         start,
+        0.0,
         max_crossings,
         |face, d| {
             crossings.push((face, d));

@@ -1440,7 +1440,121 @@ fn shadows_through_the_faces_render_alike_on_gpu_and_cpu() {
             ));
         }
         let gpu = picture(8, true, &mut renderer);
-        judge(&format!("{id}-shadows"), &gpu, &shadowed, &out, &mut failures);
+        judge(
+            &format!("{id}-shadows"),
+            &gpu,
+            &shadowed,
+            &out,
+            &mut failures,
+        );
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// Mirrors: a mirror ball at the centre reflects the tiling (and a half mirror a mix), a
+/// mirror disc beside it, on the GPU as on the CPU in the three geometries.
+#[test]
+fn mirrors_render_alike_on_gpu_and_cpu() {
+    let _gpu = gpu_lock();
+    use bevy_curved_spaces::plugin::components::TracerSettings;
+    use bevy_curved_spaces::plugin::render::upload::build_scene;
+    use bevy_curved_spaces::scene::{Ball, Disc, Object};
+    use bevy_curved_spaces::space::invariants::inradius;
+    use glam::DVec3;
+    let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
+    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("gpu-vs-cpu");
+    let mut failures = Vec::new();
+    for id in ["torus", "seifert-weber", "poincare"] {
+        let space = bevy_curved_spaces::space::seed_space(id).expect("builds");
+        let g = space.geometry();
+        let r = inradius(&space);
+        let centre = space.centre();
+        let mirror = Object::Ball(
+            Ball::new(g, centre, 0.45 * r, DVec3::new(0.9, 0.9, 1.0)).with_reflectance(0.85),
+        );
+        let at = g.translation(DVec3::new(-0.6, -0.5, 0.3), 0.6 * r) * centre;
+        let normal = g.unit_tangent(at, g.translation(DVec3::Y, 0.1) * at - at);
+        let disc = Object::Disc(
+            Disc::new(g, at, normal, 0.25 * r, DVec3::new(0.3, 0.8, 0.5)).with_reflectance(0.5),
+        );
+        let objects = vec![mirror, disc];
+        let parts = SceneParts {
+            edges: true,
+            centrepiece: Centrepiece::None,
+            avatar: false,
+            clifford: false,
+        };
+        let camera = TraceCamera::default_for(&space);
+        let settings = TracerSettings {
+            fog_distance: None,
+            max_crossings: Some(24),
+            quality: bevy_curved_spaces::plugin::components::Quality::High,
+            resolution_scale: 1.0,
+            parts,
+            time: Some(0.0),
+            colour_by: Default::default(),
+            walls: None,
+            lighting: None,
+        };
+        let (scene, problems) = build_scene(&space, &settings, &objects, None);
+        assert_eq!(problems, None, "{id}");
+        assert!(scene.has_mirrors());
+        let settings = RenderSettings {
+            width: WIDTH,
+            height: HEIGHT,
+            max_crossings: 24,
+        };
+        let cpu = render(&space, &scene, &camera, &settings);
+        // The same scene with plain surfaces: the mirrors change the picture.
+        let (plain, _) = build_scene(
+            &space,
+            &TracerSettings {
+                max_crossings: Some(24),
+                quality: bevy_curved_spaces::plugin::components::Quality::High,
+                resolution_scale: 1.0,
+                parts,
+                time: Some(0.0),
+                fog_distance: None,
+                colour_by: Default::default(),
+                walls: None,
+                lighting: None,
+            },
+            &objects
+                .iter()
+                .map(|o| match o {
+                    Object::Ball(b) => Object::Ball(b.with_reflectance(0.0)),
+                    Object::Disc(d) => Object::Disc(d.with_reflectance(0.0)),
+                    o => *o,
+                })
+                .collect::<Vec<_>>(),
+            None,
+        );
+        let (changed, _) = compare(&render(&space, &plain, &camera, &settings), &cpu, TOLERANCE);
+        println!(
+            "{id}: the mirrors change {:.2} % of the pixels",
+            100.0 * changed.differing
+        );
+        if changed.differing < 0.05 {
+            failures.push(format!("{id}: the mirrors change too little"));
+        }
+        let gpu = renderer
+            .render(&OffscreenRender {
+                parts,
+                objects: objects.clone(),
+                ..OffscreenRender::new(
+                    ActiveSpace::new(id, space.clone()),
+                    camera,
+                    (WIDTH, HEIGHT),
+                    24,
+                )
+            })
+            .expect("renders");
+        judge(&format!("{id}-mirrors"), &gpu, &cpu, &out, &mut failures);
+        if id == "seifert-weber" {
+            let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
+            gpu.save(dir.join("mirrors-gpu.png")).expect("write");
+            cpu.save(dir.join("mirrors-cpu.png")).expect("write");
+        }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

@@ -20,6 +20,7 @@ mod headset;
 mod layers;
 mod light_images;
 mod lighting;
+mod mirrors;
 mod objects;
 mod player;
 #[cfg(feature = "scene-files")]

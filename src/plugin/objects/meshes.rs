@@ -86,6 +86,7 @@ pub fn model_from_bevy_mesh(mesh: &Mesh, texture: Option<&Image>) -> Result<Mode
         colour: DVec3::ONE,
         texture: (!textures.is_empty()).then_some(0),
         emission: DVec3::ZERO,
+        reflectance: 0.0,
     }];
     Ok(Model {
         source: MeshSource {

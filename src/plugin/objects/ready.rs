@@ -109,6 +109,7 @@ impl ReadyObject {
                         colour,
                         texture: None,
                         emission: self.emission,
+                        reflectance: 0.0,
                     });
                     instance.material = Some(scene.materials.len() as u32 - 1);
                 }

@@ -50,6 +50,9 @@ pub struct ShaderKey {
     /// Whether the cell's walls with windows are drawn ([`crate::scene::walls`]; shader def
     /// `WALLS`).
     pub walls: bool,
+    /// Whether any surface reflects as a mirror (shader def `MIRRORS`): the walk goes on
+    /// from such a hit with the reflected tangent ([`crate::trace::colour_along`]).
+    pub mirrors: bool,
     /// The unspecialised variant (the benchmark's comparison): all geometries' formulas,
     /// arrays of [`GENERAL_CAPACITY`], geometry and counts read from the uniform.
     pub general: bool,
@@ -93,6 +96,7 @@ impl ShaderKey {
             step_cap: false,
             colour_by: 0,
             walls: false,
+            mirrors: false,
             general: false,
             straightforward: false,
             product: false,
@@ -166,6 +170,9 @@ impl ShaderKey {
         }
         if self.avatar {
             defs.push("AVATAR".into());
+        }
+        if self.mirrors {
+            defs.push("MIRRORS".into());
         }
         if self.avatar || self.instances > 0 {
             defs.push("MESHES".into());

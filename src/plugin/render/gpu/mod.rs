@@ -330,6 +330,7 @@ impl GpuScene {
             step_cap: space.reaches_equator(),
             colour_by: scene.shading.colour_by.index(),
             walls: walls.is_some(),
+            mirrors: scene.has_mirrors(),
             general: false,
             straightforward: false,
             product: false,

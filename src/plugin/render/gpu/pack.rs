@@ -155,7 +155,7 @@ pub(super) fn pack_scene_data(scene: &CurvedScene) -> (Vec<u32>, [u32; 4], Vec<u
         let c = m.colour;
         data.extend([f(c.x), f(c.y), f(c.z), m.texture.unwrap_or(u32::MAX)]);
         let e = m.emission;
-        data.extend([f(e.x), f(e.y), f(e.z), 0]);
+        data.extend([f(e.x), f(e.y), f(e.z), f(m.reflectance)]);
     }
     let table = (data.len() / 4) as u32;
     let mut texel_offset = 0u32;
@@ -286,7 +286,7 @@ pub(super) fn pack_objects(
             out.push(&GpuBall {
                 centre: vec4(ball.centre),
                 colour: colour(ball.colour, size(ball.radius)),
-                emission: colour(ball.emission, 0.0),
+                emission: colour(ball.emission, ball.reflectance),
             });
         }
     }
@@ -310,7 +310,7 @@ pub(super) fn pack_objects(
                 centre: vec4(ball.centre),
                 colour: colour(ball.colour, size(ball.radius)),
                 emission: colour(ball.emission, f64::from(t.texture)),
-                spin: vec4(DVec4::new(t.spin, 0.0, 0.0, 0.0)),
+                spin: vec4(DVec4::new(t.spin, ball.reflectance, 0.0, 0.0)),
                 inverse: mat4(g.inverse(t.frame)),
             });
         }
@@ -322,7 +322,7 @@ pub(super) fn pack_objects(
                 normal: vec4(disc.normal),
                 covector: vec4(disc.covector(g)),
                 colour: colour(disc.colour, disc.radius),
-                emission: colour(disc.emission, 0.0),
+                emission: colour(disc.emission, disc.reflectance),
             });
         }
     }
