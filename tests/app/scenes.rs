@@ -331,6 +331,16 @@ fn bad_scene_files_get_errors_naming_the_line_and_the_problem() {
         ),
         ("space = \"torus\"\nwall_opacity = 0.5\n", 2, "needs walls"),
         (
+            "space = \"torus\"\n[[object]]\ntype = \"ball\"\nradius = 0.2\nreflectance = 1.5\n",
+            2,
+            "reflectance must be between 0 and 1, got 1.5",
+        ),
+        (
+            "space = \"torus\"\n[[object]]\ntype = \"disc\"\nnormal = [0, 1, 0]\nradius = 0.2\nreflectance = nan\n",
+            2,
+            "reflectance must be between 0 and 1",
+        ),
+        (
             "space = \"torus\"\n[lighting]\npaths = \"all\"\n",
             3,
             "light paths must be \"images\" or \"nearest\"",
@@ -618,4 +628,38 @@ fn scene_files_choose_the_lighting() {
     let nearest =
         read("space = \"torus\"\n[lighting]\npaths = \"nearest\"\ntail = false\nshadows = 0\n");
     assert_eq!(nearest.shading.lighting, Lighting::NEAREST);
+}
+
+#[test]
+fn scene_files_make_mirrors() {
+    use bevy_curved_spaces::scene::Object;
+    let here = manifest();
+    let file = parse_scene(
+        "space = \"seifert-weber\"\n[[object]]\ntype = \"ball\"\nradius = 0.3\nreflectance = 0.8\n\n[[object]]\ntype = \"disc\"\nposition = [0.4, 0, 0]\nnormal = [1, 0, 0]\nradius = 0.2\nreflectance = 0.25\n\n[[object]]\ntype = \"ball\"\nposition = [0, 0.5, 0]\nradius = 0.1\n",
+        &here,
+        "a.toml",
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let reflectances: Vec<f64> = file
+        .base
+        .objects
+        .iter()
+        .map(|o| match o {
+            Object::Ball(b) => b.reflectance,
+            Object::Disc(d) => d.reflectance,
+            _ => -1.0,
+        })
+        .collect();
+    assert_eq!(reflectances, vec![0.8, 0.25, 0.0]);
+    assert!(file.base.has_mirrors());
+    // A mesh's materials take it too.
+    let models = manifest().join("assets/models");
+    let mesh = parse_scene(
+        "space = \"torus\"\n[[object]]\ntype = \"mesh\"\npath = \"cube.glb\"\nsize = 0.3\nreflectance = 0.6\n",
+        &models,
+        "b.toml",
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    assert!(!mesh.base.materials.is_empty());
+    assert!(mesh.base.materials.iter().all(|m| m.reflectance == 0.6));
 }
