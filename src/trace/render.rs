@@ -155,7 +155,7 @@ pub fn colour_along(
     let (mut sum, mut weight) = (DVec3::ZERO, 1.0);
     let (mut ray, mut from, mut left) = (start, 0.0, max_crossings);
     for bounce in 0..=MAX_BOUNCES {
-        let traced = trace_ray(walker, scene, culling, walls, ray, from, left, |_, _| {});
+        let traced = trace_ray(walker, scene, culling, walls, (ray, from), left, |_, _| {});
         let RayEnd::Hit(h) = traced.end else {
             return sum + weight * colour_of_traced(walk, scene, &traced);
         };
@@ -204,8 +204,7 @@ pub fn first_hit_walled(
         scene,
         culling,
         walls,
-        start,
-        0.0,
+        (start, 0.0),
         max_crossings,
         |_, _| {},
     )
@@ -231,14 +230,13 @@ pub fn walls_of(walker: &CellWalker<DVec4>, scene: &CurvedScene) -> Option<WallP
 }
 
 /// The one walk of the CPU tracer: [`first_hit_walled`], calling `crossed(face, distance)`
-/// at each face crossed (the distance travelled to it).
+/// at each face crossed (the distance travelled to it), the ray having come `from` already.
 fn trace_ray(
     walker: &CellWalker<DVec4>,
     scene: &CurvedScene,
     culling: Option<&FaceCulling>,
     walls: Option<&WallPanels>,
-    start: Ray<DVec4>,
-    from: f64,
+    (start, from): (Ray<DVec4>, f64),
     max_crossings: usize,
     mut crossed: impl FnMut(usize, f64),
 ) -> TracedRay {
@@ -576,8 +574,7 @@ pub fn ray_story(
         scene,
         None,
         None,
-        start,
-        0.0,
+        (start, 0.0),
         max_crossings,
         |face, d| {
             crossings.push((face, d));

@@ -1,7 +1,6 @@
 //! `walk`: the app in a window (or a headset), or an offscreen picture where there is no
 //! display.
 
-#[cfg(feature = "xr")]
 use super::render::Chosen;
 use super::render::{choose_scene, render_command};
 use super::*;
