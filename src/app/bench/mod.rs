@@ -12,6 +12,7 @@ pub mod harness;
 
 mod accuracy;
 mod edge_work;
+mod lighting;
 mod plot;
 mod products;
 mod report;
@@ -28,6 +29,7 @@ use crate::view::TraceCamera;
 pub use accuracy::growth;
 use accuracy::*;
 use indicatif::{ProgressBar, ProgressStyle};
+pub use lighting::{LIGHTING_ERROR_SIZE, LightingRow, REFERENCE_LIGHTING, run_lighting};
 pub use report::{
     charts, read_report, summary_markdown, write_edges_report, write_report, write_scene_report,
 };
@@ -188,6 +190,9 @@ pub enum BenchError {
     /// A product space id is wrong (the reason is attached).
     #[error("{0}")]
     Product(String),
+    /// A lighting could not be set (the reason is attached).
+    #[error("the lighting cannot be used: {0}")]
+    Lighting(String),
 }
 
 /// Shows what the benchmark is doing: on the bar, or (no terminal) as a log line.

@@ -133,6 +133,13 @@ pub fn write_edges_report(
             &to_csv(&to_values(&report.straightforward)),
         )?);
     }
+    if !report.lighting.is_empty() {
+        written.push(write_text(
+            dir,
+            "lighting.csv",
+            &to_csv(&to_values(&report.lighting)),
+        )?);
+    }
     if !report.products.is_empty() {
         written.push(write_text(
             dir,
@@ -148,7 +155,14 @@ pub fn write_edges_report(
     edges_section(&mut md, report);
     straightforward_section(&mut md, report);
     products_section(&mut md, report);
+    super::lighting::lighting_section(&mut md, report);
     written.push(write_text(dir, "summary.md", &md)?);
+    if let Some(chart) = super::lighting::lighting_chart(report) {
+        let stem = dir.join("lighting");
+        write_chart(&chart, &stem)?;
+        written.push(stem.with_extension("png"));
+        written.push(stem.with_extension("svg"));
+    }
     Ok(written)
 }
 

@@ -123,7 +123,7 @@ pub(super) fn time_rounds(
 
 /// A mono colour frame of `layout` onto each packed scene, with its tracer program, each
 /// drawn once (compiling the pipeline and warming it up before it is timed).
-fn drawn_views(
+pub(super) fn drawn_views(
     harness: &mut Harness,
     layout: &ViewLayout,
     (w, h): (u32, u32),

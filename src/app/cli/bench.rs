@@ -147,6 +147,29 @@ pub(super) fn bench(args: &BenchArgs) -> Result<(), String> {
         say_written(&written, &args.out, started);
         return Ok(());
     }
+    if args.lighting {
+        if args.budgets.is_none() {
+            config.budgets = vec![24];
+        }
+        let report = bevy_curved_spaces::bench::run_lighting(&config, &progress)
+            .map_err(|e| e.to_string())?;
+        for r in &report.lighting {
+            say!(
+                "{:<16} {:<30} {:>4} images: {:>8.3} ms ({:.2}× nearest), mean error {:.2}/255, {:.2} % of pixels off by more than 8/255",
+                r.space,
+                r.lighting,
+                r.images,
+                r.median_ms,
+                r.time_ratio,
+                r.mean_error,
+                100.0 * r.pixels_off
+            );
+        }
+        let written = bevy_curved_spaces::bench::write_edges_report(&report, &config, &args.out)
+            .map_err(|e| e.to_string())?;
+        say_written(&written, &args.out, started);
+        return Ok(());
+    }
     if args.edges {
         if args.budgets.is_none() {
             config.budgets = vec![32];

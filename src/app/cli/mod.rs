@@ -416,6 +416,14 @@ struct BenchArgs {
     /// the middle of --sizes); writes edges.csv and summary.md.
     #[arg(long, conflicts_with_all = ["cpu_only", "from", "scene", "entities"])]
     edges: bool,
+    /// Measure only the lighting: per space, the default view timed with the nearest copy
+    /// of the lamp and with every image within a few reaches, with and without the tail
+    /// and with shadows capped at a few counts, in the same rounds, each against a CPU
+    /// reference with every image within 16 inradii and 64 shadows (at the first of
+    /// --budgets, default 24, and the middle of --sizes); writes lighting.csv, a chart of
+    /// error against time and summary.md.
+    #[arg(long, conflicts_with_all = ["cpu_only", "from", "scene", "entities", "edges", "straightforward", "products"])]
+    lighting: bool,
 }
 
 #[derive(Args, Clone)]
