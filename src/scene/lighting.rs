@@ -101,10 +101,13 @@ impl Default for Lighting {
 }
 
 impl Lighting {
-    /// The default reach in inradii.
-    pub const DEFAULT_REACH_INRADII: f64 = 4.0;
-    /// The default number of shadowed images per lamp.
-    pub const DEFAULT_SHADOWS: u32 = 4;
+    /// The default reach in inradii: `bench --lighting` found 2 as close to its reference as
+    /// 4 or 8 once the tail is added, and cheaper (docs/light.md).
+    pub const DEFAULT_REACH_INRADII: f64 = 2.0;
+    /// The default number of shadowed images per lamp: none. In the default scenes 4
+    /// shadows cost 6–26 times the frame on lavapipe and take off at most 0.4/255 of mean
+    /// error (docs/light.md); scenes that need them ask (`[lighting] shadows`).
+    pub const DEFAULT_SHADOWS: u32 = 0;
     /// The most shadowed images per lamp.
     pub const MAX_SHADOWS: u32 = 64;
 
@@ -154,32 +157,45 @@ pub fn cover_images(space: &Space, lamp: DVec4, reach: f64) -> (Vec<DVec4>, f64)
     } else {
         circumradius(space)
     };
-    let mut radius = reach + rho;
-    for _ in 0..64 {
-        let found = super::light_images::lamp_images(space, lamp, radius, 16 * MAX_LAMP_IMAGES);
-        match found {
-            Some(images) if images.len() <= MAX_LAMP_IMAGES => {
-                let reach = if g == Geometry::Spherical {
-                    PI
-                } else {
-                    radius - rho
-                };
-                return (images.into_iter().map(|(q, _)| q).collect(), reach);
+    // The images within `radius` of the origin and the reach they cover from every point
+    // of the cell, or `None` where the walk to them visits too many cells.
+    let fit = |radius: f64| -> Option<(Vec<DVec4>, f64)> {
+        let images = super::light_images::lamp_images(space, lamp, radius, 64 * MAX_LAMP_IMAGES)?;
+        if images.len() <= MAX_LAMP_IMAGES {
+            let covered = if g == Geometry::Spherical {
+                PI
+            } else {
+                radius - rho
+            };
+            return Some((images.into_iter().map(|(q, _)| q).collect(), covered));
+        }
+        // Every image nearer the origin than the first one left out is kept.
+        let edge = images[MAX_LAMP_IMAGES].1;
+        let kept = images[..MAX_LAMP_IMAGES]
+            .iter()
+            .take_while(|(_, d)| *d < edge)
+            .map(|(q, _)| *q)
+            .collect();
+        Some((kept, (edge - rho).max(0.0)))
+    };
+    if let Some(found) = fit(reach + rho) {
+        return found;
+    }
+    // Too many cells to walk that far: the farthest radius that can be walked, by
+    // bisection (the cell alone, reach 0, always can).
+    let (mut lo, mut hi) = (rho, reach + rho);
+    let mut best = None;
+    for _ in 0..12 {
+        let mid = 0.5 * (lo + hi);
+        match fit(mid) {
+            Some(found) => {
+                best = Some(found);
+                lo = mid;
             }
-            Some(images) => {
-                // Every image nearer the origin than the first one left out is kept.
-                let edge = images[MAX_LAMP_IMAGES].1;
-                let kept = images[..MAX_LAMP_IMAGES]
-                    .iter()
-                    .take_while(|(_, d)| *d < edge)
-                    .map(|(q, _)| *q)
-                    .collect();
-                return (kept, (edge - rho).max(0.0));
-            }
-            None => radius = rho + 0.7 * (radius - rho),
+            None => hi = mid,
         }
     }
-    (vec![lamp], 0.0)
+    best.or_else(|| fit(rho)).unwrap_or((vec![lamp], 0.0))
 }
 
 /// The mean fluence of a unit lamp's images beyond `reach` from a point, in fog of distance

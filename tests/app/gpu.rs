@@ -1359,7 +1359,6 @@ fn product_spaces_render_on_the_gpu_like_the_cpu_reference() {
 #[test]
 fn shadows_through_the_faces_render_alike_on_gpu_and_cpu() {
     let _gpu = gpu_lock();
-    use bevy_curved_spaces::plugin::components::TracerSettings;
     use bevy_curved_spaces::plugin::render::upload::build_scene;
     use bevy_curved_spaces::scene::lighting::Lighting;
     use bevy_curved_spaces::scene::{Ball, Object};
@@ -1402,17 +1401,7 @@ fn shadows_through_the_faces_render_alike_on_gpu_and_cpu() {
                 };
                 return renderer.render(&request).expect("renders");
             }
-            let settings = TracerSettings {
-                fog_distance: None,
-                max_crossings: Some(24),
-                quality: bevy_curved_spaces::plugin::components::Quality::High,
-                resolution_scale: 1.0,
-                parts,
-                time: Some(0.0),
-                colour_by: Default::default(),
-                walls: None,
-                lighting: Some(lighting),
-            };
+            let settings = still(parts, Some(lighting));
             let (scene, problems) = build_scene(&space, &settings, &[ball], None);
             assert_eq!(problems, None, "{id}");
             assert_eq!(scene.shading.lighting, lighting);
@@ -1456,7 +1445,6 @@ fn shadows_through_the_faces_render_alike_on_gpu_and_cpu() {
 #[test]
 fn mirrors_render_alike_on_gpu_and_cpu() {
     let _gpu = gpu_lock();
-    use bevy_curved_spaces::plugin::components::TracerSettings;
     use bevy_curved_spaces::plugin::render::upload::build_scene;
     use bevy_curved_spaces::scene::{Ball, Disc, Object};
     use bevy_curved_spaces::space::invariants::inradius;
@@ -1485,18 +1473,7 @@ fn mirrors_render_alike_on_gpu_and_cpu() {
             clifford: false,
         };
         let camera = TraceCamera::default_for(&space);
-        let settings = TracerSettings {
-            fog_distance: None,
-            max_crossings: Some(24),
-            quality: bevy_curved_spaces::plugin::components::Quality::High,
-            resolution_scale: 1.0,
-            parts,
-            time: Some(0.0),
-            colour_by: Default::default(),
-            walls: None,
-            lighting: None,
-        };
-        let (scene, problems) = build_scene(&space, &settings, &objects, None);
+        let (scene, problems) = build_scene(&space, &still(parts, None), &objects, None);
         assert_eq!(problems, None, "{id}");
         assert!(scene.has_mirrors());
         let settings = RenderSettings {
@@ -1508,17 +1485,7 @@ fn mirrors_render_alike_on_gpu_and_cpu() {
         // The same scene with plain surfaces: the mirrors change the picture.
         let (plain, _) = build_scene(
             &space,
-            &TracerSettings {
-                max_crossings: Some(24),
-                quality: bevy_curved_spaces::plugin::components::Quality::High,
-                resolution_scale: 1.0,
-                parts,
-                time: Some(0.0),
-                fog_distance: None,
-                colour_by: Default::default(),
-                walls: None,
-                lighting: None,
-            },
+            &still(parts, None),
             &objects
                 .iter()
                 .map(|o| match o {
@@ -1557,4 +1524,23 @@ fn mirrors_render_alike_on_gpu_and_cpu() {
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The settings of a still picture that a CPU reference can match: every pixel traced, 24
+/// crossings, the clock at 0, these parts and this lighting.
+fn still(
+    parts: SceneParts,
+    lighting: Option<bevy_curved_spaces::scene::lighting::Lighting>,
+) -> bevy_curved_spaces::plugin::components::TracerSettings {
+    bevy_curved_spaces::plugin::components::TracerSettings {
+        fog_distance: None,
+        max_crossings: Some(24),
+        quality: bevy_curved_spaces::plugin::components::Quality::High,
+        resolution_scale: 1.0,
+        parts,
+        time: Some(0.0),
+        colour_by: Default::default(),
+        walls: None,
+        lighting,
+    }
 }

@@ -225,14 +225,14 @@ struct LightingArgs {
     #[arg(long, value_enum)]
     light_paths: Option<LightPathsArg>,
     /// How far the images are summed exactly, in inradii of the cell (above 0, at most 64;
-    /// default 4). A spherical space sums them all.
+    /// default 2; at most 256 images per lamp). A spherical space sums them all.
     #[arg(long, value_name = "INRADII", value_parser = parse_reach, allow_negative_numbers = true)]
     light_reach: Option<f64>,
     /// Leave out the mean of the images beyond the reach.
     #[arg(long)]
     no_light_tail: bool,
     /// How many images of each lamp, nearest the cell's centre first, are walked for
-    /// shadows (0 to 64; default 4).
+    /// shadows (0 to 64; default 0: each costs about a walk per lit pixel).
     #[arg(long, value_name = "IMAGES", value_parser = clap::value_parser!(u32).range(0..=64))]
     shadows: Option<u32>,
 }
