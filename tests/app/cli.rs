@@ -311,6 +311,64 @@ fn bench_straightforward_times_the_tracer_against_the_straightforward_one() {
     assert!(String::from_utf8_lossy(&both.stderr).contains("--edges"));
 }
 
+/// `bench --lighting` writes a row per lighting with its time and error, and the figures
+/// say what they should: every image with the tail is nearer the reference than the
+/// nearest copy, and the tail is what brings it there.
+#[test]
+fn bench_lighting_measures_each_lighting_against_the_reference() {
+    let dir = temp_dir("bench-lighting");
+    let out = run(&[
+        "bench",
+        "--lighting",
+        "--quick",
+        "--spaces",
+        "torus",
+        "--sizes",
+        "32x18",
+        "--budgets",
+        "8",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let csv = std::fs::read_to_string(dir.join("lighting.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| {
+        header
+            .iter()
+            .position(|h| *h == name)
+            .unwrap_or_else(|| panic!("{name} missing from {header:?}"))
+    };
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 8, "{csv}");
+    let error = |lighting: &str| -> f64 {
+        let row = rows
+            .iter()
+            .find(|r| r[col("lighting")] == lighting)
+            .unwrap_or_else(|| panic!("no {lighting} in {csv}"));
+        assert!(row[col("median_ms")].parse::<f64>().unwrap() > 0.0);
+        row[col("mean_error")].parse().unwrap()
+    };
+    let (nearest, images, untailed) = (
+        error("nearest"),
+        error("images R=4"),
+        error("images R=4 no tail"),
+    );
+    assert!(images < 0.5 * nearest, "{images} against {nearest}");
+    assert!(
+        images < untailed,
+        "{images} against {untailed} without the tail"
+    );
+    assert!(dir.join("lighting.png").exists() && dir.join("lighting.svg").exists());
+    let summary = std::fs::read_to_string(dir.join("summary.md")).unwrap();
+    assert!(summary.contains("× nearest"), "{summary}");
+}
+
 #[test]
 fn bench_quick_writes_results_that_respect_their_bounds() {
     let dir = temp_dir("bench");
