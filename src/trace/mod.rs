@@ -10,6 +10,6 @@ pub use budget::{BudgetChoice, MAX_AUTO_BUDGET, auto_budget, auto_budget_with_fl
 pub use render::{
     MAX_BOUNCES, MIRROR_OFFSET, PATH_HASH_START, RayEnd, RayStory, RenderSettings, SceneHit,
     ShadowWalk, TracedRay, colour_along, colour_of, colour_of_traced, first_hit, first_hit_culled,
-    first_hit_traced, first_hit_walled, path_hash, ray_story, render, render_view,
+    first_hit_traced, first_hit_walled, path_hash, ray_story, reflected_ray, render, render_view,
     render_with_progress, to_byte, trace_pixel, walls_of,
 };

@@ -135,6 +135,20 @@ pub const MAX_BOUNCES: usize = 8;
 /// meet the mirror again where it left it.
 pub const MIRROR_OFFSET: f64 = 1e-3;
 
+/// The ray that leaves a mirror at the hit `h`: the tangent turned about the normal,
+/// `v − 2⟨v, n⟩ n`, started [`MIRROR_OFFSET`] along its geodesic.
+#[must_use]
+pub fn reflected_ray(g: crate::geometry::Geometry, h: &SceneHit) -> Ray<DVec4> {
+    let n = h.hit.normal;
+    let reflected = h.tangent - 2.0 * g.form(h.tangent, n) * n;
+    let (point, along) = g.geodesic(h.hit.point, reflected, MIRROR_OFFSET);
+    let point = g.project_point(point);
+    Ray {
+        point,
+        tangent: g.unit_tangent(point, along),
+    }
+}
+
 /// The colour seen along a camera ray, mirrors followed: where the ray meets a surface that
 /// reflects a share `r`, it shows `1 − r` of the lit surface and `r` of what the reflected
 /// ray sees, the walk going on from the hit with the tangent turned about the normal
@@ -156,13 +170,15 @@ pub fn colour_along(
     let (mut ray, mut from, mut left) = (start, 0.0, max_crossings);
     for bounce in 0..=MAX_BOUNCES {
         let traced = trace_ray(walker, scene, culling, walls, (ray, from), left, |_, _| {});
-        let RayEnd::Hit(h) = traced.end else {
-            return sum + weight * colour_of_traced(walk, scene, &traced);
+        let h = match traced.end {
+            RayEnd::Hit(h)
+                if h.hit.reflectance > 0.0 && bounce < MAX_BOUNCES && h.crossings < left =>
+            {
+                h
+            }
+            _ => return sum + weight * colour_of_traced(walk, scene, &traced),
         };
         let r = h.hit.reflectance;
-        if !(r > 0.0) || bounce == MAX_BOUNCES || h.crossings >= left {
-            return sum + weight * colour_of_traced(walk, scene, &traced);
-        }
         let here = colour_of_traced(
             walk,
             scene,
@@ -173,14 +189,7 @@ pub fn colour_along(
         );
         sum += weight * traced.veil.over((1.0 - r) * here);
         weight *= traced.veil.through * r;
-        let n = h.hit.normal;
-        let reflected = h.tangent - 2.0 * g.form(h.tangent, n) * n;
-        let (point, along) = g.geodesic(h.hit.point, reflected, MIRROR_OFFSET);
-        let point = g.project_point(point);
-        ray = Ray {
-            point,
-            tangent: g.unit_tangent(point, along),
-        };
+        ray = reflected_ray(g, &h);
         from = h.distance + MIRROR_OFFSET;
         left -= h.crossings + 1;
     }

@@ -102,3 +102,13 @@ pub fn product_frame_defect(g: bevy_curved_spaces::geometry::Geometry, f: glam::
     }
     worst
 }
+
+/// A space by id (a seed space or one of the library's), with the default Dirichlet options.
+pub fn library_space(id: &str) -> bevy_curved_spaces::space::Space {
+    bevy_curved_spaces::space::resolve_space(
+        id,
+        std::path::Path::new(""),
+        &bevy_curved_spaces::space::dirichlet::DirichletOptions::default(),
+    )
+    .unwrap_or_else(|e| panic!("{id}: {e}"))
+}

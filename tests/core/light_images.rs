@@ -7,14 +7,7 @@ use bevy_curved_spaces::scene::light_images::{FluenceError, fluence};
 use bevy_curved_spaces::space::Space;
 use glam::{DVec3, DVec4};
 
-fn space(id: &str) -> Space {
-    bevy_curved_spaces::space::resolve_space(
-        id,
-        std::path::Path::new(""),
-        &bevy_curved_spaces::space::dirichlet::DirichletOptions::default(),
-    )
-    .unwrap()
-}
+use crate::common::library_space as space;
 
 fn chart(s: &Space, x: [f64; 3]) -> DVec4 {
     s.geometry().from_chart(DVec3::from_array(x)).unwrap()

@@ -11,14 +11,7 @@ use bevy_curved_spaces::trace::ShadowWalk;
 use glam::{DMat4, DVec3, DVec4};
 use std::f64::consts::{PI, TAU};
 
-fn space(id: &str) -> Space {
-    bevy_curved_spaces::space::resolve_space(
-        id,
-        std::path::Path::new(""),
-        &bevy_curved_spaces::space::dirichlet::DirichletOptions::default(),
-    )
-    .unwrap()
-}
+use crate::common::library_space as space;
 
 fn images(reach_inradii: f64, tail: bool, shadows: u32) -> Lighting {
     Lighting {

@@ -6,7 +6,7 @@
 use bevy_curved_spaces::geometry::Ray;
 use bevy_curved_spaces::scene::{Ball, CurvedScene, Object, SceneParts};
 use bevy_curved_spaces::space::{CellWalker, Space, seed_space};
-use bevy_curved_spaces::trace::{RayEnd, colour_along, first_hit};
+use bevy_curved_spaces::trace::{RayEnd, colour_along, first_hit, reflected_ray};
 use bevy_curved_spaces::view::TraceCamera;
 use glam::{DVec3, DVec4};
 
@@ -113,19 +113,7 @@ fn a_half_mirror_is_the_mix_of_a_surface_and_a_mirror() {
         let RayEnd::Hit(h) = first_hit(&walker, &plain, ray, BUDGET) else {
             unreachable!("the ray hits the ball")
         };
-        let n = h.hit.normal;
-        let reflected = h.tangent - 2.0 * g.form(h.tangent, n) * n;
-        let (p, v) = g.geodesic(h.hit.point, reflected, 1e-3);
-        let p = g.project_point(p);
-        let again = first_hit(
-            &walker,
-            &plain,
-            Ray {
-                point: p,
-                tangent: g.unit_tangent(p, v),
-            },
-            BUDGET,
-        );
+        let again = first_hit(&walker, &plain, reflected_ray(g, &h), BUDGET);
         if matches!(again, RayEnd::Hit(h) if h.object == mirror) {
             twice += 1;
             continue;

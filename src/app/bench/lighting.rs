@@ -120,13 +120,7 @@ pub fn run_lighting(
     config: &BenchConfig,
     progress: &ProgressBar,
 ) -> Result<BenchReport, BenchError> {
-    let budget = *config
-        .budgets
-        .first()
-        .ok_or(BenchError::Empty("no crossing budget was given"))?;
-    if config.spaces.is_empty() || config.sizes.is_empty() {
-        return Err(BenchError::Empty("no spaces or sizes were named"));
-    }
+    let budget = super::runs::single_budget(config)?;
     let variants = lightings();
     let mut harness = Harness::new()?;
     progress.set_length((config.spaces.len() * (variants.len() + 1)) as u64);

@@ -42,13 +42,7 @@ pub fn run_straightforward(
 /// `config.budgets` and the middle of `config.sizes`. Seconds per space where the full
 /// benchmark takes minutes, for working on the edges' cost.
 pub fn run_edges(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, BenchError> {
-    let budget = *config
-        .budgets
-        .first()
-        .ok_or(BenchError::Empty("no crossing budget was given"))?;
-    if config.spaces.is_empty() || config.sizes.is_empty() {
-        return Err(BenchError::Empty("no spaces or sizes were named"));
-    }
+    let budget = single_budget(config)?;
     let mut harness = Harness::new()?;
     progress.set_length(config.spaces.len() as u64);
     let mut report = BenchReport::empty(Some(&harness));
@@ -65,6 +59,19 @@ pub fn run_edges(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchRe
     }
     progress.finish_and_clear();
     Ok(report)
+}
+
+/// The first of `config.budgets`, for the runs that time one budget per space at one size;
+/// an error where no budget, space or size was named.
+pub(super) fn single_budget(config: &BenchConfig) -> Result<u32, BenchError> {
+    let budget = *config
+        .budgets
+        .first()
+        .ok_or(BenchError::Empty("no crossing budget was given"))?;
+    if config.spaces.is_empty() || config.sizes.is_empty() {
+        return Err(BenchError::Empty("no spaces or sizes were named"));
+    }
+    Ok(budget)
 }
 
 /// Times a scene file's start view (its space, objects, lights, fog, parts, and its `fov`)
