@@ -63,6 +63,21 @@ impl Quality {
         }
     }
 
+    /// The most lamp images walked for shadows per lit point and lamp: a scene's or the
+    /// settings' `shadows` above it is lowered to it, and the images past it are lit
+    /// unshadowed. The first shadowed image costs the most (a shadow walk per lit pixel:
+    /// 10–30 times the frame with four of them, in `bench --lighting`), so `Low` walks
+    /// none; `Medium` walks 4, which leaves the Poincaré space's default view 0.9/255 of
+    /// mean error more than 16 do; `High` keeps what was asked for.
+    #[must_use]
+    pub fn max_shadows(self) -> u32 {
+        match self {
+            Quality::Low => 0,
+            Quality::Medium => 4,
+            Quality::High => crate::scene::lighting::Lighting::MAX_SHADOWS,
+        }
+    }
+
     /// Every preset, lowest first.
     pub const ALL: [Quality; 3] = [Quality::Low, Quality::Medium, Quality::High];
 }

@@ -227,3 +227,44 @@ fn a_shadow_is_cast_through_a_face() {
         "the ball is past the lamp"
     );
 }
+
+/// The plugin's quality caps the shadowed images: a scene file's 12 become none at `Low`,
+/// 4 at `Medium` and stay 12 at `High`; a scene asking fewer than the cap keeps its count.
+#[test]
+fn each_quality_caps_the_shadowed_images() {
+    use bevy_curved_spaces::plugin::components::{Quality, TracerSettings};
+    use bevy_curved_spaces::plugin::render::upload::build_scene;
+    let s = space("torus");
+    let fog = Shading::default_fog_distance(&s);
+    let mut base = CurvedScene::with_parts(&s, fog, SceneParts::default());
+    base.set_lighting(&s, images(2.0, true, 12)).unwrap();
+    let shadows = |quality: Quality, lighting: Option<Lighting>| {
+        let settings = TracerSettings {
+            fog_distance: None,
+            max_crossings: Some(8),
+            quality,
+            resolution_scale: 1.0,
+            parts: SceneParts::default(),
+            time: Some(0.0),
+            colour_by: Default::default(),
+            walls: None,
+            lighting,
+        };
+        build_scene(&s, &settings, &[], Some(&base))
+            .0
+            .shading
+            .lighting
+            .shadows
+    };
+    let from_file: Vec<u32> = Quality::ALL.iter().map(|&q| shadows(q, None)).collect();
+    assert_eq!(from_file, [0, 4, 12]);
+    for q in Quality::ALL {
+        assert!(q.max_shadows() <= Lighting::MAX_SHADOWS);
+        assert_eq!(
+            shadows(q, Some(images(2.0, true, 2))),
+            2.min(q.max_shadows())
+        );
+    }
+    assert!(Quality::Low.max_shadows() < Quality::Medium.max_shadows());
+    assert!(Quality::Medium.max_shadows() < Quality::High.max_shadows());
+}

@@ -44,6 +44,9 @@ pub fn build_scene(
     {
         problems.push(format!("lighting: {e}"));
     }
+    // The quality's shadow cap: shadows are a shading choice only (no images to find again).
+    let lighting = &mut scene.shading.lighting;
+    lighting.shadows = lighting.shadows.min(settings.quality.max_shadows());
     problems.extend(objects.iter().enumerate().filter_map(|(i, o)| {
         scene
             .place(space, *o)

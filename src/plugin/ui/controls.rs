@@ -66,6 +66,13 @@ pub(super) fn lighting_controls(
         ui.checkbox(&mut wanted.tail, "the images beyond, by their mean");
     }
     ui.add(egui::Slider::new(&mut wanted.shadows, 0..=16).text("shadowed images"));
+    let cap = settings.quality.max_shadows();
+    if wanted.shadows > cap {
+        ui.weak(format!(
+            "capped at {cap} by the {:?} quality",
+            settings.quality
+        ));
+    }
     if wanted != current && wanted.check().is_ok() {
         settings.lighting = Some(wanted);
     }
