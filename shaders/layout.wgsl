@@ -139,6 +139,13 @@ struct SpaceUniform {
     // The light's position.
     product_light: vec4<f32>,
     product_objects: array<ProductObject, #{PRODUCT_OBJECTS}>,
+#ifdef PRODUCT_IMAGES
+    // The images summed, the tail's share of light, the reach, the images shadowed (Rust:
+    // `trace::product::lighting::product_gather`).
+    product_lighting: vec4<f32>,
+    // The lamp's images in the cover, nearest the cell's centre first.
+    product_images: array<vec4<f32>, #{PRODUCT_IMAGES}>,
+#endif
 #endif
 #ifdef WALLS
     // Per face: the covector scaled to a unit normal (N̂·X̂ = S(signed distance)).

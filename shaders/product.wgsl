@@ -517,6 +517,122 @@ fn light_spread(db: f32, dz: f32) -> f32 {
     return (db * db + dz * dz) * max(ratio, 0.0);
 }
 
+#ifdef PRODUCT_SHADOWS
+// Whether an object lies on the geodesic from the ray's start within `length`: a shadow ray
+// walked through the faces as a camera ray is; one that runs out of crossings is clear
+// (Rust: `product_occluded`).
+fn product_occluded(start: Ray, length: f32) -> bool {
+    let budget = u32(space.shading.params.w);
+    var ray = start;
+    var travelled = 0.0;
+    var skip = NONE;
+    var crossings = 0u;
+    var steps = 0u;
+    for (var guard = 0u; guard < 4u * budget + 256u; guard += 1u) {
+        if travelled >= length {
+            return false;
+        }
+        let exit = product_exit(ray, skip);
+        if exit.face == NONE {
+            return false;
+        }
+        let t_max = min(exit.distance, length - travelled);
+        for (var i = 0u; i < min(u32(space.product.y), #{PRODUCT_OBJECTS}u); i += 1u) {
+            if first_meeting(i, ray, t_max) < FAR {
+                return true;
+            }
+        }
+        if exit.distance >= length - travelled {
+            return false;
+        }
+        travelled += exit.distance;
+        ray = product_cross(ray, exit);
+        skip = select(NONE, partner(exit.face), exit.face < face_count());
+        if exit.face == CAP {
+            steps += 1u;
+            if steps > 64u {
+                return false;
+            }
+            continue;
+        }
+        steps = 0u;
+        crossings += 1u;
+        if crossings > budget {
+            return false;
+        }
+    }
+    return false;
+}
+#endif
+
+#ifdef PRODUCT_IMAGES
+// One geodesic's light at x from an image: h along the surface in the unit direction u, dz
+// up; Lambert's cosine, the fog's absorption, the falloff r² |S(h)|/h held at 1 or more,
+// unless the k-th image is shadowed (Rust: `trace::product::lighting::paths_to` and
+// `product_gather`).
+fn path_light(x: vec4<f32>, normal: vec4<f32>, h: f32, u: vec4<f32>, dz: f32, k: u32) -> f32 {
+    let info = space.product_lighting;
+    let r = sqrt(h * h + dz * dz);
+    if !(r > 0.0) || r > info.z {
+        return 0.0;
+    }
+    let l = (u * h + vec4<f32>(0.0, 0.0, dz, 0.0)) / r;
+    let cosine = base_form(normal, l) + normal.z * l.z;
+    if cosine <= 0.0 {
+        return 0.0;
+    }
+    var spread = r * r;
+    if h >= 1.0e-4 {
+        spread = r * r * abs(cs(h).y) / h;
+    }
+#ifdef PRODUCT_SHADOWS
+    let offset = 1.0e-3;
+    if k < u32(info.w) && r > offset {
+        let start = moved(Ray(x, l), offset, false, 0.0, 1.0);
+        if product_occluded(normalized(start), r - offset) {
+            return 0.0;
+        }
+    }
+#endif
+    return cosine * exp(-r / space.shading.params.x) / max(spread, 1.0);
+}
+
+// The light at x (unit normal `normal`) along every geodesic to each image of the lamp
+// within the reach, and the images beyond by their mean (Rust: `product_gather`).
+fn product_gather(x: vec4<f32>, normal: vec4<f32>) -> f32 {
+    let info = space.product_lighting;
+    var sum = info.y;
+    for (var k = 0u; k < min(u32(info.x), #{PRODUCT_IMAGES}u); k += 1u) {
+        let q = space.product_images[k];
+        let rho = surface_distance(x, q);
+        let away = away_from(x, q);
+        let dz = q.z - x.z;
+#ifdef SPHERICAL
+        // On the antipodal fibre every way round has a whole cone of directions.
+        if rho > 3.14159265 - 1.0e-3 {
+            continue;
+        }
+        sum += path_light(x, normal, rho, -away, dz, k);
+        if rho < 1.0e-3 {
+            continue;
+        }
+        // Each way round the great circle, until past the reach.
+        for (var n = 1.0; n < 64.0; n += 1.0) {
+            let back = 6.28318531 * n - rho;
+            if back * back + dz * dz > info.z * info.z {
+                break;
+            }
+            sum += path_light(x, normal, back, away, dz, k);
+            sum += path_light(x, normal, back + 2.0 * rho, -away, dz, k);
+        }
+#else
+        sum += path_light(x, normal, rho, -away, dz, k);
+#endif
+    }
+    return sum;
+}
+#endif
+
 // One camera ray's colour: the nearest object in each segment of the walk, shaded with the
 // light (Lambert, the product's falloff, never more than at distance 1) and fog; the
 // fog colour past the cut-off or the crossing budget (Rust: `trace_product_pixel`).
@@ -572,11 +688,19 @@ fn trace_product(start: Ray) -> vec3<f32> {
                 // A flat piece is lit on the side the ray comes from.
                 normal = -normal;
             }
-            let light = space.product_light;
-            let to_light = tangent_towards(at, light);
-            let spread = light_spread(surface_distance(at, light), at.z - light.z);
-            let lambert = max(base_form(normal, to_light) + normal.z * to_light.z, 0.0);
-            let lit = ambient + (1.0 - ambient) * lambert / max(spread, 1.0);
+#ifdef PRODUCT_IMAGES
+            let light = product_gather(at, normal);
+#else
+            // The older model: the lamp in the cell only, unabsorbed.
+            let to_light = tangent_towards(at, space.product_light);
+            let spread = light_spread(
+                surface_distance(at, space.product_light),
+                at.z - space.product_light.z,
+            );
+            let light = max(base_form(normal, to_light) + normal.z * to_light.z, 0.0)
+                / max(spread, 1.0);
+#endif
+            let lit = ambient + (1.0 - ambient) * light;
             var surface = min(space.product_objects[object].colour.rgb * lit, vec3<f32>(1.0));
 #ifdef COLOUR_BY
             surface = recolour(colour_by_tint(crossings, last_face, held), surface);

@@ -93,6 +93,7 @@ pub(crate) struct ProductKey {
     colour_by: crate::scene::ColourBy,
     max_crossings: Option<u32>,
     quality: crate::plugin::components::Quality,
+    lighting: Option<crate::scene::lighting::Lighting>,
     /// Whether a base scene is shown (its changes are caught by change detection).
     base: bool,
 }
@@ -121,6 +122,20 @@ pub fn product_scene(
     // The walls set here, else the base scene's own; an opening of 1 turns them off.
     scene.walls = settings.walls.or(scene.walls).filter(|w| w.opening < 1.0);
     scene.colour_by = settings.colour_by;
+    // The lighting set here, else the base scene's own, its shadows capped by the quality.
+    let mut lighting = settings.lighting.unwrap_or(scene.lighting);
+    lighting.shadows = lighting.shadows.min(settings.quality.max_shadows());
+    let same_images = lighting.paths == scene.lighting.paths
+        && lighting.reach_inradii == scene.lighting.reach_inradii;
+    if same_images {
+        // The images stay: only the tail or the shadows change.
+        scene.lighting = lighting;
+    } else {
+        let light = scene.light;
+        if let Err(e) = scene.set_lighting(&active.space, light, lighting) {
+            bevy::log::warn!("lighting: {e}");
+        }
+    }
     scene
 }
 
@@ -146,6 +161,7 @@ pub(crate) fn upload_product_scene(
         colour_by: settings.colour_by,
         max_crossings: settings.max_crossings,
         quality: settings.quality,
+        lighting: settings.lighting,
         base: base.is_some(),
     };
     let base_changed = base.as_ref().is_some_and(|b| b.is_changed());

@@ -144,7 +144,7 @@ pub(crate) fn colour(c: [f64; 3]) -> Result<DVec3, String> {
     Ok(v.max(DVec3::ZERO))
 }
 
-/// A scene file's `[lighting]` table (constant-curvature spaces): how the lamps light the
+/// A scene file's `[lighting]` table (either kind of space): how the lamps light the
 /// scene ([`crate::scene::lighting::Lighting`]).
 #[derive(serde::Deserialize)]
 #[serde(deny_unknown_fields)]

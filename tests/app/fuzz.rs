@@ -509,6 +509,31 @@ fn hostile_numbers_on_the_command_line() {
                 "--shadows",
                 "2",
             ],
+            // A product space's lighting at hostile values.
+            vec![
+                "render",
+                "bitorus-circle",
+                "--cpu",
+                "--size",
+                "16x9",
+                "--crossings",
+                "4",
+                "--light-reach",
+                value,
+                "--shadows",
+                "2",
+            ],
+            vec![
+                "render",
+                "sphere-circle-turn",
+                "--cpu",
+                "--size",
+                "16x9",
+                "--crossings",
+                "4",
+                "--shadows",
+                value,
+            ],
             // Walls at a hostile opening and opacity.
             vec![
                 "render",

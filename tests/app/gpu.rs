@@ -1321,6 +1321,36 @@ fn product_spaces_render_on_the_gpu_like_the_cpu_reference() {
             .count();
         assert!(shown > 20, "{id}: the discs change {shown} pixels");
         judge(&format!("{id}-discs"), &gpu, &cpu, &out, &mut failures);
+        // Every image shadowed by the discs and the ball, walked through the faces; and the
+        // older model, the lamp in the cell only.
+        for (name, lighting) in [
+            (
+                "shadows",
+                bevy_curved_spaces::scene::lighting::Lighting {
+                    shadows: 8,
+                    ..Default::default()
+                },
+            ),
+            (
+                "nearest",
+                bevy_curved_spaces::scene::lighting::Lighting::NEAREST,
+            ),
+        ] {
+            let mut lit = floors.clone();
+            lit.set_lighting(&space, floors.light, lighting)
+                .unwrap_or_else(|e| panic!("{e}"));
+            let cpu_lit = render_product(&space, &lit, &camera, w, h, 24);
+            let gpu = renderer
+                .render_product(&space, &lit, &camera, (w, h), 24)
+                .unwrap_or_else(|e| panic!("{id} with {name}: {e}"));
+            let changed = cpu_lit
+                .pixels()
+                .zip(cpu.pixels())
+                .filter(|(p, q)| p != q)
+                .count();
+            assert!(changed > 20, "{id}: {name} changes {changed} pixels");
+            judge(&format!("{id}-{name}"), &gpu, &cpu_lit, &out, &mut failures);
+        }
         // Walls with windows half open: panels met where the ray crosses a face.
         let mut walled = scene.clone();
         walled.walls = Some(bevy_curved_spaces::scene::WallStyle::new(0.5).expect("style"));

@@ -25,6 +25,7 @@ mod objects;
 mod player;
 #[cfg(feature = "scene-files")]
 mod product_flight;
+mod product_lighting;
 mod product_motion;
 mod product_player;
 #[cfg(feature = "scene-files")]

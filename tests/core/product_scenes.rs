@@ -120,6 +120,29 @@ fn the_shipped_product_scene_loads_and_fits_in_its_cell() {
     assert!(file.scene.light.is_finite() && file.space.outside_by(file.scene.light) < 0.0);
 }
 
+/// A product scene file's `[lighting]` lights its lamp by its images within the reach (in
+/// units of the scale), the light moved by the file found again.
+#[test]
+fn a_product_scene_file_chooses_its_lighting() {
+    use bevy_curved_spaces::scene::lighting::LightPaths;
+    let text = "space = \"bitorus-circle\"\n[[light]]\nposition = [0.2, 0.1, -0.3]\n\
+                [lighting]\nreach = 3\nshadows = 6\ntail = false\n";
+    let file = parse_product_scene(text, "l.toml").unwrap();
+    let l = file.scene.lighting;
+    assert_eq!((l.paths, l.shadows, l.tail), (LightPaths::Images, 6, false));
+    assert!((file.scene.lamp.reach - 3.0 * file.space.scale()).abs() < 1e-12);
+    // The first image is the lamp itself, where the file put it.
+    let first = file.scene.lamp.images[0];
+    assert!((first - file.scene.light).length() < 1e-12, "{first}");
+    let nearest = parse_product_scene(
+        "space = \"bitorus-circle\"\n[lighting]\npaths = \"nearest\"\n",
+        "n.toml",
+    )
+    .unwrap();
+    assert_eq!(nearest.scene.lighting.paths, LightPaths::Nearest);
+    assert!(nearest.scene.lamp.images.is_empty());
+}
+
 #[test]
 fn a_geodesic_object_runs_through_both_its_points() {
     for id in ["bitorus-circle", "sphere-circle"] {
@@ -206,6 +229,21 @@ fn product_scene_file_errors_name_the_line() {
             "space = \"bitorus-circle\"\n[[light]]\nposition = [0, 0, 5]\n",
             2,
             "the light",
+        ),
+        (
+            "space = \"bitorus-circle\"\n[lighting]\npaths = \"all\"\n",
+            3,
+            "\"images\" or \"nearest\"",
+        ),
+        (
+            "space = \"bitorus-circle\"\n[lighting]\nshadows = 65\n",
+            3,
+            "shadows must be 0 to 64",
+        ),
+        (
+            "space = \"bitorus-circle\"\n[lighting]\nreach = 0\n",
+            3,
+            "light reach",
         ),
         (
             "space = \"bitorus-circle\"\n[start]\nposition = [0.1, 0, 0]\nlook_at = [0.1, 0, 0]\n",

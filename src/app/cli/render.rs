@@ -176,12 +176,9 @@ fn render_product_command(args: &RenderArgs, chosen: ProductChoice) -> Result<()
         );
     }
     if args.view.light.any() {
-        return Err(
-            "the light switches (--light-paths, --light-reach, --no-light-tail, --shadows) are \
-             not available in the product spaces (H²×R, S²×R) yet: they light by the nearest \
-             copy of the lamp"
-                .into(),
-        );
+        let lighting = args.view.light.lighting(scene.lighting);
+        let light = scene.light;
+        scene.set_lighting(&space, light, lighting)?;
     }
     scene.colour_by = args.view.colour_by.into();
     if let Some(fog) = args.fog {

@@ -309,10 +309,6 @@ fn walk_product(args: &WalkArgs, chosen: super::render::ProductChoice) -> Result
         (args.replay.is_some(), "--replay"),
         (args.record.is_some(), "--record"),
         (args.xr, "--xr"),
-        (
-            args.view.light.any(),
-            "--light-paths, --light-reach, --no-light-tail or --shadows",
-        ),
     ] {
         if given {
             return Err(format!(
@@ -330,6 +326,7 @@ fn walk_product(args: &WalkArgs, chosen: super::render::ProductChoice) -> Result
         render.scene = args.scene.clone();
         render.fog = args.fog;
         render.crossings = args.crossings.map(|c| c as usize);
+        render.view.light = args.view.light;
         if !gpu_available() {
             eprintln!("no GPU adapter found: using the CPU reference renderer");
             render.cpu = true;
@@ -353,10 +350,23 @@ fn walk_product(args: &WalkArgs, chosen: super::render::ProductChoice) -> Result
         active.space.name()
     ))));
     app.insert_resource(active);
+    // The light switches over the scene file's lighting (or the default).
+    let lighting = if args.view.light.any() {
+        let lighting = args.view.light.lighting(
+            chosen
+                .base
+                .as_ref()
+                .map_or_else(Default::default, |b| b.scene.lighting),
+        );
+        lighting.check()?;
+        Some(lighting)
+    } else {
+        None
+    };
     if let Some(base) = chosen.base {
         app.insert_resource(base);
     }
-    add_walk_plugins(&mut app, args, stereo, None, None).add_systems(
+    add_walk_plugins(&mut app, args, stereo, None, lighting).add_systems(
         Startup,
         |mut commands: Commands| {
             commands.spawn((Camera3d::default(), CurvedSpaceCamera::default()));

@@ -94,9 +94,13 @@ pub fn scene_with_parts(space: &ProductSpace, parts: ProductParts) -> ProductSce
         });
     }
     let (c, s) = g.cs(0.5 * size);
+    let light = DVec4::new(s * 0.8, s * 0.6, 0.3 * h, c);
+    let lighting = crate::scene::lighting::Lighting::default();
     ProductScene {
         objects,
-        light: DVec4::new(s * 0.8, s * 0.6, 0.3 * h, c),
+        light,
+        lighting,
+        lamp: super::lighting::ProductLamp::new(space, light, &lighting),
         ambient: 0.3,
         fog_distance: 3.0 * size.max(0.5 * h),
         fog_colour: DVec3::new(0.04, 0.05, 0.08),

@@ -28,6 +28,12 @@
 //!
 //! [[light]]               # one light at most (the default scene's where there is none)
 //! position = [0.3, 0.2, 0.3]
+//!
+//! [lighting]              # as in the constant-curvature files (docs/light.md)
+//! paths = "images"        # every image of the lamp in the cover, or "nearest"
+//! reach = 2.0             # in units of the scale
+//! tail = true
+//! shadows = 8             # shadowed images
 //! ```
 //!
 //! Every object must fit in the cell (its distance from each face at least its radius;
@@ -42,7 +48,7 @@ use super::{
 use crate::geometry::Geometry;
 use crate::scene::file::SceneFileError;
 use crate::scene::file_support::{
-    ambient_of, colour, failing, parse_toml, read_scene_text, walls_of,
+    LightingSpec, ambient_of, colour, failing, lighting_of, parse_toml, read_scene_text, walls_of,
 };
 use crate::space::product::motion::camera_frame;
 use crate::space::product::{ProductOrFlat, ProductSpace, product_space};
@@ -100,6 +106,11 @@ const KEYS: &[&str] = &[
     "corners",
     "bottom",
     "top",
+    "lighting",
+    "paths",
+    "reach",
+    "tail",
+    "shadows",
 ];
 
 fn default_true() -> bool {
@@ -128,6 +139,7 @@ struct FileSpec {
     objects: Vec<Spanned<ObjectSpec>>,
     #[serde(default, rename = "light")]
     lights: Vec<Spanned<LightSpec>>,
+    lighting: Option<Spanned<LightingSpec>>,
 }
 
 #[derive(Deserialize)]
@@ -307,6 +319,15 @@ pub fn parse_product_scene(text: &str, file: &str) -> Result<ProductSceneFile, S
         }
         scene.objects.extend(made);
     }
+    // The lamp's images, for the file's light and lighting.
+    let lighting = match &spec.lighting {
+        Some(l) => lighting_of(l).map_err(|(s, m)| fail(Some(s), m))?,
+        None => scene.lighting,
+    };
+    let light = scene.light;
+    scene
+        .set_lighting(&space, light, lighting)
+        .map_err(|m| fail(spec.lighting.as_ref().map(Spanned::span), m))?;
     let start = match &spec.start {
         Some(s) => Some(start_camera(&space, s.get_ref()).map_err(|m| fail(Some(s.span()), m))?),
         None => None,

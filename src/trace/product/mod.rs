@@ -21,6 +21,7 @@ mod default_scene;
 pub mod file;
 #[cfg(feature = "scene-files")]
 pub mod flight;
+pub mod lighting;
 pub mod triangle;
 pub mod walls;
 
@@ -75,6 +76,12 @@ pub struct ProductScene {
     pub objects: Vec<ProductObject>,
     /// The light's position.
     pub light: DVec4,
+    /// How the light is gathered: along every image ([`lighting`]) or from the nearest
+    /// copy; set with [`ProductScene::set_lighting`], which finds the images again.
+    pub lighting: crate::scene::lighting::Lighting,
+    /// The light's images in the cover ([`lighting::ProductLamp`]), found for `light` and
+    /// `lighting` by [`ProductScene::set_lighting`].
+    pub lamp: lighting::ProductLamp,
     /// Ambient share of the light.
     pub ambient: f64,
     /// Fog distance scale λ: a surface at distance `d` keeps `e^(−d/λ)` of its colour.
@@ -89,6 +96,21 @@ pub struct ProductScene {
 }
 
 impl ProductScene {
+    /// Lights the scene as `lighting` says, the lamp at `light`: finds the lamp's images
+    /// within the reach again. The message names a setting out of range.
+    pub fn set_lighting(
+        &mut self,
+        space: &ProductSpace,
+        light: DVec4,
+        lighting: crate::scene::lighting::Lighting,
+    ) -> Result<(), String> {
+        lighting.check()?;
+        self.light = light;
+        self.lighting = lighting;
+        self.lamp = lighting::ProductLamp::new(space, light, &lighting);
+        Ok(())
+    }
+
     /// The distance past which a surface keeps under half a colour step of its own colour
     /// through the fog (`λ ln 510`): rays stop there.
     #[must_use]
@@ -515,6 +537,57 @@ fn walk_to_hit<'a>(
     ProductRayEnd::Fog
 }
 
+/// Whether an object of the scene lies on the geodesic from `start` within `length`: a
+/// shadow ray, walked through the faces as a camera ray is. Any object met ends it; one
+/// that runs out of crossings counts as clear.
+#[must_use]
+pub fn product_occluded(
+    walker: &ProductWalker<DVec4>,
+    scene: &ProductScene,
+    start: Ray<DVec4>,
+    length: f64,
+    max_crossings: usize,
+) -> bool {
+    let g = walker.base;
+    let mut ray = walker.normalized(start);
+    let mut distance = 0.0;
+    let mut skip = None;
+    let (mut crossings, mut steps) = (0usize, 0usize);
+    while distance < length {
+        let Some(exit) = walker.exit(&ray, skip) else {
+            return false;
+        };
+        let t_max = exit.distance.min(length - distance);
+        if scene
+            .objects
+            .iter()
+            .any(|o| first_meeting(g, o, &ray, t_max).is_some())
+        {
+            return true;
+        }
+        if exit.distance >= length - distance {
+            return false;
+        }
+        let (next, _) = walker.cross(&ray, &exit);
+        distance += exit.distance;
+        skip = walker.entered(&exit);
+        ray = next;
+        if exit.face == NO_FACE {
+            steps += 1;
+            if steps > 64 {
+                return false;
+            }
+            continue;
+        }
+        steps = 0;
+        crossings += 1;
+        if crossings > max_crossings {
+            return false;
+        }
+    }
+    false
+}
+
 /// The product's falloff of a point light: the area, per unit solid angle at the light, of
 /// the geodesic sphere through a point `db` away on the surface and `dz` along the fibre.
 ///
@@ -579,14 +652,11 @@ pub fn trace_product_pixel(
         // A flat piece is lit on the side the ray comes from.
         normal = -normal;
     }
-    let to_light = tangent_towards(g, at, scene.light);
-    let lambert = dot(g, normal, to_light).max(0.0);
-    let spread = light_spread(
-        g,
-        surface_distance(g, at, scene.light),
-        at.z - scene.light.z,
-    );
-    let lit = scene.ambient + (1.0 - scene.ambient) * lambert / spread.max(1.0);
+    let mut occluded = |point, tangent, length| {
+        product_occluded(walker, scene, Ray { point, tangent }, length, max_crossings)
+    };
+    let light = lighting::product_gather(g, scene, at, normal, &mut occluded);
+    let lit = scene.ambient + (1.0 - scene.ambient) * light;
     let mut surface = (object.colour * lit).min(DVec3::ONE);
     if scene.colour_by != crate::scene::ColourBy::Shading {
         let tint = scene.colour_by.tint(g, crossings, last_face, held);

@@ -65,6 +65,11 @@ pub struct ShaderKey {
     pub product: bool,
     /// The objects of a product scene (shader def `PRODUCT_OBJECTS`).
     pub product_objects: u32,
+    /// The lamp's images a product scene sums (shader def `PRODUCT_IMAGES`; 0: the older
+    /// model, the lamp in the cell only).
+    pub product_images: u32,
+    /// Whether a product scene walks shadow rays (shader def `PRODUCT_SHADOWS`).
+    pub product_shadows: bool,
 }
 
 /// The vec4s of one product object in the uniform (shape, info, colour and three more).
@@ -101,6 +106,8 @@ impl ShaderKey {
             straightforward: false,
             product: false,
             product_objects: 0,
+            product_images: 0,
+            product_shadows: false,
         }
     }
 
@@ -131,6 +138,15 @@ impl ShaderKey {
                 "PRODUCT_OBJECTS".into(),
                 self.product_objects.max(1),
             ));
+            if self.product_images > 0 {
+                defs.push(ShaderDefVal::UInt(
+                    "PRODUCT_IMAGES".into(),
+                    self.product_images,
+                ));
+                if self.product_shadows {
+                    defs.push("PRODUCT_SHADOWS".into());
+                }
+            }
         }
         if self.straightforward {
             defs.push("STRAIGHTFORWARD".into());
@@ -267,6 +283,11 @@ impl ShaderKey {
             + if self.general { vec4 } else { 0 }
             + if self.product {
                 (2 + PRODUCT_OBJECT_VEC4S * count(self.product_objects.max(1))) * vec4
+                    + if self.product_images > 0 {
+                        (1 + count(self.product_images)) * vec4
+                    } else {
+                        0
+                    }
             } else {
                 0
             }

@@ -335,6 +335,8 @@ impl GpuScene {
             straightforward: false,
             product: false,
             product_objects: 0,
+            product_images: 0,
+            product_shadows: false,
         };
         let bytes = key.uniform_bytes();
         if bytes > MAX_UNIFORM_BYTES {

@@ -7,7 +7,9 @@ use super::VIEW_WORDS;
 use super::key::PRODUCT_OBJECT_VEC4S;
 use super::{DataSources, GpuScene, GpuSceneError, MAX_UNIFORM_BYTES, ShaderKey};
 use crate::plugin::render::layout::{GpuShading, UniformWriter, Vec4F, colour, vec4};
+use crate::scene::lighting::LightPaths;
 use crate::space::product::{ProductSpace, ProductWalker};
+use crate::trace::product::lighting::product_tail_fluence;
 use crate::trace::product::triangle::ProductTriangle;
 use crate::trace::product::walls::ProductWalls;
 use crate::trace::product::{ProductScene, ProductShape};
@@ -29,6 +31,12 @@ impl GpuScene {
         let walls = scene
             .walls
             .and_then(|style| ProductWalls::new(space, style, crate::scene::DEFAULT_CUTOFF_WEIGHT));
+        // The lamp's images (none in the older model), the shadowed ones among them.
+        let images = match scene.lighting.paths {
+            LightPaths::Images => &scene.lamp.images[..],
+            LightPaths::Nearest => &[],
+        };
+        let shadows = (scene.lighting.shadows as usize).min(images.len());
         let key = ShaderKey {
             walls: walls.is_some(),
             faces: sides as u32,
@@ -36,6 +44,8 @@ impl GpuScene {
             product: true,
             product_objects: scene.objects.len() as u32,
             colour_by: scene.colour_by.index(),
+            product_images: images.len() as u32,
+            product_shadows: shadows > 0,
             ..ShaderKey::empty(space.base())
         };
         let bytes = key.uniform_bytes();
@@ -127,6 +137,22 @@ impl GpuScene {
         }
         if scene.objects.is_empty() {
             out.push(&[[0.0f32; 4]; PRODUCT_OBJECT_VEC4S]);
+        }
+        if !images.is_empty() {
+            let tail = if scene.lighting.tail {
+                0.25 * product_tail_fluence(scene.lamp.reach, scene.fog_distance, scene.lamp.volume)
+            } else {
+                0.0
+            };
+            out.push(&vec4(DVec4::new(
+                images.len() as f64,
+                tail,
+                scene.lamp.reach,
+                shadows as f64,
+            )));
+            for q in images {
+                out.push(&vec4(*q));
+            }
         }
         // The walls: per face slot the side's midpoint, the colour and margin (a huge
         // number for a solid wall), the opacity and half the side's length; then the share
