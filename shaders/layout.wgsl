@@ -38,7 +38,7 @@ struct Light {
     // Colour × power (rgb), number of images in use.
     colour: vec4<f32>,
     // The reach within which images are summed, the tail's irradiance (¼ of its mean
-    // fluence), unused ×2.
+    // fluence), S(the lamp's radius) for soft shadows (0: a point), unused.
     info: vec4<f32>,
     // LIGHT_IMAGES_SUM: the images in the cover, nearest the origin first; otherwise the
     // light and its images under the pairings (a point is lit by the nearest).

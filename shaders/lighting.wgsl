@@ -5,7 +5,7 @@
 #define_import_path curved_spaces::lighting
 
 #import curved_spaces::layout::{kappa, space}
-#import curved_spaces::geometry::{distance, distance_from_ratio, form, project_point, s_of, tangent_towards, unit_tangent}
+#import curved_spaces::geometry::{distance, distance_from_ratio, form, project_point, project_tangent, s_of, tangent_towards, unit_tangent}
 #ifdef SHADOWS
 #import curved_spaces::walk::{NO_FACE, Ray, cross_face, exit_face, partner}
 #import curved_spaces::scene::{intersect_scene}
@@ -71,6 +71,103 @@ fn occluded(point: vec4<f32>, l: vec4<f32>, length: f32) -> bool {
     }
     return false;
 }
+
+#ifdef SOFT_SHADOWS
+// Successive samples of the Fibonacci spiral turn by it (Rust: `GOLDEN_ANGLE`).
+const GOLDEN_ANGLE: f32 = 2.3999632;
+
+// The longest of the coordinate axes' tangent parts at `point` with `l` and `e` taken off,
+// normalised (Rust: `tangent_frame`, first `e = 0`, then the first axis found).
+fn frame_axis(point: vec4<f32>, l: vec4<f32>, e: vec4<f32>) -> vec4<f32> {
+    var best = vec4<f32>(0.0);
+    var best_n = -1.0;
+    for (var i = 0u; i < 4u; i += 1u) {
+        var a = vec4<f32>(0.0);
+        a[i] = 1.0;
+        var v = project_tangent(point, a);
+        v -= l * form(v, l);
+        v -= e * form(v, e);
+        let n = form(v, v);
+        if n > best_n {
+            best_n = n;
+            best = v;
+        }
+    }
+    return best * inverseSqrt(best_n);
+}
+
+// The shadow rays towards a lamp of S(radius) `s_r` whose centre lies `length` along `l`
+// (Rust: `shadow_directions`): the frame about `l`, found once, and `versine`, 1 − cos α,
+// α the lamp disc's angular radius; then sample `j` of the Fibonacci spiral over the disc.
+struct SoftFrame {
+    e1: vec4<f32>,
+    e2: vec4<f32>,
+    versine: f32,
+}
+
+fn soft_frame(point: vec4<f32>, l: vec4<f32>, length: f32, s_r: f32) -> SoftFrame {
+    let e1 = frame_axis(point, l, vec4<f32>(0.0));
+    let e2 = frame_axis(point, l, e1);
+    let sin_a = min(s_r / abs(s_of(length)), 1.0);
+    let sin2 = sin_a * sin_a;
+    return SoftFrame(e1, e2, sin2 / (1.0 + sqrt(1.0 - sin2)));
+}
+
+// Sample `j`, spread evenly by solid angle: 1 − cos θ = u (1 − cos α).
+fn soft_direction(point: vec4<f32>, l: vec4<f32>, f: SoftFrame, j: u32) -> vec4<f32> {
+    let u = (f32(j) + 0.5) / f32(#{SOFT_SHADOWS}u);
+    let theta = 2.0 * asin(sqrt(0.5 * u * f.versine));
+    let phi = f32(j) * GOLDEN_ANGLE;
+    let v = l * cos(theta) + (f.e1 * cos(phi) + f.e2 * sin(phi)) * sin(theta);
+    return unit_tangent(point, v);
+}
+#endif
+
+// The share of lamp `i` seen from `point` along `l`, its centre `length` away: the shadow
+// rays over its disc that reach it (one, to its centre, for a point lamp).
+fn seen(i: u32, point: vec4<f32>, l: vec4<f32>, length: f32) -> f32 {
+#ifdef SOFT_SHADOWS
+    let s_r = space.lights[i].info.z;
+    if s_r > 0.0 {
+        let f = soft_frame(point, l, length, s_r);
+        var open = 0.0;
+        for (var j = 0u; j < #{SOFT_SHADOWS}u; j += 1u) {
+            if !occluded(point, soft_direction(point, l, f, j), length) {
+                open += 1.0;
+            }
+        }
+        return open / f32(#{SOFT_SHADOWS}u);
+    }
+#endif
+    return select(1.0, 0.0, occluded(point, l, length));
+}
+
+#ifdef SPHERICAL
+// Whether the short arc along `v` (`length`) and the long one the other way round the same
+// great circle are open: (short, long, both) as 0 or 1.
+fn arcs_open(point: vec4<f32>, v: vec4<f32>, length: f32) -> vec3<f32> {
+    let a = !occluded(point, v, length);
+    let b = !occluded(point, -v, TAU - length);
+    return vec3<f32>(select(0.0, 1.0, a), select(0.0, 1.0, b), select(0.0, 1.0, a && b));
+}
+
+// In S³, the shares of lamp `i` seen along the short arcs (`length` along `l`), along the
+// long ones and along both (a whole turn passes both).
+fn seen_arcs(i: u32, point: vec4<f32>, l: vec4<f32>, length: f32) -> vec3<f32> {
+#ifdef SOFT_SHADOWS
+    let s_r = space.lights[i].info.z;
+    if s_r > 0.0 {
+        let f = soft_frame(point, l, length, s_r);
+        var open = vec3<f32>(0.0);
+        for (var j = 0u; j < #{SOFT_SHADOWS}u; j += 1u) {
+            open += arcs_open(point, soft_direction(point, l, f, j), length);
+        }
+        return open / f32(#{SOFT_SHADOWS}u);
+    }
+#endif
+    return arcs_open(point, l, length);
+}
+#endif
 #endif
 
 // The light a surface point (unit normal `normal`) gets from lamp `i`, per unit of its
@@ -107,27 +204,17 @@ fn light_from(i: u32, point: vec4<f32>, normal: vec4<f32>) -> f32 {
             if short == 0.0 && long == 0.0 {
                 continue;
             }
-            var a = true;
-            var b = true;
+            // The shares seen along the short arcs, the long ones and both.
+            var open = vec3<f32>(1.0);
 #ifdef SHADOWS
             if walk {
-                a = !occluded(point, l, d);
-                b = !occluded(point, -l, TAU - d);
+                open = seen_arcs(i, point, l, d);
             }
 #endif
             let t = exp(-TAU / fog);
             let fs = short * exp(-d / fog);
             let fl = long * exp(-(TAU - d) / fog);
-            var paths = 0.0;
-            if a {
-                paths += fs;
-            }
-            if b {
-                paths += fl;
-            }
-            if a && b {
-                paths += (fs + fl) * t / (1.0 - t);
-            }
+            let paths = fs * open.x + fl * open.y + (fs + fl) * open.z * t / (1.0 - t);
             sum += paths * falloff;
             continue;
         }
@@ -135,12 +222,13 @@ fn light_from(i: u32, point: vec4<f32>, normal: vec4<f32>) -> f32 {
         let l = tangent_towards(point, q);
         let cos = max(form(normal, l), 0.0);
         if cos > 0.0 {
+            var open = 1.0;
 #ifdef SHADOWS
-            if walk && occluded(point, l, d) {
-                continue;
+            if walk {
+                open = seen(i, point, l, d);
             }
 #endif
-            sum += cos * exp(-d / fog) * falloff;
+            sum += cos * open * exp(-d / fog) * falloff;
         }
     }
     return sum + space.lights[i].info.y;
@@ -160,10 +248,10 @@ fn light_from(i: u32, point: vec4<f32>, normal: vec4<f32>) -> f32 {
         return 0.0;
     }
     let l = tangent_towards(point, at);
-    let cos = max(form(normal, l), 0.0);
+    var cos = max(form(normal, l), 0.0);
 #ifdef SHADOWS
-    if cos > 0.0 && occluded(point, l, dl) {
-        return 0.0;
+    if cos > 0.0 {
+        cos *= seen(i, point, l, dl);
     }
 #endif
     let s = max(abs(s_of(dl)), near_s);

@@ -125,6 +125,8 @@ pub fn product_scene(
     // The lighting set here, else the base scene's own, its shadows capped by the quality.
     let mut lighting = settings.lighting.unwrap_or(scene.lighting);
     lighting.shadows = lighting.shadows.min(settings.quality.max_shadows());
+    // The product spaces' lamp is a point (a radius set for the other spaces is left there).
+    lighting.lamp_radius_inradii = 0.0;
     let same_images = lighting.paths == scene.lighting.paths
         && lighting.reach_inradii == scene.lighting.reach_inradii;
     if same_images {

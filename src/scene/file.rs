@@ -463,6 +463,8 @@ const KEYS: &[&str] = &[
     "reach",
     "tail",
     "shadows",
+    "lamp_radius",
+    "soft_samples",
 ];
 
 /// A seed space by id, or a space file by path (relative to `base`).

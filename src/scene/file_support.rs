@@ -157,6 +157,10 @@ pub(crate) struct LightingSpec {
     tail: Option<bool>,
     /// How many of the nearest images are shadowed.
     shadows: Option<Spanned<i64>>,
+    /// The lamps' radius in inradii, for soft shadows (0: points).
+    lamp_radius: Option<Spanned<f64>>,
+    /// Shadow rays per shadowed image of a lamp with a radius (soft shadows).
+    soft_samples: Option<Spanned<i64>>,
 }
 
 /// The lighting of a `[lighting]` table: its keys over the defaults, each checked.
@@ -197,6 +201,25 @@ pub(crate) fn lighting_of(
                     ),
                 )
             })?;
+    }
+    if let Some(n) = &l.soft_samples {
+        lighting.soft_samples = u32::try_from(*n.get_ref())
+            .ok()
+            .filter(|n| (1..=Lighting::MAX_SOFT_SAMPLES).contains(n))
+            .ok_or_else(|| {
+                (
+                    n.span(),
+                    format!(
+                        "soft_samples must be 1 to {} shadow rays per image, got {}",
+                        Lighting::MAX_SOFT_SAMPLES,
+                        n.get_ref()
+                    ),
+                )
+            })?;
+    }
+    if let Some(a) = &l.lamp_radius {
+        lighting.lamp_radius_inradii = *a.get_ref();
+        lighting.check().map_err(|m| (a.span(), m))?;
     }
     let span = l.reach.as_ref().map_or_else(|| spec.span(), Spanned::span);
     lighting.check().map_err(|m| (span, m))?;

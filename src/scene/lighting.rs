@@ -87,6 +87,15 @@ pub struct Lighting {
     /// How many images of each lamp (those nearest the cell's centre) are walked for
     /// shadows; 0: none.
     pub shadows: u32,
+    /// The lamps' radius in inradii of the cell, for their shadows: 0, points (hard
+    /// shadows); more, balls whose discs the shadow rays spread over (soft shadows). Their
+    /// light still comes from their centres, and the falloff's floor is the shading's own
+    /// (`Shading::near_light`).
+    pub lamp_radius_inradii: f64,
+    /// Shadow rays per shadowed image of a lamp with a radius, spread over the lamp's disc
+    /// as seen from the lit point ([`shadow_directions`]). 1: one ray, to the lamp's centre
+    /// (a hard shadow). Point lamps always take one.
+    pub soft_samples: u32,
 }
 
 impl Default for Lighting {
@@ -96,6 +105,8 @@ impl Default for Lighting {
             reach_inradii: Self::DEFAULT_REACH_INRADII,
             tail: true,
             shadows: Self::DEFAULT_SHADOWS,
+            lamp_radius_inradii: 0.0,
+            soft_samples: Self::DEFAULT_SOFT_SAMPLES,
         }
     }
 }
@@ -110,6 +121,11 @@ impl Lighting {
     pub const DEFAULT_SHADOWS: u32 = 0;
     /// The most shadowed images per lamp.
     pub const MAX_SHADOWS: u32 = 64;
+    /// The default shadow rays per shadowed image of a lamp with a radius: 8
+    /// (`bench --lighting` and docs/light.md: the penumbra's error against 64 rays).
+    pub const DEFAULT_SOFT_SAMPLES: u32 = 8;
+    /// The most shadow rays per shadowed image.
+    pub const MAX_SOFT_SAMPLES: u32 = 64;
 
     /// The older model: the nearest copy, no tail, no shadows.
     pub const NEAREST: Self = Self {
@@ -117,7 +133,18 @@ impl Lighting {
         reach_inradii: Self::DEFAULT_REACH_INRADII,
         tail: false,
         shadows: 0,
+        lamp_radius_inradii: 0.0,
+        soft_samples: 1,
     };
+
+    /// The most a lamp's radius may be, in inradii: a lamp stays well inside the cell.
+    pub const MAX_LAMP_RADIUS_INRADII: f64 = 1.0;
+
+    /// The lamps' radius as a distance in `space`.
+    #[must_use]
+    pub fn lamp_radius(&self, space: &Space) -> f64 {
+        self.lamp_radius_inradii * inradius(space)
+    }
 
     /// The reach as a distance in `space`.
     #[must_use]
@@ -139,6 +166,20 @@ impl Lighting {
                 "at most {} shadowed images per light, got {}",
                 Self::MAX_SHADOWS,
                 self.shadows
+            ));
+        }
+        if !(0.0..=Self::MAX_LAMP_RADIUS_INRADII).contains(&self.lamp_radius_inradii) {
+            return Err(format!(
+                "a lamp's radius must be 0 to {} inradii, got {}",
+                Self::MAX_LAMP_RADIUS_INRADII,
+                self.lamp_radius_inradii
+            ));
+        }
+        if !(1..=Self::MAX_SOFT_SAMPLES).contains(&self.soft_samples) {
+            return Err(format!(
+                "soft shadows take 1 to {} shadow rays per image, got {}",
+                Self::MAX_SOFT_SAMPLES,
+                self.soft_samples
             ));
         }
         Ok(())
@@ -249,6 +290,11 @@ pub struct Light {
     pub reach: f64,
     /// The space's volume, the images' density in the cover (the tail beyond the reach).
     pub volume: f64,
+    /// The lamp's radius for its shadows ([`Lighting::lamp_radius`], set with the reach by
+    /// `CurvedScene::set_lighting`): 0, a point (hard shadows); more, a ball whose disc the
+    /// shadow rays spread over ([`Lighting::soft_samples`], [`shadow_directions`]). Its
+    /// light still comes from its centre.
+    pub radius: f64,
 }
 
 impl Light {
@@ -285,13 +331,21 @@ impl Light {
             cover,
             reach,
             volume: cell_volume(space),
+            radius: 0.0,
         }
+    }
+
+    /// The same lamp with a radius for its shadows ([`Light::radius`]).
+    #[must_use]
+    pub fn with_radius(self, radius: f64) -> Self {
+        Self { radius, ..self }
     }
 
     /// The same light with its images in the cover within `reach`.
     #[must_use]
     pub fn with_reach(&self, space: &Space, reach: f64) -> Self {
         Self::reaching(space, self.position, self.colour, self.power, reach)
+            .with_radius(self.radius)
     }
 
     /// The image nearest to `x` and its distance.
@@ -325,6 +379,20 @@ pub fn gather(
     };
     let lambert = |l: DVec4| g.form(normal, l).max(0.0);
     let shadows = lighting.shadows as usize;
+    let samples = if light.radius > 0.0 {
+        lighting.soft_samples.max(1)
+    } else {
+        1
+    };
+    // The share of the lamp's disc seen from the point along `l`, `length` away.
+    let seen = |l: DVec4, length: f64, occluded: &mut Occluded<'_>| -> f64 {
+        let dirs = shadow_directions(g, point, l, length, light.radius, samples);
+        let open = dirs
+            .iter()
+            .filter(|&&v| !shadowed(g, occluded, point, v, length))
+            .count();
+        open as f64 / dirs.len() as f64
+    };
     if lighting.paths == LightPaths::Nearest {
         let (at, dl) = light.nearest(g, point);
         if !(dl > 0.0) {
@@ -332,8 +400,8 @@ pub fn gather(
         }
         let l = g.tangent_towards(point, at);
         let cos = lambert(l);
-        if cos > 0.0 && shadows > 0 && shadowed(g, occluded, point, l, dl) {
-            return 0.0;
+        if cos > 0.0 && shadows > 0 {
+            return cos * seen(l, dl, occluded) / s2(dl);
         }
         return cos / s2(dl);
     }
@@ -355,25 +423,32 @@ pub fn gather(
                 continue;
             }
             let t = (-TAU / fog).exp();
-            let a = !walk || !shadowed(g, occluded, point, l, d);
-            let b = !walk || !shadowed(g, occluded, point, -l, TAU - d);
+            // The shares of the lamp seen along the short arcs, the long ones, and both
+            // (a whole turn passes both arcs of the same great circle).
+            let (a, b, both) = if walk {
+                let dirs = shadow_directions(g, point, l, d, light.radius, samples);
+                let (mut a, mut b, mut both) = (0.0, 0.0, 0.0);
+                for v in &dirs {
+                    let short_open = !shadowed(g, occluded, point, *v, d);
+                    let long_open = !shadowed(g, occluded, point, -*v, TAU - d);
+                    a += f64::from(u8::from(short_open));
+                    b += f64::from(u8::from(long_open));
+                    both += f64::from(u8::from(short_open && long_open));
+                }
+                let n = dirs.len() as f64;
+                (a / n, b / n, both / n)
+            } else {
+                (1.0, 1.0, 1.0)
+            };
             let fs = short * absorbed(d);
             let fl = long * absorbed(TAU - d);
-            let mut paths = 0.0;
-            if a {
-                paths += fs;
-            }
-            if b {
-                paths += fl;
-            }
-            if a && b {
-                paths += (fs + fl) * t / (1.0 - t);
-            }
+            let paths = fs * a + fl * b + (fs + fl) * both * t / (1.0 - t);
             sum += paths / s2(d);
         } else {
             let cos = lambert(l);
-            if cos > 0.0 && !(walk && shadowed(g, occluded, point, l, d)) {
-                sum += cos * absorbed(d) / s2(d);
+            if cos > 0.0 {
+                let open = if walk { seen(l, d, occluded) } else { 1.0 };
+                sum += cos * open * absorbed(d) / s2(d);
             }
         }
     }
@@ -381,6 +456,69 @@ pub fn gather(
         sum += 0.25 * tail_fluence(g, light.reach, fog, light.volume);
     }
     sum
+}
+
+/// The directions of the shadow rays from `point` towards a lamp of `radius` whose centre
+/// lies `distance` away along the unit tangent `l`: `samples` of them, spread evenly by
+/// solid angle over the cone of half-angle `α`, `sin α = S(radius)/|S(distance)|` (the
+/// lamp's disc as seen from the point: the law of sines of a right geodesic triangle, in
+/// each geometry), on a Fibonacci spiral: sample `j` is `θ` from `l` with
+/// `1 − cos θ = u (1 − cos α)`, `u = (j + ½)/n`, turned `j` golden angles about it. One
+/// sample, or a lamp without a radius, gives `l` itself. The shader builds the same
+/// directions (`soft_direction` in `shaders/lighting.wgsl`).
+#[must_use]
+pub fn shadow_directions(
+    g: Geometry,
+    point: DVec4,
+    l: DVec4,
+    distance: f64,
+    radius: f64,
+    samples: u32,
+) -> Vec<DVec4> {
+    if samples <= 1 || !(radius > 0.0) {
+        return vec![l];
+    }
+    let sin_alpha = (g.s(radius) / g.s(distance).abs()).min(1.0);
+    // 1 − cos α without cancellation.
+    let versine = sin_alpha * sin_alpha / (1.0 + (1.0 - sin_alpha * sin_alpha).sqrt());
+    let (e1, e2) = tangent_frame(g, point, l);
+    (0..samples)
+        .map(|j| {
+            let u = (f64::from(j) + 0.5) / f64::from(samples);
+            // 1 − cos θ = 2 sin²(θ/2).
+            let theta = 2.0 * (0.5 * u * versine).sqrt().asin();
+            let phi = f64::from(j) * GOLDEN_ANGLE;
+            let v = l * theta.cos() + (e1 * phi.cos() + e2 * phi.sin()) * theta.sin();
+            g.unit_tangent(point, v)
+        })
+        .collect()
+}
+
+/// The golden angle, `π (3 − √5)`: successive samples of a Fibonacci spiral turn by it.
+pub const GOLDEN_ANGLE: f64 = 2.399_963_229_728_653;
+
+/// Two unit tangents at `point` orthogonal to the unit tangent `l` and to each other (in the
+/// geometry's form): of the coordinate axes' tangent parts, with `l` taken off, the longest,
+/// then of the rest, with the first taken off too, the longest.
+fn tangent_frame(g: Geometry, point: DVec4, l: DVec4) -> (DVec4, DVec4) {
+    let longest = |taken: &[DVec4]| -> DVec4 {
+        let (mut best, mut best_n) = (DVec4::ZERO, -1.0);
+        for axis in [DVec4::X, DVec4::Y, DVec4::Z, DVec4::W] {
+            let mut v = g.project_tangent(point, axis);
+            for t in taken {
+                v -= *t * g.form(v, *t);
+            }
+            let n = g.form(v, v);
+            // The first of equals, as the shader takes it.
+            if n > best_n {
+                (best, best_n) = (v, n);
+            }
+        }
+        best / best_n.sqrt()
+    };
+    let e1 = longest(&[l]);
+    let e2 = longest(&[l, e1]);
+    (e1, e2)
 }
 
 /// Whether the shadow ray from `point` along `l` for `length` meets something: it starts

@@ -281,8 +281,9 @@ impl CurvedScene {
     pub fn set_lighting(&mut self, space: &Space, lighting: super::Lighting) -> Result<(), String> {
         lighting.check()?;
         let reach = lighting.reach(space);
+        let radius = lighting.lamp_radius(space);
         for light in &mut self.lights {
-            *light = light.with_reach(space, reach);
+            *light = light.with_reach(space, reach).with_radius(radius);
         }
         self.shading.lighting = lighting;
         Ok(())

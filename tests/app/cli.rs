@@ -313,7 +313,8 @@ fn bench_straightforward_times_the_tracer_against_the_straightforward_one() {
 
 /// `bench --lighting` writes a row per lighting with its time and error, and the figures
 /// say what they should: every image with the tail is nearer the reference than the
-/// nearest copy, and the tail is what brings it there.
+/// nearest copy, and the tail is what brings it there; the soft shadows come nearer their
+/// own reference with more rays than with the one to the lamp's centre.
 #[test]
 fn bench_lighting_measures_each_lighting_against_the_reference() {
     let dir = temp_dir("bench-lighting");
@@ -345,7 +346,7 @@ fn bench_lighting_measures_each_lighting_against_the_reference() {
             .unwrap_or_else(|| panic!("{name} missing from {header:?}"))
     };
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
-    assert_eq!(rows.len(), 8, "{csv}");
+    assert_eq!(rows.len(), 12, "{csv}");
     let error = |lighting: &str| -> f64 {
         let row = rows
             .iter()
@@ -364,6 +365,11 @@ fn bench_lighting_measures_each_lighting_against_the_reference() {
         images < untailed,
         "{images} against {untailed} without the tail"
     );
+    let (hard, soft) = (
+        error("images R=2 + 4 shadows lamp 0.25 rays 1"),
+        error("images R=2 + 4 shadows lamp 0.25 rays 16"),
+    );
+    assert!(soft <= hard, "16 rays {soft} against one {hard}");
     assert!(dir.join("lighting.png").exists() && dir.join("lighting.svg").exists());
     let summary = std::fs::read_to_string(dir.join("summary.md")).unwrap();
     assert!(summary.contains("× nearest"), "{summary}");

@@ -838,8 +838,9 @@ fn entities_render_alike_on_gpu_and_cpu() {
                 CurvedObject::tube(0.6 * r, 0.05 * r, DVec3::new(0.8, 0.2, 0.8)),
                 at(-0.4, 0.0, -0.5),
             ),
+            // A half mirror: an entity's reflectance reaches both tracers.
             (
-                CurvedObject::disc(0.2 * r, DVec3::new(0.3, 0.8, 0.8)),
+                CurvedObject::disc(0.2 * r, DVec3::new(0.3, 0.8, 0.8)).with_reflectance(0.5),
                 at(0.0, -0.4, -0.5),
             ),
             (CurvedObject::traced(green.clone()), at(0.4, -0.3, -0.4)),
@@ -877,10 +878,12 @@ fn entities_render_alike_on_gpu_and_cpu() {
                 frame: *frame,
                 colour: o.colour,
                 emission: o.emission,
+                reflectance: o.reflectance,
             })
             .collect();
         let problems = add_entity_objects(&mut scene, &space, &ready);
         assert!(problems.is_empty(), "{id}: {problems:?}");
+        assert!(scene.has_mirrors(), "{id}: the mirror disc is drawn as one");
         let camera = TraceCamera::default_for(&space);
         let cpu = render(
             &space,
@@ -1385,7 +1388,9 @@ fn product_spaces_render_on_the_gpu_like_the_cpu_reference() {
 
 /// Shadows walked through the faces: a ball between the lamp and the centre ball shadows it
 /// (and its images shadow the lamp's other images), on the GPU as on the CPU, in the three
-/// geometries; the shadows are there to see (turned off, the picture changes).
+/// geometries; the shadows are there to see (turned off, the picture changes). A lamp with a
+/// radius casts soft ones (a few shadow rays over its disc), alike on both and unlike the
+/// hard ones.
 #[test]
 fn shadows_through_the_faces_render_alike_on_gpu_and_cpu() {
     let _gpu = gpu_lock();
@@ -1411,11 +1416,16 @@ fn shadows_through_the_faces_render_alike_on_gpu_and_cpu() {
             avatar: false,
             clifford: false,
         };
-        let picture = |shadows: u32, gpu: bool, renderer: &mut OffscreenRenderer| {
-            let lighting = Lighting {
-                shadows,
-                ..Lighting::default()
-            };
+        let hard = Lighting {
+            shadows: 8,
+            ..Lighting::default()
+        };
+        let soft = Lighting {
+            lamp_radius_inradii: 0.4,
+            soft_samples: 4,
+            ..hard
+        };
+        let picture = |lighting: Lighting, gpu: bool, renderer: &mut OffscreenRenderer| {
             let camera = TraceCamera::default_for(&space);
             if gpu {
                 let request = OffscreenRender {
@@ -1446,8 +1456,12 @@ fn shadows_through_the_faces_render_alike_on_gpu_and_cpu() {
                 },
             )
         };
-        let shadowed = picture(8, false, &mut renderer);
-        let (unshadowed, _) = compare(&picture(0, false, &mut renderer), &shadowed, TOLERANCE);
+        let shadowed = picture(hard, false, &mut renderer);
+        let none = Lighting {
+            shadows: 0,
+            ..hard
+        };
+        let (unshadowed, _) = compare(&picture(none, false, &mut renderer), &shadowed, TOLERANCE);
         println!(
             "{id}: the shadows change {:.2} % of the pixels",
             100.0 * unshadowed.differing
@@ -1458,11 +1472,31 @@ fn shadows_through_the_faces_render_alike_on_gpu_and_cpu() {
                 100.0 * unshadowed.differing
             ));
         }
-        let gpu = picture(8, true, &mut renderer);
+        let gpu = picture(hard, true, &mut renderer);
         judge(
             &format!("{id}-shadows"),
             &gpu,
             &shadowed,
+            &out,
+            &mut failures,
+        );
+        let softened = picture(soft, false, &mut renderer);
+        let (penumbra, _) = compare(&softened, &shadowed, TOLERANCE);
+        println!(
+            "{id}: a lamp of 0.4 inradii softens {:.2} % of the pixels",
+            100.0 * penumbra.differing
+        );
+        if penumbra.differing < 0.002 {
+            failures.push(format!(
+                "{id}: the soft shadows change only {:.2} % of the pixels",
+                100.0 * penumbra.differing
+            ));
+        }
+        let gpu = picture(soft, true, &mut renderer);
+        judge(
+            &format!("{id}-soft-shadows"),
+            &gpu,
+            &softened,
             &out,
             &mut failures,
         );

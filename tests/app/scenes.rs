@@ -366,6 +366,26 @@ fn bad_scene_files_get_errors_naming_the_line_and_the_problem() {
             "shadows must be 0 to 64",
         ),
         (
+            "space = \"torus\"\n[lighting]\nlamp_radius = -0.1\n",
+            3,
+            "a lamp's radius must be 0 to 1 inradii, got -0.1",
+        ),
+        (
+            "space = \"torus\"\n[lighting]\nshadows = 2\nlamp_radius = nan\n",
+            4,
+            "a lamp's radius must be 0 to 1 inradii, got NaN",
+        ),
+        (
+            "space = \"torus\"\n[lighting]\nsoft_samples = 0\n",
+            3,
+            "soft_samples must be 1 to 64 shadow rays per image, got 0",
+        ),
+        (
+            "space = \"torus\"\n[lighting]\nsoft_samples = 65\n",
+            3,
+            "soft_samples must be 1 to 64",
+        ),
+        (
             "space = \"torus\"\n[lighting]\nshadow = 2\n",
             3,
             "unknown field `shadow`",
@@ -610,7 +630,7 @@ fn scene_files_choose_the_lighting() {
     let plain = read("space = \"torus\"\n[[light]]\nposition = [0.1, 0.2, 0.0]\n");
     assert_eq!(plain.shading.lighting, Lighting::default());
     let lit = read(
-        "space = \"torus\"\n[lighting]\nreach = 1.5\ntail = false\nshadows = 9\n\n[[light]]\nposition = [0.1, 0.2, 0.0]\n",
+        "space = \"torus\"\n[lighting]\nreach = 1.5\ntail = false\nshadows = 9\nlamp_radius = 0.25\nsoft_samples = 12\n\n[[light]]\nposition = [0.1, 0.2, 0.0]\n",
     );
     assert_eq!(
         lit.shading.lighting,
@@ -619,8 +639,12 @@ fn scene_files_choose_the_lighting() {
             reach_inradii: 1.5,
             tail: false,
             shadows: 9,
+            lamp_radius_inradii: 0.25,
+            soft_samples: 12,
         }
     );
+    // The lamps take the radius in the space's units: the torus's inradius is ½.
+    assert!((lit.lights[0].radius - 0.125).abs() < 1e-12);
     // The lamp's images in the cover follow the reach: a shorter one keeps fewer.
     let (short, long) = (&lit.lights[0], &plain.lights[0]);
     assert!((short.reach - 0.75).abs() < 1e-12, "{}", short.reach);

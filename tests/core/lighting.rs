@@ -19,6 +19,7 @@ fn images(reach_inradii: f64, tail: bool, shadows: u32) -> Lighting {
         reach_inradii,
         tail,
         shadows,
+        ..Lighting::default()
     }
 }
 

@@ -32,6 +32,7 @@ mod product_player;
 mod product_scenes;
 mod products;
 mod render;
+mod soft_shadows;
 mod spaces;
 mod stereo;
 mod straddling;

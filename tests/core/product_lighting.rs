@@ -208,6 +208,7 @@ fn a_shadow_is_cast_through_the_top() {
         reach_inradii: 4.0,
         tail: false,
         shadows: 64,
+        ..Lighting::default()
     };
     let lamp = point(g, 0.2, 0.5, -0.3 * space.length());
     scene.set_lighting(&space, lamp, lighting).unwrap();

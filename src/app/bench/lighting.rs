@@ -19,6 +19,22 @@ pub const REFERENCE_LIGHTING: Lighting = Lighting {
     reach_inradii: 16.0,
     tail: true,
     shadows: Lighting::MAX_SHADOWS,
+    lamp_radius_inradii: 0.0,
+    soft_samples: 1,
+};
+
+/// The soft shadows measured: a lamp of this radius (inradii), this many shadowed images.
+pub const SOFT_LAMP: (f64, u32) = (0.25, 4);
+
+/// The soft shadows' reference: the same lamp and shadowed images (so that only the
+/// penumbra's sampling differs), with the most shadow rays.
+pub const SOFT_REFERENCE: Lighting = Lighting {
+    paths: LightPaths::Images,
+    reach_inradii: Lighting::DEFAULT_REACH_INRADII,
+    tail: true,
+    shadows: SOFT_LAMP.1,
+    lamp_radius_inradii: SOFT_LAMP.0,
+    soft_samples: Lighting::MAX_SOFT_SAMPLES,
 };
 
 /// One lighting in one space: its frame time and its error against the reference.
@@ -43,6 +59,13 @@ pub struct LightingRow {
     pub tail: bool,
     /// Images shadowed per point.
     pub shadows: u32,
+    /// The lamp's radius in inradii (0: a point).
+    pub lamp_radius_inradii: f64,
+    /// Shadow rays per shadowed image (soft shadows; 1: hard).
+    pub soft_samples: u32,
+    /// What its error is measured against: `points` ([`REFERENCE_LIGHTING`]) or `soft`
+    /// ([`SOFT_REFERENCE`], for a lamp with a radius).
+    pub reference: String,
     /// Timed picture size.
     pub width: u32,
     /// Timed picture height.
@@ -69,6 +92,7 @@ fn lightings() -> Vec<(String, Lighting)> {
         reach_inradii,
         tail,
         shadows,
+        ..Lighting::default()
     };
     let mut out = vec![("nearest".to_string(), Lighting::NEAREST)];
     for (reach, tail, shadows) in [
@@ -91,6 +115,19 @@ fn lightings() -> Vec<(String, Lighting)> {
             }
         );
         out.push((name, images(reach, tail, shadows)));
+    }
+    // Soft shadows: one ray to the lamp's centre (the hard shadow), then a few over its disc.
+    for samples in [1, 4, 8, 16] {
+        out.push((
+            format!(
+                "images R=2 + {} shadows lamp {} rays {samples}",
+                SOFT_LAMP.1, SOFT_LAMP.0
+            ),
+            Lighting {
+                soft_samples: samples,
+                ..SOFT_REFERENCE
+            },
+        ));
     }
     out
 }
@@ -148,6 +185,13 @@ pub fn run_lighting(
             &settings,
         );
         progress.inc(1);
+        announce(progress, format!("{}: the soft shadows' reference", subject.id));
+        let soft_reference = crate::trace::render(
+            &subject.space,
+            &lit(SOFT_REFERENCE)?,
+            &subject.camera,
+            &settings,
+        );
         let mut scenes = Vec::new();
         let mut packed = Vec::new();
         for (name, lighting) in &variants {
@@ -155,7 +199,12 @@ pub fn run_lighting(
             let scene = lit(*lighting)?;
             packed.push(subject.pack(&scene, budget)?);
             let picture = crate::trace::render(&subject.space, &scene, &subject.camera, &settings);
-            scenes.push((scene, picture_error(&picture, &reference)));
+            let against = if lighting.lamp_radius_inradii > 0.0 {
+                &soft_reference
+            } else {
+                &reference
+            };
+            scenes.push((scene, picture_error(&picture, against)));
             progress.inc(1);
         }
         let (w, h) = config.middle_size();
@@ -183,6 +232,14 @@ pub fn run_lighting(
                 },
                 tail: lighting.tail,
                 shadows: lighting.shadows,
+                lamp_radius_inradii: lighting.lamp_radius_inradii,
+                soft_samples: lighting.soft_samples,
+                reference: if lighting.lamp_radius_inradii > 0.0 {
+                    "soft"
+                } else {
+                    "points"
+                }
+                .to_string(),
                 width: w,
                 height: h,
                 budget,
@@ -207,19 +264,24 @@ pub(super) fn lighting_section(md: &mut String, report: &BenchReport) {
     let (ew, eh) = LIGHTING_ERROR_SIZE;
     let _ = writeln!(
         *md,
-        "\n### Light through the manifold: frame time against error per lighting\n\nEach lighting of the default view timed in the same rounds (× nearest: the median over rounds of each round's ratio), and its CPU picture at {ew}×{eh} against a reference with every image within {} inradii (at most 256), the tail and {} shadows.\n\n| space | lighting | images | covered (inradii) | ms | × nearest | mean error /255 | pixels off > 8/255 | max /255 |\n|---|---|---:|---:|---:|---:|---:|---:|---:|",
-        REFERENCE_LIGHTING.reach_inradii, REFERENCE_LIGHTING.shadows
+        "\n### Light through the manifold: frame time against error per lighting\n\nEach lighting of the default view timed in the same rounds (× nearest: the median over rounds of each round's ratio), and its CPU picture at {ew}×{eh} against a reference: for point lamps (reference `points`) every image within {} inradii (at most 256), the tail and {} shadows; for the soft shadows of a lamp of {} inradii (reference `soft`) the same lamp and {} shadowed images with {} rays each, so that only the penumbra's sampling differs.\n\n| space | lighting | images | covered (inradii) | ms | × nearest | reference | mean error /255 | pixels off > 8/255 | max /255 |\n|---|---|---:|---:|---:|---:|---|---:|---:|---:|",
+        REFERENCE_LIGHTING.reach_inradii,
+        REFERENCE_LIGHTING.shadows,
+        SOFT_REFERENCE.lamp_radius_inradii,
+        SOFT_REFERENCE.shadows,
+        SOFT_REFERENCE.soft_samples
     );
     for r in &report.lighting {
         let _ = writeln!(
             *md,
-            "| {} | {} | {} | {:.2} | {:.2} | {:.2}× | {:.2} | {:.2} % | {} |",
+            "| {} | {} | {} | {:.2} | {:.2} | {:.2}× | {} | {:.2} | {:.2} % | {} |",
             r.space,
             r.lighting,
             r.images,
             r.covered_inradii,
             r.median_ms,
             r.time_ratio,
+            r.reference,
             r.mean_error,
             100.0 * r.pixels_off,
             r.max_error
@@ -240,7 +302,8 @@ pub(super) fn lighting_chart(report: &BenchReport) -> Option<Chart> {
             let mut points: Vec<(f64, f64)> = report
                 .lighting
                 .iter()
-                .filter(|r| r.space == *s)
+                // Against the one reference of point lamps (the soft rows have their own).
+                .filter(|r| r.space == *s && r.reference == "points")
                 .map(|r| (r.time_ratio, r.mean_error.max(1e-3)))
                 .collect();
             points.sort_by(|a, b| a.0.total_cmp(&b.0));

@@ -235,6 +235,14 @@ struct LightingArgs {
     /// shadows (0 to 64; default 0: each costs about a walk per lit pixel).
     #[arg(long, value_name = "IMAGES", value_parser = clap::value_parser!(u32).range(0..=64))]
     shadows: Option<u32>,
+    /// The lamps' radius in inradii (0 to 1; default 0, points): the shadows' penumbra.
+    /// Soft shadows need `--shadows` too.
+    #[arg(long, value_name = "INRADII", value_parser = parse_lamp_radius, allow_negative_numbers = true)]
+    lamp_radius: Option<f64>,
+    /// Shadow rays per shadowed image of a lamp with a radius (1 to 64; default 8; 1: hard
+    /// shadows from its centre).
+    #[arg(long, value_name = "RAYS", value_parser = clap::value_parser!(u32).range(1..=64))]
+    soft_samples: Option<u32>,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -255,6 +263,8 @@ impl LightingArgs {
             reach_inradii: self.light_reach.unwrap_or(base.reach_inradii),
             tail: base.tail && !self.no_light_tail,
             shadows: self.shadows.unwrap_or(base.shadows),
+            lamp_radius_inradii: self.lamp_radius.unwrap_or(base.lamp_radius_inradii),
+            soft_samples: self.soft_samples.unwrap_or(base.soft_samples),
         }
     }
 
@@ -264,6 +274,8 @@ impl LightingArgs {
             || self.light_reach.is_some()
             || self.no_light_tail
             || self.shadows.is_some()
+            || self.lamp_radius.is_some()
+            || self.soft_samples.is_some()
     }
 }
 
@@ -277,6 +289,21 @@ fn parse_reach(s: &str) -> Result<f64, String> {
     } else {
         Err(format!(
             "the reach must be above 0 and at most 64 inradii, got {s}"
+        ))
+    }
+}
+
+fn parse_lamp_radius(s: &str) -> Result<f64, String> {
+    let r: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("not a number: {s:?}"))?;
+    if (0.0..=Lighting::MAX_LAMP_RADIUS_INRADII).contains(&r) {
+        Ok(r)
+    } else {
+        Err(format!(
+            "a lamp's radius must be 0 to {} inradii, got {s}",
+            Lighting::MAX_LAMP_RADIUS_INRADII
         ))
     }
 }

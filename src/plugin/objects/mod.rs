@@ -154,6 +154,10 @@ pub struct CurvedObject {
     pub colour: Option<DVec3>,
     /// Light it gives off itself, linear RGB.
     pub emission: DVec3,
+    /// The share of light it reflects as a mirror (0 to 1; docs/light.md): balls, globes,
+    /// discs and meshes (a mesh's materials are then replaced, as by a colour); tubes, and
+    /// objects in the product spaces, do not reflect.
+    pub reflectance: f64,
 }
 
 impl CurvedObject {
@@ -162,6 +166,7 @@ impl CurvedObject {
             shape,
             colour,
             emission: DVec3::ZERO,
+            reflectance: 0.0,
         }
     }
 
@@ -244,6 +249,20 @@ impl CurvedObject {
     #[must_use]
     pub fn with_emission(self, emission: DVec3) -> Self {
         Self { emission, ..self }
+    }
+
+    /// The object as a mirror reflecting `reflectance` of the light (clamped to 0–1; the
+    /// rest is lit as usual): see [`CurvedObject::reflectance`].
+    #[must_use]
+    pub fn with_reflectance(self, reflectance: f64) -> Self {
+        Self {
+            reflectance: if reflectance.is_finite() {
+                reflectance.clamp(0.0, 1.0)
+            } else {
+                0.0
+            },
+            ..self
+        }
     }
 }
 

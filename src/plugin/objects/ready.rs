@@ -34,6 +34,8 @@ pub struct ReadyObject {
     pub colour: Option<DVec3>,
     /// Emission.
     pub emission: DVec3,
+    /// The share reflected as a mirror.
+    pub reflectance: f64,
 }
 
 /// The entities' objects as the tracer will draw them, gathered when any changed; objects
@@ -64,7 +66,11 @@ impl ReadyObject {
         let colour = self.colour.unwrap_or(DVec3::ONE);
         match &self.shape {
             ReadyShape::Ball(r) => {
-                Object::Ball(Ball::new(g, centre, *r, colour).with_emission(self.emission))
+                Object::Ball(
+                    Ball::new(g, centre, *r, colour)
+                        .with_emission(self.emission)
+                        .with_reflectance(self.reflectance),
+                )
             }
             ReadyShape::Globe(r, texture, spin) => {
                 let key = Arc::as_ptr(texture) as usize;
@@ -78,6 +84,7 @@ impl ReadyObject {
                 Object::Ball(
                     Ball::new(g, centre, *r, colour)
                         .with_emission(self.emission)
+                        .with_reflectance(self.reflectance)
                         .with_texture(BallTexture {
                             texture: index,
                             frame: f,
@@ -96,7 +103,8 @@ impl ReadyObject {
             }
             ReadyShape::Disc(r) => Object::Disc(
                 Disc::new(g, centre, g.unit_tangent(centre, f.z_axis), *r, colour)
-                    .with_emission(self.emission),
+                    .with_emission(self.emission)
+                    .with_reflectance(self.reflectance),
             ),
             ReadyShape::Carried(object, start) => object.transformed(g, f * g.inverse(*start)),
             ReadyShape::Mesh(model) => {
@@ -104,12 +112,13 @@ impl ReadyObject {
                 let (mesh, base) = *added.entry(key).or_insert_with(|| scene.add_traced(model));
                 let mut instance = MeshInstance::new(g, mesh, f, model.mesh.radius);
                 instance.material_base = base;
-                if self.colour.is_some() || self.emission != DVec3::ZERO {
+                if self.colour.is_some() || self.emission != DVec3::ZERO || self.reflectance > 0.0
+                {
                     scene.materials.push(SurfaceMaterial {
                         colour,
                         texture: None,
                         emission: self.emission,
-                        reflectance: 0.0,
+                        reflectance: self.reflectance,
                     });
                     instance.material = Some(scene.materials.len() as u32 - 1);
                 }

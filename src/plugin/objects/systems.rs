@@ -201,6 +201,7 @@ pub fn collect_objects(
                         frame,
                         colour: object.colour,
                         emission: object.emission,
+                        reflectance: object.reflectance,
                     });
                 } else {
                     problems.push(format!("object {entity}: its frame is not finite"));

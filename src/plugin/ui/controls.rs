@@ -43,11 +43,13 @@ pub(super) fn wall_controls(
 
 /// How the lamps light the scene: every image in the cover or the nearest copy, how far the
 /// images are summed, the tail beyond, how many are shadowed. `shown` is the lighting of
-/// the scene on screen (the settings' or the base scene's own).
+/// the scene on screen (the settings' or the base scene's own). `soft`: the lamps can have
+/// a radius for soft shadows (not in the product spaces, whose lamp is a point).
 pub(super) fn lighting_controls(
     ui: &mut egui::Ui,
     settings: &mut ResMut<TracerSettings>,
     shown: Option<crate::scene::lighting::Lighting>,
+    soft: bool,
 ) {
     use crate::scene::lighting::{LightPaths, Lighting};
     let current = settings.lighting.or(shown).unwrap_or_default();
@@ -72,6 +74,20 @@ pub(super) fn lighting_controls(
             "capped at {cap} by the {:?} quality",
             settings.quality
         ));
+    }
+    if soft && wanted.shadows > 0 {
+        ui.add(
+            egui::Slider::new(
+                &mut wanted.lamp_radius_inradii,
+                0.0..=Lighting::MAX_LAMP_RADIUS_INRADII,
+            )
+            .text("lamp radius (inradii)"),
+        );
+        if wanted.lamp_radius_inradii > 0.0 {
+            ui.add(
+                egui::Slider::new(&mut wanted.soft_samples, 1..=32).text("soft shadow rays"),
+            );
+        }
     }
     if wanted != current && wanted.check().is_ok() {
         settings.lighting = Some(wanted);

@@ -279,6 +279,7 @@ fn panel(
                 ui,
                 &mut settings,
                 shown_scene.as_ref().map(|s| s.0.shading.lighting),
+                true,
             );
             ui.separator();
             stereo_controls(ui, &mut stereo, active.inradius);

@@ -46,6 +46,12 @@ pub(super) fn product_panel(
             );
             tracer_controls(ui, &mut settings, &status, default_fog);
             wall_controls(ui, &mut settings, base.as_ref().and_then(|b| b.scene.walls));
+            ui.separator();
+            let shown = base.as_ref().map_or_else(
+                || crate::trace::product::default_scene(space).lighting,
+                |b| b.scene.lighting,
+            );
+            super::controls::lighting_controls(ui, &mut settings, Some(shown), false);
             // Faces as the walk numbers them: the sides, the top, the bottom.
             colour_by_controls(ui, &mut settings, space.face_count());
             let mut scale = settings.resolution_scale;

@@ -111,6 +111,8 @@ const KEYS: &[&str] = &[
     "reach",
     "tail",
     "shadows",
+    "lamp_radius",
+    "soft_samples",
 ];
 
 fn default_true() -> bool {

@@ -105,6 +105,13 @@ impl ProductScene {
         lighting: crate::scene::lighting::Lighting,
     ) -> Result<(), String> {
         lighting.check()?;
+        if lighting.lamp_radius_inradii > 0.0 {
+            return Err(format!(
+                "the lamp of a product space is a point: it takes no radius (soft shadows are \
+                 for the constant-curvature spaces), got {}",
+                lighting.lamp_radius_inradii
+            ));
+        }
         self.light = light;
         self.lighting = lighting;
         self.lamp = lighting::ProductLamp::new(space, light, &lighting);

@@ -34,6 +34,9 @@ pub struct ShaderKey {
     pub light_sum: bool,
     /// Images per light walked for shadows (shader def `SHADOWS`, where above 0).
     pub shadows: u32,
+    /// Shadow rays per shadowed image of a lamp with a radius (shader def `SOFT_SHADOWS`,
+    /// where above 1 and shadows are walked; [`crate::scene::Lighting::soft_samples`]).
+    pub soft_samples: u32,
     /// Whether the player's avatar is drawn.
     pub avatar: bool,
     /// Whether any texture is used.
@@ -95,6 +98,7 @@ impl ShaderKey {
             light_images: 0,
             light_sum: false,
             shadows: 0,
+            soft_samples: 0,
             avatar: false,
             textures: false,
             culling: false,
@@ -182,6 +186,12 @@ impl ShaderKey {
             }
             if self.shadows > 0 {
                 defs.push(ShaderDefVal::UInt("SHADOWS".into(), self.shadows));
+                if self.soft_samples > 1 {
+                    defs.push(ShaderDefVal::UInt(
+                        "SOFT_SHADOWS".into(),
+                        self.soft_samples,
+                    ));
+                }
             }
         }
         if self.avatar {

@@ -324,6 +324,12 @@ impl GpuScene {
             light_images,
             light_sum: summed,
             shadows: lighting.shadows,
+            // Soft shadows only where a lamp has a radius to spread them over.
+            soft_samples: if scene.lights.iter().any(|l| l.radius > 0.0) {
+                lighting.soft_samples
+            } else {
+                0
+            },
             avatar: scene.avatar.is_some(),
             textures: !scene.textures.is_empty(),
             culling: culling.is_some() && balls.len() + tubes.len() > 0,
@@ -374,7 +380,9 @@ impl GpuScene {
             } else {
                 0.0
             };
-            out.push(&vec4(DVec4::new(light.reach, tail, 0.0, 0.0)));
+            // The lamp's S(radius) for soft shadows (0: a point).
+            let s_radius = if light.radius > 0.0 { g.s(light.radius) } else { 0.0 };
+            out.push(&vec4(DVec4::new(light.reach, tail, s_radius, 0.0)));
             for k in 0..light_images as usize {
                 out.push(&vec4(images.get(k).copied().unwrap_or(light.position)));
             }
