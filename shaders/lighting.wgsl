@@ -100,17 +100,17 @@ fn frame_axis(point: vec4<f32>, l: vec4<f32>, e: vec4<f32>) -> vec4<f32> {
 // (Rust: `shadow_directions`): the frame about `l`, found once, and `versine`, 1 − cos α,
 // α the lamp disc's angular radius; then sample `j` of the Fibonacci spiral over the disc.
 struct SoftFrame {
-    e1: vec4<f32>,
-    e2: vec4<f32>,
+    first: vec4<f32>,
+    second: vec4<f32>,
     versine: f32,
 }
 
 fn soft_frame(point: vec4<f32>, l: vec4<f32>, length: f32, s_r: f32) -> SoftFrame {
-    let e1 = frame_axis(point, l, vec4<f32>(0.0));
-    let e2 = frame_axis(point, l, e1);
+    let first = frame_axis(point, l, vec4<f32>(0.0));
+    let second = frame_axis(point, l, first);
     let sin_a = min(s_r / abs(s_of(length)), 1.0);
-    let sin2 = sin_a * sin_a;
-    return SoftFrame(e1, e2, sin2 / (1.0 + sqrt(1.0 - sin2)));
+    let sin_sq = sin_a * sin_a;
+    return SoftFrame(first, second, sin_sq / (1.0 + sqrt(1.0 - sin_sq)));
 }
 
 // Sample `j`, spread evenly by solid angle: 1 − cos θ = u (1 − cos α).
@@ -118,7 +118,7 @@ fn soft_direction(point: vec4<f32>, l: vec4<f32>, f: SoftFrame, j: u32) -> vec4<
     let u = (f32(j) + 0.5) / f32(#{SOFT_SHADOWS}u);
     let theta = 2.0 * asin(sqrt(0.5 * u * f.versine));
     let phi = f32(j) * GOLDEN_ANGLE;
-    let v = l * cos(theta) + (f.e1 * cos(phi) + f.e2 * sin(phi)) * sin(theta);
+    let v = l * cos(theta) + (f.first * cos(phi) + f.second * sin(phi)) * sin(theta);
     return unit_tangent(point, v);
 }
 #endif

@@ -134,7 +134,7 @@ impl Lighting {
         tail: false,
         shadows: 0,
         lamp_radius_inradii: 0.0,
-        soft_samples: 1,
+        soft_samples: Self::DEFAULT_SOFT_SAMPLES,
     };
 
     /// The most a lamp's radius may be, in inradii: a lamp stays well inside the cell.

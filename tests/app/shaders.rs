@@ -141,6 +141,45 @@ fn every_shader_def_combination_validates_and_matches_the_packed_layout() {
     assert_eq!(checked, 3 * 5 * (3 * 3 + 8));
 }
 
+/// The lighting variants in every geometry: the nearest copy or every image, hard shadows
+/// and soft ones (`LIGHT_IMAGES_SUM`, `SHADOWS`, `SOFT_SHADOWS`), with several lights: each
+/// validates (plain and with `HIT_ID`) and naga's layout of the uniform is the packer's.
+#[test]
+fn lighting_variants_validate_and_match_the_packed_layout() {
+    let mut checked = 0;
+    for geometry in Geometry::ALL {
+        for (light_sum, shadows, soft_samples) in [
+            (false, 0, 0),
+            (true, 0, 0),
+            (false, 2, 0),
+            (true, 4, 0),
+            (true, 4, 8),
+            (false, 1, 3),
+        ] {
+            let key = ShaderKey {
+                faces: 12,
+                balls: 2,
+                tubes: 1,
+                discs: 1,
+                lights: 2,
+                light_images: 20,
+                light_sum,
+                shadows,
+                soft_samples,
+                ..ShaderKey::empty(geometry)
+            };
+            assert_eq!(
+                validate(&key),
+                key.uniform_bytes(),
+                "{key:?}: naga's layout differs from the packer's size"
+            );
+            hit_id_module(&key);
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, 3 * 6);
+}
+
 /// The cells beyond the chart in S³: the 3-sphere (no face, one unused slot), projective
 /// space (one face) and a lens (two), with rays stepping at most π/4 (`STEP_CAP`), plain
 /// and with `HIT_ID`, with and without objects: each validates and matches the packer.
