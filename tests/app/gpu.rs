@@ -1457,10 +1457,7 @@ fn shadows_through_the_faces_render_alike_on_gpu_and_cpu() {
             )
         };
         let shadowed = picture(hard, false, &mut renderer);
-        let none = Lighting {
-            shadows: 0,
-            ..hard
-        };
+        let none = Lighting { shadows: 0, ..hard };
         let (unshadowed, _) = compare(&picture(none, false, &mut renderer), &shadowed, TOLERANCE);
         println!(
             "{id}: the shadows change {:.2} % of the pixels",

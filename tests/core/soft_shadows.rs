@@ -165,7 +165,12 @@ fn a_penumbra_is_cast_through_a_face() {
         };
         scene.set_lighting(&s, lighting).expect("in range");
         assert!((scene.lights[0].radius - lamp_radius).abs() < 1e-12);
-        let ball = Ball::new(g, DVec4::new(0.4, ball_y, 0.0, 1.0), ball_radius, DVec3::ONE);
+        let ball = Ball::new(
+            g,
+            DVec4::new(0.4, ball_y, 0.0, 1.0),
+            ball_radius,
+            DVec3::ONE,
+        );
         scene
             .place(&s, Object::Ball(ball))
             .expect("inside the cell");
@@ -212,7 +217,11 @@ fn a_penumbra_is_cast_through_a_face() {
         shares[1..4].iter().all(|s| *s > 0.05 && *s < 0.95),
         "a penumbra between: {shares:?}"
     );
-    assert!((shares[4] - 1.0).abs() < 1e-9, "the ball aside: {}", shares[4]);
+    assert!(
+        (shares[4] - 1.0).abs() < 1e-9,
+        "the ball aside: {}",
+        shares[4]
+    );
     assert!(
         shares.windows(2).all(|w| w[0] <= w[1]),
         "more of the lamp shows as the ball moves away: {shares:?}"

@@ -185,7 +185,10 @@ pub fn run_lighting(
             &settings,
         );
         progress.inc(1);
-        announce(progress, format!("{}: the soft shadows' reference", subject.id));
+        announce(
+            progress,
+            format!("{}: the soft shadows' reference", subject.id),
+        );
         let soft_reference = crate::trace::render(
             &subject.space,
             &lit(SOFT_REFERENCE)?,

@@ -65,13 +65,11 @@ impl ReadyObject {
         let centre = g.project_point(f.w_axis);
         let colour = self.colour.unwrap_or(DVec3::ONE);
         match &self.shape {
-            ReadyShape::Ball(r) => {
-                Object::Ball(
-                    Ball::new(g, centre, *r, colour)
-                        .with_emission(self.emission)
-                        .with_reflectance(self.reflectance),
-                )
-            }
+            ReadyShape::Ball(r) => Object::Ball(
+                Ball::new(g, centre, *r, colour)
+                    .with_emission(self.emission)
+                    .with_reflectance(self.reflectance),
+            ),
             ReadyShape::Globe(r, texture, spin) => {
                 let key = Arc::as_ptr(texture) as usize;
                 let index = added
@@ -112,8 +110,7 @@ impl ReadyObject {
                 let (mesh, base) = *added.entry(key).or_insert_with(|| scene.add_traced(model));
                 let mut instance = MeshInstance::new(g, mesh, f, model.mesh.radius);
                 instance.material_base = base;
-                if self.colour.is_some() || self.emission != DVec3::ZERO || self.reflectance > 0.0
-                {
+                if self.colour.is_some() || self.emission != DVec3::ZERO || self.reflectance > 0.0 {
                     scene.materials.push(SurfaceMaterial {
                         colour,
                         texture: None,

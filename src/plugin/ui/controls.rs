@@ -84,9 +84,7 @@ pub(super) fn lighting_controls(
             .text("lamp radius (inradii)"),
         );
         if wanted.lamp_radius_inradii > 0.0 {
-            ui.add(
-                egui::Slider::new(&mut wanted.soft_samples, 1..=32).text("soft shadow rays"),
-            );
+            ui.add(egui::Slider::new(&mut wanted.soft_samples, 1..=32).text("soft shadow rays"));
         }
     }
     if wanted != current && wanted.check().is_ok() {

@@ -187,10 +187,7 @@ impl ShaderKey {
             if self.shadows > 0 {
                 defs.push(ShaderDefVal::UInt("SHADOWS".into(), self.shadows));
                 if self.soft_samples > 1 {
-                    defs.push(ShaderDefVal::UInt(
-                        "SOFT_SHADOWS".into(),
-                        self.soft_samples,
-                    ));
+                    defs.push(ShaderDefVal::UInt("SOFT_SHADOWS".into(), self.soft_samples));
                 }
             }
         }

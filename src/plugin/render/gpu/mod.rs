@@ -381,7 +381,11 @@ impl GpuScene {
                 0.0
             };
             // The lamp's S(radius) for soft shadows (0: a point).
-            let s_radius = if light.radius > 0.0 { g.s(light.radius) } else { 0.0 };
+            let s_radius = if light.radius > 0.0 {
+                g.s(light.radius)
+            } else {
+                0.0
+            };
             out.push(&vec4(DVec4::new(light.reach, tail, s_radius, 0.0)));
             for k in 0..light_images as usize {
                 out.push(&vec4(images.get(k).copied().unwrap_or(light.position)));
