@@ -29,7 +29,9 @@ use crate::view::TraceCamera;
 pub use accuracy::growth;
 use accuracy::*;
 use indicatif::{ProgressBar, ProgressStyle};
-pub use lighting::{LIGHTING_ERROR_SIZE, LightingRow, REFERENCE_LIGHTING, run_lighting};
+pub use lighting::{
+    LIGHTING_ERROR_SIZE, LightingRow, REFERENCE_LIGHTING, SOFT_LAMP, SOFT_REFERENCE, run_lighting,
+};
 pub use report::{
     charts, read_report, summary_markdown, write_edges_report, write_report, write_scene_report,
 };
