@@ -277,11 +277,16 @@ pub(super) fn lighting_section(md: &mut String, report: &BenchReport) {
     for r in &report.lighting {
         let _ = writeln!(
             *md,
-            "| {} | {} | {} | {:.2} | {:.2} | {:.2}× | {} | {:.2} | {:.2} % | {} |",
+            "| {} | {} | {} | {} | {:.2} | {:.2}× | {} | {:.2} | {:.2} % | {} |",
             r.space,
             r.lighting,
             r.images,
-            r.covered_inradii,
+            // The nearest copy sums no images in the cover: it covers no reach.
+            if r.paths == "nearest" {
+                "–".to_string()
+            } else {
+                format!("{:.2}", r.covered_inradii)
+            },
             r.median_ms,
             r.time_ratio,
             r.reference,
