@@ -71,6 +71,24 @@ fn library_spaces_render_on_the_gpu_like_the_cpu_reference() {
 /// three images to `out` and adds a failure. A blank or constant picture would also
 /// "agree" with a blank reference: the reference must show structure, and so must the GPU
 /// image.
+/// Notes a failure where `what` (the difference between two pictures of the same tracer)
+/// changes fewer than `at_least` of the pixels: a feature that must be there to see.
+fn changes(
+    what: &str,
+    (with, without): (&RgbImage, &RgbImage),
+    at_least: f64,
+    failures: &mut Vec<String>,
+) {
+    let (c, _) = compare(with, without, TOLERANCE);
+    println!("{what} change {:.2} % of the pixels", 100.0 * c.differing);
+    if c.differing < at_least {
+        failures.push(format!(
+            "{what} change only {:.2} % of the pixels",
+            100.0 * c.differing
+        ));
+    }
+}
+
 fn judge(id: &str, gpu: &RgbImage, cpu: &RgbImage, out: &Path, failures: &mut Vec<String>) {
     let (c, diff) = compare(gpu, cpu, TOLERANCE);
     println!(
@@ -1458,17 +1476,13 @@ fn shadows_through_the_faces_render_alike_on_gpu_and_cpu() {
         };
         let shadowed = picture(hard, false, &mut renderer);
         let none = Lighting { shadows: 0, ..hard };
-        let (unshadowed, _) = compare(&picture(none, false, &mut renderer), &shadowed, TOLERANCE);
-        println!(
-            "{id}: the shadows change {:.2} % of the pixels",
-            100.0 * unshadowed.differing
+        let unshadowed = picture(none, false, &mut renderer);
+        changes(
+            &format!("{id}: the shadows"),
+            (&shadowed, &unshadowed),
+            0.005,
+            &mut failures,
         );
-        if unshadowed.differing < 0.005 {
-            failures.push(format!(
-                "{id}: the shadows change only {:.2} % of the pixels",
-                100.0 * unshadowed.differing
-            ));
-        }
         let gpu = picture(hard, true, &mut renderer);
         judge(
             &format!("{id}-shadows"),
@@ -1478,17 +1492,12 @@ fn shadows_through_the_faces_render_alike_on_gpu_and_cpu() {
             &mut failures,
         );
         let softened = picture(soft, false, &mut renderer);
-        let (penumbra, _) = compare(&softened, &shadowed, TOLERANCE);
-        println!(
-            "{id}: a lamp of 0.4 inradii softens {:.2} % of the pixels",
-            100.0 * penumbra.differing
+        changes(
+            &format!("{id}: a lamp of 0.4 inradii's soft shadows"),
+            (&softened, &shadowed),
+            0.002,
+            &mut failures,
         );
-        if penumbra.differing < 0.002 {
-            failures.push(format!(
-                "{id}: the soft shadows change only {:.2} % of the pixels",
-                100.0 * penumbra.differing
-            ));
-        }
         let gpu = picture(soft, true, &mut renderer);
         judge(
             &format!("{id}-soft-shadows"),

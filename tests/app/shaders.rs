@@ -168,12 +168,7 @@ fn lighting_variants_validate_and_match_the_packed_layout() {
                 soft_samples,
                 ..ShaderKey::empty(geometry)
             };
-            assert_eq!(
-                validate(&key),
-                key.uniform_bytes(),
-                "{key:?}: naga's layout differs from the packer's size"
-            );
-            hit_id_module(&key);
+            validates_with_hit_id(&key);
             checked += 1;
         }
     }
@@ -196,8 +191,7 @@ fn cells_reaching_the_equator_validate_and_match_the_packed_layout() {
                 step_cap: true,
                 ..ShaderKey::empty(Geometry::Spherical)
             };
-            assert_eq!(validate(&key), key.uniform_bytes(), "{key:?}");
-            hit_id_module(&key);
+            validates_with_hit_id(&key);
         }
     }
 }
@@ -230,12 +224,7 @@ fn scene_content_variants_validate_and_match_the_packed_layout() {
                 light_images: 13,
                 ..ShaderKey::empty(geometry)
             };
-            assert_eq!(
-                validate(&key),
-                key.uniform_bytes(),
-                "{key:?}: naga's layout differs from the packer's size"
-            );
-            hit_id_module(&key);
+            validates_with_hit_id(&key);
             checked += 1;
         }
     }
@@ -425,6 +414,17 @@ fn the_upscaling_and_benchmark_baseline_shaders_validate() {
     }
 }
 
+/// `key`'s shader validates, plain and with `HIT_ID`, and naga's layout of the uniform is
+/// the packer's.
+fn validates_with_hit_id(key: &ShaderKey) {
+    assert_eq!(
+        validate(key),
+        key.uniform_bytes(),
+        "{key:?}: naga's layout differs from the packer's size"
+    );
+    hit_id_module(key);
+}
+
 /// The `HIT_ID` variant of a key, composed and validated.
 fn hit_id_module(key: &ShaderKey) -> naga::Module {
     let mut defs = key.shader_defs();
@@ -583,8 +583,7 @@ fn colour_by_variants_validate_and_match_the_packed_layout() {
                     colour_by,
                     ..ShaderKey::empty(geometry)
                 };
-                assert_eq!(validate(&key), key.uniform_bytes(), "{key:?}");
-                hit_id_module(&key);
+                validates_with_hit_id(&key);
             }
         }
     }
@@ -608,8 +607,7 @@ fn wall_variants_validate_and_match_the_packed_layout() {
                 walls: true,
                 ..ShaderKey::empty(geometry)
             };
-            assert_eq!(validate(&key), key.uniform_bytes(), "{key:?}");
-            hit_id_module(&key);
+            validates_with_hit_id(&key);
         }
     }
     for seed in SEED_SPACES {

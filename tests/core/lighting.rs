@@ -158,43 +158,8 @@ fn a_shadow_is_cast_through_a_face() {
     let n = DVec4::new(-1.0, 0.0, 0.0, 0.0);
     let (fog, r0) = (0.7, 0.01);
     let lit_by = |ball_at: DVec3, shadows: u32| {
-        let lighting = images(1.5, false, shadows);
-        let mut scene = CurvedScene::with_parts(
-            &s,
-            fog,
-            SceneParts {
-                edges: false,
-                centrepiece: bevy_curved_spaces::scene::Centrepiece::None,
-                avatar: false,
-                clifford: false,
-            },
-        );
-        scene.lights = vec![Light::reaching(
-            &s,
-            lamp,
-            DVec3::ONE,
-            1.0,
-            lighting.reach(&s),
-        )];
-        scene.shading = Shading {
-            lighting,
-            ..scene.shading
-        };
         let ball = Ball::new(g, ball_at.extend(1.0), 0.06, DVec3::ONE);
-        scene
-            .place(&s, Object::Ball(ball))
-            .expect("inside the cell");
-        let walk = ShadowWalk::new(&walker, None, 8);
-        let mut occluded = |x: DVec4, t: DVec4, len: f64| walk.occluded(&scene, x, t, len);
-        gather(
-            &lighting,
-            (fog, r0),
-            g,
-            &scene.lights[0],
-            p,
-            n,
-            &mut occluded,
-        )
+        lit_in_the_torus(images(1.5, false, shadows), (fog, r0), lamp, ball, (p, n)).0
     };
     let through_the_face = (-0.4f64 / fog).exp() / 0.16;
     let on_axis = DVec3::new(0.4, 0.0, 0.0);
@@ -227,6 +192,53 @@ fn a_shadow_is_cast_through_a_face() {
         !walk.occluded(&scene, p, -x, 0.6),
         "the ball is past the lamp"
     );
+}
+
+/// The light a point `p` with normal `n` of the 3-torus gets from a unit lamp at `lamp`,
+/// lit as `lighting` says in fog `fog` with the falloff held at `r0`, one `ball` in the
+/// cell, its shadow rays walked through the faces (8 crossings); and the lamp as the scene
+/// holds it.
+pub(crate) fn lit_in_the_torus(
+    lighting: Lighting,
+    (fog, r0): (f64, f64),
+    lamp: DVec4,
+    ball: Ball,
+    (p, n): (DVec4, DVec4),
+) -> (f64, Light) {
+    let s = space("torus");
+    let walker = CellWalker::<DVec4>::new(&s);
+    let mut scene = CurvedScene::with_parts(
+        &s,
+        fog,
+        SceneParts {
+            edges: false,
+            centrepiece: bevy_curved_spaces::scene::Centrepiece::None,
+            avatar: false,
+            clifford: false,
+        },
+    );
+    scene.lights = vec![Light::new(&s, lamp, DVec3::ONE, 1.0)];
+    scene.shading = Shading {
+        near_light: r0,
+        ..scene.shading
+    };
+    scene.set_lighting(&s, lighting).expect("in range");
+    scene
+        .place(&s, Object::Ball(ball))
+        .expect("inside the cell");
+    let walk = ShadowWalk::new(&walker, None, 8);
+    let mut occluded = |x: DVec4, t: DVec4, len: f64| walk.occluded(&scene, x, t, len);
+    let light = scene.lights[0].clone();
+    let e = gather(
+        &lighting,
+        (fog, r0),
+        s.geometry(),
+        &light,
+        p,
+        n,
+        &mut occluded,
+    );
+    (e, light)
 }
 
 /// The plugin's quality caps the shadowed images: a scene file's 12 become none at `Low`,

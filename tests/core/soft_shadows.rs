@@ -4,12 +4,12 @@
 //! the lamp that an independent integration over the lamp's disc says.
 
 use bevy_curved_spaces::geometry::Geometry;
-use bevy_curved_spaces::scene::lighting::{Light, LightPaths, Lighting, gather, shadow_directions};
-use bevy_curved_spaces::scene::{Ball, CurvedScene, Object, SceneParts, Shading};
-use bevy_curved_spaces::space::CellWalker;
+use bevy_curved_spaces::scene::Ball;
+use bevy_curved_spaces::scene::lighting::{LightPaths, Lighting, shadow_directions};
 use bevy_curved_spaces::space::invariants::inradius;
-use bevy_curved_spaces::trace::ShadowWalk;
 use glam::{DVec3, DVec4};
+
+use crate::lighting::lit_in_the_torus;
 
 use crate::common::library_space as space;
 
@@ -134,7 +134,6 @@ fn open_share(p: DVec3, lamp: DVec3, lamp_radius: f64, centre: DVec3, radius: f6
 fn a_penumbra_is_cast_through_a_face() {
     let s = space("torus");
     let g = s.geometry();
-    let walker = CellWalker::<DVec4>::new(&s);
     let lamp = DVec4::new(0.2, 0.0, 0.0, 1.0);
     let p = DVec4::new(-0.4, 0.0, 0.0, 1.0);
     let n = DVec4::new(-1.0, 0.0, 0.0, 0.0);
@@ -148,43 +147,11 @@ fn a_penumbra_is_cast_through_a_face() {
             lamp_radius_inradii: lamp_radius / inradius(&s),
             soft_samples: samples,
         };
-        let mut scene = CurvedScene::with_parts(
-            &s,
-            fog,
-            SceneParts {
-                edges: false,
-                centrepiece: bevy_curved_spaces::scene::Centrepiece::None,
-                avatar: false,
-                clifford: false,
-            },
-        );
-        scene.lights = vec![Light::new(&s, lamp, DVec3::ONE, 1.0)];
-        scene.shading = Shading {
-            near_light: r0,
-            ..scene.shading
-        };
-        scene.set_lighting(&s, lighting).expect("in range");
-        assert!((scene.lights[0].radius - lamp_radius).abs() < 1e-12);
-        let ball = Ball::new(
-            g,
-            DVec4::new(0.4, ball_y, 0.0, 1.0),
-            ball_radius,
-            DVec3::ONE,
-        );
-        scene
-            .place(&s, Object::Ball(ball))
-            .expect("inside the cell");
-        let walk = ShadowWalk::new(&walker, None, 8);
-        let mut occluded = |x: DVec4, t: DVec4, len: f64| walk.occluded(&scene, x, t, len);
-        gather(
-            &lighting,
-            (fog, r0),
-            g,
-            &scene.lights[0],
-            p,
-            n,
-            &mut occluded,
-        )
+        let at = DVec4::new(0.4, ball_y, 0.0, 1.0);
+        let ball = Ball::new(g, at, ball_radius, DVec3::ONE);
+        let (e, light) = lit_in_the_torus(lighting, (fog, r0), lamp, ball, (p, n));
+        assert!((light.radius - lamp_radius).abs() < 1e-12);
+        e
     };
     let through_the_face = (-0.4f64 / fog).exp() / 0.16;
     let image = DVec3::new(-0.8, 0.0, 0.0);
