@@ -80,12 +80,12 @@ fn scene_is_finite(file: &bevy_curved_spaces::scene::file::SceneFile) -> bool {
     file.base.objects.iter().all(|o| {
         let (c, r) = o.bounding_ball(g);
         c.is_finite() && r.is_finite()
-    }) && file
-        .base
-        .lights
-        .iter()
-        .all(|l| l.position.is_finite() && l.colour.is_finite() && l.power.is_finite())
-        && file.base.shading.fog_distance.is_finite()
+    }) && file.base.lights.iter().all(|l| {
+        l.position.is_finite()
+            && l.colour.is_finite()
+            && l.power.is_finite()
+            && l.radius.is_finite()
+    }) && file.base.shading.fog_distance.is_finite()
 }
 
 /// Parses a mutated scene text within the time bound; `true` for a scene, `false` for an
@@ -164,6 +164,34 @@ fn product_outcome(text: &str) -> bool {
             false
         }
     }
+}
+
+/// Every number of a shipped scene's `[lighting]` table (the reach, the shadows, the lamps'
+/// radius, the soft shadows' rays) replaced by every hostile one: a scene or an error that
+/// names the file, never a panic.
+#[test]
+fn lighting_tables_with_every_hostile_number() {
+    let mut tried = 0;
+    for (path, text) in scene_texts() {
+        let Some(start) = text.find("[lighting]") else {
+            continue;
+        };
+        let end = text[start + 1..]
+            .find("\n[")
+            .map_or(text.len(), |e| start + 1 + e);
+        for spot in numbers(&text)
+            .into_iter()
+            .filter(|s| s.start > start && s.end <= end)
+        {
+            for value in HOSTILE {
+                let mutated = format!("{}{value}{}", &text[..spot.start], &text[spot.end..]);
+                outcome(&mutated, path.parent().unwrap());
+                tried += 1;
+            }
+        }
+    }
+    // torus_shadows.toml and torus_soft_shadows.toml at least.
+    assert!(tried >= 6 * HOSTILE.len(), "{tried} mutations");
 }
 
 proptest! {
