@@ -5,18 +5,31 @@
 //! the view's own asymmetric frustum). Their frames come from [`HeadTracker`]: the head's
 //! motion in the room is applied as local motion in the space (walking in the room walks
 //! through faces, with holonomy), and each eye is the head's frame moved by the eye's pose
-//! relative to the head, wrapped into the cell on its own. The world scale is the stereo
-//! settings' (eye distance / 64 mm). Controllers: the left thumbstick walks (along where the
-//! head looks), the right one turns smoothly about the head's up axis. The desktop window
-//! mirrors the head's view.
+//! relative to the head, wrapped into the cell on its own.
+//!
+//! - **World scale.** The stereo settings' eye distance in the space (by default
+//!   [`default_ipd`](crate::view::stereo::default_ipd): 64 mm where the cell's inradius is
+//!   the size of a room) is the wearer's real eye distance, 64 mm: one metre in the room is
+//!   `ipd / 0.064` space units.
+//! - **Controllers.** The left thumbstick walks (along where the head looks), the right one
+//!   turns about the head's up axis, smoothly or in snaps ([`TurnStyle`]). The sticks'
+//!   values are in [`XrSticks`] each frame, so a game may drive them too.
+//! - **Play area.** [`PlayArea`] chooses the OpenXR reference space the head is tracked in
+//!   (the standing stage, with its floor at the room's `y = 0`, or the seated local space
+//!   centred on the head); pass it to [`xr_plugins`].
+//! - **Frame rate.** The tracer's frame-rate target follows the headset's display period,
+//!   so the per-eye resolution (the runtime's recommended size × the quality's scale) drops
+//!   where the headset's refresh rate cannot be held.
+//!
+//! The desktop window mirrors the head's view.
 //!
 //! ```no_run
 //! use bevy::prelude::*;
 //! use bevy_curved_spaces::prelude::*;
-//! use bevy_curved_spaces::plugin::xr::{CurvedSpacesXrPlugin, add_xr_plugins};
+//! use bevy_curved_spaces::plugin::xr::{CurvedSpacesXrPlugin, PlayArea, xr_plugins};
 //!
 //! App::new()
-//!     .add_plugins(add_xr_plugins(DefaultPlugins))
+//!     .add_plugins(xr_plugins(DefaultPlugins, PlayArea::Standing))
 //!     .add_plugins((CurvedSpacesPlugin::default(), CurvedSpacesXrPlugin::default()))
 //!     .run();
 //! ```
@@ -25,21 +38,65 @@ use crate::plugin::components::CurvedSpaceEye;
 use crate::plugin::components::StereoSettings;
 use crate::plugin::components::{ActiveSpace, CurvedSpaceCamera, CurvedSpacesSystems};
 use crate::plugin::components::{PlayerFrame, PlayerSettings};
+use crate::plugin::frame_rate::FrameRateTarget;
 use crate::view::Lens;
 use crate::view::TraceCamera;
-use crate::view::headset::{HeadTracker, RoomPose};
+pub use crate::view::headset::TurnStyle;
+use crate::view::headset::{DEAD_ZONE, HeadTracker, RoomPose, turn_yaw};
+use bevy::app::PluginGroupBuilder;
 use bevy::prelude::*;
 use bevy_mod_openxr::action_binding::{OxrSendActionBindings, OxrSuggestActionBinding};
 use bevy_mod_openxr::action_set_attaching::OxrAttachActionSet;
 use bevy_mod_openxr::action_set_syncing::{OxrActionSetSyncSet, OxrSyncActionSet};
 use bevy_mod_openxr::openxr_session_running;
-use bevy_mod_openxr::resources::{OxrInstance, OxrViews};
+use bevy_mod_openxr::poll_events::{OxrEventHandlerExt, OxrEventIn};
+use bevy_mod_openxr::reference_space::OxrReferenceSpacePlugin;
+use bevy_mod_openxr::resources::{OxrFrameState, OxrInstance, OxrViews};
 use bevy_mod_openxr::session::OxrSession;
 use bevy_mod_xr::camera::XrCamera;
 use bevy_mod_xr::session::{XrSessionCreated, XrState, session_available};
 use glam::{DQuat, DVec3};
 
 pub use bevy_mod_openxr::add_xr_plugins;
+
+/// Where the wearer is, which decides the OpenXR reference space the head is tracked in.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum PlayArea {
+    /// Standing (room scale): the runtime's stage, with the floor at the room's `y = 0` and
+    /// the play area's centre at its origin; walking in the room walks in the space.
+    #[default]
+    Standing,
+    /// Seated: the runtime's local space, its origin where the head was when the session
+    /// began (moved by the runtime's recentre); the thumbsticks do the walking.
+    Seated,
+}
+
+impl PlayArea {
+    /// The OpenXR reference space of this play area.
+    #[must_use]
+    pub fn reference_space(self) -> openxr::ReferenceSpaceType {
+        match self {
+            PlayArea::Standing => openxr::ReferenceSpaceType::STAGE,
+            PlayArea::Seated => openxr::ReferenceSpaceType::LOCAL,
+        }
+    }
+
+    /// Its name on the command line: `standing` or `seated`.
+    #[must_use]
+    pub fn label(self) -> &'static str {
+        match self {
+            PlayArea::Standing => "standing",
+            PlayArea::Seated => "seated",
+        }
+    }
+}
+
+/// [`add_xr_plugins`] with the head tracked in `play_area`'s reference space.
+pub fn xr_plugins<G: PluginGroup>(plugins: G, play_area: PlayArea) -> PluginGroupBuilder {
+    add_xr_plugins(plugins).set(OxrReferenceSpacePlugin {
+        default_primary_ref_space: play_area.reference_space(),
+    })
+}
 
 /// Why no headset can be used.
 // The fields of a variant are the values its message names.
@@ -71,15 +128,20 @@ pub fn probe_runtime() -> Result<(), XrUnavailable> {
 }
 
 /// Drives curved-space cameras from an OpenXR headset. Add it after
-/// [`add_xr_plugins`]`(DefaultPlugins)` and [`CurvedSpacesPlugin`](crate::plugin::CurvedSpacesPlugin).
+/// [`xr_plugins`]`(DefaultPlugins, …)` and [`CurvedSpacesPlugin`](crate::plugin::CurvedSpacesPlugin).
+/// Its locomotion and comfort fields start the [`XrComfort`] resource.
 #[derive(Clone, Debug)]
 pub struct CurvedSpacesXrPlugin {
     /// Walking speed of the thumbstick in cell inradii per second.
     pub speed: f64,
-    /// Turning speed of the thumbstick in radians per second.
+    /// Turning speed of the thumbstick in radians per second ([`TurnStyle::Smooth`]).
     pub turn_speed: f64,
+    /// Smooth or snap turning.
+    pub turn: TurnStyle,
     /// A desktop window camera that shows the head's view.
     pub mirror: bool,
+    /// Sets the tracer's [`FrameRateTarget`] to the headset's display rate.
+    pub display_rate_target: bool,
 }
 
 impl Default for CurvedSpacesXrPlugin {
@@ -87,7 +149,9 @@ impl Default for CurvedSpacesXrPlugin {
         Self {
             speed: 0.5,
             turn_speed: 1.5,
+            turn: TurnStyle::default(),
             mirror: true,
+            display_rate_target: true,
         }
     }
 }
@@ -96,12 +160,37 @@ impl Default for CurvedSpacesXrPlugin {
 #[derive(Resource, Clone, Debug)]
 pub struct XrHead(pub HeadTracker);
 
-/// Thumbstick speeds.
-#[derive(Resource, Clone, Copy, Debug)]
-struct XrControls {
-    speed: f64,
-    turn_speed: f64,
+/// The thumbsticks this frame, each axis in `[-1, 1]` (x right, y forward), read from the
+/// runtime's actions in `PreUpdate`; a system before [`CurvedSpacesSystems::Move`] may set
+/// them instead (a game's own input, a test).
+#[derive(Resource, Clone, Copy, Debug, Default, PartialEq)]
+pub struct XrSticks {
+    /// The left stick: walking.
+    pub walk: Vec2,
+    /// The right stick: turning (its x).
+    pub turn: Vec2,
+    /// Whether the runtime reported the sticks as bound to a controller this frame.
+    pub bound: bool,
 }
+
+/// The headset's locomotion and comfort settings (a resource, changeable at run time; the
+/// plugin's fields give its start).
+#[derive(Resource, Clone, Copy, Debug, PartialEq)]
+pub struct XrComfort {
+    /// Walking speed of the thumbstick in cell inradii per second.
+    pub speed: f64,
+    /// Turning speed of the thumbstick in radians per second ([`TurnStyle::Smooth`]).
+    pub turn_speed: f64,
+    /// Smooth or snap turning.
+    pub turn: TurnStyle,
+    /// Sets the tracer's [`FrameRateTarget`] to the headset's display rate (off: the target
+    /// is left as it is).
+    pub display_rate_target: bool,
+}
+
+/// A snap turn was made and the stick has not come back yet.
+#[derive(Resource, Default)]
+struct SnapHeld(bool);
 
 /// The desktop camera that mirrors the head.
 #[derive(Component, Clone, Copy, Debug)]
@@ -116,17 +205,23 @@ struct LocomotionActions {
 
 impl Plugin for CurvedSpacesXrPlugin {
     fn build(&self, app: &mut App) {
-        app.insert_resource(XrControls {
+        app.insert_resource(XrComfort {
             speed: self.speed,
             turn_speed: self.turn_speed,
+            turn: self.turn,
+            display_rate_target: self.display_rate_target,
         })
+        .init_resource::<SnapHeld>()
+        .init_resource::<XrSticks>()
         .add_systems(Startup, create_actions.run_if(session_available))
         .add_systems(XrSessionCreated, attach_actions)
         .add_systems(OxrSendActionBindings, suggest_bindings)
         .add_systems(
             PreUpdate,
-            sync_actions
-                .before(OxrActionSetSyncSet)
+            (
+                sync_actions.before(OxrActionSetSyncSet),
+                read_thumbsticks.after(OxrActionSetSyncSet),
+            )
                 .run_if(openxr_session_running),
         )
         .add_systems(
@@ -137,14 +232,22 @@ impl Plugin for CurvedSpacesXrPlugin {
                 .run_if(openxr_session_running)
                 .run_if(resource_exists::<ActiveSpace>),
         )
+        .init_resource::<XrDisplayPeriod>()
+        .add_observer(mark_xr_camera)
         .add_systems(
             PostUpdate,
-            (mark_xr_cameras, drive_eyes)
-                .chain()
+            drive_eyes
                 .after(bevy_mod_openxr::render::update_views)
                 .run_if(openxr_session_running)
                 .run_if(resource_exists::<ActiveSpace>),
         );
+        app.add_systems(
+            Update,
+            follow_display_rate
+                .before(CurvedSpacesSystems::Move)
+                .run_if(openxr_session_running),
+        );
+        app.add_oxr_event_handler(reanchor_on_recentre);
         if self.mirror {
             app.add_systems(Startup, spawn_mirror)
                 .add_systems(PostUpdate, mirror_head.after(drive_eyes));
@@ -229,15 +332,12 @@ fn reset_head_on_switch(active: Res<ActiveSpace>, head: Option<ResMut<XrHead>>) 
     }
 }
 
-fn thumbstick_locomotion(
+fn read_thumbsticks(
     actions: Option<Res<LocomotionActions>>,
     session: Option<Res<OxrSession>>,
-    controls: Res<XrControls>,
-    active: Res<ActiveSpace>,
-    time: Res<Time>,
-    head: Option<ResMut<XrHead>>,
+    mut sticks: ResMut<XrSticks>,
 ) {
-    let (Some(actions), Some(session), Some(mut head)) = (actions, session, head) else {
+    let (Some(actions), Some(session)) = (actions, session) else {
         return;
     };
     let stick = |action: &openxr::Action<openxr::Vector2f>| {
@@ -245,38 +345,104 @@ fn thumbstick_locomotion(
             .state(&session, openxr::Path::NULL)
             .ok()
             .filter(|s| s.is_active)
-            .map_or(DVec3::ZERO, |s| {
-                DVec3::new(
-                    f64::from(s.current_state.x),
-                    f64::from(s.current_state.y),
-                    0.0,
-                )
-            })
+            .map(|s| Vec2::new(s.current_state.x, s.current_state.y))
     };
     let (walk, turn) = (stick(&actions.walk), stick(&actions.turn));
+    *sticks = XrSticks {
+        bound: walk.is_some() || turn.is_some(),
+        walk: walk.unwrap_or_default(),
+        turn: turn.unwrap_or_default(),
+    };
+}
+
+fn thumbstick_locomotion(
+    sticks: Res<XrSticks>,
+    comfort: Res<XrComfort>,
+    mut snap: ResMut<SnapHeld>,
+    active: Res<ActiveSpace>,
+    time: Res<Time>,
+    head: Option<ResMut<XrHead>>,
+) {
+    let Some(mut head) = head else {
+        return;
+    };
     let dt = time.delta_secs_f64();
-    // Stick up walks forward (−back), right strafes; a dead zone ignores resting drift.
-    let dead = |v: f64| if v.abs() < 0.15 { 0.0 } else { v };
-    let step = DVec3::new(dead(walk.x), 0.0, -dead(walk.y)) * controls.speed * active.inradius * dt;
-    let yaw = -dead(turn.x) * controls.turn_speed * dt;
+    // Stick up walks forward (−back), right strafes.
+    let dead = |v: f32| {
+        let v = f64::from(v);
+        if v.abs() < DEAD_ZONE { 0.0 } else { v }
+    };
+    let step = DVec3::new(dead(sticks.walk.x), 0.0, -dead(sticks.walk.y))
+        * comfort.speed
+        * active.inradius
+        * dt;
+    let (yaw, snapped) = turn_yaw(
+        comfort.turn,
+        f64::from(sticks.turn.x),
+        comfort.turn_speed,
+        dt,
+        snap.0,
+    );
+    if snap.0 != snapped {
+        snap.0 = snapped;
+    }
     if step != DVec3::ZERO || yaw != 0.0 {
         head.0.locomote(&active.space, step, yaw);
     }
 }
 
-/// The headset's cameras (spawned by the OpenXR backend) become curved-space eyes.
-fn mark_xr_cameras(
-    mut commands: Commands,
-    cameras: Query<Entity, (With<XrCamera>, Without<CurvedSpaceEye>)>,
+/// The headset display's period: the shortest frame period the runtime has predicted this
+/// session. A runtime lengthens its prediction while the app misses frames (Monado to a
+/// multiple of its display's period), so the latest one would let a slow app set its own
+/// target; the shortest is the display's.
+#[derive(Resource, Clone, Copy, Debug, Default, PartialEq)]
+pub struct XrDisplayPeriod {
+    /// Milliseconds; `None` before the first frame.
+    pub ms: Option<f64>,
+}
+
+/// The frame-rate target at the headset's display rate.
+fn follow_display_rate(
+    frame: Option<Res<OxrFrameState>>,
+    comfort: Res<XrComfort>,
+    mut period: ResMut<XrDisplayPeriod>,
+    mut target: ResMut<FrameRateTarget>,
 ) {
-    for entity in &cameras {
-        commands.entity(entity).insert((
-            CurvedSpaceCamera::default(),
-            CurvedSpaceEye {
-                lens: Lens::symmetric(90.0, 1.0),
-            },
-        ));
+    let Some(frame) = frame else {
+        return;
+    };
+    let predicted = frame.predicted_display_period.as_nanos() as f64 / 1e6;
+    if !(predicted > 0.0 && predicted.is_finite()) {
+        return;
     }
+    let shortest = period.ms.map_or(predicted, |p| p.min(predicted));
+    if period.ms != Some(shortest) {
+        period.ms = Some(shortest);
+    }
+    if comfort.display_rate_target && target.target_ms != Some(shortest) {
+        target.target_ms = Some(shortest);
+    }
+}
+
+/// A recentre (or a change of the play area's bounds) moves the room's reference: the head
+/// keeps its place in the space and continues from its next pose.
+fn reanchor_on_recentre(event: OxrEventIn, head: Option<ResMut<XrHead>>) {
+    if let openxr::Event::ReferenceSpaceChangePending(_) = *event
+        && let Some(mut head) = head
+    {
+        head.0.reanchor();
+    }
+}
+
+/// The headset's cameras become curved-space eyes as the OpenXR backend spawns them (before
+/// any frame draws them as plain cameras).
+fn mark_xr_camera(added: On<Add, XrCamera>, mut commands: Commands) {
+    commands.entity(added.entity).insert((
+        CurvedSpaceCamera::default(),
+        CurvedSpaceEye {
+            lens: Lens::symmetric(90.0, 1.0),
+        },
+    ));
 }
 
 fn room_pose(pose: &openxr::Posef) -> RoomPose {

@@ -120,6 +120,12 @@ impl HeadTracker {
         self.wrap(space, moved)
     }
 
+    /// Forgets the room's reference (after the runtime recentred it): the head stays where it
+    /// is in the space, and the next pose only sets the new reference.
+    pub fn reanchor(&mut self) {
+        self.last = None;
+    }
+
     /// Controller locomotion: a local translation (space units, head axes) and a turn about
     /// the head's up axis (radians, counter-clockwise seen from above). The room reference
     /// is kept, so the next pose continues from here.
@@ -147,5 +153,53 @@ impl HeadTracker {
             space,
             local_motion(space.geometry, self.frame, t * self.units_per_metre, r),
         )
+    }
+}
+
+/// How the right thumbstick turns the head.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum TurnStyle {
+    /// A steady turn while the stick is held, at the plugin's turning speed.
+    Smooth,
+    /// One turn of `degrees` each time the stick is pushed past 70 % to a side (it must come
+    /// back under 30 % before the next): what most wearers prone to motion sickness prefer.
+    Snap {
+        /// The angle of one snap, in degrees.
+        degrees: f64,
+    },
+}
+
+impl Default for TurnStyle {
+    fn default() -> Self {
+        TurnStyle::Snap { degrees: 30.0 }
+    }
+}
+
+/// Stick values under this are resting drift.
+pub const DEAD_ZONE: f64 = 0.15;
+/// A snap turn fires past this push…
+const SNAP_PUSH: f64 = 0.7;
+/// …and re-arms once the stick is back under this.
+const SNAP_RELEASE: f64 = 0.3;
+
+/// The yaw (radians, counter-clockwise seen from above) the turning stick's `x` (right
+/// positive) asks for in a frame of `dt` seconds, and whether a snap is held after it
+/// (`snapped`: whether one was held before).
+#[must_use]
+pub fn turn_yaw(style: TurnStyle, x: f64, turn_speed: f64, dt: f64, snapped: bool) -> (f64, bool) {
+    match style {
+        TurnStyle::Smooth => {
+            let x = if x.abs() < DEAD_ZONE { 0.0 } else { x };
+            (-x * turn_speed * dt, false)
+        }
+        TurnStyle::Snap { degrees } => {
+            if snapped {
+                (0.0, x.abs() >= SNAP_RELEASE)
+            } else if x.abs() > SNAP_PUSH {
+                (-x.signum() * degrees.to_radians(), true)
+            } else {
+                (0.0, false)
+            }
+        }
     }
 }

@@ -572,6 +572,22 @@ fn render_stereo_writes_both_eyes_and_names_bad_stereo_options() {
     for fps in ["-1", "nan", "inf", "1e308", "1001", "fast"] {
         fails_with(&["walk", "torus", "--fps", fps], "expected frames a second");
     }
+    // The headset's options: a snap of 0 (smooth) to 180°, a play area by name, both only
+    // with --xr.
+    for snap in ["-5", "nan", "181", "left"] {
+        fails_with(
+            &["walk", "torus", "--xr", "--snap-turn", snap],
+            "expected a snap turn from 0 (smooth turning) to 180 degrees",
+        );
+    }
+    fails_with(
+        &["walk", "torus", "--xr", "--play-area", "lying"],
+        "invalid value 'lying' for '--play-area",
+    );
+    fails_with(
+        &["walk", "torus", "--play-area", "seated"],
+        "the following required arguments were not provided",
+    );
     fails_with(
         &[
             "render", "torus", "--cpu", "--stereo", "anaglyph", "--ipd", "2",

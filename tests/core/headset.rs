@@ -216,3 +216,66 @@ fn controller_locomotion_is_local_motion_with_wrapping() {
         head.frame
     );
 }
+
+#[test]
+fn smooth_turning_follows_the_stick_past_its_dead_zone() {
+    use bevy_curved_spaces::view::headset::{DEAD_ZONE, TurnStyle, turn_yaw};
+    let (speed, dt) = (1.5, 0.05);
+    // Right turns clockwise seen from above (a negative yaw), in proportion to the push.
+    for x in [1.0, 0.5, -0.8] {
+        let (yaw, held) = turn_yaw(TurnStyle::Smooth, x, speed, dt, false);
+        assert!((yaw + x * speed * dt).abs() < 1e-15, "{x}: {yaw}");
+        assert!(!held);
+    }
+    // Resting drift turns nothing.
+    let (yaw, _) = turn_yaw(TurnStyle::Smooth, 0.9 * DEAD_ZONE, speed, dt, false);
+    assert_eq!(yaw, 0.0);
+}
+
+#[test]
+fn snap_turning_turns_once_per_push() {
+    use bevy_curved_spaces::view::headset::{TurnStyle, turn_yaw};
+    let style = TurnStyle::Snap { degrees: 45.0 };
+    // A push held over several frames, released, pushed the other way.
+    let sticks = [0.2, 0.75, 1.0, 1.0, 0.5, 0.2, 0.0, -0.9, -0.9, 0.0];
+    let mut held = false;
+    let mut turns = Vec::new();
+    for x in sticks {
+        let (yaw, now) = turn_yaw(style, x, 1.5, 0.05, held);
+        held = now;
+        if yaw != 0.0 {
+            turns.push(yaw.to_degrees());
+        }
+    }
+    assert_eq!(turns.len(), 2, "{turns:?}");
+    assert!((turns[0] + 45.0).abs() < 1e-12, "right first: {turns:?}");
+    assert!((turns[1] - 45.0).abs() < 1e-12, "then left: {turns:?}");
+    // A snap does not depend on the frame time.
+    let (a, _) = turn_yaw(style, 1.0, 1.5, 0.01, false);
+    let (b, _) = turn_yaw(style, 1.0, 1.5, 0.2, false);
+    assert_eq!(a, b);
+}
+
+#[test]
+fn a_recentred_room_does_not_move_the_head() {
+    let space = seed_space("torus").expect("seed");
+    let mut head = tracker(&space);
+    head.track(&space, RoomPose::IDENTITY);
+    head.track(
+        &space,
+        RoomPose::new(DVec3::new(0.0, 0.0, -0.1), DQuat::IDENTITY),
+    );
+    let frame = head.frame;
+    // The runtime recentres: the same head is now reported at the room's origin.
+    head.reanchor();
+    head.track(&space, RoomPose::IDENTITY);
+    assert_eq!(head.frame, frame, "the recentre moved the head");
+    // Motion after it continues from there.
+    head.track(
+        &space,
+        RoomPose::new(DVec3::new(0.0, 0.0, -0.1), DQuat::IDENTITY),
+    );
+    let g = space.geometry();
+    let step = g.distance(frame.w_axis, head.frame.w_axis);
+    assert!((step - 0.1 * head.units_per_metre).abs() < 1e-12, "{step}");
+}

@@ -90,6 +90,15 @@ enum Command {
     },
 }
 
+/// Where a headset wearer is (`walk --xr --play-area`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub(crate) enum PlayAreaArg {
+    /// Standing, room scale.
+    Standing,
+    /// Seated.
+    Seated,
+}
+
 #[derive(Clone, Copy, ValueEnum)]
 enum Precision {
     F64,
@@ -480,6 +489,13 @@ struct WalkArgs {
     /// `--features xr`). Without a runtime, falls back to desktop stereo.
     #[arg(long)]
     xr: bool,
+    /// With --xr: `standing` (room scale: the runtime's stage, its floor at the room's
+    /// y = 0) or `seated` (the runtime's local space, centred where the head starts).
+    #[arg(long, value_enum, default_value_t = PlayAreaArg::Standing, requires = "xr")]
+    play_area: PlayAreaArg,
+    /// With --xr: the right thumbstick turns in snaps of this many degrees; 0 turns smoothly.
+    #[arg(long, default_value_t = 30.0, value_parser = parse::parse_snap_degrees, requires = "xr")]
+    snap_turn: f64,
     /// A scene file (TOML; see docs/scenes.md and assets/scenes/): its space, objects,
     /// lights, fog and start view instead of the default scene.
     #[arg(long, conflicts_with = "space")]
@@ -705,6 +721,8 @@ impl Default for WalkArgs {
             screenshot: None,
             stereo: StereoArgs::default(),
             xr: false,
+            play_area: PlayAreaArg::Standing,
+            snap_turn: 30.0,
             scene: None,
             no_avatar: false,
             fps: DEFAULT_WALK_FPS,

@@ -48,6 +48,16 @@ pub(super) fn parse_positive(s: &str) -> Result<f64, String> {
     }
 }
 
+/// A snap turn in degrees: 0 (smooth turning) to 180.
+pub(super) fn parse_snap_degrees(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(x) if x.is_finite() && (0.0..=180.0).contains(&x) => Ok(x),
+        _ => Err(format!(
+            "expected a snap turn from 0 (smooth turning) to 180 degrees, got `{s}`"
+        )),
+    }
+}
+
 /// A frame rate to hold: 0 (off) to 1000.
 pub(super) fn parse_fps(s: &str) -> Result<f64, String> {
     match s.parse::<f64>() {

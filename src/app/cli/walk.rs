@@ -269,25 +269,46 @@ pub(super) fn exit_result(exit: AppExit) -> Result<(), String> {
 /// `walk --xr` with a runtime: the headset's views are traced, the window mirrors the head.
 #[cfg(feature = "xr")]
 pub(super) fn walk_xr(args: &WalkArgs, chosen: &Chosen) -> Result<(), String> {
-    use bevy_curved_spaces::plugin::xr::{CurvedSpacesXrPlugin, add_xr_plugins, xr_available};
+    use bevy_curved_spaces::plugin::xr::{
+        CurvedSpacesXrPlugin, PlayArea, TurnStyle, xr_available, xr_plugins,
+    };
     let stereo = args.stereo.settings(&chosen.space)?;
     let walls = args.view.walls.style(chosen.scene.shading.walls)?;
     let lighting = walk_lighting(args, chosen)?;
     let active = ActiveSpace::new(&chosen.id, chosen.space.clone());
     let name = active.space.name().to_string();
+    let play_area = match args.play_area {
+        super::PlayAreaArg::Standing => PlayArea::Standing,
+        super::PlayAreaArg::Seated => PlayArea::Seated,
+    };
+    let turn = if args.snap_turn > 0.0 {
+        TurnStyle::Snap {
+            degrees: args.snap_turn,
+        }
+    } else {
+        TurnStyle::Smooth
+    };
     eprintln!(
-        "walking in {} with a headset: left thumbstick walks, right thumbstick turns; the window mirrors the head",
-        active.space.name()
+        "walking in {} with a headset ({}): left thumbstick walks, right thumbstick turns ({}); the window mirrors the head",
+        active.space.name(),
+        play_area.label(),
+        match turn {
+            TurnStyle::Smooth => "smoothly".to_string(),
+            TurnStyle::Snap { degrees } => format!("in snaps of {degrees}°"),
+        }
     );
     let mut app = App::new();
     app.add_plugins(
-        add_xr_plugins(DefaultPlugins)
+        xr_plugins(DefaultPlugins, play_area)
             .set(window_titled(format!("curved spaces (XR mirror): {name}"))),
     );
     app.insert_resource(active);
     add_walk_plugins(&mut app, args, stereo, walls, lighting);
     if xr_available(app.world()) {
-        app.add_plugins(CurvedSpacesXrPlugin::default());
+        app.add_plugins(CurvedSpacesXrPlugin {
+            turn,
+            ..CurvedSpacesXrPlugin::default()
+        });
     } else {
         eprintln!(
             "the OpenXR runtime did not start a session: falling back to desktop stereo in the window"
