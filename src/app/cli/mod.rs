@@ -494,7 +494,7 @@ struct WalkArgs {
     #[arg(long, value_enum, default_value_t = PlayAreaArg::Standing, requires = "xr")]
     play_area: PlayAreaArg,
     /// With --xr: the right thumbstick turns in snaps of this many degrees; 0 turns smoothly.
-    #[arg(long, default_value_t = 30.0, value_parser = parse::parse_snap_degrees, requires = "xr")]
+    #[arg(long, default_value_t = 30.0, value_parser = parse::parse_snap_degrees, allow_hyphen_values = true, requires = "xr")]
     snap_turn: f64,
     /// A scene file (TOML; see docs/scenes.md and assets/scenes/): its space, objects,
     /// lights, fog and start view instead of the default scene.
