@@ -482,7 +482,7 @@ fn crossing_by_head_motion(app: &mut App) {
     let space = &active.space;
     let g = space.geometry();
     let scale = head(app).units_per_metre;
-    for attempt in 0..4 {
+    for attempt in 0..8 {
         // Which way is the head going? Its motion over the last half second, in its own axes.
         let mut poses = Vec::new();
         for _ in 0..10 {
