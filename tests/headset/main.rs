@@ -157,6 +157,15 @@ fn head_pose(app: &App) -> Option<RoomPose> {
     Some(RoomPose::between(&pose(&l.pose), &pose(&r.pose)))
 }
 
+/// The frame period the runtime predicts now, in milliseconds.
+fn predicted_period_ms(app: &App) -> f64 {
+    app.world()
+        .resource::<OxrFrameState>()
+        .predicted_display_period
+        .as_nanos() as f64
+        / 1e6
+}
+
 fn head(app: &App) -> &bevy_curved_spaces::view::headset::HeadTracker {
     &app.world().resource::<XrHead>().0
 }
@@ -333,12 +342,7 @@ fn a_headset_session_runs_traces_both_eyes_and_walks_through_faces() {
     );
 
     // 2. The frame-rate target follows the display.
-    let predicted_ms = app
-        .world()
-        .resource::<OxrFrameState>()
-        .predicted_display_period
-        .as_nanos() as f64
-        / 1e6;
+    let predicted_ms = predicted_period_ms(&app);
     let period_ms = app
         .world()
         .resource::<XrDisplayPeriod>()
@@ -404,12 +408,7 @@ fn a_headset_session_runs_traces_both_eyes_and_walks_through_faces() {
         times.push(1e3 * start.elapsed().as_secs_f64());
     }
     times.sort_by(f64::total_cmp);
-    let predicted_ms = app
-        .world()
-        .resource::<OxrFrameState>()
-        .predicted_display_period
-        .as_nanos() as f64
-        / 1e6;
+    let predicted_ms = predicted_period_ms(&app);
     println!(
         "frame time with both eyes traced at {w}×{h}: min {:.1} ms, median {:.1} ms, max {:.1} ms (the runtime's display period {period_ms:.1} ms; it predicts {predicted_ms:.1} ms now)",
         times[0],
