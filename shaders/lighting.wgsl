@@ -170,66 +170,81 @@ fn seen_arcs(i: u32, point: vec4<f32>, l: vec4<f32>, length: f32) -> vec3<f32> {
 #endif
 #endif
 
+#ifdef LIGHT_IMAGES_SUM
+// What image `k` of lamp `i` within its reach gives a surface point (unit normal `normal`),
+// walked for shadows if `walk` (Rust: one term of `scene::lighting::gather`).
+fn image_light(i: u32, k: u32, point: vec4<f32>, normal: vec4<f32>, walk: bool) -> f32 {
+    let near_s = space.shading.params.z;
+    let reach = space.lights[i].info.x;
+    let fog = space.shading.params.x;
+    let q = space.lights[i].images[k];
+    let d = distance(point, q);
+    if !(d > 0.0) || d > reach {
+        return 0.0;
+    }
+    let s = max(abs(s_of(d)), near_s);
+    let falloff = 1.0 / (s * s);
+#ifdef SPHERICAL
+    if kappa() > 0.0 {
+        // Both arcs and the whole turns (a turn passes both arcs); the lamp's antipode
+        // has no direction and is left out.
+        if d > 3.14059265 {
+            return 0.0;
+        }
+        let l = tangent_towards(point, q);
+        let short = max(form(normal, l), 0.0);
+        let long = max(-form(normal, l), 0.0);
+        if short == 0.0 && long == 0.0 {
+            return 0.0;
+        }
+        // The shares seen along the short arcs, the long ones and both.
+        var open = vec3<f32>(1.0);
+#ifdef SHADOWS
+        if walk {
+            open = seen_arcs(i, point, l, d);
+        }
+#endif
+        let t = exp(-TAU / fog);
+        let fs = short * exp(-d / fog);
+        let fl = long * exp(-(TAU - d) / fog);
+        let paths = fs * open.x + fl * open.y + (fs + fl) * open.z * t / (1.0 - t);
+        return paths * falloff;
+    }
+#endif
+    let l = tangent_towards(point, q);
+    let cos = max(form(normal, l), 0.0);
+    if cos > 0.0 {
+        var open = 1.0;
+#ifdef SHADOWS
+        if walk {
+            open = seen(i, point, l, d);
+        }
+#endif
+        return cos * open * exp(-d / fog) * falloff;
+    }
+    return 0.0;
+}
+#endif
+
 // The light a surface point (unit normal `normal`) gets from lamp `i`, per unit of its
 // colour × power (Rust: `scene::lighting::gather`).
 fn light_from(i: u32, point: vec4<f32>, normal: vec4<f32>) -> f32 {
     let count = u32(space.lights[i].colour.w);
     let near_s = space.shading.params.z;
 #ifdef LIGHT_IMAGES_SUM
-    let reach = space.lights[i].info.x;
-    let fog = space.shading.params.x;
     var sum = 0.0;
-    for (var k = 0u; k < count; k += 1u) {
-        let q = space.lights[i].images[k];
-        let d = distance(point, q);
-        if !(d > 0.0) || d > reach {
-            continue;
-        }
-        let s = max(abs(s_of(d)), near_s);
-        let falloff = 1.0 / (s * s);
-        var walk = false;
+    // The nearest images, walked for shadows, in a loop of their own: a SIMD rasteriser
+    // such as llvmpipe runs an `if`'s body whenever any lane reaches it, so a shadow walk
+    // under `if k < SHADOWS` in one loop over every image was paid at every image.
+    var first = 0u;
 #ifdef SHADOWS
-        walk = k < #{SHADOWS}u;
+    first = min(count, #{SHADOWS}u);
+    for (var k = 0u; k < first; k += 1u) {
+        sum += image_light(i, k, point, normal, true);
+    }
 #endif
-#ifdef SPHERICAL
-        if kappa() > 0.0 {
-            // Both arcs and the whole turns (a turn passes both arcs); the lamp's antipode
-            // has no direction and is left out.
-            if d > 3.14059265 {
-                continue;
-            }
-            let l = tangent_towards(point, q);
-            let short = max(form(normal, l), 0.0);
-            let long = max(-form(normal, l), 0.0);
-            if short == 0.0 && long == 0.0 {
-                continue;
-            }
-            // The shares seen along the short arcs, the long ones and both.
-            var open = vec3<f32>(1.0);
-#ifdef SHADOWS
-            if walk {
-                open = seen_arcs(i, point, l, d);
-            }
-#endif
-            let t = exp(-TAU / fog);
-            let fs = short * exp(-d / fog);
-            let fl = long * exp(-(TAU - d) / fog);
-            let paths = fs * open.x + fl * open.y + (fs + fl) * open.z * t / (1.0 - t);
-            sum += paths * falloff;
-            continue;
-        }
-#endif
-        let l = tangent_towards(point, q);
-        let cos = max(form(normal, l), 0.0);
-        if cos > 0.0 {
-            var open = 1.0;
-#ifdef SHADOWS
-            if walk {
-                open = seen(i, point, l, d);
-            }
-#endif
-            sum += cos * open * exp(-d / fog) * falloff;
-        }
+    for (var k = first; k < count; k += 1u) {
+        sum += image_light(i, k, point, normal, false);
     }
     return sum + space.lights[i].info.y;
 #else

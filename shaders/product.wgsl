@@ -660,6 +660,11 @@ fn trace_product(start: Ray) -> vec3<f32> {
     veil_colour = vec3<f32>(0.0);
     veil_through = 1.0;
 #endif
+    // The object met and where along the last segment; shaded after the walk, once (a SIMD
+    // rasteriser such as llvmpipe runs an `if`'s body whenever any lane reaches it, so
+    // shading inside the walk's loop was paid at every crossing).
+    var met = NONE;
+    var met_at = 0.0;
     for (var guard = 0u; guard < 4u * budget + 256u; guard += 1u) {
         if travelled >= cutoff {
             break;
@@ -680,33 +685,9 @@ fn trace_product(start: Ray) -> vec3<f32> {
             }
         }
         if object != NONE {
-            let hit = moved(ray, nearest, false, 0.0, 1.0);
-            let at = hit.point;
-            var normal = object_normal(object, at);
-            if u32(space.product_objects[object].info.x) >= 3u
-                && base_form(normal, hit.tangent) + normal.z * hit.tangent.z > 0.0 {
-                // A flat piece is lit on the side the ray comes from.
-                normal = -normal;
-            }
-#ifdef PRODUCT_IMAGES
-            let light = product_gather(at, normal);
-#else
-            // The older model: the lamp in the cell only, unabsorbed.
-            let to_light = tangent_towards(at, space.product_light);
-            let spread = light_spread(
-                surface_distance(at, space.product_light),
-                at.z - space.product_light.z,
-            );
-            let light = max(base_form(normal, to_light) + normal.z * to_light.z, 0.0)
-                / max(spread, 1.0);
-#endif
-            let lit = ambient + (1.0 - ambient) * light;
-            var surface = min(space.product_objects[object].colour.rgb * lit, vec3<f32>(1.0));
-#ifdef COLOUR_BY
-            surface = recolour(colour_by_tint(crossings, last_face, held), surface);
-#endif
-            let w = exp(-(travelled + nearest) / lambda_fog);
-            return behind_walls(w * surface + (1.0 - w) * fog);
+            met = object;
+            met_at = nearest;
+            break;
         }
         if exit.distance >= cutoff - travelled {
             break;
@@ -740,6 +721,35 @@ fn trace_product(start: Ray) -> vec3<f32> {
             break;
         }
 #endif
+    }
+    if met != NONE {
+        let hit = moved(ray, met_at, false, 0.0, 1.0);
+        let at = hit.point;
+        var normal = object_normal(met, at);
+        if u32(space.product_objects[met].info.x) >= 3u
+            && base_form(normal, hit.tangent) + normal.z * hit.tangent.z > 0.0 {
+            // A flat piece is lit on the side the ray comes from.
+            normal = -normal;
+        }
+#ifdef PRODUCT_IMAGES
+        let light = product_gather(at, normal);
+#else
+        // The older model: the lamp in the cell only, unabsorbed.
+        let to_light = tangent_towards(at, space.product_light);
+        let spread = light_spread(
+            surface_distance(at, space.product_light),
+            at.z - space.product_light.z,
+        );
+        let light = max(base_form(normal, to_light) + normal.z * to_light.z, 0.0)
+            / max(spread, 1.0);
+#endif
+        let lit = ambient + (1.0 - ambient) * light;
+        var surface = min(space.product_objects[met].colour.rgb * lit, vec3<f32>(1.0));
+#ifdef COLOUR_BY
+        surface = recolour(colour_by_tint(crossings, last_face, held), surface);
+#endif
+        let w = exp(-(travelled + met_at) / lambda_fog);
+        return behind_walls(w * surface + (1.0 - w) * fog);
     }
     return behind_walls(fog);
 }

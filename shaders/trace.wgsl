@@ -8,7 +8,7 @@
 #import curved_spaces::shading::{colour_by_tint, colour_tint, shade}
 #import curved_spaces::hit_id::{FNV_OFFSET, FNV_PRIME, hit_id, object_number}
 #import curved_spaces::walk::{NO_FACE, Ray, cross_face, exit_face, partner}
-#import curved_spaces::scene::{intersect_scene, surface_at}
+#import curved_spaces::scene::{SceneHit, intersect_scene, surface_at}
 #import curved_spaces::walls::{cross_wall, veil_colour, veil_through}
 
 // C(t): cos t, 1 or cosh t.
@@ -171,6 +171,11 @@ fn path_end(c: vec3<f32>) -> vec3<f32> {
 // One camera ray's colour: walk the cell, nearest object hit against exit face, cross by
 // pairings until the fog cut-off or the crossing budget (Rust: `trace::first_hit` and
 // `colour_of`).
+//
+// The walk's loop holds only the walk and the intersections; the surface, its shading and a
+// mirror's bounce come after it, once per ray (once per bounce). A SIMD rasteriser such as
+// llvmpipe runs the body of every `if` that any lane reaches, whatever the condition, so
+// shading inside the loop was paid at every crossing of every pixel.
 fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
     let fog = space.shading.fog.rgb;
     let cutoff = space.shading.params.y;
@@ -178,6 +183,7 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
     var ray = Ray(start_point, start_tangent);
     var travelled = 0.0;
     var skip = 0xffffffffu;
+    var crossings = 0u;
 #ifdef MIRRORS
     mirror_sum = vec3<f32>(0.0);
     mirror_weight = 1.0;
@@ -196,98 +202,112 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
         vec4<f32>(0.0, 0.0, 0.0, 1.0),
     );
 #endif
-    for (var crossings = 0u; crossings <= budget; crossings += 1u) {
-        let exit = exit_face(ray, skip);
-        if exit.face == 0xffffffffu {
-            break;
-        }
-        let hit = intersect_scene(ray, exit.num / exit.den, travelled);
-        if hit.kind != 0u {
-            let point = project_point(ray.point + hit.s * ray.tangent);
-            let d = travelled + distance_from_ratio(hit.s, 1.0);
-            if d >= cutoff {
-#ifdef HIT_ID
-                hit_id = vec4<u32>(0u, crossings, path, 2u);
-#endif
-                return path_end(fog);
+    // One pass a bounce (one pass without mirrors).
+    loop {
+        // The walk, up to the first object, the fog cut-off, the budget or a wall that stops
+        // the ray (hit.kind stays 0 for all but the first).
+        var hit: SceneHit;
+        loop {
+            let exit = exit_face(ray, skip);
+            if exit.face == 0xffffffffu {
+                break;
             }
+            hit = intersect_scene(ray, exit.num / exit.den, travelled);
+            if hit.kind != 0u {
+                break;
+            }
+            if crossings == budget {
 #ifdef HIT_ID
-            hit_id = vec4<u32>(object_number(hit.kind, hit.index) + 1u, crossings, path, 1u);
+                hit_id = vec4<u32>(0u, crossings, path, 3u);
 #endif
-            let surface = surface_at(hit, point, ray.tangent);
-#ifdef COLOUR_BY
-            colour_tint = colour_by_tint(crossings, last_face, held);
-#endif
-            let shaded = shade(point, surface.normal, surface.albedo, surface.emission, d);
-#ifdef MIRRORS
-            // A mirror: 1 − r of the lit surface, r of what the reflected ray sees, the walk
-            // going on from the hit (Rust: `trace::colour_along`).
-            let r = surface.reflectance;
-            if r > 0.0 && bounces < MAX_BOUNCES && crossings < budget {
-                bounces += 1u;
+                break;
+            }
+            travelled += distance_from_ratio(exit.num, exit.den);
 #ifdef WALLS
-                mirror_sum += mirror_weight * (veil_colour + veil_through * (1.0 - r) * shaded);
-                mirror_weight *= veil_through * r;
-                veil_colour = vec3<f32>(0.0);
-                veil_through = 1.0;
-#else
-                mirror_sum += mirror_weight * (1.0 - r) * shaded;
-                mirror_weight *= r;
+            if exit.face != NO_FACE {
+                cross_wall(ray, exit, travelled);
+                if veil_through < space.wall_style.x {
+#ifdef HIT_ID
+                    hit_id = vec4<u32>(0u, crossings + 1u, (path ^ (exit.face + 1u)) * FNV_PRIME, 2u);
 #endif
-                let v = unit_tangent(point, ray.tangent);
-                let n = surface.normal;
-                let reflected = v - 2.0 * form(v, n) * n;
-                let restart = project_point(c_of(MIRROR_OFFSET) * point + s_of(MIRROR_OFFSET) * reflected);
-                let along = -kappa() * s_of(MIRROR_OFFSET) * point + c_of(MIRROR_OFFSET) * reflected;
-                ray = Ray(restart, unit_tangent(restart, along));
-                travelled = d + MIRROR_OFFSET;
-                skip = 0xffffffffu;
-                continue;
+                    break;
+                }
             }
 #endif
-            return path_end(shaded);
-        }
-        if crossings == budget {
-#ifdef HIT_ID
-            hit_id = vec4<u32>(0u, crossings, path, 3u);
-#endif
-            break;
-        }
-        travelled += distance_from_ratio(exit.num, exit.den);
-#ifdef WALLS
-        if exit.face != NO_FACE {
-            cross_wall(ray, exit, travelled);
-            if veil_through < space.wall_style.x {
-#ifdef HIT_ID
-                hit_id = vec4<u32>(0u, crossings + 1u, (path ^ (exit.face + 1u)) * FNV_PRIME, 2u);
-#endif
-                return path_end(fog);
-            }
-        }
-#endif
-        ray = cross_face(ray, exit);
+            ray = cross_face(ray, exit);
 #ifdef COLOUR_BY
-        if exit.face != NO_FACE {
-            last_face = exit.face;
+            if exit.face != NO_FACE {
+                last_face = exit.face;
 #ifdef COLOUR_HOLONOMY
-            held = space.pairings[exit.face] * held;
+                held = space.pairings[exit.face] * held;
 #endif
-        }
+            }
 #endif
 #ifdef HIT_ID
-        if exit.face != NO_FACE {
-            path = (path ^ (exit.face + 1u)) * FNV_PRIME;
-        }
-        hit_id = vec4<u32>(0u, crossings + 1u, path, 3u);
+            if exit.face != NO_FACE {
+                path = (path ^ (exit.face + 1u)) * FNV_PRIME;
+            }
+            hit_id = vec4<u32>(0u, crossings + 1u, path, 3u);
 #endif
-        if travelled >= cutoff {
+            crossings += 1u;
+            if travelled >= cutoff {
 #ifdef HIT_ID
-            hit_id.w = 2u;
+                hit_id.w = 2u;
+#endif
+                break;
+            }
+            skip = select(partner(exit.face), 0xffffffffu, exit.face == NO_FACE);
+        }
+        if hit.kind == 0u {
+            return path_end(fog);
+        }
+        let point = project_point(ray.point + hit.s * ray.tangent);
+        let d = travelled + distance_from_ratio(hit.s, 1.0);
+        if d >= cutoff {
+#ifdef HIT_ID
+            hit_id = vec4<u32>(0u, crossings, path, 2u);
 #endif
             return path_end(fog);
         }
-        skip = select(partner(exit.face), 0xffffffffu, exit.face == NO_FACE);
+#ifdef HIT_ID
+        hit_id = vec4<u32>(object_number(hit.kind, hit.index) + 1u, crossings, path, 1u);
+#endif
+        let surface = surface_at(hit, point, ray.tangent);
+#ifdef COLOUR_BY
+        colour_tint = colour_by_tint(crossings, last_face, held);
+#endif
+        let shaded = shade(point, surface.normal, surface.albedo, surface.emission, d);
+#ifdef MIRRORS
+        // A mirror: 1 − r of the lit surface, r of what the reflected ray sees, the walk
+        // going on from the hit (Rust: `trace::colour_along`); the bounce counts as a
+        // crossing.
+        let r = surface.reflectance;
+        if r > 0.0 && bounces < MAX_BOUNCES && crossings < budget {
+            bounces += 1u;
+#ifdef WALLS
+            mirror_sum += mirror_weight * (veil_colour + veil_through * (1.0 - r) * shaded);
+            mirror_weight *= veil_through * r;
+            veil_colour = vec3<f32>(0.0);
+            veil_through = 1.0;
+#else
+            mirror_sum += mirror_weight * (1.0 - r) * shaded;
+            mirror_weight *= r;
+#endif
+            let v = unit_tangent(point, ray.tangent);
+            let n = surface.normal;
+            let reflected = v - 2.0 * form(v, n) * n;
+            let restart = project_point(c_of(MIRROR_OFFSET) * point + s_of(MIRROR_OFFSET) * reflected);
+            let along = -kappa() * s_of(MIRROR_OFFSET) * point + c_of(MIRROR_OFFSET) * reflected;
+            ray = Ray(restart, unit_tangent(restart, along));
+            travelled = d + MIRROR_OFFSET;
+            skip = 0xffffffffu;
+            crossings += 1u;
+            continue;
+        }
+#endif
+        return path_end(shaded);
     }
+    // Not reached (every pass returns or goes on to the next bounce); naga asks for it.
     return path_end(fog);
 }
 #endif

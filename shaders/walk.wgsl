@@ -27,14 +27,6 @@ struct Exit {
     den: f32,
 }
 
-#ifdef CULLING
-// Per face, the residual −N·p at the segment's start and its rate N·v along it (−N·X(s) =
-// start − s·rate), kept by exit_face so that the culling reads them instead of forming the
-// dot products again.
-var<private> face_start: array<f32, #{FACE_SLOTS}>;
-var<private> face_rate: array<f32, #{FACE_SLOTS}>;
-#endif
-
 // The exit face: the smallest T = −(N·p)/(N·v) among faces with N·v > 0, compared without
 // dividing; the face just entered (`skip`) is passed over (Rust: `CellWalker::exit`).
 fn exit_face(ray: Ray, skip: u32) -> Exit {

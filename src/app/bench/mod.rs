@@ -189,6 +189,9 @@ pub enum BenchError {
     /// The scene file could not be loaded (its error attached).
     #[error("{0}")]
     SceneFile(String),
+    /// A member of the library's families could not be built (the reason is attached).
+    #[error("{0}")]
+    Library(String),
     /// A product space id is wrong (the reason is attached).
     #[error("{0}")]
     Product(String),
@@ -212,6 +215,17 @@ fn announce(progress: &ProgressBar, message: String) {
 /// The automatic budgets chosen for a space: (fog factor, quality, budget).
 type ChosenBudgets = Vec<(f64, Quality, u32)>;
 
+/// A seed space, or a member of the library's families (`weeks`, `census-3`, …), by id.
+///
+/// # Errors
+/// When `id` names neither, or a family member with bad parameters.
+pub fn bench_space(id: &str) -> Result<Space, BenchError> {
+    match crate::space::library::library_space(id) {
+        Some(built) => built.map_err(BenchError::Library),
+        None => Ok(seed_space(id)?),
+    }
+}
+
 /// One space with what the benchmark needs of it.
 struct Subject {
     id: String,
@@ -222,7 +236,7 @@ struct Subject {
 
 impl Subject {
     fn new(id: &str) -> Result<Self, BenchError> {
-        let space = seed_space(id)?;
+        let space = bench_space(id)?;
         Ok(Self {
             id: id.to_string(),
             inradius: invariants::inradius(&space),

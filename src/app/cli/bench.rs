@@ -4,7 +4,6 @@ use super::*;
 use bevy::prelude::*;
 use bevy_curved_spaces::bench::BenchConfig;
 use bevy_curved_spaces::plugin::offscreen::gpu_available;
-use bevy_curved_spaces::space::seed_space;
 use std::time::Instant;
 
 /// Rounds of the three edge views `bench --edges` times per space, at least: ratios of a
@@ -47,7 +46,7 @@ pub(super) fn bench(args: &BenchArgs) -> Result<(), String> {
     };
     if let Some(spaces) = &args.spaces {
         for id in spaces {
-            seed_space(id).map_err(|e| e.to_string())?;
+            bevy_curved_spaces::bench::bench_space(id).map_err(|e| e.to_string())?;
         }
         config.spaces.clone_from(spaces);
     }

@@ -412,7 +412,7 @@ struct BenchArgs {
     /// Folder for bench.json, the CSV tables and the charts (PNG and SVG).
     #[arg(long, default_value = "results")]
     out: PathBuf,
-    /// Only these seed spaces (comma-separated ids; default: all).
+    /// Only these spaces (comma-separated ids: seed spaces, or library members such as `weeks`; default: all seed spaces).
     #[arg(long, value_delimiter = ',')]
     spaces: Option<Vec<String>>,
     /// Crossing budgets of the sweep (comma-separated; default 2,4,8,16,32,64).

@@ -305,6 +305,11 @@ impl ShaderKey {
 /// Composes WGSL with shader defs through naga_oil (as Bevy does) into a naga module, with
 /// the tracer's modules ([`super::SHADER_MODULES`]) available to `#import`; the error names
 /// the file and what went wrong.
+///
+/// With the environment variable `CURVED_SPACES_SHADER_DIR` set to a folder, the modules and
+/// the tracer's entry points are read from the files of that folder with the same names
+/// instead of the copies built in (the benchmark then times shader edits without a rebuild);
+/// a file it lacks is an error.
 pub fn compose_wgsl(
     source: &str,
     file_path: &str,
@@ -322,10 +327,28 @@ pub fn compose_wgsl(
             ShaderDefVal::UInt(k, v) => (k.clone(), ShaderDefValue::UInt(*v)),
         })
         .collect();
+    let dir = std::env::var_os("CURVED_SPACES_SHADER_DIR").map(std::path::PathBuf::from);
+    let read = |path: &str, built_in: &str| -> Result<String, String> {
+        let Some(dir) = &dir else {
+            return Ok(built_in.to_owned());
+        };
+        let name = std::path::Path::new(path)
+            .file_name()
+            .unwrap_or(path.as_ref());
+        let file = dir.join(name);
+        std::fs::read_to_string(&file).map_err(|e| {
+            format!(
+                "{}: {e} (CURVED_SPACES_SHADER_DIR names the folder to read the shaders from)",
+                file.display()
+            )
+        })
+    };
+    let source = read(file_path, source)?;
     let mut composer = Composer::default();
     for (path, module) in super::SHADER_MODULES {
+        let module = read(path, module)?;
         let added = composer.add_composable_module(ComposableModuleDescriptor {
-            source: module,
+            source: &module,
             file_path: path,
             language: ShaderLanguage::Wgsl,
             shader_defs: shader_defs.clone(),
@@ -336,7 +359,7 @@ pub fn compose_wgsl(
         }
     }
     let made = composer.make_naga_module(NagaModuleDescriptor {
-        source,
+        source: &source,
         file_path,
         shader_type: ShaderType::Wgsl,
         shader_defs,
