@@ -45,7 +45,7 @@ pub use plot::{Chart, Corner, PlotError, Series, write_chart};
 pub use products::{PRODUCT_REFERENCE_SPACE, ProductRow, check_products};
 pub use rows::{
     AutoBudgetRow, BenchReport, ConditioningPoint, ConditioningRow, CutoffRow, DriftRow, EdgesRow,
-    ErrorRow, MeshRow, SpecialisationRow, StereoRow, StraightforwardRow, TimingRow,
+    ErrorRow, MeshRow, SpecialisationRow, StereoRow, StraightforwardRow, TileShares, TimingRow,
 };
 #[cfg(feature = "scene-files")]
 pub use runs::run_scene;

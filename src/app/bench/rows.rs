@@ -370,6 +370,75 @@ pub struct EdgesRow {
     /// Edge objects tested per segment once culled (CPU), against `edge_objects` unculled.
     #[serde(default)]
     pub tests_per_segment: f64,
+    /// The 90th percentile of the cells a ray passes.
+    #[serde(default)]
+    pub segments_p90: f64,
+    /// Nanoseconds of the culled frame per pixel-segment (`with_edges_ms` over the pixels
+    /// times `segments_per_pixel`): the cost of one crossing with all that goes with it.
+    #[serde(default)]
+    pub ns_per_segment: f64,
+    /// Of the 8 × 8 pixel tiles, the shares by the crossing at which their four corner rays
+    /// first leave a cell copy by different faces.
+    #[serde(default, flatten)]
+    pub tiles: TileShares,
+    /// The share of 8 × 8 tiles in which some pixel comes near two faces at one point
+    /// before the corners part.
+    #[serde(default)]
+    pub tiles_near_edge_before_parting: f64,
+}
+
+/// Of the 8 × 8 pixel tiles of a view, the share whose four corner rays first leave a cell
+/// copy by different faces at crossing 0, 1, 2, 3, at 4 or later, or never: a tile tracer
+/// walks a tile once while its corners agree (the cell is convex, so every ray between them
+/// leaves by the same face) and splits it where they part.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct TileShares {
+    /// Corners parting at the first exit.
+    #[serde(default)]
+    pub tiles_parting_at_0: f64,
+    /// At the second.
+    #[serde(default)]
+    pub tiles_parting_at_1: f64,
+    /// At the third.
+    #[serde(default)]
+    pub tiles_parting_at_2: f64,
+    /// At the fourth.
+    #[serde(default)]
+    pub tiles_parting_at_3: f64,
+    /// At the fifth or later.
+    #[serde(default)]
+    pub tiles_parting_later: f64,
+    /// Never: the corners leave by the same faces as far as they all go.
+    #[serde(default)]
+    pub tiles_never_parting: f64,
+}
+
+impl TileShares {
+    /// The shares in order (at 0, 1, 2, 3, later, never).
+    #[must_use]
+    pub fn shares(&self) -> [f64; 6] {
+        [
+            self.tiles_parting_at_0,
+            self.tiles_parting_at_1,
+            self.tiles_parting_at_2,
+            self.tiles_parting_at_3,
+            self.tiles_parting_later,
+            self.tiles_never_parting,
+        ]
+    }
+
+    /// From the shares in that order.
+    #[must_use]
+    pub fn from_shares(s: [f64; 6]) -> Self {
+        Self {
+            tiles_parting_at_0: s[0],
+            tiles_parting_at_1: s[1],
+            tiles_parting_at_2: s[2],
+            tiles_parting_at_3: s[3],
+            tiles_parting_later: s[4],
+            tiles_never_parting: s[5],
+        }
+    }
 }
 
 /// A mesh at the cell's centre: frame time against triangle count, timed interleaved with

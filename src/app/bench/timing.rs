@@ -199,6 +199,14 @@ pub(super) fn edges_cost(
         near_two_faces: work.map_or(0.0, |x| x.near_two_faces),
         blocks_near_two_faces: work.map_or(0.0, |x| x.blocks_near_two_faces),
         tests_per_segment: work.map_or(0.0, |x| x.tests_per_segment),
+        segments_p90: work.map_or(0.0, |x| x.segments_p90),
+        ns_per_segment: work.map_or(0.0, |x| {
+            stats[0].median * 1e6 / (f64::from(w * h) * x.segments_per_pixel.max(1e-9))
+        }),
+        tiles: work.map_or_else(Default::default, |x| {
+            super::TileShares::from_shares(x.tiles_parting)
+        }),
+        tiles_near_edge_before_parting: work.map_or(0.0, |x| x.tiles_near_edge_before_parting),
     })
 }
 

@@ -180,7 +180,7 @@ pub(super) fn bench(args: &BenchArgs) -> Result<(), String> {
             bevy_curved_spaces::bench::run_edges(&config, &progress).map_err(|e| e.to_string())?;
         for r in &report.edges {
             say!(
-                "{:<24} {:>3} edge objects: culled {:>8.3} ms ({:.2}×), unculled {:>8.3} ms ({:.2}×), without {:>8.3} ms; {:.1} segments a pixel, {:.0} % near two faces at once ({:.0} % of 4×2 blocks)",
+                "{:<24} {:>3} edge objects: culled {:>8.3} ms ({:.2}×), unculled {:>8.3} ms ({:.2}×), without {:>8.3} ms; {:.1} segments a pixel (p90 {:.0}), {:.0} ns a pixel-segment, {:.0} % near two faces at once ({:.0} % of 4×2 blocks)",
                 r.space,
                 r.edge_objects,
                 r.with_edges_ms,
@@ -189,6 +189,8 @@ pub(super) fn bench(args: &BenchArgs) -> Result<(), String> {
                 r.unculled_ratio,
                 r.without_edges_ms,
                 r.segments_per_pixel,
+                r.segments_p90,
+                r.ns_per_segment,
                 100.0 * r.near_two_faces,
                 100.0 * r.blocks_near_two_faces
             );

@@ -198,12 +198,12 @@ pub(super) fn edges_section(md: &mut String, report: &BenchReport) {
     }
     let _ = writeln!(
         *md,
-        "\n### The cell's edges: the default view with its edge tubes and vertex balls (culled by face masks, as drawn; and every one tested in every cell) against the same view without them, timed in turn (× without: the median over rounds of each round's ratio)\n\n| space | size | budget | edge objects | with edges ms | × without | unculled ms | × without | without edges ms | hit ids differing, culled against unculled | segments per pixel | near two faces at once | 4×2 blocks near two faces | edge tests per segment, culled |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+        "\n### The cell's edges: the default view with its edge tubes and vertex balls (culled by face masks, as drawn; and every one tested in every cell) against the same view without them, timed in turn (× without: the median over rounds of each round's ratio)\n\n| space | size | budget | edge objects | with edges ms | × without | unculled ms | × without | without edges ms | hit ids differing, culled against unculled | segments per pixel | p90 | ns per pixel-segment, culled | near two faces at once | 4×2 blocks near two faces | edge tests per segment, culled |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
     );
     for r in &report.edges {
         let _ = writeln!(
             *md,
-            "| {} | {}×{} | {} | {} | {:.2} | {:.2}× | {:.2} | {:.2}× | {:.2} | {} | {:.1} | {:.0} % | {:.0} % | {:.2} |",
+            "| {} | {}×{} | {} | {} | {:.2} | {:.2}× | {:.2} | {:.2}× | {:.2} | {} | {:.1} | {:.0} | {:.0} | {:.0} % | {:.0} % | {:.2} |",
             r.space,
             r.width,
             r.height,
@@ -216,9 +216,34 @@ pub(super) fn edges_section(md: &mut String, report: &BenchReport) {
             r.without_edges_ms,
             r.hit_ids_differing,
             r.segments_per_pixel,
+            r.segments_p90,
+            r.ns_per_segment,
             100.0 * r.near_two_faces,
             100.0 * r.blocks_near_two_faces,
             r.tests_per_segment
+        );
+    }
+    let measured = |r: &&EdgesRow| r.tiles.shares().iter().sum::<f64>() > 0.0;
+    if !report.edges.iter().any(|r| measured(&r)) {
+        return;
+    }
+    let _ = writeln!(
+        *md,
+        "\n#### What neighbouring pixels share: 8×8 tiles by the crossing at which their four corner rays first leave a cell copy by different faces (CPU reference; while they agree, every ray of the tile leaves by the same face), and the tiles with a pixel near an edge or vertex before that\n\n| space | parting at 0 | at 1 | at 2 | at 3 | at 4 or later | never | near an edge before parting |\n|---|---:|---:|---:|---:|---:|---:|---:|"
+    );
+    for r in report.edges.iter().filter(measured) {
+        let shares: Vec<String> = r
+            .tiles
+            .shares()
+            .iter()
+            .map(|x| format!("{:.0} %", 100.0 * x))
+            .collect();
+        let _ = writeln!(
+            *md,
+            "| {} | {} | {:.0} % |",
+            r.space,
+            shares.join(" | "),
+            100.0 * r.tiles_near_edge_before_parting
         );
     }
 }
