@@ -178,6 +178,26 @@ fn image_light(i: u32, k: u32, point: vec4<f32>, normal: vec4<f32>, walk: bool) 
     let reach = space.lights[i].info.x;
     let fog = space.shading.params.x;
     let q = space.lights[i].images[k];
+#ifdef HYPERBOLIC
+    if kappa() < 0.0 && !walk {
+        // With the chord u = |point − q|/2 = sinh(d/2): sinh d = 2u√(1 + u²),
+        // e^(−d) = (√(1 + u²) + u)^(−2), and ⟨normal, l⟩ = ⟨normal, q⟩ / sinh d because the
+        // normal is orthogonal to the point (q = cosh d·point + sinh d·l). One square root,
+        // one log and one exp an image instead of asinh, sinh, exp and a normalisation: the
+        // image sum is most of a frame's shading.
+        let chord = point - q;
+        let u = 0.5 * sqrt(max(form(chord, chord), 0.0));
+        let c = sqrt(1.0 + u * u);
+        let d = 2.0 * log(c + u);
+        if !(u > 0.0) || d > reach {
+            return 0.0;
+        }
+        let sinh_d = 2.0 * u * c;
+        let cos = max(form(normal, q) / sinh_d, 0.0);
+        let s = max(sinh_d, near_s);
+        return cos * exp(-d / fog) / (s * s);
+    }
+#endif
     let d = distance(point, q);
     if !(d > 0.0) || d > reach {
         return 0.0;
