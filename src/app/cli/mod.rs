@@ -508,6 +508,10 @@ struct WalkArgs {
     /// quality's range (0: keep the quality's resolution). Off for --screenshot.
     #[arg(long, default_value_t = DEFAULT_WALK_FPS, value_parser = parse_fps, allow_negative_numbers = true)]
     fps: f64,
+    /// Print the frame rate every 2 seconds (frames a second, ms a frame, the traced share
+    /// of the resolution and the crossing budget) to standard error.
+    #[arg(long)]
+    log_fps: bool,
     /// Replay a flight file in the window, looping (its space or scene replaces SPACE; the
     /// keys do not move you while it plays).
     #[arg(long, conflicts_with_all = ["space", "scene"])]
@@ -726,6 +730,7 @@ impl Default for WalkArgs {
             scene: None,
             no_avatar: false,
             fps: DEFAULT_WALK_FPS,
+            log_fps: false,
             replay: None,
             record: None,
             record_interval: 0.1,

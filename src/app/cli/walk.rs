@@ -242,7 +242,40 @@ pub(super) fn add_walk_plugins<'a>(
         lighting,
         ..default()
     })
-    .insert_resource(bevy_curved_spaces::plugin::ui::PanelVisible(!args.no_ui))
+    .insert_resource(bevy_curved_spaces::plugin::ui::PanelVisible(!args.no_ui));
+    if args.log_fps {
+        app.add_systems(Update, log_frame_rate);
+    }
+    app
+}
+
+/// Every 2 seconds, the frames shown since the last report (`walk --log-fps`).
+fn log_frame_rate(
+    time: Res<Time<Real>>,
+    settings: Res<bevy_curved_spaces::plugin::components::TracerSettings>,
+    share: Option<Res<bevy_curved_spaces::plugin::frame_rate::BudgetShare>>,
+    mut since: Local<Option<(f64, u32)>>,
+) {
+    let now = time.elapsed_secs_f64();
+    let (start, frames) = since.get_or_insert((now, 0));
+    *frames += 1;
+    let span = now - *start;
+    if span >= 2.0 {
+        let fps = f64::from(*frames) / span;
+        let budget = match settings.max_crossings {
+            Some(n) => format!("crossing budget {n}"),
+            None => format!(
+                "{:.0} % of the automatic crossing budget",
+                100.0 * share.map_or(1.0, |s| s.0)
+            ),
+        };
+        eprintln!(
+            "{fps:.2} frames a second ({:.0} ms a frame), {:.0} % of the resolution traced, {budget}",
+            1000.0 / fps,
+            100.0 * settings.resolution_scale
+        );
+        *since = Some((now, 0));
+    }
 }
 
 /// The lighting the walk starts with: the light switches over the chosen scene's own, or
