@@ -116,8 +116,9 @@ impl Lighting {
     /// 4 or 8 once the tail is added, and cheaper (docs/light.md).
     pub const DEFAULT_REACH_INRADII: f64 = 2.0;
     /// The default number of shadowed images per lamp: none. In the default scenes 4
-    /// shadows cost 6–26 times the frame on lavapipe and take off at most 0.4/255 of mean
-    /// error (docs/light.md); scenes that need them ask (`[lighting] shadows`).
+    /// shadows cost 1.25–1.6 times the unshadowed frame on lavapipe and take off at most
+    /// 0.4/255 of mean error (docs/light.md); scenes that need them ask
+    /// (`[lighting] shadows`).
     pub const DEFAULT_SHADOWS: u32 = 0;
     /// The most shadowed images per lamp.
     pub const MAX_SHADOWS: u32 = 64;
