@@ -311,6 +311,38 @@ fn bench_straightforward_times_the_tracer_against_the_straightforward_one() {
     assert!(String::from_utf8_lossy(&both.stderr).contains("--edges"));
 }
 
+/// `bench --edges` takes a member of the library (`weeks`, not a seed space) and reports
+/// the work with the time: the tiles' table is in the summary.
+#[test]
+fn bench_edges_takes_a_library_member_and_reports_the_tiles() {
+    let dir = temp_dir("bench-edges-weeks");
+    let out = run(&[
+        "bench",
+        "--edges",
+        "--quick",
+        "--spaces",
+        "weeks",
+        "--sizes",
+        "48x32",
+        "--budgets",
+        "8",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let csv = std::fs::read_to_string(dir.join("edges.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 2, "{csv}");
+    assert!(csv.contains("tiles_never_parting"), "{csv}");
+    let summary = std::fs::read_to_string(dir.join("summary.md")).unwrap();
+    assert!(summary.contains("| weeks |"), "{summary}");
+    assert!(summary.contains("8×8 tiles"), "{summary}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// `bench --lighting` writes a row per lighting with its time and error, and the figures
 /// say what they should: every image with the tail is nearer the reference than the
 /// nearest copy, and the tail is what brings it there; the soft shadows come nearer their
@@ -439,6 +471,26 @@ fn bench_quick_writes_results_that_respect_their_bounds() {
             (0.0..=1.0).contains(&near) && near <= blocks && blocks <= 1.0,
             "{e}"
         );
+        // The work beside the time: the 90th percentile of a pixel's segments is a whole
+        // count no less than their mean's floor, the cost a segment is positive, and every
+        // 8x8 tile's corners part at some depth or never (the shares add up to 1).
+        let p90 = e["segments_p90"].as_f64().unwrap();
+        assert!(p90 >= segments.floor() && p90.fract() == 0.0, "{e}");
+        assert!(e["ns_per_segment"].as_f64().unwrap() > 0.0, "{e}");
+        let tiles: f64 = [
+            "tiles_parting_at_0",
+            "tiles_parting_at_1",
+            "tiles_parting_at_2",
+            "tiles_parting_at_3",
+            "tiles_parting_later",
+            "tiles_never_parting",
+        ]
+        .iter()
+        .map(|k| e[*k].as_f64().unwrap_or_else(|| panic!("{k}: {e}")))
+        .sum();
+        assert!((tiles - 1.0).abs() < 1e-9, "{e}");
+        let near_edge = e["tiles_near_edge_before_parting"].as_f64().unwrap();
+        assert!((0.0..=1.0).contains(&near_edge), "{e}");
     }
     // The straightforward tracer draws the same walk: the same picture but for rounding
     // (budget 16 is in the quick run's budgets).
@@ -531,6 +583,11 @@ fn bench_quick_writes_results_that_respect_their_bounds() {
     fails_with(
         &["bench", "--quick", "--spaces", "nowhere"],
         "unknown space",
+    );
+    // The library's members are spaces too, and a bad one says which ones exist.
+    fails_with(
+        &["bench", "--quick", "--spaces", "torus,census-99"],
+        "census-1 to census-10",
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
