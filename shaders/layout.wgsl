@@ -199,6 +199,20 @@ struct SpaceUniform {
 @group(0) @binding(1) var<storage, read> scene_data: array<vec4<u32>>;
 #endif
 
+#ifdef TEXTURES
+// The scene's first eight textures, RGBA8 unorm holding sRGB values, read texel by texel
+// (texture.wgsl filters them as the CPU does); further ones are in scene_data. Unused
+// slots hold a 1×1 texture.
+@group(0) @binding(2) var texture_slot_0: texture_2d<f32>;
+@group(0) @binding(3) var texture_slot_1: texture_2d<f32>;
+@group(0) @binding(4) var texture_slot_2: texture_2d<f32>;
+@group(0) @binding(5) var texture_slot_3: texture_2d<f32>;
+@group(0) @binding(6) var texture_slot_4: texture_2d<f32>;
+@group(0) @binding(7) var texture_slot_5: texture_2d<f32>;
+@group(0) @binding(8) var texture_slot_6: texture_2d<f32>;
+@group(0) @binding(9) var texture_slot_7: texture_2d<f32>;
+#endif
+
 const F32_EPSILON: f32 = 1.1920929e-7;
 
 #ifdef GENERAL

@@ -1,13 +1,17 @@
 //! Colour textures: RGBA8 texels in sRGB, sampled bilinearly in linear RGB. The WGSL
-//! tracer samples the same packed texels with the same formula (`sample_texture`), so CPU
-//! and GPU pictures agree.
+//! tracer reads the same texels (from a GPU texture, or from the scene data buffer past the
+//! texture slots) and filters them with the same formula (`sample_texture`), so CPU and GPU
+//! pictures agree.
 
 use crate::colour::srgb_channel_to_linear;
 use glam::{DVec2, DVec3};
 use std::path::Path;
 
-/// The largest texture side accepted (the GPU reads texels from a storage buffer, so there
-/// is no texture-size limit, but a bigger picture only costs memory here).
+/// The largest texture side accepted: the side every GPU's 2D textures are guaranteed to
+/// reach. The GPU tracer binds a scene's first
+/// [`TEXTURE_SLOTS`](crate::plugin::render::gpu::TEXTURE_SLOTS) textures as textures of
+/// their own, so an 8192×8192 picture (256 MiB) draws there too; further textures share the
+/// scene data buffer's guaranteed 128 MiB with the meshes.
 pub const MAX_TEXTURE_SIDE: u32 = 8192;
 
 /// A texture could not be made.

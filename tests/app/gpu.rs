@@ -755,16 +755,114 @@ fn the_example_scene_files_render_alike_on_gpu_and_cpu() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// The globe of `assets/scenes/torus_globe.toml` with its picture scaled up to 8192×8192
+/// texels (256 MiB, past the 128 MiB a storage binding is guaranteed: the GPU reads it from
+/// a texture of its own), and with its picture as the scene's tenth texture (past the
+/// texture slots: its texels go in the scene data buffer), draws alike on the GPU and the
+/// CPU.
+#[test]
+fn a_globe_texture_of_8192_texels_a_side_and_one_past_the_slots_render_alike() {
+    use bevy_curved_spaces::plugin::render::gpu::TEXTURE_SLOTS;
+    use bevy_curved_spaces::scene::Object;
+    use bevy_curved_spaces::scene::file::load_scene_file;
+    use bevy_curved_spaces::scene::texture::{MAX_TEXTURE_SIDE, Texture};
+    use std::sync::Arc;
+    let _gpu = gpu_lock();
+    let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/torus_globe.toml");
+    let file = load_scene_file(&path).unwrap_or_else(|e| panic!("{e}"));
+    let scene = file.scene();
+    let globe = scene
+        .objects
+        .iter()
+        .find_map(|o| match o {
+            Object::Ball(b) => b.texture.map(|t| t.texture as usize),
+            _ => None,
+        })
+        .expect("the scene has a globe");
+    let picture = scene.textures[globe].clone();
+    // Nearest-texel scaling: the same picture, each texel read from the large texture.
+    let side = MAX_TEXTURE_SIDE;
+    let texels = (0..side * side)
+        .map(|i| {
+            let (x, y) = (i % side, i / side);
+            let (u, v) = (
+                (u64::from(x) * u64::from(picture.width) / u64::from(side)) as u32,
+                (u64::from(y) * u64::from(picture.height) / u64::from(side)) as u32,
+            );
+            picture.texels[(v * picture.width + u) as usize]
+        })
+        .collect();
+    let large = Arc::new(Texture {
+        width: side,
+        height: side,
+        texels,
+    });
+    assert!(4 * large.texels.len() > 128 << 20, "past a storage binding");
+    let retextured = |texture: usize| {
+        let mut s = scene.clone();
+        for o in &mut s.objects {
+            if let Object::Ball(b) = o
+                && let Some(t) = &mut b.texture
+            {
+                t.texture = texture as u32;
+            }
+        }
+        s
+    };
+    let mut with_large = retextured(globe);
+    with_large.textures[globe] = large;
+    let mut past_the_slots = retextured(TEXTURE_SLOTS + 1);
+    while past_the_slots.textures.len() <= TEXTURE_SLOTS {
+        past_the_slots.textures.push(Arc::new(Texture {
+            width: 1,
+            height: 1,
+            texels: vec![0xff00_ff00],
+        }));
+    }
+    past_the_slots.textures.push(picture);
+    let frame = file
+        .start
+        .unwrap_or_else(|| TraceCamera::default_for(&file.space).frame);
+    let mut failures = Vec::new();
+    for (name, s) in [
+        ("globe-8192", &with_large),
+        ("globe-past-the-slots", &past_the_slots),
+    ] {
+        failures.extend(compare_scene(
+            &mut renderer,
+            &file.space_id,
+            &file.space,
+            s,
+            frame,
+            2.5,
+            name,
+        ));
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
 /// A scene the GPU cannot take (scene data past what a GPU is guaranteed to bind) is
-/// refused at once with the reason, not after waiting for a picture.
+/// refused at once with the reason, not after waiting for a picture: a 6000×6000 texture
+/// past the texture slots puts 137 MiB of texels in the scene data buffer.
 #[test]
 fn an_offscreen_render_of_a_scene_too_large_for_the_gpu_says_why() {
     use bevy_curved_spaces::plugin::components::BaseScene;
     use bevy_curved_spaces::plugin::offscreen::OffscreenError;
+    use bevy_curved_spaces::plugin::render::gpu::TEXTURE_SLOTS;
     let _gpu = gpu_lock();
     let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
     let space = bevy_curved_spaces::space::seed_space("torus").expect("seed");
     let mut scene = CurvedScene::default_for(&space, 1.5);
+    while scene.textures.len() < TEXTURE_SLOTS {
+        scene.textures.push(std::sync::Arc::new(
+            bevy_curved_spaces::scene::texture::Texture {
+                width: 1,
+                height: 1,
+                texels: vec![0],
+            },
+        ));
+    }
     scene.textures.push(std::sync::Arc::new(
         bevy_curved_spaces::scene::texture::Texture {
             width: 6000,

@@ -6,8 +6,8 @@ use bevy::shader::ShaderDefVal;
 use bevy_curved_spaces::bench::BASELINE_WGSL;
 use bevy_curved_spaces::geometry::Geometry;
 use bevy_curved_spaces::plugin::render::gpu::{
-    GpuScene, MAX_GPU_BUDGET, ShaderKey, TRACER_WGSL, UPSCALE_WGSL, VIEW_WORDS, compose_wgsl,
-    undecorated,
+    GpuScene, MAX_GPU_BUDGET, ShaderKey, TEXTURE_SLOTS, TRACER_WGSL, UPSCALE_WGSL, VIEW_WORDS,
+    compose_wgsl, undecorated,
 };
 use bevy_curved_spaces::scene::Centrepiece;
 use bevy_curved_spaces::scene::{CurvedScene, SceneParts, Shading};
@@ -371,15 +371,27 @@ fn a_scene_without_objects_and_a_zero_budget_are_refused_or_handled() {
             .is_err_and(|e| e.to_string().contains("more than the GPU tracer takes")),
         "{too_many:?}"
     );
-    // Scene data beyond what a GPU is guaranteed to bind is refused with its size named.
+    // A large texture in one of the texture slots is a GPU texture of its own: accepted,
+    // its texels kept out of the scene data buffer.
+    let texture = |side: u32| {
+        std::sync::Arc::new(bevy_curved_spaces::scene::texture::Texture {
+            width: side,
+            height: side,
+            texels: vec![0; (side * side) as usize],
+        })
+    };
     let mut heavy = scene.clone();
-    heavy.textures.push(std::sync::Arc::new(
-        bevy_curved_spaces::scene::texture::Texture {
-            width: 6000,
-            height: 6000,
-            texels: vec![0; 6000 * 6000],
-        },
-    ));
+    heavy.textures.push(texture(6000));
+    let slotted = GpuScene::new(&space, &heavy, 8).expect("a slot takes a large texture");
+    assert_eq!(slotted.textures.len(), 1);
+    assert!(slotted.data.len() < 1 << 20, "{} words", slotted.data.len());
+    // Past the slots, scene data beyond what a GPU is guaranteed to bind is refused with
+    // its size named.
+    let mut heavy = scene.clone();
+    heavy
+        .textures
+        .extend((0..TEXTURE_SLOTS).map(|_| texture(1)));
+    heavy.textures.push(texture(6000));
     let refused = GpuScene::new(&space, &heavy, 8);
     assert!(
         refused

@@ -107,13 +107,13 @@ pub(super) fn gpu_pixels(
     size: (u32, u32),
 ) -> Result<Reference, BenchError> {
     let words = uniform_words(&subject.camera.layout(size.0, size.1), gpu);
-    let colour = harness.frame(size.0, size.1, Output::Colour, &words, &gpu.data);
+    let colour = harness.frame(size.0, size.1, Output::Colour, &words, Some(gpu));
     harness.draw(
         &Program::Tracer(gpu.key, ViewKind::Mono, Output::Colour),
         &colour,
     )?;
     let rgba = harness.read_pixels(&colour)?;
-    let ids_frame = harness.frame(size.0, size.1, Output::HitId, &words, &gpu.data);
+    let ids_frame = harness.frame(size.0, size.1, Output::HitId, &words, Some(gpu));
     harness.draw(
         &Program::Tracer(gpu.key, ViewKind::Mono, Output::HitId),
         &ids_frame,

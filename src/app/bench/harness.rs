@@ -3,7 +3,9 @@
 //! is timed by itself (GPU timestamps around the pass where the adapter has them, else wall
 //! time from submission to completion) and its pixels can be read back.
 
-use crate::plugin::render::gpu::{ShaderKey, TRACER_WGSL, compose_wgsl, view_shader_defs};
+use crate::plugin::render::gpu::{
+    GpuScene, ShaderKey, TEXTURE_SLOTS, TRACER_WGSL, compose_wgsl, view_shader_defs,
+};
 use crate::view::ViewKind;
 use bevy::shader::ShaderDefVal;
 use std::collections::HashMap;
@@ -158,7 +160,21 @@ impl Harness {
                     },
                     count: None,
                 },
-            ],
+            ]
+            .into_iter()
+            .chain(
+                (0..TEXTURE_SLOTS as u32).map(|i| wgpu::BindGroupLayoutEntry {
+                    binding: 2 + i,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                }),
+            )
+            .collect::<Vec<_>>(),
         });
         let timestamp_period_ns = f64::from(queue.get_timestamp_period());
         Ok(Self {
@@ -235,7 +251,8 @@ impl Harness {
         Ok(&self.pipelines[program])
     }
 
-    /// A target of `width × height` with `words` as the shader's uniform.
+    /// A target of `width × height` with `words` as the shader's uniform, and the scene
+    /// data and textures of `scene` (none for the baseline).
     #[must_use]
     pub fn frame(
         &self,
@@ -243,7 +260,7 @@ impl Harness {
         height: u32,
         output: Output,
         words: &[u32],
-        scene_data: &[u32],
+        scene: Option<&GpuScene>,
     ) -> Frame {
         let texture = self.device.create_texture(&wgpu::TextureDescriptor {
             label: Some("bench target"),
@@ -269,10 +286,9 @@ impl Harness {
                 contents: bytemuck::cast_slice(contents),
                 usage: wgpu::BufferUsages::UNIFORM,
             });
-        let data: &[u32] = if scene_data.is_empty() {
-            &[0; 4]
-        } else {
-            scene_data
+        let data: &[u32] = match scene {
+            Some(s) if !s.data.is_empty() => &s.data,
+            _ => &[0; 4],
         };
         let data = self
             .device
@@ -281,6 +297,7 @@ impl Harness {
                 contents: bytemuck::cast_slice(data),
                 usage: wgpu::BufferUsages::STORAGE,
             });
+        let textures = self.scene_textures(scene);
         let bind_group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: None,
             layout: &self.layout,
@@ -293,7 +310,18 @@ impl Harness {
                     binding: 1,
                     resource: data.as_entire_binding(),
                 },
-            ],
+            ]
+            .into_iter()
+            .chain(
+                textures
+                    .iter()
+                    .enumerate()
+                    .map(|(i, view)| wgpu::BindGroupEntry {
+                        binding: 2 + i as u32,
+                        resource: wgpu::BindingResource::TextureView(view),
+                    }),
+            )
+            .collect::<Vec<_>>(),
         });
         Frame {
             width,
@@ -303,6 +331,45 @@ impl Harness {
             view,
             bind_group,
         }
+    }
+
+    /// The views of `scene`'s GPU textures, slot by slot; 1×1 textures fill the slots it
+    /// leaves empty.
+    fn scene_textures(&self, scene: Option<&GpuScene>) -> Vec<wgpu::TextureView> {
+        let texture = |width: u32, height: u32, texels: &[u32]| {
+            self.device
+                .create_texture_with_data(
+                    &self.queue,
+                    &wgpu::TextureDescriptor {
+                        label: Some("scene texture"),
+                        size: wgpu::Extent3d {
+                            width,
+                            height,
+                            depth_or_array_layers: 1,
+                        },
+                        mip_level_count: 1,
+                        sample_count: 1,
+                        dimension: wgpu::TextureDimension::D2,
+                        format: wgpu::TextureFormat::Rgba8Unorm,
+                        usage: wgpu::TextureUsages::TEXTURE_BINDING,
+                        view_formats: &[],
+                    },
+                    wgpu::util::TextureDataOrder::LayerMajor,
+                    bytemuck::cast_slice(texels),
+                )
+                .create_view(&wgpu::TextureViewDescriptor::default())
+        };
+        let mut views: Vec<wgpu::TextureView> = scene
+            .map(|s| s.textures.as_slice())
+            .unwrap_or_default()
+            .iter()
+            .map(|t| texture(t.width, t.height, &t.texels))
+            .collect();
+        if views.len() < TEXTURE_SLOTS {
+            let blank = texture(1, 1, &[0]);
+            views.resize(TEXTURE_SLOTS, blank);
+        }
+        views
     }
 
     /// Draws the frame once with `program`; returns the frame time in milliseconds.

@@ -199,14 +199,14 @@ pub(super) fn product_rows(
             h,
             Output::Colour,
             &timing::uniform_words(&layout((w, h)), &gpu),
-            &gpu.data,
+            Some(&gpu),
         );
         let reference_frame = harness.frame(
             w,
             h,
             Output::Colour,
             &timing::uniform_words(&reference_layout, &reference_gpu),
-            &reference_gpu.data,
+            Some(&reference_gpu),
         );
         harness.draw(&program, &timed)?;
         harness.draw(&reference_program, &reference_frame)?;
@@ -224,7 +224,7 @@ pub(super) fn product_rows(
             eh,
             Output::Colour,
             &timing::uniform_words(&layout((ew, eh)), &gpu),
-            &gpu.data,
+            Some(&gpu),
         );
         harness.draw(&program, &compared)?;
         let gpu_pixels = harness.read_pixels(&compared)?;

@@ -55,9 +55,9 @@ pub(super) fn time_setting(
         h,
         Output::Colour,
         &uniform_words(&subject.camera.layout(w, h), gpu),
-        &gpu.data,
+        Some(gpu),
     );
-    let baseline_frame = harness.frame(w, h, Output::Colour, &[], &[]);
+    let baseline_frame = harness.frame(w, h, Output::Colour, &[], None);
     harness.draw(&tracer, &frame)?;
     harness.draw(&Program::Baseline, &baseline_frame)?;
     time_interleaved(
@@ -134,7 +134,7 @@ pub(super) fn drawn_views(
         .map(|gpu| {
             (
                 Program::Tracer(gpu.key, ViewKind::Mono, Output::Colour),
-                harness.frame(w, h, Output::Colour, &uniform_words(layout, gpu), &gpu.data),
+                harness.frame(w, h, Output::Colour, &uniform_words(layout, gpu), Some(gpu)),
             )
         })
         .collect();
@@ -295,14 +295,14 @@ pub(super) fn specialisation(
         h,
         Output::Colour,
         &uniform_words(&mono, &special),
-        &special.data,
+        Some(&special),
     );
     let b = harness.frame(
         w,
         h,
         Output::Colour,
         &uniform_words(&mono, &general),
-        &general.data,
+        Some(&general),
     );
     let (pa, pb) = (
         Program::Tracer(special.key, ViewKind::Mono, Output::Colour),
@@ -352,7 +352,7 @@ pub(super) fn stereo_cost(
         let program = Program::Tracer(gpu.key, mode.kind(), Output::Colour);
         (
             program,
-            harness.frame(w, h, Output::Colour, &words, &gpu.data),
+            harness.frame(w, h, Output::Colour, &words, Some(&gpu)),
         )
     };
     let mono = frame_of(harness, StereoMode::Mono);
@@ -445,7 +445,7 @@ pub(super) fn mesh_cost(
             h,
             Output::Colour,
             &uniform_words(&layout, &gpu),
-            &gpu.data,
+            Some(&gpu),
         );
         Ok((program, frame))
     };

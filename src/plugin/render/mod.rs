@@ -25,8 +25,9 @@ use bevy::render::{
         ColorTargetState, ColorWrites, CommandEncoder, Extent3d, FilterMode, FragmentState,
         Operations, PipelineCache, RenderPassColorAttachment, RenderPassDescriptor, RenderPipeline,
         RenderPipelineDescriptor, Sampler, SamplerBindingType, SamplerDescriptor, ShaderStages,
-        SpecializedRenderPipeline, SpecializedRenderPipelines, TextureDescriptor, TextureDimension,
-        TextureFormat, TextureSampleType, TextureUsages, TextureView, VertexState,
+        SpecializedRenderPipeline, SpecializedRenderPipelines, TextureDataOrder, TextureDescriptor,
+        TextureDimension, TextureFormat, TextureSampleType, TextureUsages, TextureView,
+        VertexState,
         binding_types::{
             sampler, storage_buffer_read_only_sized, texture_2d, uniform_buffer_sized,
         },
@@ -38,7 +39,7 @@ use bevy::render::{
     view::{ExtractedView, ViewTarget},
 };
 use bevy::shader::Shader;
-use gpu::{GpuScene, ShaderKey, ViewExtras, view_shader_defs, view_words};
+use gpu::{GpuScene, ShaderKey, TEXTURE_SLOTS, ViewExtras, view_shader_defs, view_words};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -288,6 +289,8 @@ pub(crate) struct TracerPipeline {
     layout: BindGroupLayoutDescriptor,
     upscale_layout: BindGroupLayoutDescriptor,
     sampler: Sampler,
+    /// A 1×1 texture for the texture slots a scene leaves empty.
+    blank: TextureView,
 }
 
 /// One pipeline per shader key, view kind and target format.
@@ -350,6 +353,8 @@ impl SpecializedRenderPipeline for TracerPipeline {
 }
 
 fn init_tracer_pipeline(mut commands: Commands, device: Res<RenderDevice>) {
+    // The scene's textures, read texel by texel (TEXTURE_SLOTS of them).
+    let slot = texture_2d(TextureSampleType::Float { filterable: false });
     let layout = BindGroupLayoutDescriptor::new(
         "curved_space_tracer_layout",
         &BindGroupLayoutEntries::sequential(
@@ -357,6 +362,14 @@ fn init_tracer_pipeline(mut commands: Commands, device: Res<RenderDevice>) {
             (
                 uniform_buffer_sized(false, None),
                 storage_buffer_read_only_sized(false, None),
+                slot,
+                slot,
+                slot,
+                slot,
+                slot,
+                slot,
+                slot,
+                slot,
             ),
         ),
     );
@@ -375,10 +388,27 @@ fn init_tracer_pipeline(mut commands: Commands, device: Res<RenderDevice>) {
         min_filter: FilterMode::Linear,
         ..default()
     });
+    let blank = device
+        .create_texture(&TextureDescriptor {
+            label: Some("curved_space_blank_texture"),
+            size: Extent3d {
+                width: 1,
+                height: 1,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: TextureDimension::D2,
+            format: TextureFormat::Rgba8Unorm,
+            usage: TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        })
+        .create_view(&default());
     commands.insert_resource(TracerPipeline {
         layout,
         upscale_layout,
         sampler,
+        blank,
     });
 }
 
@@ -389,12 +419,69 @@ pub(crate) struct TracerBindings {
     bytes: usize,
     /// The scene whose words the uniform holds.
     scene: Arc<GpuScene>,
-    /// The scene data buffer and what it holds: kept while only objects move.
-    scene_data: (Buffer, Arc<Vec<u32>>),
+    /// The scene data buffer and textures and what they hold: kept while only objects move.
+    scene_data: SceneDataGpu,
     bind_group: BindGroup,
     pipeline: CachedRenderPipelineId,
     /// The reduced-resolution target, its upscaling bind group and pipeline.
     reduced: Option<(CachedTexture, BindGroup, CachedRenderPipelineId)>,
+}
+
+/// The scene data buffer, and the GPU textures of the scene's first [`TEXTURE_SLOTS`]
+/// textures (the rest of the slots blank), made from `data` and `textures`.
+#[derive(Clone)]
+struct SceneDataGpu {
+    buffer: Buffer,
+    data: Arc<Vec<u32>>,
+    textures: Vec<TextureView>,
+}
+
+impl SceneDataGpu {
+    fn new(
+        device: &RenderDevice,
+        queue: &RenderQueue,
+        scene: &GpuScene,
+        blank: &TextureView,
+    ) -> Self {
+        let buffer = device.create_buffer_with_data(&BufferInitDescriptor {
+            label: Some("curved_space_scene_data"),
+            contents: bytemuck::cast_slice(&scene.data),
+            usage: BufferUsages::STORAGE,
+        });
+        let mut textures: Vec<TextureView> = scene
+            .textures
+            .iter()
+            .map(|t| {
+                device
+                    .create_texture_with_data(
+                        queue,
+                        &TextureDescriptor {
+                            label: Some("curved_space_scene_texture"),
+                            size: Extent3d {
+                                width: t.width,
+                                height: t.height,
+                                depth_or_array_layers: 1,
+                            },
+                            mip_level_count: 1,
+                            sample_count: 1,
+                            dimension: TextureDimension::D2,
+                            format: TextureFormat::Rgba8Unorm,
+                            usage: TextureUsages::TEXTURE_BINDING,
+                            view_formats: &[],
+                        },
+                        TextureDataOrder::LayerMajor,
+                        bytemuck::cast_slice(&t.texels),
+                    )
+                    .create_view(&default())
+            })
+            .collect();
+        textures.resize(TEXTURE_SLOTS, blank.clone());
+        Self {
+            buffer,
+            data: scene.data.clone(),
+            textures,
+        }
+    }
 }
 
 /// The views the tracer may draw, with what it knows of them so far.
@@ -501,7 +588,7 @@ fn prepare_tracer_views(
             // The same scene, or only its objects moved: the same mesh data, a uniform of
             // the same size.
             Some(mut b)
-                if b.bytes == data.len() && Arc::ptr_eq(&b.scene_data.1, &curved.scene.data) =>
+                if b.bytes == data.len() && Arc::ptr_eq(&b.scene_data.data, &curved.scene.data) =>
             {
                 queue.write_buffer(&b.buffer, 0, data);
                 b.scene = curved.scene.clone();
@@ -515,24 +602,26 @@ fn prepare_tracer_views(
                     usage: BufferUsages::UNIFORM | BufferUsages::COPY_DST,
                 });
                 let scene_data = match b {
-                    Some(b) if Arc::ptr_eq(&b.scene_data.1, &curved.scene.data) => {
+                    Some(b) if Arc::ptr_eq(&b.scene_data.data, &curved.scene.data) => {
                         b.scene_data.clone()
                     }
-                    _ => (
-                        device.create_buffer_with_data(&BufferInitDescriptor {
-                            label: Some("curved_space_scene_data"),
-                            contents: bytemuck::cast_slice(&curved.scene.data),
-                            usage: BufferUsages::STORAGE,
-                        }),
-                        curved.scene.data.clone(),
-                    ),
+                    _ => SceneDataGpu::new(&device, &queue, &curved.scene, &tracer.blank),
                 };
+                let t = &scene_data.textures;
                 let bind_group = device.create_bind_group(
                     "curved_space_bind_group",
                     &cache.get_bind_group_layout(&tracer.layout),
                     &BindGroupEntries::sequential((
                         buffer.as_entire_binding(),
-                        scene_data.0.as_entire_binding(),
+                        scene_data.buffer.as_entire_binding(),
+                        &t[0],
+                        &t[1],
+                        &t[2],
+                        &t[3],
+                        &t[4],
+                        &t[5],
+                        &t[6],
+                        &t[7],
                     )),
                 );
                 commands.entity(entity).insert(TracerBindings {

@@ -102,9 +102,16 @@ pub const UPSCALE_WGSL: &str = include_str!("../../../../shaders/upscale.wgsl");
 /// wgpu's default `max_uniform_buffer_binding_size`: the tracer's data must fit in it.
 pub const MAX_UNIFORM_BYTES: usize = 64 << 10;
 
-/// wgpu's default `max_storage_buffer_binding_size`: the scene data (meshes, textures) must
-/// fit in it.
+/// wgpu's default `max_storage_buffer_binding_size`: the scene data (meshes, and the
+/// textures past the first [`TEXTURE_SLOTS`]) must fit in it.
 pub const MAX_SCENE_DATA_BYTES: usize = 128 << 20;
+
+/// The scene's textures that the GPU reads from textures of their own (bindings 2 to 9,
+/// `texture_2d<f32>`, RGBA8 unorm, read texel by texel and filtered as the CPU does):
+/// each may be as large as a GPU's 2D texture (8192 texels a side is guaranteed), beyond
+/// the storage buffer's guaranteed 128 MiB. Further textures keep their texels in the
+/// scene data buffer.
+pub const TEXTURE_SLOTS: usize = 8;
 
 /// The largest crossing budget the GPU tracer takes: every loop of the shader is bounded by
 /// it (and by the face and object counts), so no frame can run away.
@@ -129,9 +136,9 @@ pub enum GpuSceneError {
         objects: usize,
         lights: u32,
     },
-    /// The scene's meshes and textures need `bytes` bytes (`triangles` triangles), more than the `limit` bytes a GPU is guaranteed to bind.
+    /// The scene's meshes and the textures past the first [`TEXTURE_SLOTS`] need `bytes` bytes (`triangles` triangles), more than the `limit` bytes a GPU is guaranteed to bind.
     #[error(
-        "the scene's meshes and textures need {bytes} bytes ({triangles} triangles), more than the {limit} bytes a GPU is guaranteed to bind; use smaller meshes or textures"
+        "the scene's meshes and textures need {bytes} bytes ({triangles} triangles), more than the {limit} bytes a GPU is guaranteed to bind; use smaller meshes, or fewer or smaller textures (the first {TEXTURE_SLOTS} are GPU textures of their own, up to 8192 texels a side; the rest share this buffer with the meshes)"
     )]
     DataTooLarge {
         bytes: usize,
@@ -223,6 +230,9 @@ pub struct GpuScene {
     /// with the scene it was packed for when only objects moved ([`GpuScene::reusing`]):
     /// the GPU keeps its buffer then.
     pub data: Arc<Vec<u32>>,
+    /// The textures bound as GPU textures, slot by slot (the first [`TEXTURE_SLOTS`] of the
+    /// scene's); shared with the scene data like `data`.
+    pub textures: Arc<Vec<Arc<crate::scene::texture::Texture>>>,
     /// The player's ship, if the scene draws it.
     pub avatar: Option<GpuAvatar>,
     /// What `data` was packed from and each mesh's root node.
@@ -277,11 +287,22 @@ impl GpuScene {
             of_kind(GpuKind::Disc),
             of_kind(GpuKind::Instance),
         );
-        let (data, offsets, sources) = match previous {
-            Some(p) if p.sources.same_as(scene) => (p.data.clone(), p.offsets(), p.sources.clone()),
+        let (data, textures, offsets, sources) = match previous {
+            Some(p) if p.sources.same_as(scene) => (
+                p.data.clone(),
+                p.textures.clone(),
+                p.offsets(),
+                p.sources.clone(),
+            ),
             _ => {
                 let (data, offsets, roots) = pack_scene_data(scene);
-                (Arc::new(data), offsets, DataSources::of(scene, roots))
+                let textures = scene.textures.iter().take(TEXTURE_SLOTS).cloned().collect();
+                (
+                    Arc::new(data),
+                    Arc::new(textures),
+                    offsets,
+                    DataSources::of(scene, roots),
+                )
             }
         };
         let roots = &sources.roots;
@@ -455,6 +476,7 @@ impl GpuScene {
             key,
             words,
             data,
+            textures,
             avatar,
             sources,
         })
@@ -482,6 +504,7 @@ impl GpuScene {
             },
             words,
             data: self.data.clone(),
+            textures: self.textures.clone(),
             avatar: self.avatar,
             sources: self.sources.clone(),
         }
@@ -576,6 +599,7 @@ impl GpuScene {
             key: ShaderKey { general: true, ..k },
             words,
             data: self.data.clone(),
+            textures: self.textures.clone(),
             avatar: None,
             sources: self.sources.clone(),
         })

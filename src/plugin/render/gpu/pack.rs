@@ -99,7 +99,8 @@ pub(super) fn f32_rounded(x: f64, down: bool) -> f32 {
     }
 }
 
-/// Packs the meshes, materials and textures into the scene data buffer; returns it with
+/// Packs the meshes, materials and textures into the scene data buffer (the texels of
+/// the textures past the first [`super::TEXTURE_SLOTS`], which are GPU textures); returns it with
 /// the offsets of its parts (triangles, materials, texture table, texels, in vec4) and each
 /// mesh's root node.
 pub(super) fn pack_scene_data(scene: &CurvedScene) -> (Vec<u32>, [u32; 4], Vec<u32>) {
@@ -157,14 +158,20 @@ pub(super) fn pack_scene_data(scene: &CurvedScene) -> (Vec<u32>, [u32; 4], Vec<u
         let e = m.emission;
         data.extend([f(e.x), f(e.y), f(e.z), f(m.reflectance)]);
     }
+    // The first TEXTURE_SLOTS textures are GPU textures of their own (their slot in the
+    // table's last word); any further ones keep their texels in this buffer (u32::MAX).
     let table = (data.len() / 4) as u32;
     let mut texel_offset = 0u32;
-    for t in &scene.textures {
-        data.extend([texel_offset, t.width, t.height, 0]);
-        texel_offset += t.texels.len() as u32;
+    for (i, t) in scene.textures.iter().enumerate() {
+        if i < super::TEXTURE_SLOTS {
+            data.extend([0, t.width, t.height, i as u32]);
+        } else {
+            data.extend([texel_offset, t.width, t.height, u32::MAX]);
+            texel_offset += t.texels.len() as u32;
+        }
     }
     let texels = (data.len() / 4) as u32;
-    for t in &scene.textures {
+    for t in scene.textures.iter().skip(super::TEXTURE_SLOTS) {
         data.extend_from_slice(&t.texels);
     }
     data.resize(data.len().div_ceil(4).max(1) * 4, 0);

@@ -175,6 +175,7 @@ impl GpuScene {
             key,
             words,
             data: Arc::new(vec![0; 4]),
+            textures: Arc::new(Vec::new()),
             avatar: None,
             sources: DataSources::empty(),
         })
