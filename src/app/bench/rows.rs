@@ -296,7 +296,7 @@ pub struct BenchReport {
 
 /// The tracer against a straightforward tracer of the same walk (the shader variant
 /// [`GpuScene::straightforward`]: arc length and trigonometric functions, a division a
-/// face, plain f32 pairings) on the plainest view: the camera at the cell's centre looking
+/// face, plain f32 pairings, every lamp image summed) on the plainest view: the camera at the cell's centre looking
 /// along −z with a 90° horizontal field of view, one ball of radius 0.3 inradii at the
 /// centre, fog at 2 inradii, no edges; the two timed in turn.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

@@ -436,7 +436,7 @@ struct BenchArgs {
     #[arg(long, conflicts_with_all = ["spaces", "budgets", "sizes", "cpu_only", "from", "scene"])]
     entities: bool,
     /// Time only the tracer against a straightforward tracer of the same walk (arc length,
-    /// trigonometric functions, plain pairings) on the plainest view: the camera at the
+    /// trigonometric functions, plain pairings, every lamp image summed) on the plainest view: the camera at the
     /// centre, 90° across, a ball of 0.3 inradii, no edges (at --budgets, default 16,32, and
     /// the middle of --sizes); writes straightforward.csv and summary.md.
     #[arg(long, conflicts_with_all = ["cpu_only", "from", "scene", "entities", "edges"])]

@@ -256,7 +256,7 @@ pub(super) fn straightforward_section(md: &mut String, report: &BenchReport) {
     }
     let _ = writeln!(
         *md,
-        "\n### The tracer against a straightforward tracer of the same walk (arc length and trigonometric functions, a division a face, plain f32 pairings): the camera at the centre looking along −z, 90° across, one ball of 0.3 inradii at the centre, fog at 2 inradii, no edges; timed in turn\n\n| space | size | budget | tracer ms | straightforward ms | × straightforward | pixels differing |\n|---|---|---:|---:|---:|---:|---:|"
+        "\n### The tracer against a straightforward tracer of the same walk (arc length and trigonometric functions, a division a face, plain f32 pairings, every lamp image summed): the camera at the centre looking along −z, 90° across, one ball of 0.3 inradii at the centre, fog at 2 inradii, no edges; timed in turn\n\n| space | size | budget | tracer ms | straightforward ms | × straightforward | pixels differing |\n|---|---|---:|---:|---:|---:|---:|"
     );
     for r in &report.straightforward {
         let _ = writeln!(

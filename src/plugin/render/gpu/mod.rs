@@ -513,7 +513,8 @@ impl GpuScene {
     /// The same scene for the benchmark's straightforward tracer (shader def
     /// `STRAIGHTFORWARD`): the same walk and shading written as one would first write it, by
     /// arc length with trigonometric functions, a division a face and plain f32 pairings,
-    /// to compare the tracer with. `None` where the scene has more than balls (tubes,
+    /// and every image of a lamp summed with its distance and direction (where the tracer
+    /// sums only those within the reach, from their chords), to compare the tracer with. `None` where the scene has more than balls (tubes,
     /// globes, discs, meshes, the avatar, walls), a teaching colouring, or a step cap.
     #[must_use]
     pub fn straightforward(&self) -> Option<GpuScene> {
