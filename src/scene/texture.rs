@@ -8,10 +8,9 @@ use glam::{DVec2, DVec3};
 use std::path::Path;
 
 /// The largest texture side accepted: the side every GPU's 2D textures are guaranteed to
-/// reach. The GPU tracer binds a scene's first
-/// [`TEXTURE_SLOTS`](crate::plugin::render::gpu::TEXTURE_SLOTS) textures as textures of
-/// their own, so an 8192×8192 picture (256 MiB) draws there too; further textures share the
-/// scene data buffer's guaranteed 128 MiB with the meshes.
+/// reach. The GPU tracer binds a scene's first eight textures as textures of their own, so
+/// an 8192×8192 picture (256 MiB) draws there too; further textures share the scene data
+/// buffer's guaranteed 128 MiB with the meshes.
 pub const MAX_TEXTURE_SIDE: u32 = 8192;
 
 /// A texture could not be made.
