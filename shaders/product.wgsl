@@ -341,10 +341,17 @@ fn object_normal(i: u32, x: vec4<f32>) -> vec4<f32> {
     return select(vec4<f32>(0.0, 0.0, 1.0, 0.0), n / d, d > 0.0);
 }
 
-// The first t in [0, t_max] where the segment meets object i, or FAR: F(t) = d(t)² − r² is
-// convex along the segment, so a golden-section search finds a point inside if there is
-// one and a bisection the first root before it (Rust: `trace::product::first_meeting`).
+// The first t in [0, t_max] where the segment meets object i, or FAR: after cheap
+// rejections, the first root of F(t) = d(t)² − r² by Newton's steps in H²×R and by a
+// golden-section search and a bisection on S² (Rust: `trace::product::first_meeting`, the
+// f64 reference, searches by golden section and bisection in both).
 fn first_meeting(i: u32, ray: Ray, t_max: f32) -> f32 {
+    return first_meeting_within(i, ray, t_max, along(ray, 0.5 * t_max), 0.5 * t_max);
+}
+
+// `first_meeting` on [0, t_max] within a segment [0, 2 half] (t_max ≤ 2 half) whose
+// midpoint is `mid`: the midpoint is computed once a segment for every object.
+fn first_meeting_within(i: u32, ray: Ray, t_max: f32, mid: vec4<f32>, half: f32) -> f32 {
     let r = space.product_objects[i].info.y;
     let kind = u32(space.product_objects[i].info.x);
     if kind == 4u || kind == 5u {
@@ -367,12 +374,72 @@ fn first_meeting(i: u32, ray: Ray, t_max: f32) -> f32 {
         }
         return t;
     }
+    if kind != 1u {
+        // A ball or a horizontal tube: the height along the segment is linear, and where
+        // it stays more than the radius from the object's height the product distance
+        // does too (no transcendental function to tell).
+        let z0 = ray.point.z;
+        let z1 = z0 + ray.tangent.z * t_max;
+        let zc = select(space.product_objects[i].shape.z, space.product_objects[i].info.z, kind == 2u);
+        if zc - r > max(z0, z1) || zc + r < min(z0, z1) {
+            return FAR;
+        }
+    }
     // The distance is 1-Lipschitz: a segment whose midpoint is further than half its
     // length plus the radius cannot meet it.
-    if object_distance(i, along(ray, 0.5 * t_max)) > 0.5 * t_max + r {
+    if object_distance(i, mid) > half + r {
         return FAR;
     }
     let r2 = r * r;
+#ifdef HYPERBOLIC
+    // H²×R curves nowhere positively: F is convex along the whole segment.
+    return newton_meeting(i, ray, t_max, r2);
+#else
+    // On S² F is convex only where the surface distance stays under π/2 (the Hessian of d²
+    // there is 2 d cot d on the transverse part), and the square of a tube's offset from
+    // a great circle is not convex: the bracketed search, which needs only one minimum.
+    // (Newton where convexity could be shown, the bracketed search elsewhere, was slower
+    // on the default scene: eight lanes that part pay for both.)
+    return bracketed_meeting(i, ray, t_max, r2);
+#endif
+}
+
+#ifdef HYPERBOLIC
+// The first root of a convex F = d² − r² in [0, t_max], F(0) evaluated first: Newton's
+// steps from t = 0 (where F > 0 and the tangent line lies below F) climb towards it
+// without passing it. A slope turned non-negative before F reaches 0, or a step past
+// t_max, says there is none. A few steps where a golden section and a bisection took
+// dozens, each paid by all eight lanes of a block.
+fn newton_meeting(i: u32, ray: Ray, t_max: f32, r2: f32) -> f32 {
+    var t = 0.0;
+    var q = squared_distance_slope(i, ray);
+    for (var k = 0u; k < 48u; k += 1u) {
+        let f = q.x - r2;
+        if f <= 0.0 {
+            return t;
+        }
+        if !(q.y < 0.0) {
+            return FAR;
+        }
+        let step = -0.5 * f / q.y;
+        let next = t + step;
+        if !(next <= t_max) {
+            return FAR;
+        }
+        if step <= 1e-6 * max(t_max, 1.0) {
+            return next;
+        }
+        t = next;
+        q = squared_distance_slope(i, moved(ray, t, false, 0.0, 1.0));
+    }
+    return FAR;
+}
+#endif
+
+// The first root of F = d² − r² in [0, t_max] where F is only unimodal: a golden-section
+// search for a point inside, then a bracketed search for the root before it.
+fn bracketed_meeting(i: u32, ray: Ray, t_max: f32, r2: f32) -> f32 {
+    let r = sqrt(r2);
     let d0 = object_distance(i, ray.point);
     if d0 * d0 <= r2 {
         return 0.0;
@@ -424,6 +491,7 @@ fn first_meeting(i: u32, ray: Ray, t_max: f32) -> f32 {
             return FAR;
         }
     }
+    // Bisection on [0, inside]: F > 0 at the left end, ≤ 0 at the right.
     var lo = 0.0;
     var hi = inside;
     for (var k = 0u; k < 40u; k += 1u) {
@@ -440,6 +508,36 @@ fn first_meeting(i: u32, ray: Ray, t_max: f32) -> f32 {
     }
     return hi;
 }
+
+#ifdef HYPERBOLIC
+// The squared distance from object i's shape (a ball, a fibre's tube or a horizontal
+// geodesic's tube) at the ray's point, and half its rate of change along the ray's unit
+// tangent: (d², d·d').
+fn squared_distance_slope(i: u32, at: Ray) -> vec2<f32> {
+    let shape = space.product_objects[i].shape;
+    let info = space.product_objects[i].info;
+    let kind = u32(info.x);
+    let x = at.point;
+    let vb = base_of(at.tangent);
+    var db = 0.0;
+    var slope = 0.0;
+    var dz = 0.0;
+    if kind == 2u {
+        // The signed offset from the line: asinh s, s = ⟨m, x⟩ on the model, whose rate
+        // is ⟨m, v⟩.
+        let xb = base_of(x);
+        let s = dot(shape, xb / sqrt(abs(kappa() * base_form(xb, xb))));
+        db = asinh(s);
+        slope = dot(shape, vb) / sqrt(1.0 + s * s);
+        dz = x.z - info.z;
+    } else {
+        db = surface_distance(x, shape);
+        slope = base_form(away_from(x, shape), vb);
+        dz = select(x.z - shape.z, 0.0, kind == 1u);
+    }
+    return vec2<f32>(db * db + dz * dz, db * slope + dz * at.tangent.z);
+}
+#endif
 
 // The unit tangent at p towards q (surface part along the surface geodesic, height part
 // the difference in height, in proportion).
@@ -537,8 +635,9 @@ fn product_occluded(start: Ray, length: f32) -> bool {
             return false;
         }
         let t_max = min(exit.distance, length - travelled);
+        let mid = along(ray, 0.5 * t_max);
         for (var i = 0u; i < min(u32(space.product.y), #{PRODUCT_OBJECTS}u); i += 1u) {
-            if first_meeting(i, ray, t_max) < FAR {
+            if first_meeting_within(i, ray, t_max, mid, 0.5 * t_max) < FAR {
                 return true;
             }
         }
@@ -676,9 +775,11 @@ fn trace_product(start: Ray) -> vec3<f32> {
         let t_max = min(exit.distance, cutoff - travelled);
         var nearest = FAR;
         var object = NONE;
+        let half = 0.5 * t_max;
+        let mid = along(ray, half);
         for (var i = 0u; i < min(u32(space.product.y), #{PRODUCT_OBJECTS}u); i += 1u) {
             // Only a meeting before the nearest so far matters.
-            let t = first_meeting(i, ray, min(t_max, nearest));
+            let t = first_meeting_within(i, ray, min(t_max, nearest), mid, half);
             if t < nearest {
                 nearest = t;
                 object = i;

@@ -1388,6 +1388,120 @@ fn the_globe_and_the_galaxy_render_alike_on_gpu_and_cpu() {
 /// The product spaces (H²×R, S²×R) on the GPU's `PRODUCT` variant against the f64 CPU
 /// reference, default scene and view, 96×54 (the CPU reference's bracketed search is
 /// slower than the constant-curvature tracer's closed forms).
+/// The hard case of the product spaces' object search: rays that graze a ball, a fibre's
+/// tube and a horizontal geodesic's tube, seen at their limbs through a narrow field of view
+/// so that most pixels of the picture are nearly tangent. The GPU's searches (Newton's steps
+/// in H²×R, a golden section and a bisection on S²) must find the same silhouettes as the
+/// f64 reference: only the pixels the limb passes through may differ.
+#[test]
+fn grazing_rays_meet_product_objects_on_the_gpu_where_the_cpu_reference_does() {
+    use bevy_curved_spaces::space::product::{ProductOrFlat, product_space};
+    use bevy_curved_spaces::trace::product::{
+        ProductCamera, ProductObject, ProductShape, default_scene, render_product,
+    };
+    use glam::{DVec3, DVec4};
+    let _gpu = gpu_lock();
+    let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
+    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("gpu-vs-cpu");
+    let (w, h) = (96, 54);
+    // Two crossings: the object in the cell and its nearest copies, the rest fog (far copies
+    // a pixel wide differ between f32 and f64 by aliasing, not by the search).
+    const BUDGET: usize = 2;
+    let mut failures = Vec::new();
+    for id in ["bitorus-circle", "sphere-circle-turn"] {
+        let Some(Ok(ProductOrFlat::Product(space))) = product_space(id) else {
+            panic!("{id} is a product space");
+        };
+        let g = space.base();
+        // A point at surface distance d from the centre in direction θ, at height z.
+        let at = |d: f64, theta: f64, z: f64| {
+            let (c, s) = g.cs(d);
+            DVec4::new(s * theta.cos(), s * theta.sin(), z, c)
+        };
+        let size = (0.25 * space.length()).min(0.3);
+        let eye = at(1.1, 0.0, 0.1 * size);
+        let views = [
+            (
+                "ball",
+                ProductShape::Point(DVec4::W),
+                size,
+                at(size, 0.5 * std::f64::consts::PI, 0.05 * size),
+            ),
+            (
+                "fibre",
+                ProductShape::Fibre(DVec4::W),
+                0.7 * size,
+                at(0.7 * size, 0.5 * std::f64::consts::PI, 0.3 * size),
+            ),
+            (
+                "geodesic",
+                ProductShape::Geodesic {
+                    covector: DVec4::X,
+                    height: -0.5 * size,
+                },
+                0.5 * size,
+                at(0.2, 0.5 * std::f64::consts::PI, 0.0),
+            ),
+        ];
+        for (name, shape, radius, target) in views {
+            let mut scene = default_scene(&space);
+            scene.objects = vec![ProductObject {
+                shape,
+                radius,
+                colour: DVec3::new(0.9, 0.6, 0.3),
+            }];
+            let camera = ProductCamera::looking_at(g, eye, target, 4.0);
+            let cpu = render_product(&space, &scene, &camera, w, h, BUDGET);
+            let gpu = renderer
+                .render_product(&space, &scene, &camera, (w, h), BUDGET as u32)
+                .unwrap_or_else(|e| panic!("{id} {name}: {e}"));
+            // What the view shows without the object: the pixels alike are its misses.
+            let mut empty = scene.clone();
+            empty.objects.clear();
+            let background = render_product(&space, &empty, &camera, w, h, BUDGET);
+            let (hit, missed) =
+                cpu.pixels()
+                    .zip(background.pixels())
+                    .fold((0, 0), |(a, b), (p, q)| {
+                        if p.0.iter().zip(q.0).all(|(x, y)| x.abs_diff(y) <= 2) {
+                            (a, b + 1)
+                        } else {
+                            (a + 1, b)
+                        }
+                    });
+            // The limb crosses the picture: both sides of it are in view.
+            assert!(
+                hit > 200 && missed > 200,
+                "{id} {name}: the view shows {hit} pixels of the object and {missed} of fog"
+            );
+            let (c, diff) = compare(&gpu, &cpu, TOLERANCE);
+            println!(
+                "{id:<20} {name:<8} object {hit} px, fog {missed} px, differing {} px",
+                c.differing_pixels
+            );
+            // At most an eighth of the pixels along the limb: a search that misses grazing
+            // rays, or stops short of the root, moves the whole silhouette.
+            if c.differing_pixels > w.max(h) as usize / 8 {
+                std::fs::create_dir_all(&out).expect("create output folder");
+                for (kind, img) in [("gpu", &gpu), ("cpu", &cpu), ("diff", &diff)] {
+                    img.save(out.join(format!("{id}-grazing-{name}-{kind}.png")))
+                        .expect("write image");
+                }
+                failures.push(format!(
+                    "{id} {name}: {} pixels differ by more than {TOLERANCE}/255",
+                    c.differing_pixels
+                ));
+            }
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "GPU and CPU disagree at the limbs (images in {}):\n{}",
+        out.display(),
+        failures.join("\n")
+    );
+}
+
 #[test]
 fn product_spaces_render_on_the_gpu_like_the_cpu_reference() {
     use bevy_curved_spaces::space::product::{ProductOrFlat, product_space};
