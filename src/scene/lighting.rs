@@ -349,6 +349,30 @@ impl Light {
             .with_radius(self.radius)
     }
 
+    /// The first of [`Light::cover`] up to the last that may lie within [`Light::reach`] of
+    /// `point`. The images come nearest the origin first, and none further from it than
+    /// the point plus the reach is within the reach of the point (the triangle inequality),
+    /// so every image within the reach is in this prefix; it is found by bisection on a
+    /// number that grows with the distance from the origin (`w = cosh d` in H³, `|x|²` in
+    /// E³), with a margin for rounding. In S³ every image may reach: all of them.
+    #[must_use]
+    pub fn cover_reaching(&self, g: Geometry, point: DVec4) -> &[DVec4] {
+        let beyond = g.distance(crate::geometry::ORIGIN, point) + self.reach;
+        let end = match g {
+            Geometry::Hyperbolic => {
+                let last = beyond.cosh() * (1.0 + 1e-9);
+                self.cover.partition_point(|q| q.w <= last)
+            }
+            Geometry::Euclidean => {
+                let last = beyond * beyond * (1.0 + 1e-9);
+                self.cover
+                    .partition_point(|q| (q.truncate() / q.w).length_squared() <= last)
+            }
+            Geometry::Spherical => self.cover.len(),
+        };
+        &self.cover[..end]
+    }
+
     /// The image nearest to `x` and its distance.
     #[must_use]
     pub fn nearest(&self, geometry: Geometry, x: DVec4) -> (DVec4, f64) {
@@ -408,7 +432,7 @@ pub fn gather(
     }
     let absorbed = |d: f64| (-d / fog).exp();
     let mut sum = 0.0;
-    for (k, q) in light.cover.iter().enumerate() {
+    for (k, q) in light.cover_reaching(g, point).iter().enumerate() {
         let d = g.distance(point, *q);
         if !(d > 0.0) || d > light.reach {
             continue;

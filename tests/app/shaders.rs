@@ -654,6 +654,32 @@ fn product_variants_validate_and_match_the_packed_layout() {
         assert_eq!(bytes, gpu.key.uniform_bytes(), "{}", alias.id);
         assert_eq!((gpu.words.len() + VIEW_WORDS) * 4, bytes, "{}", alias.id);
     }
+    // Every optional part of the product tracer, in both geometries: walls, shadowed lamp
+    // images, the teaching views' colours, all at once.
+    for id in ["bitorus-circle", "sphere-circle-turn"] {
+        let Some(Ok(ProductOrFlat::Product(space))) = product_space(id) else {
+            panic!("{id} is a product space");
+        };
+        let mut scene = default_scene(&space);
+        scene.walls = Some(bevy_curved_spaces::scene::WallStyle::new(0.5).expect("style"));
+        scene
+            .set_lighting(
+                &space,
+                scene.light,
+                bevy_curved_spaces::scene::lighting::Lighting {
+                    shadows: 8,
+                    ..Default::default()
+                },
+            )
+            .expect("lighting");
+        scene.colour_by = bevy_curved_spaces::scene::ColourBy::Holonomy;
+        let gpu = GpuScene::product(&space, &scene, 32).expect("packs");
+        assert_eq!(
+            validate(&gpu.key),
+            (gpu.words.len() + VIEW_WORDS) * 4,
+            "{id}"
+        );
+    }
     // No objects at all still has an array slot, and the budget is checked as for any scene.
     let Some(Ok(ProductOrFlat::Product(space))) = product_space("bitorus-circle") else {
         panic!("bitorus-circle is a product space");

@@ -281,3 +281,70 @@ fn each_quality_caps_the_shadowed_images() {
     assert!(Quality::Low.max_shadows() < Quality::Medium.max_shadows());
     assert!(Quality::Medium.max_shadows() < Quality::High.max_shadows());
 }
+
+/// The sum over a lamp's images stops at the first image further from the origin than the
+/// lit point plus the reach (`Light::cover_reaching`): every image within the reach of a
+/// point, wherever in or near the cell, is before that end, and in the hyperbolic spaces
+/// most of the list is after it.
+#[test]
+fn the_image_sum_ends_after_every_image_within_reach() {
+    use bevy_curved_spaces::space::invariants::circumradius;
+    for id in [
+        "seifert-weber",
+        "mirrored-dodecahedron",
+        "weeks",
+        "torus",
+        "hantzsche-wendt",
+        "poincare",
+    ] {
+        let s = space(id);
+        let g = s.geometry();
+        let light = Light::new(&s, DVec4::new(0.0, 0.0, 0.0, 1.0), DVec3::ONE, 1.0);
+        let far = circumradius(&s).min(PI - 0.1);
+        let (mut kept, mut total) = (0usize, 0usize);
+        for k in 0..400u32 {
+            // Points scattered over a ball somewhat larger than the cell (golden spiral
+            // directions, distances spread to 1.2 circumradii).
+            let t = (f64::from(k) + 0.5) / 400.0;
+            let z = 1.0 - 2.0 * t;
+            let phi = f64::from(k) * PI * (3.0 - 5f64.sqrt());
+            let u = DVec3::new(
+                (1.0 - z * z).sqrt() * phi.cos(),
+                (1.0 - z * z).sqrt() * phi.sin(),
+                z,
+            );
+            let d = (1.2 * far * f64::from((k * 7919) % 101) / 100.0).min(PI - 0.1);
+            let p = match g {
+                Geometry::Hyperbolic => (u * d.sinh()).extend(d.cosh()),
+                Geometry::Euclidean => (u * d).extend(1.0),
+                Geometry::Spherical => (u * d.sin()).extend(d.cos()),
+            };
+            let reaching = light.cover_reaching(g, p);
+            for (i, q) in light.cover.iter().enumerate() {
+                assert!(
+                    i < reaching.len() || g.distance(p, *q) > light.reach,
+                    "{id}: image {i} is {} from the point, within the reach {}, but after the sum's end {}",
+                    g.distance(p, *q),
+                    light.reach,
+                    reaching.len()
+                );
+            }
+            kept += reaching.len();
+            total += light.cover.len();
+        }
+        let share = kept as f64 / total as f64;
+        println!(
+            "{id}: {:.0} % of {} images summed on average",
+            100.0 * share,
+            light.cover.len()
+        );
+        match g {
+            Geometry::Spherical => assert_eq!(kept, total, "{id}: in S³ every image may reach"),
+            Geometry::Hyperbolic => assert!(
+                share < 0.75,
+                "{id}: the sum visits {share:.2} of the images"
+            ),
+            Geometry::Euclidean => assert!(kept <= total),
+        }
+    }
+}

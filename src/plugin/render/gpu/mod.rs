@@ -37,7 +37,7 @@ pub const TRACER_WGSL: &str = include_str!("../../../../shaders/curved_space.wgs
 /// The tracer's WGSL modules (`#define_import_path curved_spaces::…`), each the twin of a
 /// Rust module, in the order they import each other: the plugin registers them all, so a
 /// game that embeds the crate needs no shader files.
-pub const SHADER_MODULES: [(&str, &str); 14] = [
+pub const SHADER_MODULES: [(&str, &str); 16] = [
     (
         "shaders/layout.wgsl",
         include_str!("../../../../shaders/layout.wgsl"),
@@ -89,6 +89,14 @@ pub const SHADER_MODULES: [(&str, &str); 14] = [
     (
         "shaders/trace.wgsl",
         include_str!("../../../../shaders/trace.wgsl"),
+    ),
+    (
+        "shaders/product_walk.wgsl",
+        include_str!("../../../../shaders/product_walk.wgsl"),
+    ),
+    (
+        "shaders/product_objects.wgsl",
+        include_str!("../../../../shaders/product_objects.wgsl"),
     ),
     (
         "shaders/product.wgsl",
