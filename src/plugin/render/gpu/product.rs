@@ -1,5 +1,6 @@
 //! A product space (H²×R, S²×R) and its scene packed for the WGSL tracer's `PRODUCT`
-//! variant (`shaders/product.wgsl`): the shading, the side faces' covectors, every face's
+//! variant (`shaders/product_walk.wgsl`, `product_objects.wgsl`, `product.wgsl`): the
+//! shading, the side faces' covectors, every face's
 //! pairing (the sides', then the top's `R⁻¹` and the bottom's `R`) with what rounding left
 //! out, the partners, the circle, the light and the objects.
 
