@@ -153,7 +153,7 @@ fn first_meeting_within(i: u32, ray: Ray, t_max: f32, mid: vec4<f32>, half: f32)
         }
         return t;
     }
-    if u32(space.product_objects[i].info.x) == 3u {
+    if kind == 3u {
         // A horizontal disc: where the height reaches its slice, if within it.
         let mu = ray.tangent.z;
         if mu == 0.0 {

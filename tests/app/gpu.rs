@@ -1395,7 +1395,6 @@ fn the_globe_and_the_galaxy_render_alike_on_gpu_and_cpu() {
 /// f64 reference: only the pixels the limb passes through may differ.
 #[test]
 fn grazing_rays_meet_product_objects_on_the_gpu_where_the_cpu_reference_does() {
-    use bevy_curved_spaces::space::product::{ProductOrFlat, product_space};
     use bevy_curved_spaces::trace::product::{
         ProductCamera, ProductObject, ProductShape, default_scene, render_product,
     };
@@ -1409,9 +1408,7 @@ fn grazing_rays_meet_product_objects_on_the_gpu_where_the_cpu_reference_does() {
     const BUDGET: usize = 2;
     let mut failures = Vec::new();
     for id in ["bitorus-circle", "sphere-circle-turn"] {
-        let Some(Ok(ProductOrFlat::Product(space))) = product_space(id) else {
-            panic!("{id} is a product space");
-        };
+        let space = crate::common::product(id);
         let g = space.base();
         // A point at surface distance d from the centre in direction θ, at height z.
         let at = |d: f64, theta: f64, z: f64| {
@@ -1504,7 +1501,6 @@ fn grazing_rays_meet_product_objects_on_the_gpu_where_the_cpu_reference_does() {
 
 #[test]
 fn product_spaces_render_on_the_gpu_like_the_cpu_reference() {
-    use bevy_curved_spaces::space::product::{ProductOrFlat, product_space};
     use bevy_curved_spaces::trace::product::{
         ProductObject, ProductShape, default_camera, default_scene, render_product,
     };
@@ -1519,9 +1515,7 @@ fn product_spaces_render_on_the_gpu_like_the_cpu_reference() {
         "sphere-circle-turn",
         "crosscaps-circle",
     ] {
-        let Some(Ok(ProductOrFlat::Product(space))) = product_space(id) else {
-            panic!("{id} is a product space");
-        };
+        let space = crate::common::product(id);
         let scene = default_scene(&space);
         let camera = default_camera(&space);
         let plain = render_product(&space, &scene, &camera, w, h, 24);

@@ -641,12 +641,10 @@ fn wall_variants_validate_and_match_the_packed_layout() {
 /// scene, and the packer writes exactly the layout naga computes; a stereo view of it too.
 #[test]
 fn product_variants_validate_and_match_the_packed_layout() {
-    use bevy_curved_spaces::space::product::{PRODUCT_ALIASES, ProductOrFlat, product_space};
+    use bevy_curved_spaces::space::product::PRODUCT_ALIASES;
     use bevy_curved_spaces::trace::product::default_scene;
     for alias in PRODUCT_ALIASES {
-        let Some(Ok(ProductOrFlat::Product(space))) = product_space(alias.id) else {
-            panic!("{} is a product space", alias.id);
-        };
+        let space = crate::common::product(alias.id);
         let scene = default_scene(&space);
         let gpu = GpuScene::product(&space, &scene, 32).expect("packs");
         assert!(gpu.key.product && gpu.key.faces as usize == space.side_faces().len());
@@ -657,9 +655,7 @@ fn product_variants_validate_and_match_the_packed_layout() {
     // Every optional part of the product tracer, in both geometries: walls, shadowed lamp
     // images, the teaching views' colours, all at once.
     for id in ["bitorus-circle", "sphere-circle-turn"] {
-        let Some(Ok(ProductOrFlat::Product(space))) = product_space(id) else {
-            panic!("{id} is a product space");
-        };
+        let space = crate::common::product(id);
         let mut scene = default_scene(&space);
         scene.walls = Some(bevy_curved_spaces::scene::WallStyle::new(0.5).expect("style"));
         scene
@@ -681,9 +677,7 @@ fn product_variants_validate_and_match_the_packed_layout() {
         );
     }
     // No objects at all still has an array slot, and the budget is checked as for any scene.
-    let Some(Ok(ProductOrFlat::Product(space))) = product_space("bitorus-circle") else {
-        panic!("bitorus-circle is a product space");
-    };
+    let space = crate::common::product("bitorus-circle");
     let mut scene = default_scene(&space);
     scene.objects.clear();
     let gpu = GpuScene::product(&space, &scene, 8).expect("packs");

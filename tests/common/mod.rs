@@ -112,3 +112,11 @@ pub fn library_space(id: &str) -> bevy_curved_spaces::space::Space {
     )
     .unwrap_or_else(|e| panic!("{id}: {e}"))
 }
+
+/// A product space (H²×R, S²×R) by id; panics naming the id where it is not one.
+pub fn product(id: &str) -> bevy_curved_spaces::space::product::ProductSpace {
+    match bevy_curved_spaces::space::product::product_space(id) {
+        Some(Ok(bevy_curved_spaces::space::product::ProductOrFlat::Product(p))) => *p,
+        other => panic!("{id} is not a product space: {other:?}"),
+    }
+}

@@ -3,17 +3,12 @@
 //! arrives turned by the top's gluing, and keys no geodesic joins are refused by name.
 
 use bevy_curved_spaces::scene::flight::{load_flight_file, parse_flight};
-use bevy_curved_spaces::space::product::{ProductOrFlat, ProductSpace, product_space};
+use bevy_curved_spaces::space::product::ProductSpace;
 use bevy_curved_spaces::trace::product::flight::ProductFlight;
 use glam::{DMat4, DVec4};
 use std::path::Path;
 
-fn product(id: &str) -> ProductSpace {
-    match product_space(id) {
-        Some(Ok(ProductOrFlat::Product(p))) => *p,
-        other => panic!("{id} is not a product space: {other:?}"),
-    }
-}
+use crate::common::product;
 
 fn asset(name: &str) -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))

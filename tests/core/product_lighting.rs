@@ -5,9 +5,7 @@
 
 use bevy_curved_spaces::geometry::{Geometry, Ray};
 use bevy_curved_spaces::scene::lighting::{LightPaths, Lighting};
-use bevy_curved_spaces::space::product::{
-    ProductOrFlat, ProductSpace, ProductWalker, product_space,
-};
+use bevy_curved_spaces::space::product::ProductWalker;
 use bevy_curved_spaces::space::walk::Limit;
 use bevy_curved_spaces::trace::product::lighting::{
     cell_circumradius, lamp_images, paths_to, product_fluence, product_gather, product_tail_fluence,
@@ -19,12 +17,7 @@ use bevy_curved_spaces::trace::product::{
 use glam::{DMat4, DVec3, DVec4};
 use std::collections::HashSet;
 
-fn product(id: &str) -> ProductSpace {
-    match product_space(id) {
-        Some(Ok(ProductOrFlat::Product(p))) => *p,
-        _ => panic!("{id} is a product space"),
-    }
-}
+use crate::common::product;
 
 /// A point of the cell: surface distance `rho` from the centre in direction `angle`, at
 /// height `z`.

@@ -8,18 +8,11 @@ use bevy_curved_spaces::space::Limit;
 use bevy_curved_spaces::space::product::motion::{
     ProductMotion, camera_frame, step_product_frame, turn_about_fibre, wrap_product_frame,
 };
-use bevy_curved_spaces::space::product::{
-    ProductOrFlat, ProductSpace, ProductWalker, product_space,
-};
+use bevy_curved_spaces::space::product::{ProductSpace, ProductWalker};
 use bevy_curved_spaces::trace::product::default_camera;
 use glam::{DMat4, DVec3, DVec4};
 
-fn product(id: &str) -> ProductSpace {
-    match product_space(id) {
-        Some(Ok(ProductOrFlat::Product(p))) => *p,
-        other => panic!("{id} is not a product space: {other:?}"),
-    }
-}
+use crate::common::product;
 
 fn start(space: &ProductSpace) -> DMat4 {
     let c = default_camera(space);

@@ -4,7 +4,6 @@
 
 use bevy_curved_spaces::geometry::Geometry;
 use bevy_curved_spaces::space::product::motion::{camera_frame, product_dot, product_eye_frames};
-use bevy_curved_spaces::space::product::{ProductOrFlat, ProductSpace, product_space};
 use bevy_curved_spaces::trace::product::file::{load_product_scene_file, parse_product_scene};
 use bevy_curved_spaces::trace::product::{
     ProductCamera, ProductParts, ProductShape, default_scene, light_spread, render_product,
@@ -15,12 +14,7 @@ use bevy_curved_spaces::view::stereo::StereoMode;
 use glam::{DVec3, DVec4};
 use std::path::PathBuf;
 
-fn product(id: &str) -> ProductSpace {
-    match product_space(id) {
-        Some(Ok(ProductOrFlat::Product(p))) => *p,
-        _ => panic!("{id} is a product space"),
-    }
-}
+use crate::common::product;
 
 /// Points at distance `r` round `c` in the product (a ball's surface), 26 directions.
 fn ball_surface(g: Geometry, c: DVec4, r: f64) -> Vec<DVec4> {

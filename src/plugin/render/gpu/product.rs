@@ -1,8 +1,8 @@
 //! A product space (H²×R, S²×R) and its scene packed for the WGSL tracer's `PRODUCT`
 //! variant (`shaders/product_walk.wgsl`, `product_objects.wgsl`, `product.wgsl`): the
-//! shading, the side faces' covectors, every face's
-//! pairing (the sides', then the top's `R⁻¹` and the bottom's `R`) with what rounding left
-//! out, the partners, the circle, the light and the objects.
+//! shading, the side faces' covectors, every face's pairing (the sides', then the top's
+//! `R⁻¹` and the bottom's `R`) with what rounding left out, the partners, the circle, the
+//! light and the objects.
 
 use super::VIEW_WORDS;
 use super::key::PRODUCT_OBJECT_VEC4S;
