@@ -5,7 +5,7 @@
 
 #import curved_spaces::layout::{ProductObject, kappa, space}
 #import curved_spaces::walk::Ray
-#import curved_spaces::product_walk::{FAR, along, away_from, base_form, base_of, line_offset, moved, speed_squared, surface_distance}
+#import curved_spaces::product_walk::{FAR, QUARTER_PI, along, away_from, base_form, base_of, line_offset, moved, speed_squared, surface_distance}
 
 // The distance from x to object i's shape.
 fn object_distance(i: u32, x: vec4<f32>) -> f32 {
@@ -190,8 +190,25 @@ fn first_meeting_within(i: u32, ray: Ray, t_max: f32, mid: vec4<f32>, half: f32)
     // there is 2 d cot d on the transverse part), and the square of a tube's offset from
     // a great circle is not convex: the bracketed search, which needs only one minimum.
     // (Newton where convexity could be shown, the bracketed search elsewhere, was slower
-    // on the default scene: eight lanes that part pay for both.)
-    return bracketed_meeting(i, ray, t_max, r2);
+    // on the default scene: eight lanes that part pay for both.) That search needs one
+    // minimum in its interval, so it runs on pieces of at most π/4 of surface arc, each
+    // after a midpoint test of its own; the walk's segments are longer (`SEGMENT_ARC`), so
+    // an object far from a segment is turned away once for all its pieces.
+    let lambda = sqrt(max(speed_squared(ray.point, base_of(ray.tangent)), 0.0));
+    let n = u32(clamp(ceil(lambda * t_max / QUARTER_PI), 1.0, 8.0));
+    let piece = t_max / f32(n);
+    for (var k = 0u; k < n; k += 1u) {
+        let a = piece * f32(k);
+        let b = select(a + piece, t_max, k + 1u == n);
+        if n > 1u && object_distance(i, along(ray, 0.5 * (a + b))) > 0.5 * (b - a) + r {
+            continue;
+        }
+        let t = bracketed_meeting(i, ray, a, b, r2);
+        if t < FAR {
+            return t;
+        }
+    }
+    return FAR;
 #endif
 }
 
@@ -227,17 +244,22 @@ fn newton_meeting(i: u32, ray: Ray, t_max: f32, r2: f32) -> f32 {
 }
 #endif
 
-// The first root of F = d² − r² in [0, t_max] where F is only unimodal: a golden-section
+// The first root of F = d² − r² in [lo, hi] where F is only unimodal: a golden-section
 // search for a point inside, then a bracketed search for the root before it.
-fn bracketed_meeting(i: u32, ray: Ray, t_max: f32, r2: f32) -> f32 {
+fn bracketed_meeting(i: u32, ray: Ray, lo: f32, hi: f32, r2: f32) -> f32 {
     let r = sqrt(r2);
-    let d0 = object_distance(i, ray.point);
-    if d0 * d0 <= r2 {
-        return 0.0;
+    var start = ray.point;
+    if lo > 0.0 {
+        start = along(ray, lo);
     }
+    let d0 = object_distance(i, start);
+    if d0 * d0 <= r2 {
+        return lo;
+    }
+    let t_max = hi;
     let ratio = 0.6180339887498949;
-    var a = 0.0;
-    var b = t_max;
+    var a = lo;
+    var b = hi;
     var c = b - ratio * (b - a);
     var d = a + ratio * (b - a);
     var dc = object_distance(i, along(ray, c));
@@ -282,22 +304,22 @@ fn bracketed_meeting(i: u32, ray: Ray, t_max: f32, r2: f32) -> f32 {
             return FAR;
         }
     }
-    // Bisection on [0, inside]: F > 0 at the left end, ≤ 0 at the right.
-    var lo = 0.0;
-    var hi = inside;
+    // Bisection on [lo, inside]: F > 0 at the left end, ≤ 0 at the right.
+    var left = lo;
+    var right = inside;
     for (var k = 0u; k < 40u; k += 1u) {
-        let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
+        let mid = 0.5 * (left + right);
+        if mid <= left || mid >= right {
             break;
         }
         let e = object_distance(i, along(ray, mid));
         if e * e > r2 {
-            lo = mid;
+            left = mid;
         } else {
-            hi = mid;
+            right = mid;
         }
     }
-    return hi;
+    return right;
 }
 
 #ifdef HYPERBOLIC

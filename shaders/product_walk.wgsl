@@ -12,11 +12,19 @@
 #import curved_spaces::geometry::distance_from_ratio
 #import curved_spaces::walk::{Ray, transform_compensated}
 
-// A step without crossing (S²: at most π/4 of surface arc).
+// A step without crossing (S²: at most `SEGMENT_ARC` of surface arc).
 const CAP: u32 = 0xfffffffeu;
 const NONE: u32 = 0xffffffffu;
 const FAR: f32 = 3.0e38;
 const QUARTER_PI: f32 = 0.7853981633974483;
+// The longest segment of surface arc the S² walk takes between crossings: π/2, since a
+// side's great circle that a ray moves away from is met again within π of arc, and the
+// exit search, which looks only at the sides a ray moves towards, sees every side met
+// within π/2. The object search cuts a segment into pieces of at most π/4
+// (`first_meeting_within`) for the objects it comes near; the CPU reference steps π/4 at
+// a time.
+const SEGMENT_ARC: f32 = 1.5707963267948966;
+const WHOLE_ARC: f32 = 3.14159265;
 
 // Where a ray leaves the cell: the face (a side, face_count() the top, face_count() + 1 the
 // bottom, CAP or NONE), the distance, and for a side the ratio num/den of its base chart point.
@@ -72,7 +80,7 @@ fn normalized(ray: Ray) -> Ray {
 }
 
 // The exit: the side the shadow meets first (the smallest ratio, compared without
-// dividing), the top or bottom the height reaches, on S² a step of π/4 (Rust:
+// dividing), the top or bottom the height reaches, on S² a step of `SEGMENT_ARC` (Rust:
 // `ProductWalker::exit`). `skip` is the side just entered.
 fn product_exit(ray: Ray, skip: u32) -> ProductExit {
     let p = ray.point;
@@ -110,7 +118,7 @@ fn product_exit(ray: Ray, skip: u32) -> ProductExit {
             }
         }
 #ifdef SPHERICAL
-        let capped = QUARTER_PI / lambda;
+        let capped = select(SEGMENT_ARC, WHOLE_ARC, face_count() == 0u) / lambda;
         if capped < best.distance {
             best = ProductExit(CAP, capped, 0.0, 1.0);
         }
