@@ -476,28 +476,35 @@ fn a_headset_session_runs_traces_both_eyes_and_walks_through_faces() {
 /// Places the head just inside a z face in the direction the simulated head is moving and
 /// follows it until it crosses; the tracker's frame, undone by its holonomy, must be the
 /// room motion applied step by step in the cover.
+///
+/// Monado's simulated head sways on a Lissajous figure (periods of 8 s and 4 s), so its
+/// direction turns within a second: the direction is its last single update's motion, and
+/// the head starts inside the face by a tenth of that step (a longer window's chord can
+/// point where the head no longer goes when an update is slow).
 fn crossing_by_head_motion(app: &mut App) {
     let active = app.world().resource::<ActiveSpace>().clone();
     let space = &active.space;
     let g = space.geometry();
     let scale = head(app).units_per_metre;
+    let wrap_margin = head(app).wrap_margin;
     for attempt in 0..8 {
-        // Which way is the head going? Its motion over the last half second, in its own axes.
-        let mut poses = Vec::new();
-        for _ in 0..10 {
-            app.update();
-            poses.extend(head_pose(app));
-        }
-        let (first, last) = (poses[0], *poses.last().expect("poses"));
+        // Which way is the head going? Its motion over the last update, in its own axes.
+        app.update();
+        let first = head_pose(app).expect("views");
+        let clock = Instant::now();
+        app.update();
+        let last = head_pose(app).expect("views");
+        let step_s = clock.elapsed().as_secs_f64();
         let (t, _) = first.relative(&last);
-        if t.length() < 1e-4 {
+        if t.length() < 1e-5 {
+            println!("attempt {attempt}: the head stood still for an update; again");
             continue;
         }
         // The head's motion direction becomes the space's +z, and the head starts inside the
-        // +z face by a quarter of what it moved in the last half second.
+        // +z face by a tenth of its last step.
         let direction = t.normalize();
         let turn = DQuat::from_rotation_arc(direction, DVec3::Z);
-        let margin = 0.25 * t.length() * scale;
+        let margin = 0.1 * t.length() * scale;
         let placed = g.translation(DVec3::Z, active.inradius - margin) * DMat4::from_quat(turn);
         {
             let mut h = app.world_mut().resource_mut::<XrHead>();
@@ -508,6 +515,8 @@ fn crossing_by_head_motion(app: &mut App) {
         let mut cover = placed;
         let mut previous = last;
         let mut crossed = false;
+        // How far past the face's plane the head got, in units (it wraps past the margin).
+        let mut furthest = f64::NEG_INFINITY;
         for _ in 0..20 {
             app.update();
             let now = head_pose(app).expect("views");
@@ -518,9 +527,15 @@ fn crossing_by_head_motion(app: &mut App) {
                 crossed = true;
                 break;
             }
+            furthest = furthest.max(space.outside_by(head(app).frame.w_axis));
         }
         if !crossed {
-            println!("attempt {attempt}: the head turned back before the face; again");
+            println!(
+                "attempt {attempt}: the head turned back before the face (step {:.2} mm in {step_s:.2} s, \
+                 it came within {:.2e} units of the plane, wrap margin {wrap_margin:e}); again",
+                1e3 * t.length(),
+                -furthest,
+            );
             continue;
         }
         let h = head(app);
