@@ -256,7 +256,6 @@ fn bracketed_meeting(i: u32, ray: Ray, lo: f32, hi: f32, r2: f32) -> f32 {
     if d0 * d0 <= r2 {
         return lo;
     }
-    let t_max = hi;
     let ratio = 0.6180339887498949;
     var a = lo;
     var b = hi;
@@ -267,7 +266,7 @@ fn bracketed_meeting(i: u32, ray: Ray, lo: f32, hi: f32, r2: f32) -> f32 {
     var fc = dc * dc - r2;
     var fd = dd * dd - r2;
     for (var k = 0u; k < 48u; k += 1u) {
-        if fc <= 0.0 || fd <= 0.0 || b - a <= 1e-6 * max(t_max, 1.0) {
+        if fc <= 0.0 || fd <= 0.0 || b - a <= 1e-6 * max(hi, 1.0) {
             break;
         }
         // The minimum lies in [a, b], where the distance is at least either probe's less
@@ -297,9 +296,9 @@ fn bracketed_meeting(i: u32, ray: Ray, lo: f32, hi: f32, r2: f32) -> f32 {
     } else if fd <= 0.0 {
         inside = d;
     } else {
-        let e = object_distance(i, along(ray, t_max));
+        let e = object_distance(i, along(ray, hi));
         if e * e <= r2 {
-            inside = t_max;
+            inside = hi;
         } else {
             return FAR;
         }
