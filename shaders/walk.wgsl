@@ -91,12 +91,24 @@ fn cross_face(ray: Ray, exit: Exit) -> Ray {
     let along = ray.point * (-kappa() * exit.num) + ray.tangent * exit.den;
 #ifdef STEP_CAP
     if exit.face == NO_FACE {
-        let moved = project_point(at_face);
+        let moved = onto_model(at_face);
         return Ray(moved, unit_tangent(moved, along));
     }
 #endif
     let hi = space.pairings[exit.face];
     let lo = space.pairings_lo[exit.face];
-    let point = project_point(transform_compensated(hi, lo, at_face));
+    let point = onto_model(transform_compensated(hi, lo, at_face));
     return Ray(point, unit_tangent(point, transform_compensated(hi, lo, along)));
+}
+
+// A point put back onto the model (Rust: `CellWalker::onto_model`). A cell that reaches the
+// equator (STEP_CAP, in S³) only scales it to unit length: turning it to its antipode in the
+// hemisphere w >= 0 would move the 3-sphere's points, and in projective space turn the point
+// without its tangent.
+fn onto_model(p: vec4<f32>) -> vec4<f32> {
+#ifdef STEP_CAP
+    return p / length(p);
+#else
+    return project_point(p);
+#endif
 }

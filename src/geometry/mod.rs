@@ -220,6 +220,16 @@ impl Geometry {
         if self == Self::Hyperbolic && x.length_squared() >= 1.0 {
             return Err(GeometryError::OutsideKleinBall(x.x, x.y, x.z));
         }
+        if self == Self::Spherical {
+            // (x, 1) scaled down by a power of two (exact) before its length is taken where
+            // it is large: past about 1.3e154 the squares overflow, and the point would come
+            // out as the zero vector.
+            let largest = x.abs().max_element();
+            if largest > 1e150 {
+                let scale = 2f64.powi(-(largest.log2().ceil() as i32));
+                return Ok(self.project_point((x * scale).extend(scale)));
+            }
+        }
         Ok(self.project_point(x.extend(1.0)))
     }
 

@@ -128,10 +128,19 @@ pub enum OffscreenError {
 }
 
 /// Whether wgpu finds any adapter (a GPU or a software driver such as lavapipe).
+///
+/// The instance it asks is kept for the rest of the process, and with it the Vulkan driver
+/// it loaded. Were it dropped, the Vulkan loader would unload the driver with the last
+/// instance (after Bevy's renderer is gone too), and a driver that registered an exit
+/// handler (lavapipe does, through LLVM) would then crash the process at exit with
+/// SIGSEGV, after a refusal had been printed and its exit code chosen.
 #[must_use]
 pub fn gpu_available() -> bool {
+    use std::sync::OnceLock;
     use wgpu::{Instance, InstanceDescriptor, RequestAdapterOptions};
-    let instance = Instance::new(InstanceDescriptor::new_without_display_handle());
+    static INSTANCE: OnceLock<Instance> = OnceLock::new();
+    let instance =
+        INSTANCE.get_or_init(|| Instance::new(InstanceDescriptor::new_without_display_handle()));
     bevy::tasks::block_on(instance.request_adapter(&RequestAdapterOptions::default())).is_ok()
 }
 

@@ -73,9 +73,24 @@ pub enum FluenceError {
     /// The reach is not a positive number.
     #[error("the reach must be a positive, finite number, got {0}")]
     Reach(f64),
-    /// The lamp's radius is not a positive number.
-    #[error("the lamp's radius must be a positive, finite number, got {0}")]
+    /// The lamp's radius is not a finite number of at least [`MIN_LAMP_RADIUS`].
+    #[error(
+        "the lamp's radius must be a finite number of at least 1e-150, got {0} (a lamp's light \
+         at its own place is 1/r², which must be a number f64 can hold)"
+    )]
     Radius(f64),
+    /// The light summed is larger than f64 can hold.
+    #[error(
+        "the light's {part} is larger than f64 can hold (1.8e308): with a fog distance of \
+         {fog} light is hardly absorbed, and the sum over the lamp's images grows without \
+         bound as the fog thins; give a shorter --fog"
+    )]
+    Overflow {
+        /// Which part overflowed: the exact sum, the tail or its bound.
+        part: &'static str,
+        /// The fog distance.
+        fog: f64,
+    },
     /// More group elements than the limit come within the reach.
     #[error(
         "more than {limit} images of the lamp lie within the reach {reach}: ask for a smaller \
@@ -91,6 +106,9 @@ pub enum FluenceError {
 
 /// The most group elements summed over.
 pub const MAX_IMAGES: usize = 200_000;
+
+/// The smallest lamp radius: `1/S(r)²` at the lamp must be a number f64 holds.
+pub const MIN_LAMP_RADIUS: f64 = 1e-150;
 
 /// The volume of a geodesic ball of radius `r` (E³, H³, S³ up to π).
 #[must_use]
@@ -124,30 +142,31 @@ pub fn fluence(
     if !(reach > 0.0 && reach.is_finite()) {
         return Err(FluenceError::Reach(reach));
     }
-    if !(radius > 0.0 && radius.is_finite()) {
+    if !(radius >= MIN_LAMP_RADIUS && radius.is_finite()) {
         return Err(FluenceError::Radius(radius));
     }
     let g = space.geometry;
-    let s2 = |d: f64| {
-        g.s(d)
-            .abs()
-            .max(g.s(radius.min(0.5 * std::f64::consts::PI)))
-            .powi(2)
-    };
+    let floor = g.s(radius.min(0.5 * std::f64::consts::PI));
+    let s2 = |d: f64| g.s(d).abs().max(floor).powi(2);
+    let overflow = |part| FluenceError::Overflow { part, fog };
     if g == Geometry::Spherical {
         let elements =
             elements_near(space, f64::INFINITY, MAX_IMAGES).ok_or(FluenceError::TooMany {
                 reach: std::f64::consts::PI,
                 limit: MAX_IMAGES,
             })?;
-        let turns = 1.0 - (-std::f64::consts::TAU / fog).exp();
-        let exact = elements
+        // 1 − e^(−2π/λ), kept where λ is so long that the exponential rounds to 1.
+        let turns = -(-std::f64::consts::TAU / fog).exp_m1();
+        let exact: f64 = elements
             .iter()
             .map(|h| {
                 let d = g.distance(at, *h * lamp);
                 ((-d / fog).exp() + (-(std::f64::consts::TAU - d) / fog).exp()) / (turns * s2(d))
             })
             .sum();
+        if !exact.is_finite() {
+            return Err(overflow("sum over the images"));
+        }
         return Ok(Fluence {
             images: elements.len(),
             exact,
@@ -172,11 +191,24 @@ pub fn fluence(
             exact += f(d);
         }
     }
+    if !exact.is_finite() {
+        return Err(overflow("sum over the images"));
+    }
     let vol = volume(space);
-    let tail = 4.0 * std::f64::consts::PI * fog * (-reach / fog).exp() / vol;
-    let rho = g.distance(lamp, DVec4::W) + circumradius(space);
-    let (lo, hi) = tail_range(g, reach, rho, vol, images as f64, fog, &f);
-    let bound = (hi - tail).max(tail - lo).max(0.0);
+    // 4πλ e^(−R/λ) / vol, through its logarithm: λ/vol alone may overflow where the
+    // whole does not.
+    let tail = ((4.0 * std::f64::consts::PI).ln() + fog.ln() - vol.ln() - reach / fog).exp();
+    if !tail.is_finite() {
+        return Err(overflow("mean beyond the reach"));
+    }
+    let rho = lamp_cell_reach(space, lamp);
+    let (lo, hi) = tail_range(g, reach, rho, vol, images as f64, fog, floor);
+    // The integrals are Simpson's rule to about 1e-9 of their size: a millionth of it
+    // keeps the bound a bound.
+    let bound = (hi - tail).max(tail - lo).max(0.0) + 1e-6 * (lo.abs() + hi.abs());
+    if !bound.is_finite() {
+        return Err(overflow("error bound"));
+    }
     Ok(Fluence {
         images,
         exact,
@@ -186,9 +218,130 @@ pub fn fluence(
     })
 }
 
+/// The fluence with the reach chosen so that the stated bound is at most `fraction` of the
+/// total where the image limit allows: it starts where about 200 images lie (`V(R) = 200
+/// vol(M)`, at most eight fog distances) and lengthens the reach by the fog distances the
+/// bound still has to fall (it falls like `e^(−R/λ)`), a few times over. The second value
+/// says whether the bound came within `fraction`; where it did not, the longest reach
+/// within [`MAX_IMAGES`] is returned (in H³ the count's uncertainty grows with the reach
+/// as fast as the images do, and a tight bound would need far more of them).
+pub fn fluence_within(
+    space: &Space,
+    lamp: DVec4,
+    at: DVec4,
+    fog: f64,
+    radius: f64,
+    fraction: f64,
+) -> Result<(Fluence, bool), FluenceError> {
+    if !(fog > 0.0 && fog.is_finite()) {
+        return Err(FluenceError::Fog(fog));
+    }
+    let g = space.geometry;
+    let want = 200.0 * volume(space);
+    // V(R) = 200 vol(M): bracketed by doubling (the cell may be of any size), then bisected.
+    let longest = (8.0 * fog).min(f64::MAX);
+    let mut hi = 1.0f64;
+    while ball_volume(g, hi) < want && hi < longest {
+        hi *= 2.0;
+    }
+    while ball_volume(g, 0.5 * hi) >= want && hi > f64::MIN_POSITIVE {
+        hi *= 0.5;
+    }
+    let mut lo = 0.5 * hi;
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if ball_volume(g, mid) < want {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let start = hi.min(longest).max(f64::MIN_POSITIVE);
+    let mut best = fluence(space, lamp, at, fog, start, radius)?;
+    for _ in 0..8 {
+        let target = fraction * best.total();
+        if best.bound <= target {
+            return Ok((best, true));
+        }
+        let longer = best.reach + fog * ((best.bound / target).ln() + 0.5);
+        match fluence(space, lamp, at, fog, longer, radius) {
+            Ok(f) => best = f,
+            // Too many images that far: the longest reach within the limit, by bisection.
+            Err(FluenceError::TooMany { .. }) => {
+                let (mut ok, mut bad) = (best.reach, longer);
+                for _ in 0..10 {
+                    let mid = 0.5 * (ok + bad);
+                    match fluence(space, lamp, at, fog, mid, radius) {
+                        Ok(f) => {
+                            ok = mid;
+                            best = f;
+                        }
+                        Err(FluenceError::TooMany { .. }) => bad = mid,
+                        Err(e) => return Err(e),
+                    }
+                }
+                let within = best.bound <= fraction * best.total();
+                return Ok((best, within));
+            }
+            Err(e) => return Err(e),
+        }
+    }
+    let within = best.bound <= fraction * best.total();
+    Ok((best, within))
+}
+
+/// How far the lamp lies from the farthest point of the cell: the farthest vertex (the
+/// distance from a point is convex along geodesics, so its largest value on the convex cell
+/// is at a vertex), or, for a cell without vertices, the lamp's distance from the centre
+/// plus the circumradius.
+fn lamp_cell_reach(space: &Space, lamp: DVec4) -> f64 {
+    let g = space.geometry;
+    let vertices = (0..space.vertices.len()).map(|v| g.distance(lamp, space.vertex_point(v)));
+    if space.vertices.is_empty() {
+        g.distance(lamp, DVec4::W) + circumradius(space)
+    } else {
+        vertices.fold(0.0, f64::max)
+    }
+}
+
+/// `ln S(r)` for `r > 0` (E³: `ln r`, H³: `ln sinh r`), without overflow for large `r`.
+fn ln_s(g: Geometry, r: f64) -> f64 {
+    match g {
+        Geometry::Euclidean => r.ln(),
+        Geometry::Spherical => r.sin().ln(),
+        Geometry::Hyperbolic if r > 20.0 => {
+            r - std::f64::consts::LN_2 + (-(-2.0 * r).exp()).ln_1p()
+        }
+        Geometry::Hyperbolic => r.sinh().ln(),
+    }
+}
+
+/// `ln V(r)`, the logarithm of a ball's volume ([`ball_volume`]), without overflow for large
+/// `r`; `−∞` for `r ≤ 0`.
+fn ln_ball_volume(g: Geometry, r: f64) -> f64 {
+    if !(r > 0.0) {
+        return f64::NEG_INFINITY;
+    }
+    match g {
+        // π (sinh 2r − 2r) = (π/2) e^(2r) (1 − e^(−4r) − 4r e^(−2r)).
+        Geometry::Hyperbolic if r > 20.0 => {
+            (0.5 * std::f64::consts::PI).ln() + 2.0 * r + (-4.0 * r * (-2.0 * r).exp()).ln_1p()
+        }
+        _ => ball_volume(g, r).ln(),
+    }
+}
+
 /// The range of the true tail beyond `reach`: `−f(R) N(R) + ∫_R^∞ N (−f′) dr` with `N`
-/// between `V(r ∓ ρ)/vol`, integrated by Simpson's rule in steps of a fortieth of the fog
-/// distance (or of `ρ`, if smaller) out to where the integrand has fallen by e⁻⁶⁰.
+/// between `V(r ∓ ρ)/vol` (`ρ` how far the lamp lies from its cell's farthest point), `f`
+/// the falloff `e^(−r/λ) / max(S(r), s₀)²` (`s₀ = S(r₀)` the lamp's floor, below which `f`
+/// falls only with the fog: `−f′ = f/λ` there).
+///
+/// The integrands are products of a count growing like `r³` or `e^(2r)` and a falloff
+/// shrinking like `e^(−2r − r/λ)`: each is taken through its logarithm, so neither overflows
+/// where the product does not. Simpson's rule, on panels that start at a fortieth of the
+/// smaller of `λ` and `ρ` and grow by 5 % each, out to where the integrand has fallen by
+/// e⁻⁶⁰ (sixty fog distances): fine near the reach, where the integrand changes on the
+/// scale of `ρ`, and few far out, where it changes on the scale of `λ`.
 fn tail_range(
     g: Geometry,
     reach: f64,
@@ -196,37 +349,44 @@ fn tail_range(
     vol: f64,
     counted: f64,
     fog: f64,
-    f: &impl Fn(f64) -> f64,
+    floor: f64,
 ) -> (f64, f64) {
-    // −f′ = f · (1/λ + 2 C/S), C/S = 1/r (E³) or coth r (H³).
-    let minus_df = |r: f64| {
+    let ln_vol = vol.ln();
+    let ln_floor = floor.ln();
+    // ln f and −f′/f.
+    let ln_f = |r: f64| -r / fog - 2.0 * ln_s(g, r).max(ln_floor);
+    let rate = |r: f64| {
+        let above = ln_s(g, r) > ln_floor;
         let cot = match g {
             Geometry::Euclidean => 1.0 / r,
             _ => 1.0 / r.tanh(),
         };
-        f(r) * (1.0 / fog + 2.0 * cot)
+        1.0 / fog + if above { 2.0 * cot } else { 0.0 }
     };
-    // N's bounds grow like r³ (E³) or e^(2r) (H³), −f′ falls like e^(−r/λ) r⁻² or
-    // e^(−2r − r/λ): sixty fog distances leave e⁻⁶⁰ of the integrand.
-    let end = reach + 60.0 * fog;
-    let step = (fog / 40.0).min(rho.max(1e-3));
-    let n = (((end - reach) / step).ceil() as usize).clamp(2, 2_000_000) & !1;
-    let h = (end - reach) / n as f64;
-    let integrate = |count: &dyn Fn(f64) -> f64| {
-        let at = |k: usize| {
-            let r = reach + h * k as f64;
-            count(r) * minus_df(r)
-        };
-        let mut sum = at(0) + at(n);
-        for k in 1..n {
-            sum += if k % 2 == 1 { 4.0 } else { 2.0 } * at(k);
+    let integrand = |r: f64, shift: f64| {
+        let ln_n = ln_ball_volume(g, r + shift) - ln_vol;
+        if ln_n == f64::NEG_INFINITY {
+            return 0.0;
         }
-        sum * h / 3.0
+        (ln_n + ln_f(r)).exp() * rate(r)
     };
-    let start = -f(reach) * counted;
-    let lo = start + integrate(&|r| ball_volume(g, r - rho) / vol);
-    let hi = start + integrate(&|r| ball_volume(g, r + rho) / vol);
-    (lo, hi)
+    let end = reach + 60.0 * fog;
+    let mut width = (fog.min(rho.max(1e-3)) / 40.0).max(reach * f64::EPSILON);
+    let (mut lo_sum, mut hi_sum) = (0.0, 0.0);
+    let mut a = reach;
+    while a < end {
+        let b = (a + width).min(end);
+        let m = 0.5 * (a + b);
+        let simpson = |shift: f64| {
+            (b - a) / 6.0 * (integrand(a, shift) + 4.0 * integrand(m, shift) + integrand(b, shift))
+        };
+        lo_sum += simpson(-rho);
+        hi_sum += simpson(rho);
+        a = b;
+        width *= 1.05;
+    }
+    let start = -(ln_f(reach)).exp() * counted;
+    (start + lo_sum, start + hi_sum)
 }
 
 /// The images `g·L` of a lamp at `lamp` (a model point of the cell) that lie within `radius`

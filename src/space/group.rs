@@ -389,7 +389,9 @@ pub fn write_gen(space: &Space) -> String {
         out.push('\n');
         let m = face.pairing.to_cols_array();
         for row in m.chunks_exact(4) {
-            let line: Vec<String> = row.iter().map(|x| format!("{x:>22.17}")).collect();
+            // The shortest decimal that reads back as the same f64: every entry as stored,
+            // rounded once (a fixed 17 decimals kept too few digits of small entries).
+            let line: Vec<String> = row.iter().map(|x| format!("{x:>22}")).collect();
             let _ = writeln!(out, "{}", line.join(" "));
         }
     }

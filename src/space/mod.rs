@@ -123,11 +123,31 @@ pub struct Face {
 }
 
 impl Face {
-    /// Whether this face is a mirror (glued to itself).
+    /// Whether this face is a mirror: glued to itself by the reflection in it, which fixes
+    /// the face point by point. A face glued to itself by another map is not a mirror: the
+    /// hemisphere of projective space has one face, its equator, glued to itself by the
+    /// antipodal map, which moves every point of it (a free action: RP³ is a manifold).
     #[must_use]
     pub fn is_mirror(&self, index: usize) -> bool {
-        self.partner == index
+        self.partner == index && fixes_hyperplane(&self.pairing, self.covector)
     }
+}
+
+/// Whether the linear map `m` of R⁴ fixes every point of the hyperplane `N·X = 0`: it
+/// moves none of the three basis vectors of the hyperplane (each `e_k` with its `N` part
+/// taken out, the one most along `N` left out) by more than a rounding error.
+fn fixes_hyperplane(m: &DMat4, covector: DVec4) -> bool {
+    let n2 = covector.length_squared();
+    if !(n2 > 0.0 && n2.is_finite()) {
+        return false;
+    }
+    let along = covector.abs().max_position();
+    (0..4).filter(|&k| k != along).all(|k| {
+        let e = DVec4::AXES[k];
+        let v = e - covector * (covector[k] / n2);
+        let largest = m.to_cols_array().iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        (*m * v - v).length() <= 1e-9 * v.length().max(largest)
+    })
 }
 
 /// An edge of the cell, where two faces meet.
@@ -292,7 +312,7 @@ impl Space {
         let mirrors = faces
             .iter()
             .enumerate()
-            .filter(|(i, f)| f.partner == *i)
+            .filter(|(i, f)| f.is_mirror(*i))
             .count();
         // A mirrored lens: two mirrors meeting in one great circle at the lens's angle α
         // (the angle between the outward normals is π − α); once round the edge crosses

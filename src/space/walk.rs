@@ -259,11 +259,11 @@ impl<V: Vector4> CellWalker<V> {
         let at_face = ray.point.scale(den) + ray.tangent.scale(num);
         let tangent = ray.point.scale(-k * num) + ray.tangent.scale(den);
         if exit.face == NO_FACE {
-            let point = g.project_point(at_face);
+            let point = self.onto_model(at_face);
             let tangent = g.unit_tangent(point, tangent);
             return (Ray { point, tangent }, g.distance_from_ratio(num, den));
         }
-        let point = g.project_point(self.apply_pairing(exit.face, at_face));
+        let point = self.onto_model(self.apply_pairing(exit.face, at_face));
         let tangent = g.unit_tangent(point, self.apply_pairing(exit.face, tangent));
         (Ray { point, tangent }, g.distance_from_ratio(num, den))
     }
@@ -273,9 +273,24 @@ impl<V: Vector4> CellWalker<V> {
     pub fn advance(&self, ray: &Ray<V>, t: f64) -> Ray<V> {
         let g = self.geometry;
         let (point, tangent) = g.geodesic(ray.point, ray.tangent, t);
-        let point = g.project_point(point);
+        let point = self.onto_model(point);
         let tangent = g.unit_tangent(point, tangent);
         Ray { point, tangent }
+    }
+
+    /// A point put back onto the model. In a cell that reaches the equator
+    /// ([`Self::step_cap`]) a point of S³ is only scaled to unit length, never turned to
+    /// its antipode as [`Geometry::project_point`] turns it into the hemisphere `w ≥ 0`:
+    /// there the 3-sphere's points past the equator are other points than their antipodes,
+    /// and where a point and its antipode are one (projective space, on its equator face)
+    /// the tangent would have to turn with it, so a turn of the point alone sent the ray
+    /// back the way it came. Bit for bit `project_point` where `w ≥ 0`.
+    fn onto_model(&self, p: V) -> V {
+        if self.step_cap.is_some() && self.geometry == Geometry::Spherical {
+            p.scale(V::Real::ONE / p.dot(p).sqrt())
+        } else {
+            self.geometry.project_point(p)
+        }
     }
 
     /// The ray put back onto the model if it is off it: the point projected, the tangent

@@ -9,6 +9,7 @@ mod common;
 mod accuracy;
 mod cells;
 mod culling;
+mod edge_answers;
 mod files;
 #[cfg(feature = "scene-files")]
 mod flight;

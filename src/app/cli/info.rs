@@ -89,16 +89,20 @@ fn number(x: f64, digits: usize) -> String {
     }
 }
 
+/// JSON has no infinity: a volume f64 cannot hold is written null, and a note says why.
+fn note_volume(value: &mut serde_json::Value, volume: f64) {
+    if !volume.is_finite() {
+        value["volume_note"] = serde_json::json!(
+            "the volume is larger than f64 can hold (1.8e308): the cell is too large"
+        );
+    }
+}
+
 pub(super) fn info(space: &Space, as_json: bool) -> Result<(), String> {
     let inv = Invariants::compute(space);
     if as_json {
         let mut value = serde_json::to_value(&inv).map_err(|e| e.to_string())?;
-        // JSON has no infinity: a number f64 cannot hold is null, and a note says why.
-        if !inv.volume.is_finite() {
-            value["volume_note"] = serde_json::json!(
-                "the volume is larger than f64 can hold (1.8e308): the cell is too large"
-            );
-        }
+        note_volume(&mut value, inv.volume);
         say!(
             "{}",
             serde_json::to_string_pretty(&value).map_err(|e| e.to_string())?
@@ -153,7 +157,7 @@ pub(super) fn product_info(space: &ProductSpace, as_json: bool) -> Result<(), St
     let word = space.word();
     let h1 = space.homology().to_string();
     if as_json {
-        let value = serde_json::json!({
+        let mut value = serde_json::json!({
             "name": space.name(),
             "geometry": space.geometry_name(),
             "description": space.description(),
@@ -172,6 +176,7 @@ pub(super) fn product_info(space: &ProductSpace, as_json: bool) -> Result<(), St
             "homology": h1,
             "injectivity_radius": space.injectivity_radius(200_000),
         });
+        note_volume(&mut value, space.volume());
         say!(
             "{}",
             serde_json::to_string_pretty(&value).map_err(|e| e.to_string())?

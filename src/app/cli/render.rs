@@ -348,7 +348,7 @@ fn camera(args: &RenderArgs, chosen: &Chosen) -> Result<TraceCamera, String> {
         .geometry()
         .from_chart(eye)
         .map_err(|e| e.to_string())?;
-    if space.outside_by(probe) > 1e-12 {
+    if !(space.outside_by(probe) <= 1e-12) {
         return Err(format!(
             "camera position {:?} is outside the cell of {}",
             eye.to_array(),

@@ -39,8 +39,11 @@ pub enum ProductError {
     /// The word is not a closed surface.
     #[error(transparent)]
     Word(#[from] WordError),
-    /// The circle's length is not a positive finite number.
-    #[error("the circle's length L = {0} must be a positive finite number")]
+    /// The circle's length is not a positive finite number whose half is a normal one.
+    #[error(
+        "the circle's length L = {0:?} must be a finite number of at least 4.4502e-308 (the cell \
+         reaches L/2 above and below its centre, and that half must be a positive number)"
+    )]
     BadLength(f64),
     /// The turn order is out of range.
     #[error("the turn -turn-{0} must be a whole number from 1 to {MAX_TURN}")]
@@ -61,6 +64,14 @@ pub enum ProductError {
          space, built as one (`Space`)"
     )]
     Flat { word: String },
+}
+
+/// Whether `length` can be a product's circle: finite, and half of it a positive normal
+/// number (a subnormal or zero half-height would make a cell of no height, crossed at
+/// distance 0 for ever).
+#[must_use]
+pub fn valid_length(length: f64) -> bool {
+    length.is_finite() && 0.5 * length >= f64::MIN_POSITIVE
 }
 
 /// A closed 3-manifold (or, with a non-orientable surface, still a manifold) of the product
@@ -85,7 +96,7 @@ impl ProductSpace {
         turn: u32,
     ) -> Result<Self, ProductError> {
         let word = SurfaceWord::parse(word)?;
-        if !(length.is_finite() && length > 0.0) {
+        if !valid_length(length) {
             return Err(ProductError::BadLength(length));
         }
         if !(1..=MAX_TURN).contains(&turn) {
@@ -304,9 +315,19 @@ pub fn chart_ray(base: Geometry, x: glam::DVec3, d: glam::DVec3) -> Result<Ray<D
     let p = g
         .from_chart(glam::DVec3::new(x.x, x.y, 0.0))
         .map_err(|e| e.to_string())?;
-    if !(d.is_finite() && d.length() > 0.0 && x.z.is_finite()) {
-        return Err(format!("direction {d:?} or height {} is not usable", x.z));
+    // Any finite non-zero direction names one, however large or small its entries: scaled
+    // by its largest entry before its length is taken (`1e200` would overflow it).
+    let largest = d.abs().max_element();
+    if !(d.is_finite() && largest > 0.0) {
+        return Err(format!(
+            "the direction {:?} is not usable: give three finite numbers, not all 0",
+            d.to_array()
+        ));
     }
+    if !x.z.is_finite() {
+        return Err(format!("the height {} is not a finite number", x.z));
+    }
+    let d = d / largest;
     let vb = g
         .tangent_from_chart(p, glam::DVec3::new(d.x, d.y, 0.0))
         .ok();

@@ -177,6 +177,18 @@ impl<V: Vector4> ProductWalker<V> {
     /// just entered. `None` only for a degenerate ray.
     #[must_use]
     pub fn exit(&self, ray: &Ray<V>, skip: Option<usize>) -> Option<ProductExit<V::Real>> {
+        self.exit_stepping(ray, skip, self.step_cap)
+    }
+
+    /// [`ProductWalker::exit`], with the steps of π/4 along the surface or without them.
+    /// A walk needs them only where sides can be met (the ratio finds a side within π/2
+    /// of arc); a tracer also wants them on the sphere, for its searches along the ray.
+    fn exit_stepping(
+        &self,
+        ray: &Ray<V>,
+        skip: Option<usize>,
+        stepping: bool,
+    ) -> Option<ProductExit<V::Real>> {
         let zero = V::Real::ZERO;
         let (p, v) = (ray.point, ray.tangent);
         let vb = V::new(v.component(0), v.component(1), zero, v.w());
@@ -219,7 +231,7 @@ impl<V: Vector4> ProductWalker<V> {
                     });
                 }
             }
-            if self.step_cap {
+            if stepping {
                 let quarter = V::Real::from_f64(std::f64::consts::FRAC_PI_4);
                 consider(ProductExit {
                     face: NO_FACE,
@@ -303,22 +315,29 @@ impl<V: Vector4> ProductWalker<V> {
         let at = self.moved(ray, exit.distance, exit.ratio);
         let h = self.half_length;
         let with_z = |x: V, z: V::Real| V::new(x.component(0), x.component(1), z, x.w());
+        // The pairings move the surface and keep the height: they are applied to the base
+        // point alone and the height set after. (Through the matrix, a height past about
+        // 1e300 made the compensated product's splitting overflow, and its NaN reached
+        // every component through the zero entries.)
+        let base = |m: (&V::Matrix, &V::Matrix), z: V::Real| {
+            with_z(self.apply(m, with_z(at.point, V::Real::ZERO)), z)
+        };
         let next = if exit.face == self.top() {
             let m = (&self.up.0, &self.up.1);
             Ray {
-                point: with_z(self.apply(m, at.point), -h),
+                point: base(m, -h),
                 tangent: self.apply(m, at.tangent),
             }
         } else if exit.face == self.bottom() {
             let m = (&self.down.0, &self.down.1);
             Ray {
-                point: with_z(self.apply(m, at.point), h),
+                point: base(m, h),
                 tangent: self.apply(m, at.tangent),
             }
         } else if exit.face < self.covectors.len() {
             let m = (&self.pairings[exit.face], &self.pairings_lo[exit.face]);
             Ray {
-                point: self.apply(m, at.point),
+                point: base(m, at.point.component(2)),
                 tangent: self.apply(m, at.tangent),
             }
         } else {
@@ -335,6 +354,14 @@ impl<V: Vector4> ProductWalker<V> {
 
     /// Walks a ray through the cell until the limit, handing each crossing to `visit`
     /// (`false` stops). Returns where it stopped and the distance walked.
+    ///
+    /// It never gives up on a ray that will cross a face: on a sphere with no sides it goes
+    /// straight to the top or bottom, however long the circle; with sides it steps by π/4
+    /// along the surface (a side comes within π of arc), and after
+    /// [`MAX_STEPS_WITHOUT_CROSSING`] steps without one (a ray along a side's great circle)
+    /// it goes straight to the top or bottom too. It ends early, short of its limit, only
+    /// for a ray that meets no face ever again: one with no vertical speed that no side
+    /// stops. A caller tells this from the crossings it was handed and the distance.
     pub fn walk(
         &self,
         start: Ray<V>,
@@ -350,8 +377,15 @@ impl<V: Vector4> ProductWalker<V> {
             Limit::Crossings(n) => n,
             Limit::Distance(_) => usize::MAX,
         };
+        let sides = !self.covectors.is_empty();
         while count < max_crossings {
-            let Some(exit) = self.exit(&ray, skip) else {
+            let stepping = self.step_cap && sides && steps < MAX_STEPS_WITHOUT_CROSSING;
+            let Some(exit) = self.exit_stepping(&ray, skip, stepping) else {
+                // No face ever again: a walk by distance still goes its whole length.
+                if let Limit::Distance(d) = limit {
+                    let rest = V::Real::from_f64(d - distance);
+                    return (self.normalized(self.moved(&ray, rest, None)), d);
+                }
                 break;
             };
             let length = exit.distance.to_f64();
@@ -367,9 +401,6 @@ impl<V: Vector4> ProductWalker<V> {
             skip = self.entered(&exit);
             if exit.face == NO_FACE {
                 steps += 1;
-                if matches!(limit, Limit::Crossings(_)) && steps >= MAX_STEPS_WITHOUT_CROSSING {
-                    break;
-                }
                 continue;
             }
             steps = 0;
