@@ -48,10 +48,21 @@ pub enum GeometryError {
     /// A chart point (attached) is not finite.
     #[error("chart point ({0:?}, {1:?}, {2:?}) is not finite")]
     NotFinite(f64, f64, f64),
+    /// A chart point (attached) of S³ lies farther out than [`MAX_SPHERE_CHART`]: within
+    /// 1e-300 of the equator, where the chart can no longer place it.
+    #[error(
+        "chart point ({0:?}, {1:?}, {2:?}) is farther out than 1e300: the gnomonic chart of the \
+         sphere puts it within 1e-300 of the equator, closer than f64 can place a point"
+    )]
+    PastSphereChart(f64, f64, f64),
     /// A direction (attached) has zero length or is not finite.
     #[error("direction ({0:?}, {1:?}, {2:?}) has zero length or is not finite")]
     ZeroDirection(f64, f64, f64),
 }
+
+/// The largest chart coordinate of a point of S³: farther out, the point's `w` would be
+/// below 1e-300, near where f64 stops holding numbers in full.
+pub const MAX_SPHERE_CHART: f64 = 1e300;
 
 impl Geometry {
     /// All three geometries.
@@ -225,6 +236,9 @@ impl Geometry {
             // it is large: past about 1.3e154 the squares overflow, and the point would come
             // out as the zero vector.
             let largest = x.abs().max_element();
+            if largest > MAX_SPHERE_CHART {
+                return Err(GeometryError::PastSphereChart(x.x, x.y, x.z));
+            }
             if largest > 1e150 {
                 let scale = 2f64.powi(-(largest.log2().ceil() as i32));
                 return Ok(self.project_point((x * scale).extend(scale)));
@@ -250,7 +264,23 @@ impl Geometry {
             return Err(GeometryError::ZeroDirection(dir.x, dir.y, dir.z));
         }
         let scaled = dir / largest;
-        Ok(self.unit_tangent(p, (scaled / scaled.length()).extend(0.0)))
+        let v = (scaled / scaled.length()).extend(0.0);
+        let t = self.unit_tangent(p, v);
+        if t.is_finite() {
+            return Ok(t);
+        }
+        // Far out in the chart a direction along the point's own is nearly the model's w:
+        // what is left of it after the point's part is taken out is so small that its square
+        // underflows. Scaled up by a power of two (exact) first, it has a length.
+        let rest = self.project_tangent(p, v);
+        let size = rest.abs().max_element();
+        if !(size > 0.0 && size.is_finite()) {
+            return Err(GeometryError::ZeroDirection(dir.x, dir.y, dir.z));
+        }
+        // In two factors: 2^1024 itself would overflow for a rest of about 1e-308.
+        let e = -(size.log2().floor() as i32);
+        let t = rest * 2f64.powi(e / 2) * 2f64.powi(e - e / 2);
+        Ok(t / self.form(t, t).sqrt())
     }
 
     /// The unit chart direction of the tangent `v` at `p`

@@ -221,10 +221,11 @@ pub fn fluence(
 /// The fluence with the reach chosen so that the stated bound is at most `fraction` of the
 /// total where the image limit allows: it starts where about 200 images lie (`V(R) = 200
 /// vol(M)`, at most eight fog distances) and lengthens the reach by the fog distances the
-/// bound still has to fall (it falls like `e^(−R/λ)`), a few times over. The second value
-/// says whether the bound came within `fraction`; where it did not, the longest reach
-/// within [`MAX_IMAGES`] is returned (in H³ the count's uncertainty grows with the reach
-/// as fast as the images do, and a tight bound would need far more of them).
+/// bound still has to fall (it falls like `e^(−R/λ)`), no farther than the reach whose
+/// images [`MAX_IMAGES`] can hold. The second value says whether the bound came within
+/// `fraction`; where it did not, the longest reach within the limit is returned (in H³ the
+/// count's uncertainty grows with the reach as fast as the images do, and a tight bound
+/// would need far more of them).
 pub fn fluence_within(
     space: &Space,
     lamp: DVec4,
@@ -237,39 +238,28 @@ pub fn fluence_within(
         return Err(FluenceError::Fog(fog));
     }
     let g = space.geometry;
-    let want = 200.0 * volume(space);
-    // V(R) = 200 vol(M): bracketed by doubling (the cell may be of any size), then bisected.
+    let vol = volume(space);
     let longest = (8.0 * fog).min(f64::MAX);
-    let mut hi = 1.0f64;
-    while ball_volume(g, hi) < want && hi < longest {
-        hi *= 2.0;
-    }
-    while ball_volume(g, 0.5 * hi) >= want && hi > f64::MIN_POSITIVE {
-        hi *= 0.5;
-    }
-    let mut lo = 0.5 * hi;
-    for _ in 0..60 {
-        let mid = 0.5 * (lo + hi);
-        if ball_volume(g, mid) < want {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    let start = hi.min(longest).max(f64::MIN_POSITIVE);
-    let mut best = fluence(space, lamp, at, fog, start, radius)?;
-    for _ in 0..8 {
+    let start = radius_holding(g, 200.0 * vol, 0.0).min(longest);
+    // The walk to the images keeps the cells whose centres lie within the reach, the
+    // point's distance from the centre and the circumradius: past the reach whose ball of
+    // that size holds most of the limit's cells, it would give up.
+    let pad = g.distance(DVec4::W, at) + circumradius(space);
+    let cap = radius_holding(g, 0.8 * MAX_IMAGES as f64 * vol, pad).max(start);
+    let mut best = fluence(space, lamp, at, fog, start.max(f64::MIN_POSITIVE), radius)?;
+    for _ in 0..4 {
         let target = fraction * best.total();
-        if best.bound <= target {
-            return Ok((best, true));
+        if best.bound <= target || best.reach >= cap {
+            break;
         }
-        let longer = best.reach + fog * ((best.bound / target).ln() + 0.5);
+        let longer = (best.reach + fog * ((best.bound / target).ln() + 0.5)).min(cap);
         match fluence(space, lamp, at, fog, longer, radius) {
             Ok(f) => best = f,
-            // Too many images that far: the longest reach within the limit, by bisection.
+            // More images than the estimate: the longest reach within the limit, by a few
+            // bisections.
             Err(FluenceError::TooMany { .. }) => {
                 let (mut ok, mut bad) = (best.reach, longer);
-                for _ in 0..10 {
+                for _ in 0..4 {
                     let mid = 0.5 * (ok + bad);
                     match fluence(space, lamp, at, fog, mid, radius) {
                         Ok(f) => {
@@ -280,14 +270,36 @@ pub fn fluence_within(
                         Err(e) => return Err(e),
                     }
                 }
-                let within = best.bound <= fraction * best.total();
-                return Ok((best, within));
+                break;
             }
             Err(e) => return Err(e),
         }
     }
     let within = best.bound <= fraction * best.total();
     Ok((best, within))
+}
+
+/// The radius `R` whose ball of radius `R + pad` has volume `want` (0 if even the ball of
+/// radius `pad` has more): bracketed by doubling, since a cell may be of any size, then
+/// bisected.
+fn radius_holding(g: Geometry, want: f64, pad: f64) -> f64 {
+    if ball_volume(g, pad) >= want {
+        return 0.0;
+    }
+    let mut hi = 1.0f64;
+    while ball_volume(g, hi + pad) < want && hi < f64::MAX / 4.0 {
+        hi *= 2.0;
+    }
+    let mut lo = 0.0;
+    for _ in 0..80 {
+        let mid = 0.5 * (lo + hi);
+        if ball_volume(g, mid + pad) < want {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    hi
 }
 
 /// How far the lamp lies from the farthest point of the cell: the farthest vertex (the

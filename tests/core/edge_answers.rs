@@ -246,3 +246,30 @@ fn a_many_sided_surface_finds_its_systole_among_few_elements() {
         .expect("found within 5000 elements");
     assert!(r > 0.0 && r.is_finite(), "{r}");
 }
+
+#[test]
+fn an_exported_cell_is_the_exact_cell_rounded_once() {
+    use bevy_curved_spaces::geometry::DoubleDouble;
+    use bevy_curved_spaces::space::SEED_SPACES;
+    use bevy_curved_spaces::space::file::SpaceRecord;
+    let mut checked = 0;
+    for seed in SEED_SPACES {
+        let space = seed.build().unwrap();
+        let Some(exact) = space.exact() else {
+            continue;
+        };
+        let record = SpaceRecord::from_space(&space);
+        for (f, (face, want)) in record.faces.iter().zip(&exact.faces).enumerate() {
+            let normal = want.normal.map(DoubleDouble::round_f64);
+            assert_eq!(face.normal, normal, "{} face {f}", seed.id);
+            assert_eq!(face.offset, want.offset.round_f64(), "{} face {f}", seed.id);
+            if let Some(pairing) = face.pairing {
+                // Written row by row.
+                let m = want.pairing.round_f64().transpose().to_cols_array_2d();
+                assert_eq!(pairing, m, "{} face {f}", seed.id);
+            }
+            checked += 1;
+        }
+    }
+    assert!(checked > 50, "{checked} faces");
+}
