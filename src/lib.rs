@@ -74,6 +74,12 @@
 //! (OpenXR headsets) add what they name; `app`, the default, is everything the
 //! `curved-spaces` binary needs. The design — the model, the walk, the shader, the player,
 //! the error bounds — is in `docs/design.md` of the repository and package.
+//!
+//! ## The guide
+//!
+//! The [`guide`] module holds the guide's pages (`docs/guide/` of the repository and
+//! package): the command line, the spaces and their files, the product spaces, light,
+//! scenes, the plugin and the library, stereo and VR, accuracy and speed, and the layout.
 
 // `!(x < tol)` is how this crate rejects NaN along with large values: keep it.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
@@ -83,6 +89,7 @@
 pub(crate) mod colour;
 pub mod files;
 pub mod geometry;
+pub mod guide;
 pub mod random;
 pub mod scene;
 pub mod space;

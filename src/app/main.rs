@@ -3,6 +3,9 @@
 //! Run with no command to walk the default space in a window (or, with no display, to render
 //! it to `curved-spaces.png`).
 
+// `!(x <= tol)` is how the app, like the crate, rejects NaN along with large values.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 use clap::Parser;
 use std::process::ExitCode;
 
