@@ -1,10 +1,10 @@
 //! # bevy_curved_spaces
 //!
-//! Walk inside closed 3-manifolds and orbifolds of constant curvature — the 3-torus and the
-//! other flat spaces, the Seifert–Weber space, the Poincaré dodecahedral space, mirrored
-//! cubes and dodecahedra — and see what light does there: every frame is ray traced on the
-//! GPU through the fundamental cell and its face pairings, so you see the universal cover
-//! tiled with copies of the scene.
+//! Walk inside closed 3-manifolds and orbifolds — the 3-torus and the other flat spaces, the
+//! Seifert–Weber space, the Poincaré dodecahedral space, lens spaces, SnapPy's census,
+//! mirrored cubes and dodecahedra, surfaces times a circle (H²×R, S²×R) — and see what light
+//! does there: every frame is ray traced on the GPU through the fundamental cell and its
+//! face pairings, so you see the universal cover tiled with copies of the scene.
 //!
 //! ## The plugin
 //!
@@ -130,7 +130,7 @@ pub mod prelude {
         Tube,
     };
     pub use crate::space::{
-        CellWalker, Holonomy, Limit, SEED_SPACES, Space, SpaceError, seed_space,
+        CellWalk, CellWalker, Holonomy, Limit, SEED_SPACES, Space, SpaceError, seed_space,
     };
     pub use crate::view::{StereoMode, TraceCamera};
 }

@@ -32,8 +32,9 @@ pub fn resolve_space(id: &str, base: &Path, options: &DirichletOptions) -> Resul
         return match product? {
             super::product::ProductOrFlat::Flat(space) => Ok(*space),
             super::product::ProductOrFlat::Product(space) => Err(format!(
-                "{id} is a space of the geometry {} ({}): `info`, `trace` and `list` take it; `render`, `walk`, \
-                 `flight` and `bench` draw the constant-curvature geometries only so far",
+                "{id} is a space of the geometry {} ({}): this takes the constant-curvature \
+                 geometries only (E³, S³, H³); `info`, `trace`, `render`, `walk`, `flight` and \
+                 `bench --products` take the product spaces too",
                 space.geometry_name(),
                 space.description()
             )),

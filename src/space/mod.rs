@@ -22,7 +22,7 @@ mod wrap;
 pub use catalog::{DEFAULT_SPACE, SEED_SPACES, SeedSpace, seed_space};
 pub use error::SpaceError;
 pub use library::resolve_space;
-pub use walk::{CellWalker, Crossing, Exit, Limit, Trace};
+pub use walk::{CellWalk, CellWalker, Crossing, Exit, Limit, NextExit, Trace};
 pub use wrap::{Holonomy, MAX_WRAPS_PER_STEP, wrap_into_cell};
 
 use crate::geometry::{Geometry, ORIGIN};
@@ -279,6 +279,19 @@ impl Space {
     #[must_use]
     pub fn reaches_equator(&self) -> bool {
         self.equator_order.is_some()
+    }
+
+    /// Whether a ray can run more than π/2 inside the cell before it meets a face, so that
+    /// the walk must go in steps of at most π/4: the exit ratio `−(N·p)/(N·v)` finds only
+    /// the faces a ray meets within π/2 (where `N·v > 0`). That is every spherical cell
+    /// whose diameter passes π/2 — its circumradius passes π/4, as in `lens-7-2` (1.16),
+    /// `prism-3` or the mirrored tetrahedron, whose walks once ended in the middle of the
+    /// cell — and every cell that reaches the equator.
+    #[must_use]
+    pub fn walks_in_steps(&self) -> bool {
+        self.reaches_equator()
+            || self.geometry == Geometry::Spherical
+                && invariants::circumradius(self) > std::f64::consts::FRAC_PI_4 - 1e-9
     }
 
     /// A spherical cell that reaches distance π/2, from its faces' covectors (unit in R⁴,

@@ -46,10 +46,10 @@ pub struct CellWalker<V: Vector4> {
     /// Apply pairings compensated (the default); `false` gives the plain product, which
     /// loses up to a digit in curved cells, for comparison (the benchmark reports both).
     pub compensated: bool,
-    /// The longest step as a chart ratio, for cells that reach distance π/2 in S³
-    /// ([`Space::reaches_equator`]): a ray that meets no face within `T = 1` (π/4) takes a
-    /// step of π/4 without crossing ([`NO_FACE`]). `None` elsewhere, where every segment in
-    /// the cell is shorter than π/2.
+    /// The longest step as a chart ratio, for the cells of S³ whose chords can pass π/2
+    /// ([`Space::walks_in_steps`]: the exit ratio sees only faces met within π/2): a ray
+    /// that meets no face within `T = 1` (π/4) takes a step of π/4 without crossing
+    /// ([`NO_FACE`]). `None` elsewhere, where every segment in the cell is shorter than π/2.
     pub step_cap: Option<f64>,
 }
 
@@ -118,18 +118,185 @@ pub struct Trace<V> {
     pub distance: f64,
 }
 
+/// What a walk does next, as a family's walker answers it ([`CellWalk::next_exit`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum NextExit<E> {
+    /// Leave through this exit (a face, or a step without crossing, [`NO_FACE`]).
+    Exit(E),
+    /// No face lies ahead, ever: the geodesic stays in the cell (a great circle of S³ that
+    /// meets no face, a level ray round a sphere with no sides). A walk by distance goes its
+    /// whole length at once; a walk by crossings ends.
+    NoFaceAhead,
+    /// The ray is degenerate (a zero or non-finite tangent): the walk ends where it is.
+    Degenerate,
+}
+
+/// The walk of a geometry family through its cell, the contract the walk loop is written
+/// once over ([`CellWalk::walk`], [`CellWalk::trace`]), in any precision `V`: where a ray
+/// leaves the cell, how far that is, how it crosses, how it moves inside. The
+/// constant-curvature walker ([`CellWalker`]) and the product walker
+/// ([`super::product::ProductWalker`]) implement it; each family's exit carries what its
+/// crossing needs (a chart ratio, a distance).
+pub trait CellWalk<V: Vector4> {
+    /// Where a ray leaves the cell.
+    type Exit: Copy;
+
+    /// The ray put back onto the model (a ray on it to rounding kept bit for bit).
+    #[must_use]
+    fn on_model(&self, ray: Ray<V>) -> Ray<V>;
+
+    /// The next exit of a walk that has taken `steps` steps in a row without crossing, the
+    /// face `skip` just entered; or why there is none.
+    #[must_use]
+    fn next_exit(&self, ray: &Ray<V>, skip: Option<usize>, steps: usize) -> NextExit<Self::Exit>;
+
+    /// The face an exit leaves through ([`NO_FACE`] for a step without crossing).
+    #[must_use]
+    fn exit_face(exit: &Self::Exit) -> usize;
+
+    /// The geodesic length from the ray's point to its exit.
+    #[must_use]
+    fn exit_length(&self, exit: &Self::Exit) -> f64;
+
+    /// The ray moved to its exit and through the face's pairing, back on the model.
+    #[must_use]
+    fn through(&self, ray: &Ray<V>, exit: &Self::Exit) -> Ray<V>;
+
+    /// The ray moved by `t` along its geodesic, inside the cell, back on the model.
+    #[must_use]
+    fn moved_by(&self, ray: &Ray<V>, t: f64) -> Ray<V>;
+
+    /// The face to skip after crossing `exit` (the partner entered through).
+    #[must_use]
+    fn skip_after(&self, exit: &Self::Exit) -> Option<usize>;
+
+    /// Walks a ray through the cell until the limit, handing each crossing to `visit`
+    /// (`false` stops). Returns where it stopped and the distance walked.
+    ///
+    /// A step without crossing is no crossing to count or visit. The walk ends short of its
+    /// limit only where the ray meets no face again ([`NextExit::NoFaceAhead`], for a walk by
+    /// crossings) or is degenerate; a caller tells this from the crossings it was handed.
+    fn walk(
+        &self,
+        start: Ray<V>,
+        limit: Limit,
+        mut visit: impl FnMut(&Crossing<V>) -> bool,
+    ) -> (Ray<V>, f64)
+    where
+        Self: Sized,
+    {
+        let mut ray = self.on_model(start);
+        let mut count = 0usize;
+        let mut distance = 0.0;
+        let mut skip = None;
+        let mut steps = 0usize;
+        let max_crossings = match limit {
+            Limit::Crossings(n) => n,
+            Limit::Distance(_) => usize::MAX,
+        };
+        while count < max_crossings {
+            let exit = match self.next_exit(&ray, skip, steps) {
+                NextExit::Exit(exit) => exit,
+                NextExit::NoFaceAhead => {
+                    if let Limit::Distance(d) = limit {
+                        return (self.moved_by(&ray, d - distance), d);
+                    }
+                    break;
+                }
+                NextExit::Degenerate => break,
+            };
+            let length = self.exit_length(&exit);
+            if let Limit::Distance(d) = limit
+                && distance + length >= d
+            {
+                return (self.moved_by(&ray, d - distance), d);
+            }
+            ray = self.through(&ray, &exit);
+            distance += length;
+            skip = self.skip_after(&exit);
+            let face = Self::exit_face(&exit);
+            if face == NO_FACE {
+                steps += 1;
+                continue;
+            }
+            steps = 0;
+            count += 1;
+            if !visit(&Crossing {
+                face,
+                distance,
+                ray,
+            }) {
+                break;
+            }
+        }
+        (ray, distance)
+    }
+
+    /// Traces a ray through the cell until the limit, recording each crossing.
+    #[must_use]
+    fn trace(&self, start: Ray<V>, limit: Limit) -> Trace<V>
+    where
+        Self: Sized,
+    {
+        record(|visit| self.walk(start, limit, visit))
+    }
+}
+
+impl<V: Vector4> CellWalk<V> for CellWalker<V> {
+    type Exit = Exit<V::Real>;
+
+    fn on_model(&self, ray: Ray<V>) -> Ray<V> {
+        CellWalker::normalized(self, ray)
+    }
+
+    /// Sixteen steps of π/4 in a row without a face go twice round S³: the great circle
+    /// meets no face.
+    fn next_exit(&self, ray: &Ray<V>, skip: Option<usize>, steps: usize) -> NextExit<Self::Exit> {
+        if steps >= MAX_STEPS_WITHOUT_CROSSING {
+            return NextExit::NoFaceAhead;
+        }
+        match self.exit(ray, skip) {
+            Some(exit) => NextExit::Exit(exit),
+            None => NextExit::Degenerate,
+        }
+    }
+
+    fn exit_face(exit: &Self::Exit) -> usize {
+        exit.face
+    }
+
+    fn exit_length(&self, exit: &Self::Exit) -> f64 {
+        self.geometry
+            .distance_from_ratio(exit.num, exit.den)
+            .to_f64()
+    }
+
+    fn through(&self, ray: &Ray<V>, exit: &Self::Exit) -> Ray<V> {
+        self.cross(ray, exit).0
+    }
+
+    fn moved_by(&self, ray: &Ray<V>, t: f64) -> Ray<V> {
+        self.advance(ray, t)
+    }
+
+    fn skip_after(&self, exit: &Self::Exit) -> Option<usize> {
+        self.entered(exit)
+    }
+}
+
 impl<V: Vector4> CellWalker<V> {
     /// The walker of a space in the precision `V`.
     #[must_use]
     pub fn new(space: &Space) -> Self {
-        if let Some(cell) = space.exact() {
-            return Self::from_exact(cell);
-        }
-        let covectors: Vec<_> = space.faces.iter().map(|f| f.covector).collect();
-        let pairings: Vec<_> = space.faces.iter().map(|f| f.pairing).collect();
-        let partners: Vec<_> = space.faces.iter().map(|f| f.partner).collect();
-        let mut walker = Self::from_parts(space.geometry, &covectors, &pairings, partners);
-        if space.reaches_equator() {
+        let mut walker = if let Some(cell) = space.exact() {
+            Self::from_exact(cell)
+        } else {
+            let covectors: Vec<_> = space.faces.iter().map(|f| f.covector).collect();
+            let pairings: Vec<_> = space.faces.iter().map(|f| f.pairing).collect();
+            let partners: Vec<_> = space.faces.iter().map(|f| f.partner).collect();
+            Self::from_parts(space.geometry, &covectors, &pairings, partners)
+        };
+        if space.walks_in_steps() {
             walker.step_cap = Some(1.0);
         }
         walker
@@ -328,64 +495,20 @@ impl<V: Vector4> CellWalker<V> {
         }
     }
 
-    /// Walks a ray through the cell until the limit, handing each crossing to `visit` as it
-    /// happens (nothing is kept, so a walk of any length runs in constant memory);
-    /// `visit` returning `false` stops the walk there. Returns where it stopped and the
-    /// distance walked.
+    /// Walks a ray through the cell until the limit ([`CellWalk::walk`], the one walk loop).
     pub fn walk(
         &self,
         start: Ray<V>,
         limit: Limit,
-        mut visit: impl FnMut(&Crossing<V>) -> bool,
+        visit: impl FnMut(&Crossing<V>) -> bool,
     ) -> (Ray<V>, f64) {
-        let mut ray = self.normalized(start);
-        let mut count = 0usize;
-        let mut distance = 0.0;
-        let mut skip = None;
-        let max_crossings = match limit {
-            Limit::Crossings(n) => n,
-            Limit::Distance(_) => usize::MAX,
-        };
-        let mut steps = 0usize;
-        while count < max_crossings {
-            let Some(exit) = self.exit(&ray, skip) else {
-                break;
-            };
-            let (next, length) = self.cross(&ray, &exit);
-            let length = length.to_f64();
-            if let Limit::Distance(d) = limit
-                && distance + length >= d
-            {
-                return (self.advance(&ray, d - distance), d);
-            }
-            distance += length;
-            ray = next;
-            skip = self.entered(&exit);
-            if exit.face == NO_FACE {
-                // A step without crossing is no crossing to count or visit.
-                steps += 1;
-                if matches!(limit, Limit::Crossings(_)) && steps >= MAX_STEPS_WITHOUT_CROSSING {
-                    break;
-                }
-                continue;
-            }
-            steps = 0;
-            count += 1;
-            let crossing = Crossing {
-                face: exit.face,
-                distance,
-                ray,
-            };
-            if !visit(&crossing) {
-                break;
-            }
-        }
-        (ray, distance)
+        CellWalk::walk(self, start, limit, visit)
     }
 
-    /// Traces a ray through the cell until the limit, recording each crossing.
+    /// Traces a ray through the cell until the limit, recording each crossing
+    /// ([`CellWalk::trace`]).
     #[must_use]
     pub fn trace(&self, start: Ray<V>, limit: Limit) -> Trace<V> {
-        record(|visit| self.walk(start, limit, visit))
+        CellWalk::trace(self, start, limit)
     }
 }

@@ -7,7 +7,6 @@
 mod common;
 
 mod cli;
-mod edge_cli;
 mod fuzz;
 mod gpu;
 mod hostile_models;

@@ -155,6 +155,27 @@ fn product_scene_files_render_alike_on_the_cpu_and_the_gpu_in_mono_and_stereo() 
     let default = image::open(&default).unwrap().to_rgb8();
     let from_file = image::open(dir.join("mono-true.png")).unwrap().to_rgb8();
     assert!(differing(&default, &from_file) > 500);
+    // --eye and --look-at move the camera as a scene file's [start] would; --time has
+    // nothing to turn.
+    let moved = dir.join("moved.png");
+    ok(&[
+        "render",
+        "--scene",
+        scene,
+        "--eye",
+        "0.3,0,0",
+        "--look-at",
+        "-0.5,0.2,0",
+        "--size",
+        "64x36",
+        "--crossings",
+        "24",
+        "--cpu",
+        "--out",
+        moved.to_str().unwrap(),
+    ]);
+    let moved = image::open(&moved).unwrap().to_rgb8();
+    assert!(differing(&moved, &from_file) > 500);
     fails_with(
         &[
             "render",
@@ -163,10 +184,14 @@ fn product_scene_files_render_alike_on_the_cpu_and_the_gpu_in_mono_and_stereo() 
             "--eye",
             "0,0,0",
             "--look-at",
-            "1,0,0",
+            "0,0,0",
             "--cpu",
         ],
-        "[start] sets the view",
+        "nothing to look towards",
+    );
+    fails_with(
+        &["render", "--scene", scene, "--time", "1", "--cpu"],
+        "nothing moves",
     );
     let bad = dir.join("bad.toml");
     std::fs::write(

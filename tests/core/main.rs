@@ -18,6 +18,7 @@ mod geometry;
 mod groups;
 mod hard_cases;
 mod headset;
+mod laws;
 mod layers;
 mod light_images;
 mod lighting;

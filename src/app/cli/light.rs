@@ -11,12 +11,8 @@ use serde_json::json;
 const DEFAULT_BOUND_FRACTION: f64 = 0.01;
 
 pub(super) fn light(args: &LightArgs) -> Result<(), String> {
-    if super::product(&args.space)?.is_some() {
-        return Err(
-            "light sums the images of a lamp in the constant-curvature spaces; the product \
-             spaces (H²×R, S²×R) do not take it yet"
-                .into(),
-        );
+    if let Some(space) = super::product(&args.space)? {
+        return light_product(args, &space);
     }
     let space = resolve_space(&args.space)?;
     let g = space.geometry();
@@ -136,6 +132,157 @@ pub(super) fn light(args: &LightArgs) -> Result<(), String> {
                 c.total(),
                 c.bound,
                 f.total() - c.total()
+            );
+        }
+    }
+    Ok(())
+}
+
+/// `light` in a product space (H²×R, S²×R): the same sum over the lamp's images, along
+/// every geodesic to each (one in H²×R, one per way round in S²×R), each with the product's
+/// falloff, and the rest by its mean. Points are given as `trace --from` gives them: the
+/// surface's chart point and a height. The lamp is a point (no `--radius`), and the tail has
+/// no error bound in the products yet: `--check R` measures it.
+fn light_product(
+    args: &LightArgs,
+    space: &bevy_curved_spaces::space::product::ProductSpace,
+) -> Result<(), String> {
+    use bevy_curved_spaces::scene::Lighting;
+    use bevy_curved_spaces::trace::product::lighting::{lamp_images, product_fluence, reach};
+    if args.radius.is_some() {
+        return Err(
+            "a product space's lamp is a point: its light's floor is the falloff at distance 1, \
+             so it takes no --radius"
+                .into(),
+        );
+    }
+    let g = space.base();
+    let point = |x: DVec3, what: &str| -> Result<DVec4, String> {
+        let p = bevy_curved_spaces::space::product::chart_point(g, x)
+            .map_err(|e| format!("{what}: {e}"))?;
+        if !(space.outside_by(p) <= 1e-12) {
+            return Err(format!(
+                "{what} {:?} is outside the cell of {} (the surface's chart point and a height)",
+                x.to_array(),
+                space.name()
+            ));
+        }
+        Ok(p)
+    };
+    let lamp = point(args.light, "--light")?;
+    let at = point(args.at, "--at")?;
+    let fog = args
+        .fog
+        .unwrap_or_else(|| bevy_curved_spaces::trace::product::default_scene(space).fog_distance);
+    if !(fog > 0.0 && fog.is_finite()) {
+        return Err(format!(
+            "the fog distance must be a positive, finite number, got {fog} (without fog the sum \
+             over the images diverges)"
+        ));
+    }
+    let wanted = args
+        .reach
+        .unwrap_or_else(|| reach(space, &Lighting::default()));
+    if !(wanted > 0.0 && wanted.is_finite()) {
+        return Err(format!(
+            "the reach must be a positive, finite number, got {wanted}"
+        ));
+    }
+    let sum = |r: f64| {
+        let (_, covered) = lamp_images(space, lamp, r);
+        let (paths, exact, tail) = product_fluence(space, lamp, at, fog, r);
+        (covered, paths, exact, tail)
+    };
+    let (mut covered, mut paths, mut exact, mut tail) = sum(wanted);
+    // Without --reach: with no bound to aim for, the reach grows until the mean of the rest
+    // is at most 1 % of the total, or the images the walk can gather stop it.
+    if args.reach.is_none() {
+        for _ in 0..6 {
+            let target = DEFAULT_BOUND_FRACTION * (exact + tail);
+            if !(tail > target) {
+                break;
+            }
+            let longer = covered + fog * ((tail / target).ln() + 0.5);
+            let (c, p, e, t) = sum(longer);
+            if !(c > covered) {
+                break;
+            }
+            (covered, paths, exact, tail) = (c, p, e, t);
+        }
+    }
+    let total = exact + tail;
+    let tail_note = (args.reach.is_none() && tail > DEFAULT_BOUND_FRACTION * total).then(|| {
+        format!(
+            "the mean of the rest is {:.1} % of the total, not within 1 %: its images lie past \
+             the {} the sum gathers (the tracer's limit), and the fog of {fog:.3} absorbs them \
+             slowly",
+            100.0 * tail / total,
+            bevy_curved_spaces::scene::lighting::MAX_LAMP_IMAGES
+        )
+    });
+    if !total.is_finite() {
+        return Err(format!(
+            "the light is larger than f64 can hold (1.8e308): with a fog distance of {fog} it \
+             is hardly absorbed; give a shorter --fog"
+        ));
+    }
+    let check = match args.check {
+        Some(r) if !(r > covered) => {
+            return Err(format!(
+                "--check {r} must be longer than the reach {covered}: it sums the images out to there"
+            ));
+        }
+        Some(r) => Some(sum(r)),
+        None => None,
+    };
+    const NO_BOUND: &str = "the product geometries have no error bound for the rest yet: \
+                            --check R measures the shortcut's real error";
+    if args.json {
+        let mut out = json!({
+            "space": space.name(),
+            "geometry": space.geometry_name(),
+            "light": args.light.to_array(),
+            "at": args.at.to_array(),
+            "fog": fog,
+            "reach": covered,
+            "images": paths,
+            "exact": exact,
+            "tail": tail,
+            "total": total,
+            "bound_note": NO_BOUND,
+        });
+        if let Some(note) = &tail_note {
+            out["tail_note"] = json!(note);
+        }
+        if let Some((r, n, e, t)) = check {
+            out["check"] = json!({
+                "reach": r,
+                "images": n,
+                "total": e + t,
+                "difference": total - (e + t),
+            });
+        }
+        println!("{out}");
+    } else {
+        println!(
+            "fluence at {:?} from a unit lamp at {:?} in {} ({}), fog λ = {fog:.4}",
+            args.at.to_array(),
+            args.light.to_array(),
+            space.name(),
+            space.geometry_name()
+        );
+        println!("  {paths} paths to the images within {covered:.4} summed exactly: {exact:.9e}");
+        println!("  the rest by its mean 4πλ e^(−R/λ)/vol: {tail:.9e}");
+        println!("  total {total:.9e}");
+        println!("  note: {NO_BOUND}");
+        if let Some(note) = &tail_note {
+            println!("  note: {note}");
+        }
+        if let Some((r, n, e, t)) = check {
+            println!(
+                "  check: {n} paths within {r:.4} give {:.9e}: the shortcut is off by {:.3e}",
+                e + t,
+                total - (e + t)
             );
         }
     }

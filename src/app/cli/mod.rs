@@ -183,7 +183,8 @@ struct RenderArgs {
     /// Vertical field of view in degrees (default: the scene file's `fov`, else 70).
     #[arg(long, value_parser = parse_fov, allow_negative_numbers = true)]
     fov: Option<f64>,
-    /// Camera position in the chart (default: a view past the centre ball).
+    /// Camera position in the chart (default: a view past the centre ball); in a product
+    /// space (H²×R, S²×R) the surface's chart point and a height, as `trace --from`.
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true, requires = "look_at")]
     eye: Option<DVec3>,
     /// Chart point the camera looks at.

@@ -161,12 +161,32 @@ fn render_product_command(args: &RenderArgs, chosen: ProductChoice) -> Result<()
         mut camera,
         ..
     } = chosen;
-    if args.eye.is_some() || args.look_at.is_some() || args.time != 0.0 {
+    if args.time != 0.0 {
         return Err(
-            "--eye, --look-at and --time are not available in the product spaces (H²×R, S²×R): \
-             a product scene file's [start] sets the view"
+            "--time turns a scene's moving objects; nothing moves in a product space's scene \
+             (H²×R, S²×R) yet, so it takes no time"
                 .into(),
         );
+    }
+    // `--eye X,Y,Z --look-at X,Y,Z`: the surface's chart points and heights, as `trace
+    // --from` takes them.
+    if let (Some(eye), Some(target)) = (args.eye, args.look_at) {
+        use bevy_curved_spaces::space::product::chart_point;
+        let at = chart_point(space.base(), eye)?;
+        if !(space.outside_by(at) <= 1e-12) {
+            return Err(format!(
+                "camera position {:?} is outside the cell of {}",
+                eye.to_array(),
+                space.name()
+            ));
+        }
+        let towards = chart_point(space.base(), target)?;
+        camera = bevy_curved_spaces::trace::product::file::camera_between(
+            &space,
+            at,
+            towards,
+            camera.fov_y_degrees,
+        )?;
     }
     if args.view.changes_parts() {
         return Err(

@@ -312,9 +312,7 @@ pub fn ray_from_centre(d: glam::DVec3) -> Ray<DVec4> {
 /// is scaled to unit length.
 pub fn chart_ray(base: Geometry, x: glam::DVec3, d: glam::DVec3) -> Result<Ray<DVec4>, String> {
     let g = base;
-    let p = g
-        .from_chart(glam::DVec3::new(x.x, x.y, 0.0))
-        .map_err(|e| e.to_string())?;
+    let p = chart_point(base, x)?;
     // Any finite non-zero direction names one, however large or small its entries: scaled
     // by its largest entry before its length is taken (`1e200` would overflow it).
     let largest = d.abs().max_element();
@@ -324,12 +322,10 @@ pub fn chart_ray(base: Geometry, x: glam::DVec3, d: glam::DVec3) -> Result<Ray<D
             d.to_array()
         ));
     }
-    if !x.z.is_finite() {
-        return Err(format!("the height {} is not a finite number", x.z));
-    }
     let d = d / largest;
+    let base_point = DVec4::new(p.x, p.y, 0.0, p.w);
     let vb = g
-        .tangent_from_chart(p, glam::DVec3::new(d.x, d.y, 0.0))
+        .tangent_from_chart(base_point, glam::DVec3::new(d.x, d.y, 0.0))
         .ok();
     let horizontal = glam::DVec2::new(d.x, d.y).length() / d.length();
     let vertical = d.z / d.length();
@@ -337,8 +333,18 @@ pub fn chart_ray(base: Geometry, x: glam::DVec3, d: glam::DVec3) -> Result<Ray<D
         Some(v) => v * horizontal + DVec4::Z * vertical,
         None => DVec4::Z * vertical.signum(),
     };
-    Ok(Ray {
-        point: DVec4::new(p.x, p.y, x.z, p.w),
-        tangent,
-    })
+    Ok(Ray { point: p, tangent })
+}
+
+/// The model point `[x, y, z, w]` of the chart point `x = (x/w, y/w, z)`: the surface's
+/// chart point (gnomonic or Klein) and a height, as `trace --from`, `light` and `render
+/// --eye` take it.
+pub fn chart_point(base: Geometry, x: glam::DVec3) -> Result<DVec4, String> {
+    if !x.z.is_finite() {
+        return Err(format!("the height {} is not a finite number", x.z));
+    }
+    let p = base
+        .from_chart(glam::DVec3::new(x.x, x.y, 0.0))
+        .map_err(|e| e.to_string())?;
+    Ok(DVec4::new(p.x, p.y, x.z, p.w))
 }

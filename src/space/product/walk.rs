@@ -3,7 +3,8 @@
 use super::ProductSpace;
 use crate::geometry::{DoubleDouble, Geometry, Ray, Real, Vector4};
 use crate::space::walk::{
-    Crossing, Limit, MAX_STEPS_WITHOUT_CROSSING, NO_FACE, Trace, record, rounded_with_rest,
+    CellWalk, Crossing, Limit, MAX_STEPS_WITHOUT_CROSSING, NO_FACE, NextExit, Trace,
+    rounded_with_rest,
 };
 
 /// Where a ray leaves the product cell: the face (a side, [`ProductWalker::top`],
@@ -352,8 +353,7 @@ impl<V: Vector4> ProductWalker<V> {
         (exit.face < self.covectors.len()).then(|| self.partners[exit.face])
     }
 
-    /// Walks a ray through the cell until the limit, handing each crossing to `visit`
-    /// (`false` stops). Returns where it stopped and the distance walked.
+    /// Walks a ray through the cell until the limit ([`CellWalk::walk`], the one walk loop).
     ///
     /// It never gives up on a ray that will cross a face: on a sphere with no sides it goes
     /// straight to the top or bottom, however long the circle; with sides it steps by π/4
@@ -366,59 +366,65 @@ impl<V: Vector4> ProductWalker<V> {
         &self,
         start: Ray<V>,
         limit: Limit,
-        mut visit: impl FnMut(&Crossing<V>) -> bool,
+        visit: impl FnMut(&Crossing<V>) -> bool,
     ) -> (Ray<V>, f64) {
-        let mut ray = self.normalized(start);
-        let mut count = 0usize;
-        let mut distance = 0.0;
-        let mut skip = None;
-        let mut steps = 0usize;
-        let max_crossings = match limit {
-            Limit::Crossings(n) => n,
-            Limit::Distance(_) => usize::MAX,
-        };
-        let sides = !self.covectors.is_empty();
-        while count < max_crossings {
-            let stepping = self.step_cap && sides && steps < MAX_STEPS_WITHOUT_CROSSING;
-            let Some(exit) = self.exit_stepping(&ray, skip, stepping) else {
-                // No face ever again: a walk by distance still goes its whole length.
-                if let Limit::Distance(d) = limit {
-                    let rest = V::Real::from_f64(d - distance);
-                    return (self.normalized(self.moved(&ray, rest, None)), d);
-                }
-                break;
-            };
-            let length = exit.distance.to_f64();
-            if let Limit::Distance(d) = limit
-                && distance + length >= d
-            {
-                let rest = V::Real::from_f64(d - distance);
-                return (self.normalized(self.moved(&ray, rest, None)), d);
-            }
-            let (next, _) = self.cross(&ray, &exit);
-            distance += length;
-            ray = next;
-            skip = self.entered(&exit);
-            if exit.face == NO_FACE {
-                steps += 1;
-                continue;
-            }
-            steps = 0;
-            count += 1;
-            if !visit(&Crossing {
-                face: exit.face,
-                distance,
-                ray,
-            }) {
-                break;
-            }
-        }
-        (ray, distance)
+        CellWalk::walk(self, start, limit, visit)
     }
 
-    /// Traces a ray until the limit, recording each crossing.
+    /// Traces a ray until the limit, recording each crossing ([`CellWalk::trace`]).
     #[must_use]
     pub fn trace(&self, start: Ray<V>, limit: Limit) -> Trace<V> {
-        record(|visit| self.walk(start, limit, visit))
+        CellWalk::trace(self, start, limit)
+    }
+
+    /// Whether the ray has no direction to walk: no finite speed along the surface or the
+    /// circle, or none at all.
+    fn degenerate(&self, ray: &Ray<V>) -> bool {
+        let zero = V::Real::ZERO;
+        let v = ray.tangent;
+        let vb = V::new(v.component(0), v.component(1), zero, v.w());
+        let lambda = self.speed_squared(ray.point, vb).max(zero).sqrt();
+        let mu = v.component(2);
+        !(lambda.is_finite() && mu.is_finite()) || lambda == zero && mu == zero
+    }
+}
+
+impl<V: Vector4> CellWalk<V> for ProductWalker<V> {
+    type Exit = ProductExit<V::Real>;
+
+    fn on_model(&self, ray: Ray<V>) -> Ray<V> {
+        self.normalized(ray)
+    }
+
+    /// Steps of π/4 only where sides can be met, and none after
+    /// [`MAX_STEPS_WITHOUT_CROSSING`] in a row (the ray runs along a side's great circle).
+    fn next_exit(&self, ray: &Ray<V>, skip: Option<usize>, steps: usize) -> NextExit<Self::Exit> {
+        let stepping =
+            self.step_cap && !self.covectors.is_empty() && steps < MAX_STEPS_WITHOUT_CROSSING;
+        match self.exit_stepping(ray, skip, stepping) {
+            Some(exit) => NextExit::Exit(exit),
+            None if self.degenerate(ray) => NextExit::Degenerate,
+            None => NextExit::NoFaceAhead,
+        }
+    }
+
+    fn exit_face(exit: &Self::Exit) -> usize {
+        exit.face
+    }
+
+    fn exit_length(&self, exit: &Self::Exit) -> f64 {
+        exit.distance.to_f64()
+    }
+
+    fn through(&self, ray: &Ray<V>, exit: &Self::Exit) -> Ray<V> {
+        self.cross(ray, exit).0
+    }
+
+    fn moved_by(&self, ray: &Ray<V>, t: f64) -> Ray<V> {
+        self.normalized(self.moved(ray, V::Real::from_f64(t), None))
+    }
+
+    fn skip_after(&self, exit: &Self::Exit) -> Option<usize> {
+        self.entered(exit)
     }
 }

@@ -650,12 +650,33 @@ fn build_object(space: &ProductSpace, spec: &ObjectSpec) -> Result<Vec<ProductOb
 }
 
 fn start_camera(space: &ProductSpace, start: &StartSpec) -> Result<ProductCamera, String> {
-    let g = space.base();
     let eye = inside(space, start.position, 0.0, "the start position")?;
     let target = match start.look_at {
         Some(t) => surface_point(space, DVec2::new(t[0], t[1]), t[2], "look_at")?,
         None => DVec4::W,
     };
+    let fov = match start.fov {
+        Some(f) if f > 0.0 && f < 180.0 => f,
+        Some(f) => {
+            return Err(format!(
+                "fov must be an angle between 0 and 180 degrees, got {f}"
+            ));
+        }
+        None => super::default_camera(space).fov_y_degrees,
+    };
+    camera_between(space, eye, target, fov)
+}
+
+/// A camera at the model point `eye` looking towards `target` with a vertical field of view
+/// of `fov` degrees; refused where the two are one point or, on the sphere, opposite (no one
+/// geodesic joins them). A scene file's `[start]`, and `render --eye --look-at`.
+pub fn camera_between(
+    space: &ProductSpace,
+    eye: DVec4,
+    target: DVec4,
+    fov: f64,
+) -> Result<ProductCamera, String> {
+    let g = space.base();
     if super::surface_distance(g, eye, target) < 1e-9 && (eye.z - target.z).abs() < 1e-9 {
         return Err("look_at is the start position: nothing to look towards".into());
     }
@@ -667,14 +688,5 @@ fn start_camera(space: &ProductSpace, start: &StartSpec) -> Result<ProductCamera
                 .into(),
         );
     }
-    let fov = match start.fov {
-        Some(f) if f > 0.0 && f < 180.0 => f,
-        Some(f) => {
-            return Err(format!(
-                "fov must be an angle between 0 and 180 degrees, got {f}"
-            ));
-        }
-        None => super::default_camera(space).fov_y_degrees,
-    };
     Ok(ProductCamera::looking_at(g, eye, target, fov))
 }

@@ -44,7 +44,7 @@ pub struct ShaderKey {
     /// Whether balls and tubes carry face masks ([`crate::scene::FaceCulling`]): a segment
     /// tests only those whose faces it comes near.
     pub culling: bool,
-    /// A spherical cell that reaches distance π/2 ([`crate::space::Space::reaches_equator`]):
+    /// A spherical cell whose chords can pass π/2 ([`crate::space::Space::walks_in_steps`]):
     /// rays step at most π/4 without crossing (shader def `STEP_CAP`).
     pub step_cap: bool,
     /// What surfaces are coloured by over their shading ([`crate::scene::ColourBy::index`]; 0

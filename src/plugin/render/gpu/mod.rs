@@ -362,7 +362,7 @@ impl GpuScene {
             avatar: scene.avatar.is_some(),
             textures: !scene.textures.is_empty(),
             culling: culling.is_some() && balls.len() + tubes.len() > 0,
-            step_cap: space.reaches_equator(),
+            step_cap: space.walks_in_steps(),
             colour_by: scene.shading.colour_by.index(),
             walls: walls.is_some(),
             mirrors: scene.has_mirrors(),

@@ -20,7 +20,8 @@ use std::sync::Arc;
 impl GpuScene {
     /// Packs a product space and its scene with a crossing budget per ray. Drawn by
     /// [`crate::plugin::offscreen::OffscreenRenderer::render_product`] (the command line's
-    /// `render`); the plugin's players do not walk product spaces yet.
+    /// `render`) and by the plugin's render node while a product space is shown (a player
+    /// walks it as in any space).
     pub fn product(
         space: &ProductSpace,
         scene: &ProductScene,

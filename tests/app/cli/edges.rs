@@ -3,26 +3,8 @@
 //! without a crossing, its distance or a stated reason, a bound holds, and an error path
 //! exits with its own code. A fuzz of the same classes closes the file.
 
-use serde_json::Value;
-use std::process::{Command, Output, Stdio};
-
-fn run(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_curved-spaces"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
-
-/// The JSON a successful command printed.
-fn json(args: &[&str]) -> Value {
-    let out = run(args);
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{args:?}: {e}"))
-}
+use super::*;
+use std::process::Stdio;
 
 /// The error message of a command that must be refused (exit 1).
 fn refused(args: &[&str]) -> String {
@@ -328,8 +310,8 @@ fn the_bound_holds_in_thick_fog_and_the_default_reach_makes_it_useful() {
 
 #[test]
 fn a_refused_gpu_scene_exits_with_its_own_code_every_time() {
-    let _gpu = crate::common::gpu_lock();
-    let dir = crate::common::scratch_dir("many-balls");
+    // `run` takes the GPU for a render, one user at a time.
+    let dir = temp_dir("many-balls");
     let mut text = String::from("space = \"torus\"\n");
     for i in 0..5000 {
         let t = f64::from(i) / 5000.0;

@@ -1,0 +1,291 @@
+//! The laws every geometry family's walk obeys, written once over the walk contract
+//! ([`CellWalk`]) and instantiated per family, as glam instantiates one law suite per type:
+//! a family added later gets them all with one line of [`family_laws!`].
+//!
+//! - a walk's end is the geodesic of the universal cover, carried by the pairings it
+//!   crossed;
+//! - long walks (10⁵ crossings) stay in the cell;
+//! - f32 walks keep the f64 walk's faces over their first crossings;
+//! - a walk by distance goes its whole length, and splitting it in two changes nothing.
+
+use bevy_curved_spaces::geometry::{Geometry, Ray, Vector4};
+use bevy_curved_spaces::random::SplitMix64;
+use bevy_curved_spaces::space::product::{ProductSpace, ProductWalker, ray_from_centre};
+use bevy_curved_spaces::space::{CellWalk, CellWalker, Limit, Space};
+use glam::{DMat4, DVec3, DVec4, Vec4};
+
+/// What the laws need of a family beyond its walk: its spaces, rays from the centre, the
+/// cover's geodesics, how a crossing carries a cover point, and the cell.
+trait LawFamily: Sized {
+    /// The f64 walker.
+    type Walker: CellWalk<DVec4>;
+    /// The f32 walker.
+    type WalkerF32: CellWalk<Vec4>;
+    /// The family's spaces the laws run in, by name.
+    fn cases() -> Vec<(String, Self)>;
+    fn walker(&self) -> Self::Walker;
+    fn walker_f32(&self) -> Self::WalkerF32;
+    /// A unit ray from the cell's centre in the chart direction `d`.
+    fn ray(&self, d: DVec3) -> Ray<DVec4>;
+    /// The point at distance `t` along the cover geodesic of `start`.
+    fn cover_point(&self, start: &Ray<DVec4>, t: f64) -> DVec4;
+    /// A cover point carried through the pairing of `face`, as the walk carries its ray.
+    fn carried(&self, face: usize, p: DVec4) -> DVec4;
+    /// How far two points are apart, in the model's entries (the sign of a point of S³
+    /// matters: the walk keeps it).
+    fn gap(&self, a: DVec4, b: DVec4) -> f64 {
+        (a - b).abs().max_element()
+    }
+    /// How far a point lies outside the cell.
+    fn outside_by(&self, p: DVec4) -> f64;
+    /// The tolerance of a walk of length `d`: the problem's conditioning (`e^d` in H³).
+    fn tolerance(&self, d: f64) -> f64;
+}
+
+/// A constant-curvature space (E³, S³, H³).
+struct Constant(Space);
+
+impl LawFamily for Constant {
+    type Walker = CellWalker<DVec4>;
+    type WalkerF32 = CellWalker<Vec4>;
+    fn cases() -> Vec<(String, Self)> {
+        [
+            "torus",
+            "half-turn",
+            "hantzsche-wendt",
+            "poincare",
+            "seifert-weber",
+            "lens-7-2",
+            "prism-3",
+            "mirrored-tetrahedron",
+            "three-sphere",
+            "projective-space",
+            "weeks",
+        ]
+        .into_iter()
+        .map(|id| (id.to_string(), Constant(crate::common::library_space(id))))
+        .collect()
+    }
+    fn walker(&self) -> Self::Walker {
+        CellWalker::new(&self.0)
+    }
+    fn walker_f32(&self) -> Self::WalkerF32 {
+        CellWalker::new(&self.0)
+    }
+    fn ray(&self, d: DVec3) -> Ray<DVec4> {
+        bevy_curved_spaces::geometry::chart_ray(self.0.geometry(), DVec3::ZERO, d).unwrap()
+    }
+    fn cover_point(&self, start: &Ray<DVec4>, t: f64) -> DVec4 {
+        let g = self.0.geometry();
+        let (p, _) = g.geodesic(start.point, start.tangent, t);
+        match g {
+            Geometry::Spherical => p / p.length(),
+            _ => g.project_point(p),
+        }
+    }
+    fn carried(&self, face: usize, p: DVec4) -> DVec4 {
+        let q = self.0.faces()[face].pairing * p;
+        match self.0.geometry() {
+            Geometry::Euclidean => q / q.w,
+            _ => q,
+        }
+    }
+    fn outside_by(&self, p: DVec4) -> f64 {
+        self.0.outside_by(p)
+    }
+    fn tolerance(&self, d: f64) -> f64 {
+        match self.0.geometry() {
+            Geometry::Hyperbolic => 1e-12 * d.exp().powi(2),
+            _ => 1e-10 * (1.0 + d),
+        }
+    }
+}
+
+/// A product space (H²×R, S²×R).
+struct Product(ProductSpace);
+
+impl LawFamily for Product {
+    type Walker = ProductWalker<DVec4>;
+    type WalkerF32 = ProductWalker<Vec4>;
+    fn cases() -> Vec<(String, Self)> {
+        [
+            "bitorus-circle",
+            "bitorus-circle-turn",
+            "crosscaps-circle",
+            "sphere-circle",
+            "sphere-circle-turn",
+            "projective-plane-circle",
+        ]
+        .into_iter()
+        .map(|id| (id.to_string(), Product(crate::common::product(id))))
+        .collect()
+    }
+    fn walker(&self) -> Self::Walker {
+        ProductWalker::new(&self.0)
+    }
+    fn walker_f32(&self) -> Self::WalkerF32 {
+        ProductWalker::new(&self.0)
+    }
+    fn ray(&self, d: DVec3) -> Ray<DVec4> {
+        ray_from_centre(d)
+    }
+    fn cover_point(&self, start: &Ray<DVec4>, t: f64) -> DVec4 {
+        let g = self.0.base();
+        let v = start.tangent;
+        let lambda = DVec3::new(v.x, v.y, v.w).length();
+        let (c, s) = g.cs(lambda * t);
+        let vb = DVec4::new(v.x, v.y, 0.0, v.w) / lambda.max(1e-300);
+        let pb = DVec4::new(start.point.x, start.point.y, 0.0, start.point.w);
+        let b = if lambda > 0.0 { pb * c + vb * s } else { pb };
+        DVec4::new(b.x, b.y, start.point.z + v.z * t, b.w)
+    }
+    fn carried(&self, face: usize, p: DVec4) -> DVec4 {
+        let w = ProductWalker::<DVec4>::new(&self.0);
+        let base = DVec4::new(p.x, p.y, 0.0, p.w);
+        let (m, dz): (DMat4, f64) = if face == w.top() {
+            (w.up.0, -self.0.length())
+        } else if face == w.bottom() {
+            (w.down.0, self.0.length())
+        } else {
+            (w.pairings[face], 0.0)
+        };
+        let q = m * base;
+        DVec4::new(q.x, q.y, p.z + dz, q.w)
+    }
+    fn outside_by(&self, p: DVec4) -> f64 {
+        self.0.outside_by(p)
+    }
+    fn tolerance(&self, d: f64) -> f64 {
+        match self.0.base() {
+            Geometry::Hyperbolic => 1e-12 * d.exp().powi(2),
+            _ => 1e-10 * (1.0 + d),
+        }
+    }
+}
+
+fn directions(seed: u64, n: usize) -> Vec<DVec3> {
+    let mut rng = SplitMix64(seed);
+    (0..n).map(|_| rng.direction()).collect()
+}
+
+/// A walk's end is the cover geodesic's point carried by the pairings it crossed.
+fn walk_ends_on_the_cover_geodesic<F: LawFamily>() {
+    for (name, family) in F::cases() {
+        let walker = family.walker();
+        for d in directions(0x1a3, 12) {
+            let start = family.ray(d);
+            let length = 3.0;
+            let mut faces = Vec::new();
+            let (end, walked) = walker.walk(start, Limit::Distance(length), |c| {
+                faces.push(c.face);
+                true
+            });
+            assert_eq!(walked, length, "{name}");
+            let mut q = family.cover_point(&start, length);
+            for &f in &faces {
+                q = family.carried(f, q);
+            }
+            let gap = family.gap(q, end.point);
+            assert!(
+                gap <= family.tolerance(length),
+                "{name} {d:?}: the end is {gap:e} off the cover geodesic after {} crossings",
+                faces.len()
+            );
+        }
+    }
+}
+
+/// 10⁵ crossings, every entry point in the cell.
+fn long_walks_stay_in_the_cell<F: LawFamily>() {
+    for (name, family) in F::cases() {
+        let walker = family.walker();
+        for d in directions(0x5e1, 2) {
+            let mut worst = f64::NEG_INFINITY;
+            let (end, _) = walker.walk(family.ray(d), Limit::Crossings(100_000), |c| {
+                worst = worst.max(family.outside_by(c.ray.point));
+                true
+            });
+            assert!(
+                worst < 1e-9,
+                "{name}: a crossing {worst:e} outside the cell"
+            );
+            assert!(end.point.is_finite(), "{name}");
+        }
+    }
+}
+
+/// f32 keeps the f64 walk's faces over its first crossings (a few units of distance).
+fn f32_walks_keep_the_f64_faces<F: LawFamily>() {
+    for (name, family) in F::cases() {
+        let (w64, w32) = (family.walker(), family.walker_f32());
+        for d in directions(0x32f, 8) {
+            let start = family.ray(d);
+            let start32 = Ray {
+                point: Vec4::from_f64(start.point),
+                tangent: Vec4::from_f64(start.tangent),
+            };
+            let faces64: Vec<usize> = w64
+                .trace(start, Limit::Crossings(4))
+                .crossings
+                .iter()
+                .map(|c| c.face)
+                .collect();
+            let faces32: Vec<usize> = w32
+                .trace(start32, Limit::Crossings(4))
+                .crossings
+                .iter()
+                .map(|c| c.face)
+                .collect();
+            assert_eq!(faces64, faces32, "{name} {d:?}");
+        }
+    }
+}
+
+/// A walk by distance goes its whole length, and one walk of `a + b` ends where a walk of
+/// `a` continued by `b` ends.
+fn walks_by_distance_compose<F: LawFamily>() {
+    for (name, family) in F::cases() {
+        let walker = family.walker();
+        for d in directions(0xc0, 6) {
+            let start = family.ray(d);
+            let (whole, l) = walker.walk(start, Limit::Distance(2.5), |_| true);
+            assert_eq!(l, 2.5);
+            let (half, _) = walker.walk(start, Limit::Distance(1.0), |_| true);
+            let (rest, _) = walker.walk(half, Limit::Distance(1.5), |_| true);
+            let gap = family.gap(whole.point, rest.point);
+            assert!(gap <= family.tolerance(2.5), "{name} {d:?}: {gap:e}");
+        }
+    }
+}
+
+/// Every law, as tests of a family: `family_laws!(module, Family);`.
+macro_rules! family_laws {
+    ($module:ident, $family:ty) => {
+        mod $module {
+            use super::*;
+
+            #[test]
+            fn a_walk_ends_on_the_cover_geodesic_carried_by_its_pairings() {
+                walk_ends_on_the_cover_geodesic::<$family>();
+            }
+
+            #[test]
+            fn long_walks_stay_in_the_cell() {
+                super::long_walks_stay_in_the_cell::<$family>();
+            }
+
+            #[test]
+            fn f32_walks_keep_the_f64_faces() {
+                super::f32_walks_keep_the_f64_faces::<$family>();
+            }
+
+            #[test]
+            fn walks_by_distance_compose() {
+                super::walks_by_distance_compose::<$family>();
+            }
+        }
+    };
+}
+
+family_laws!(constant_curvature, Constant);
+family_laws!(products, Product);
