@@ -7,6 +7,26 @@ use bevy_curved_spaces::scene::light_images::{fluence, fluence_within};
 use glam::DVec4;
 use serde_json::json;
 
+/// The model point of the chart point `x` (option `what`), which must lie in the cell of
+/// `name`: `to_model` reads the chart, `outside_by` says how far outside the cell a point
+/// is (NaN, a point the model cannot hold, counts as outside).
+fn point_in_cell(
+    x: DVec3,
+    what: &str,
+    name: &str,
+    to_model: impl Fn(DVec3) -> Result<DVec4, String>,
+    outside_by: impl Fn(DVec4) -> f64,
+) -> Result<DVec4, String> {
+    let p = to_model(x).map_err(|e| format!("{what}: {e}"))?;
+    if !(outside_by(p) <= 1e-12) {
+        return Err(format!(
+            "{what} {:?} is outside the cell of {name}",
+            x.to_array()
+        ));
+    }
+    Ok(p)
+}
+
 /// The stated bound the default reach aims for, as a fraction of the total.
 const DEFAULT_BOUND_FRACTION: f64 = 0.01;
 
@@ -16,17 +36,14 @@ pub(super) fn light(args: &LightArgs) -> Result<(), String> {
     }
     let space = resolve_space(&args.space)?;
     let g = space.geometry();
-    let point = |x: DVec3, what: &str| -> Result<DVec4, String> {
-        let p = g.from_chart(x).map_err(|e| format!("{what}: {e}"))?;
-        // A point the model cannot hold (NaN) is outside too.
-        if !(space.outside_by(p) <= 1e-12) {
-            return Err(format!(
-                "{what} {:?} is outside the cell of {}",
-                x.to_array(),
-                space.name()
-            ));
-        }
-        Ok(p)
+    let point = |x: DVec3, what: &str| {
+        point_in_cell(
+            x,
+            what,
+            space.name(),
+            |x| g.from_chart(x).map_err(|e| e.to_string()),
+            |p| space.outside_by(p),
+        )
     };
     let lamp = point(args.light, "--light")?;
     let at = point(args.at, "--at")?;
@@ -157,17 +174,14 @@ fn light_product(
         );
     }
     let g = space.base();
-    let point = |x: DVec3, what: &str| -> Result<DVec4, String> {
-        let p = bevy_curved_spaces::space::product::chart_point(g, x)
-            .map_err(|e| format!("{what}: {e}"))?;
-        if !(space.outside_by(p) <= 1e-12) {
-            return Err(format!(
-                "{what} {:?} is outside the cell of {} (the surface's chart point and a height)",
-                x.to_array(),
-                space.name()
-            ));
-        }
-        Ok(p)
+    let point = |x: DVec3, what: &str| {
+        point_in_cell(
+            x,
+            what,
+            space.name(),
+            |x| bevy_curved_spaces::space::product::chart_point(g, x),
+            |p| space.outside_by(p),
+        )
     };
     let lamp = point(args.light, "--light")?;
     let at = point(args.at, "--at")?;
