@@ -342,7 +342,8 @@ fn a_refused_gpu_scene_exits_with_its_own_code_every_time() {
 }
 
 /// The fuzz classes of this file: chart points at the model's edge, long and short fibres,
-/// overflowing directions and lengths, tiny and huge lamp radii, fog and reach. Each run
+/// overflowing directions and lengths, tiny and huge lamp radii, fog and reach, in the
+/// constant-curvature and the product spaces. Each run
 /// exits 0 with every JSON answer a number, or 1 with an error message.
 #[test]
 fn edges_of_the_input_are_numbers_or_reasons() {
@@ -369,6 +370,26 @@ fn edges_of_the_input_are_numbers_or_reasons() {
                 point.clone(),
                 s("--json"),
             ]);
+        }
+        for space in ["bitorus-circle", "sphere-circle"] {
+            cases.push(vec![
+                s("light"),
+                s(space),
+                s("--at"),
+                point.clone(),
+                s("--json"),
+            ]);
+            for option in ["--fog", "--reach"] {
+                cases.push(vec![
+                    s("light"),
+                    s(space),
+                    s("--at"),
+                    s("0.1,0,0"),
+                    s(option),
+                    s(x),
+                    s("--json"),
+                ]);
+            }
         }
         for option in ["--fog", "--reach", "--radius"] {
             for space in ["torus", "poincare", "seifert-weber"] {
