@@ -138,7 +138,15 @@ impl Geometry {
     /// in that order. The handedness of the input is kept.
     #[must_use]
     pub fn orthonormalize_frame(self, frame: DMat4) -> DMat4 {
-        let p = self.project_point(frame.w_axis);
+        self.orthonormalize_frame_at(frame, self.project_point(frame.w_axis))
+    }
+
+    /// [`Geometry::orthonormalize_frame`] about the model point `p` already chosen for the
+    /// frame's position. In S³, `project_point` turns a point past the equator to its
+    /// antipode; a frame in a cell that reaches the equator keeps its point, only scaled to
+    /// unit length.
+    #[must_use]
+    pub fn orthonormalize_frame_at(self, frame: DMat4, p: DVec4) -> DMat4 {
         let mut cols = [frame.x_axis, frame.y_axis, frame.z_axis];
         for i in 0..3 {
             let mut v = self.project_tangent(p, cols[i]);

@@ -35,7 +35,14 @@ pub fn wrap_into_cell(space: &Space, frame: DMat4, margin: f64) -> (DMat4, Vec<u
         f = space.faces[face].pairing * f;
         crossed.push(face);
     }
-    (g.orthonormalize_frame(f), crossed)
+    // Past the equator of S³ a point is not its antipode (the 3-sphere): it is only scaled
+    // back to unit length, never turned into the hemisphere w ≥ 0 without its axes.
+    let f = if space.reaches_equator() {
+        g.orthonormalize_frame_at(f, f.w_axis / f.w_axis.length())
+    } else {
+        g.orthonormalize_frame(f)
+    };
+    (f, crossed)
 }
 
 /// The face crossings of a frame since it entered the space (a player's is a component).

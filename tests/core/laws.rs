@@ -6,10 +6,16 @@
 //!   crossed;
 //! - long walks (10⁵ crossings) stay in the cell;
 //! - f32 walks keep the f64 walk's faces over their first crossings;
-//! - a walk by distance goes its whole length, and splitting it in two changes nothing.
+//! - a walk by distance goes its whole length, and splitting it in two changes nothing;
+//! - a player's random walk stays in the cell and on the model, and its frame is the cover's
+//!   carried by the holonomy of its wraps.
 
 use bevy_curved_spaces::geometry::{Geometry, Ray, Vector4};
+use bevy_curved_spaces::plugin::components::PlayerMotion;
 use bevy_curved_spaces::random::SplitMix64;
+use bevy_curved_spaces::space::product::motion::{
+    ProductMotion, camera_frame, step_product_frame, wrap_product_frame,
+};
 use bevy_curved_spaces::space::product::{ProductSpace, ProductWalker, ray_from_centre};
 use bevy_curved_spaces::space::{CellWalk, CellWalker, Limit, Space};
 use glam::{DMat4, DVec3, DVec4, Vec4};
@@ -40,6 +46,19 @@ trait LawFamily: Sized {
     fn outside_by(&self, p: DVec4) -> f64;
     /// The tolerance of a walk of length `d`: the problem's conditioning (`e^d` in H³).
     fn tolerance(&self, d: f64) -> f64;
+    /// The player's length unit (the cell's size).
+    fn scale(&self) -> f64;
+    /// The player's start frame.
+    fn player_start(&self) -> DMat4;
+    /// One step of the player: a local translation, then local turns.
+    fn player_step(&self, frame: DMat4, translation: DVec3, rotation: DVec3) -> DMat4;
+    /// The frame wrapped back into the cell past the margin, with the isometries crossed
+    /// (each a matrix, and a shift along a product's fibre).
+    fn player_wrap(&self, frame: DMat4) -> (DMat4, Vec<(DMat4, f64)>);
+    /// How far a frame is from orthonormal on the model.
+    fn frame_defect(&self, frame: DMat4) -> f64;
+    /// How many faces the cell has.
+    fn faces(&self) -> usize;
 }
 
 /// A constant-curvature space (E³, S³, H³).
@@ -98,6 +117,36 @@ impl LawFamily for Constant {
             Geometry::Hyperbolic => 1e-12 * d.exp().powi(2),
             _ => 1e-10 * (1.0 + d),
         }
+    }
+    fn scale(&self) -> f64 {
+        bevy_curved_spaces::space::invariants::inradius(&self.0)
+    }
+    fn player_start(&self) -> DMat4 {
+        bevy_curved_spaces::view::TraceCamera::default_for(&self.0).frame
+    }
+    fn player_step(&self, frame: DMat4, translation: DVec3, rotation: DVec3) -> DMat4 {
+        bevy_curved_spaces::plugin::player::step_frame(
+            self.0.geometry(),
+            frame,
+            &PlayerMotion {
+                translation,
+                rotation,
+            },
+        )
+    }
+    fn player_wrap(&self, frame: DMat4) -> (DMat4, Vec<(DMat4, f64)>) {
+        let (f, crossed) = bevy_curved_spaces::space::wrap_into_cell(&self.0, frame, MARGIN);
+        let carried = crossed
+            .iter()
+            .map(|&c| (self.0.faces()[c].pairing, 0.0))
+            .collect();
+        (f, carried)
+    }
+    fn frame_defect(&self, frame: DMat4) -> f64 {
+        self.0.geometry().frame_defect(frame)
+    }
+    fn faces(&self) -> usize {
+        self.0.faces().len()
     }
 }
 
@@ -161,7 +210,53 @@ impl LawFamily for Product {
             _ => 1e-10 * (1.0 + d),
         }
     }
+    fn scale(&self) -> f64 {
+        self.0.scale()
+    }
+    fn player_start(&self) -> DMat4 {
+        let camera = bevy_curved_spaces::trace::product::default_camera(&self.0);
+        camera_frame(camera.point, camera.frame)
+    }
+    fn player_step(&self, frame: DMat4, translation: DVec3, rotation: DVec3) -> DMat4 {
+        step_product_frame(
+            self.0.base(),
+            frame,
+            &ProductMotion {
+                translation,
+                rotation,
+                level: true,
+            },
+        )
+    }
+    fn player_wrap(&self, frame: DMat4) -> (DMat4, Vec<(DMat4, f64)>) {
+        let (f, crossed) = wrap_product_frame(&self.0, frame, MARGIN);
+        let walker = ProductWalker::<DVec4>::new(&self.0);
+        let carried = crossed
+            .iter()
+            .map(|c| {
+                // The top's and bottom's shifts along the fibre, a circle at a time.
+                let shift = if c.face == walker.top() {
+                    -self.0.length()
+                } else if c.face == walker.bottom() {
+                    self.0.length()
+                } else {
+                    0.0
+                };
+                (c.pairing, shift)
+            })
+            .collect();
+        (f, carried)
+    }
+    fn frame_defect(&self, frame: DMat4) -> f64 {
+        crate::common::product_frame_defect(self.0.base(), frame)
+    }
+    fn faces(&self) -> usize {
+        self.0.face_count()
+    }
 }
+
+/// The player's wrap margin (the plugin's default).
+const MARGIN: f64 = 1e-4;
 
 fn directions(seed: u64, n: usize) -> Vec<DVec3> {
     let mut rng = SplitMix64(seed);
@@ -258,6 +353,46 @@ fn walks_by_distance_compose<F: LawFamily>() {
     }
 }
 
+/// A player's random walk stays in the cell and on the model, and the wrapped frame is the
+/// frame walked in the cover, carried by the isometries its wraps crossed (the holonomy).
+fn a_player_wraps_with_its_holonomy<F: LawFamily>() {
+    for (name, family) in F::cases() {
+        let mut rng = SplitMix64(0x91a);
+        let mut next = || 2.0 * rng.unit() - 1.0;
+        let step = 0.05 * family.scale();
+        let (mut wrapped, mut cover) = (family.player_start(), family.player_start());
+        let (mut held, mut shift) = (DMat4::IDENTITY, 0.0);
+        let mut crossings = 0;
+        for _ in 0..2_000 {
+            let t = DVec3::new(next(), next(), next()) * step;
+            let r = DVec3::new(next(), next(), next()) * 0.1;
+            cover = family.player_step(cover, t, r);
+            let (f, crossed) = family.player_wrap(family.player_step(wrapped, t, r));
+            for (m, dz) in crossed {
+                held = m * held;
+                shift += dz;
+                crossings += 1;
+            }
+            wrapped = f;
+            assert!(family.outside_by(wrapped.w_axis) <= 2.0 * MARGIN, "{name}");
+            assert!(family.frame_defect(wrapped) < 1e-9, "{name}");
+        }
+        let mut carried = held * cover;
+        carried.w_axis.z += shift;
+        let gap = (0..4)
+            .map(|c| family.gap(carried.col(c), wrapped.col(c)))
+            .fold(0.0, f64::max);
+        assert!(
+            crossings > 5 || family.faces() == 0,
+            "{name}: only {crossings} crossings"
+        );
+        assert!(
+            gap < 1e-6,
+            "{name}: the wrapped frame is {gap:e} off the carried one"
+        );
+    }
+}
+
 /// Every law, as tests of a family: `family_laws!(module, Family);`.
 macro_rules! family_laws {
     ($module:ident, $family:ty) => {
@@ -282,6 +417,11 @@ macro_rules! family_laws {
             #[test]
             fn walks_by_distance_compose() {
                 super::walks_by_distance_compose::<$family>();
+            }
+
+            #[test]
+            fn a_player_wraps_with_its_holonomy() {
+                super::a_player_wraps_with_its_holonomy::<$family>();
             }
         }
     };

@@ -127,7 +127,12 @@ pub fn step_product_frame(g: Geometry, frame: DMat4, motion: &ProductMotion) -> 
     }
     let r = motion.rotation;
     if motion.level && r.y != 0.0 && r.y.is_finite() {
-        f = turn_about_fibre(g, f, r.y);
+        // A turn about the fibre is a turn of the world, counter-clockwise seen from above;
+        // a frame that crossed an orientation-reversing side (left-handed, determinant −1)
+        // sees it the other way round, so its yaw turns the world the other way and the
+        // controls stay natural (as past a mirror in the constant-curvature spaces).
+        let yaw = if f.determinant() < 0.0 { -r.y } else { r.y };
+        f = turn_about_fibre(g, f, yaw);
     }
     for (k, (axis, angle)) in [(DVec3::X, r.x), (DVec3::Y, r.y), (DVec3::Z, r.z)]
         .into_iter()
