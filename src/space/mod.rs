@@ -23,7 +23,7 @@ pub use catalog::{DEFAULT_SPACE, SEED_SPACES, SeedSpace, seed_space};
 pub use error::SpaceError;
 pub use library::resolve_space;
 pub use walk::{CellWalk, CellWalker, Crossing, Exit, Limit, NextExit, Trace};
-pub use wrap::{Holonomy, MAX_WRAPS_PER_STEP, wrap_into_cell};
+pub use wrap::{Holonomy, MAX_WRAPS_PER_STEP, frame_on_model, wrap_into_cell};
 
 use crate::geometry::{Geometry, ORIGIN};
 use glam::{DMat4, DVec3, DVec4};

@@ -12,7 +12,6 @@ pub const MAX_WRAPS_PER_STEP: usize = 32;
 /// (re-orthonormalized) and the faces crossed, in order.
 #[must_use]
 pub fn wrap_into_cell(space: &Space, frame: DMat4, margin: f64) -> (DMat4, Vec<usize>) {
-    let g = space.geometry;
     let mut f = frame;
     let mut crossed = Vec::new();
     for _ in 0..MAX_WRAPS_PER_STEP {
@@ -35,14 +34,21 @@ pub fn wrap_into_cell(space: &Space, frame: DMat4, margin: f64) -> (DMat4, Vec<u
         f = space.faces[face].pairing * f;
         crossed.push(face);
     }
-    // Past the equator of S³ a point is not its antipode (the 3-sphere): it is only scaled
-    // back to unit length, never turned into the hemisphere w ≥ 0 without its axes.
-    let f = if space.reaches_equator() {
-        g.orthonormalize_frame_at(f, f.w_axis / f.w_axis.length())
+    (frame_on_model(space, f), crossed)
+}
+
+/// A frame of `space` made orthonormal on the model again. Past the equator of S³ a point
+/// is not its antipode (the 3-sphere): in a cell that reaches the equator the frame's point
+/// is only scaled back to unit length, never turned into the hemisphere `w ≥ 0` without
+/// its axes.
+#[must_use]
+pub fn frame_on_model(space: &Space, frame: DMat4) -> DMat4 {
+    let g = space.geometry;
+    if space.reaches_equator() {
+        g.orthonormalize_frame_at(frame, frame.w_axis / frame.w_axis.length())
     } else {
-        g.orthonormalize_frame(f)
-    };
-    (f, crossed)
+        g.orthonormalize_frame(frame)
+    }
 }
 
 /// The face crossings of a frame since it entered the space (a player's is a component).

@@ -273,3 +273,28 @@ fn an_exported_cell_is_the_exact_cell_rounded_once() {
     }
     assert!(checked > 50, "{checked} faces");
 }
+
+#[test]
+fn a_frame_past_the_equator_of_the_three_sphere_keeps_its_point() {
+    use bevy_curved_spaces::space::frame_on_model;
+    use glam::DMat4;
+    let s3 = space("three-sphere");
+    // The frame 3 along x from the centre: its point (sin 3, 0, 0, cos 3) has w < 0.
+    let (sin, cos) = 3f64.sin_cos();
+    let frame = DMat4::from_cols(
+        DVec4::new(cos, 0.0, 0.0, -sin),
+        DVec4::Y,
+        DVec4::Z,
+        DVec4::new(sin, 0.0, 0.0, cos),
+    );
+    let kept = frame_on_model(&s3, frame);
+    assert!((kept.w_axis - frame.w_axis).length() < 1e-12, "{kept:?}");
+    assert!((kept.x_axis - frame.x_axis).length() < 1e-12, "{kept:?}");
+    // Where points stay in w > 0 (Poincaré), it is the usual projection.
+    let poincare = space("poincare");
+    let f = bevy_curved_spaces::view::TraceCamera::default_for(&poincare).frame;
+    assert_eq!(
+        frame_on_model(&poincare, f),
+        Geometry::Spherical.orthonormalize_frame(f)
+    );
+}

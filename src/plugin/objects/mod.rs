@@ -45,7 +45,7 @@ use crate::scene::{
     Ball, BallTexture, CurvedScene, Disc, MeshInstance, Object, SurfaceMaterial, TracedModel, Tube,
 };
 use crate::space::motion::{Sightline, Sightlines, Velocity};
-use crate::space::{Holonomy, Space, wrap_into_cell};
+use crate::space::{Holonomy, Space, frame_on_model, wrap_into_cell};
 use bevy::asset::{AssetEvent, AssetId, Assets, Handle};
 use bevy::image::Image;
 use bevy::mesh::{Mesh, PrimitiveTopology};

@@ -22,7 +22,7 @@ pub fn move_objects(
     let dt = time.delta_secs_f64();
     for (mut transform, velocity) in &mut objects {
         if !velocity.0.is_zero() {
-            transform.0 = g.orthonormalize_frame(velocity.0.step(g, transform.0, dt));
+            transform.0 = frame_on_model(&active.space, velocity.0.step(g, transform.0, dt));
         }
     }
 }
