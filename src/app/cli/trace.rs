@@ -304,48 +304,41 @@ fn stream<V: Vector4, W: CellWalk<V>>(
     }
 }
 
+/// `stream` in the precision `--precision` asks for, with the family's walker in it.
+fn in_precision<A: CellWalk<DVec4>, B: CellWalk<Vec4>>(
+    args: &TraceArgs,
+    family: &dyn TraceFamily,
+    (start, limit): (Ray<DVec4>, Limit),
+    f64_walker: impl FnOnce() -> A,
+    f32_walker: impl FnOnce() -> B,
+) -> Result<(), String> {
+    match args.precision {
+        Precision::F64 => stream(&f64_walker(), family, start, limit, args.json),
+        Precision::F32 => stream(&f32_walker(), family, start, limit, args.json),
+    }
+}
+
 pub(super) fn trace(args: &TraceArgs) -> Result<(), String> {
-    let json_out = args.json;
     if let Some(space) = product(&args.space)? {
         let start =
             bevy_curved_spaces::space::product::chart_ray(space.base(), args.from, args.dir)?;
         let limit = start_and_limit(args, space.outside_by(start.point), space.name())?;
-        let family = ProductFamily(&space);
-        return match args.precision {
-            Precision::F64 => stream(
-                &ProductWalker::<DVec4>::new(&space),
-                &family,
-                start,
-                limit,
-                json_out,
-            ),
-            Precision::F32 => stream(
-                &ProductWalker::<Vec4>::new(&space),
-                &family,
-                start,
-                limit,
-                json_out,
-            ),
-        };
+        return in_precision(
+            args,
+            &ProductFamily(&space),
+            (start, limit),
+            || ProductWalker::<DVec4>::new(&space),
+            || ProductWalker::<Vec4>::new(&space),
+        );
     }
     let space = resolve_space(&args.space)?;
     let start = chart_ray(space.geometry(), args.from, args.dir).map_err(|e| e.to_string())?;
     let limit = start_and_limit(args, space.outside_by(start.point), space.name())?;
-    let family = ConstantFamily(&space);
-    match args.precision {
-        Precision::F64 => stream(
-            &CellWalker::<DVec4>::new(&space),
-            &family,
-            start,
-            limit,
-            json_out,
-        ),
-        Precision::F32 => stream(
-            &CellWalker::<Vec4>::new(&space),
-            &family,
-            start,
-            limit,
-            json_out,
-        ),
-    }
+    in_precision(
+        args,
+        &ConstantFamily(&space),
+        (start, limit),
+        || CellWalker::<DVec4>::new(&space),
+        || CellWalker::<Vec4>::new(&space),
+    )
 }
