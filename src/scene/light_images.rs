@@ -175,12 +175,11 @@ pub fn fluence(
             reach: std::f64::consts::PI,
         });
     }
-    let near = lamp_images(space, lamp, reach + g.distance(DVec4::W, at), MAX_IMAGES).ok_or(
-        FluenceError::TooMany {
-            reach,
-            limit: MAX_IMAGES,
-        },
-    )?;
+    let searched = reach + g.distance(DVec4::W, at);
+    let near = lamp_images(space, lamp, searched, MAX_IMAGES).ok_or(FluenceError::TooMany {
+        reach,
+        limit: MAX_IMAGES,
+    })?;
     let f = |d: f64| (-d / fog).exp() / s2(d);
     let mut images = 0usize;
     let mut exact = 0.0;
@@ -202,7 +201,15 @@ pub fn fluence(
         return Err(overflow("mean beyond the reach"));
     }
     let rho = lamp_cell_reach(space, lamp);
-    let (lo, hi) = tail_range(g, reach, rho, vol, images as f64, fog, floor);
+    let packing = packing_radius(g, lamp, &near, searched);
+    let (lo, hi) = tail_range(
+        g,
+        reach,
+        Counts { rho, vol, packing },
+        images as f64,
+        fog,
+        floor,
+    );
     // The integrals are Simpson's rule to about 1e-9 of their size: a millionth of it
     // keeps the bound a bound.
     let bound = (hi - tail).max(tail - lo).max(0.0) + 1e-6 * (lo.abs() + hi.abs());
@@ -316,6 +323,45 @@ fn lamp_cell_reach(space: &Space, lamp: DVec4) -> f64 {
     }
 }
 
+/// Half the distance from the lamp to its nearest other image: the balls of that radius
+/// about the images are disjoint. Every image within `searched` of the centre is in
+/// `images`, so one not found is farther than `searched − d(centre, lamp)` from the lamp,
+/// and the radius never exceeds half of that.
+fn packing_radius(g: Geometry, lamp: DVec4, images: &[(DVec4, f64)], searched: f64) -> f64 {
+    let unseen = searched - g.distance(DVec4::W, lamp);
+    images
+        .iter()
+        .map(|(q, _)| g.distance(lamp, *q))
+        .filter(|&d| d > 1e-9)
+        .fold(unseen, f64::min)
+        .max(0.0)
+        * 0.5
+}
+
+/// What bounds the count `N(r)` of images within `r` of the point: `ρ`, how far the lamp
+/// lies from its cell's farthest point (`V(r−ρ)/vol ≤ N(r) ≤ V(r+ρ)/vol`), and the packing
+/// radius `p` (disjoint balls of radius `p` about the images within `r` lie in the ball of
+/// radius `r + p`: `N(r) ≤ V(r+p)/V(p)`, the tighter in H³, where `e^(2ρ)` is large).
+#[derive(Clone, Copy, Debug)]
+struct Counts {
+    rho: f64,
+    vol: f64,
+    packing: f64,
+}
+
+impl Counts {
+    /// `ln` of the lower and upper counts at `r`.
+    fn ln_range(&self, g: Geometry, r: f64) -> (f64, f64) {
+        let ln_vol = self.vol.ln();
+        let lo = ln_ball_volume(g, r - self.rho) - ln_vol;
+        let mut hi = ln_ball_volume(g, r + self.rho) - ln_vol;
+        if self.packing > 0.0 {
+            hi = hi.min(ln_ball_volume(g, r + self.packing) - ln_ball_volume(g, self.packing));
+        }
+        (lo, hi)
+    }
+}
+
 /// `ln S(r)` for `r > 0` (E³: `ln r`, H³: `ln sinh r`), without overflow for large `r`.
 fn ln_s(g: Geometry, r: f64) -> f64 {
     match g {
@@ -344,7 +390,8 @@ fn ln_ball_volume(g: Geometry, r: f64) -> f64 {
 }
 
 /// The range of the true tail beyond `reach`: `−f(R) N(R) + ∫_R^∞ N (−f′) dr` with `N`
-/// between `V(r ∓ ρ)/vol` (`ρ` how far the lamp lies from its cell's farthest point), `f`
+/// between the [`Counts`] (`V(r − ρ)/vol` below, the smaller of `V(r + ρ)/vol` and
+/// `V(r + p)/V(p)` above), `f`
 /// the falloff `e^(−r/λ) / max(S(r), s₀)²` (`s₀ = S(r₀)` the lamp's floor, below which `f`
 /// falls only with the fog: `−f′ = f/λ` there).
 ///
@@ -357,13 +404,11 @@ fn ln_ball_volume(g: Geometry, r: f64) -> f64 {
 fn tail_range(
     g: Geometry,
     reach: f64,
-    rho: f64,
-    vol: f64,
+    counts: Counts,
     counted: f64,
     fog: f64,
     floor: f64,
 ) -> (f64, f64) {
-    let ln_vol = vol.ln();
     let ln_floor = floor.ln();
     // ln f and −f′/f.
     let ln_f = |r: f64| -r / fog - 2.0 * ln_s(g, r).max(ln_floor);
@@ -375,25 +420,27 @@ fn tail_range(
         };
         1.0 / fog + if above { 2.0 * cot } else { 0.0 }
     };
-    let integrand = |r: f64, shift: f64| {
-        let ln_n = ln_ball_volume(g, r + shift) - ln_vol;
+    let term = |ln_n: f64, r: f64| {
         if ln_n == f64::NEG_INFINITY {
-            return 0.0;
+            0.0
+        } else {
+            (ln_n + ln_f(r)).exp() * rate(r)
         }
-        (ln_n + ln_f(r)).exp() * rate(r)
+    };
+    let integrands = |r: f64| {
+        let (lo, hi) = counts.ln_range(g, r);
+        (term(lo, r), term(hi, r))
     };
     let end = reach + 60.0 * fog;
-    let mut width = (fog.min(rho.max(1e-3)) / 40.0).max(reach * f64::EPSILON);
+    let mut width = (fog.min(counts.rho.max(1e-3)) / 40.0).max(reach * f64::EPSILON);
     let (mut lo_sum, mut hi_sum) = (0.0, 0.0);
     let mut a = reach;
     while a < end {
         let b = (a + width).min(end);
         let m = 0.5 * (a + b);
-        let simpson = |shift: f64| {
-            (b - a) / 6.0 * (integrand(a, shift) + 4.0 * integrand(m, shift) + integrand(b, shift))
-        };
-        lo_sum += simpson(-rho);
-        hi_sum += simpson(rho);
+        let ((la, ha), (lm, hm), (lb, hb)) = (integrands(a), integrands(m), integrands(b));
+        lo_sum += (b - a) / 6.0 * (la + 4.0 * lm + lb);
+        hi_sum += (b - a) / 6.0 * (ha + 4.0 * hm + hb);
         a = b;
         width *= 1.05;
     }

@@ -298,3 +298,24 @@ fn a_frame_past_the_equator_of_the_three_sphere_keeps_its_point() {
         Geometry::Spherical.orthonormalize_frame(f)
     );
 }
+
+#[test]
+fn the_packing_of_the_images_tightens_the_hyperbolic_bound() {
+    // Disjoint balls of half the lamp's shortest image distance bound the count of images
+    // by V(r + p)/V(p): in H³ far below V(r + ρ)/vol (ρ ≈ 1.9 in Seifert–Weber, e^(2ρ) ≈ 45).
+    let s = space("seifert-weber");
+    let chart = |x: [f64; 3]| s.geometry().from_chart(DVec3::from_array(x)).unwrap();
+    let (lamp, at) = (chart([0.0; 3]), chart([0.1, 0.05, 0.0]));
+    let fog = bevy_curved_spaces::scene::Shading::default_fog_distance(&s);
+    let (f, _) = fluence_within(&s, lamp, at, fog, 0.05, 0.01).unwrap();
+    assert!(f.bound < 0.2 * f.total(), "{f:?}");
+    // And it holds: the sums to this reach and to one a unit shorter (the default is near
+    // the image limit) agree within their two bounds.
+    let short = fluence(&s, lamp, at, fog, f.reach - 1.0, 0.05).unwrap();
+    let gap = (f.total() - short.total()).abs();
+    assert!(
+        gap <= f.bound + short.bound,
+        "{gap} past {}",
+        f.bound + short.bound
+    );
+}
