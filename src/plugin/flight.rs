@@ -37,16 +37,71 @@ impl FlightReplay {
     /// The flight's time at clock time `now`.
     #[must_use]
     pub fn flight_time(&mut self, now: f64) -> f64 {
-        let start = *self.started.get_or_insert(now);
-        let t = (now - start).max(0.0);
-        let duration = self.flight.duration();
-        if duration <= 0.0 {
-            0.0
-        } else if self.looped {
-            t % duration
-        } else {
-            t.min(duration)
+        replay_time(&mut self.started, self.looped, self.flight.duration(), now)
+    }
+}
+
+/// A replay's flight time at clock time `now`: from the first call on (`started` is set
+/// then), looping or held at the end.
+fn replay_time(started: &mut Option<f64>, looped: bool, duration: f64, now: f64) -> f64 {
+    let start = *started.get_or_insert(now);
+    let t = (now - start).max(0.0);
+    if duration <= 0.0 {
+        0.0
+    } else if looped {
+        t % duration
+    } else {
+        t.min(duration)
+    }
+}
+
+/// A product flight replayed on every curved-space camera (`walk --replay FILE` in H²×R or
+/// S²×R): while this resource exists, [`replay_product_flight`] sets each camera's frame
+/// to the flight's frame in the cell at the time since the replay began.
+#[derive(Resource, Clone, Debug)]
+pub struct ProductFlightReplay {
+    /// The flight, made for the active product space.
+    pub flight: crate::trace::product::flight::ProductFlight,
+    /// Start again at the end.
+    pub looped: bool,
+    /// The clock's time when the replay began (set by the first run).
+    pub started: Option<f64>,
+}
+
+impl ProductFlightReplay {
+    /// A replay of `flight` from the next frame on.
+    #[must_use]
+    pub fn new(flight: crate::trace::product::flight::ProductFlight, looped: bool) -> Self {
+        Self {
+            flight,
+            looped,
+            started: None,
         }
+    }
+
+    /// The flight's time at clock time `now`.
+    #[must_use]
+    pub fn flight_time(&mut self, now: f64) -> f64 {
+        replay_time(&mut self.started, self.looped, self.flight.duration(), now)
+    }
+}
+
+/// Drives the cameras along a [`ProductFlightReplay`] in a product space (registered by
+/// the plugin; does nothing without the resource), after the frames are wrapped, so it
+/// wins over the player's own motion.
+pub fn replay_product_flight(
+    time: Res<Time>,
+    active: Res<crate::plugin::components::ActiveProduct>,
+    replay: Option<ResMut<ProductFlightReplay>>,
+    mut cameras: Query<&mut PlayerFrame, With<CurvedSpaceCamera>>,
+) {
+    let Some(mut replay) = replay else {
+        return;
+    };
+    let t = replay.flight_time(time.elapsed_secs_f64());
+    let frame = replay.flight.frame(&active.space, t);
+    for mut f in &mut cameras {
+        f.0 = frame;
     }
 }
 

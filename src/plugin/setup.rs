@@ -175,6 +175,11 @@ impl Plugin for CurvedSpacesPlugin {
                     .run_if(constant_curvature)
                     .after(CurvedSpacesSystems::Wrap)
                     .before(CurvedSpacesSystems::Upload),
+                #[cfg(feature = "scene-files")]
+                crate::plugin::flight::replay_product_flight
+                    .run_if(product_shown)
+                    .after(CurvedSpacesSystems::Wrap)
+                    .before(CurvedSpacesSystems::Upload),
                 (
                     upload_scene
                         .after(crate::plugin::objects::collect_objects)

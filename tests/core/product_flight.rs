@@ -97,3 +97,49 @@ fn keys_no_geodesic_joins_are_refused() {
         "{e}"
     );
 }
+
+/// `walk --replay` in a product space: the plugin drives the cameras along the flight, so
+/// each update's frame is the flight's frame at the clock's time since the replay began.
+#[test]
+fn the_plugin_replays_a_product_flight_on_its_cameras() {
+    use bevy::prelude::*;
+    use bevy::time::TimeUpdateStrategy;
+    use bevy_curved_spaces::plugin::flight::ProductFlightReplay;
+    use bevy_curved_spaces::prelude::*;
+    use std::time::Duration;
+    let file = load_flight_file(&asset("bitorus_through_a_side.toml")).expect("a flight file");
+    let space = product(file.space.as_deref().expect("a space"));
+    let flight = ProductFlight::new(&space, &file).expect("a product flight");
+    let dt = 0.1;
+    let mut app = App::new();
+    app.add_plugins((MinimalPlugins, bevy::input::InputPlugin))
+        .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f64(
+            dt,
+        )))
+        .add_plugins(CurvedSpacesPlugin {
+            space: space.name().into(),
+            ..default()
+        });
+    let camera = app.world_mut().spawn(CurvedSpaceCamera::default()).id();
+    app.update();
+    app.insert_resource(ProductFlightReplay::new(flight.clone(), false));
+    let mut seen = Vec::new();
+    for _ in 0..12 {
+        app.update();
+        let t = app
+            .world()
+            .resource::<ProductFlightReplay>()
+            .clone()
+            .flight_time(app.world().resource::<Time>().elapsed_secs_f64());
+        let f = app.world().get::<PlayerFrame>(camera).expect("a frame").0;
+        let want = flight.frame(&space, t);
+        let gap = (f - want)
+            .to_cols_array()
+            .iter()
+            .fold(0.0f64, |m, x| m.max(x.abs()));
+        assert!(gap < 1e-12, "at {t} s the camera is {gap:e} off the flight");
+        seen.push(f.w_axis);
+    }
+    // It moved: the flight goes somewhere.
+    assert!((seen[0] - seen[11]).length() > 1e-3);
+}

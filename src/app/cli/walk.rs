@@ -104,7 +104,16 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
         None => args,
     };
     if let Some(product) = super::render::choose_product(&args.space, args.scene.as_deref())? {
-        return walk_product(args, product);
+        let flight = match &replay {
+            Some(file) => Some(
+                bevy_curved_spaces::trace::product::flight::ProductFlight::new(
+                    &product.space,
+                    file,
+                )?,
+            ),
+            None => None,
+        };
+        return walk_product(args, product, flight);
     }
     let chosen = choose_scene(&args.space, args.scene.as_deref(), args.fog)?;
     let flight = match &replay {
@@ -357,13 +366,13 @@ pub(super) fn walk_xr(args: &WalkArgs, chosen: &Chosen) -> Result<(), String> {
 
 /// `walk` in a product space (H²×R, S²×R): its default scene, the fibre up; offscreen to a
 /// picture where there is no display.
-fn walk_product(args: &WalkArgs, chosen: super::render::ProductChoice) -> Result<(), String> {
+fn walk_product(
+    args: &WalkArgs,
+    chosen: super::render::ProductChoice,
+    flight: Option<bevy_curved_spaces::trace::product::flight::ProductFlight>,
+) -> Result<(), String> {
     use bevy_curved_spaces::ActiveProduct;
-    for (given, what) in [
-        (args.replay.is_some(), "--replay"),
-        (args.record.is_some(), "--record"),
-        (args.xr, "--xr"),
-    ] {
+    for (given, what) in [(args.record.is_some(), "--record"), (args.xr, "--xr")] {
         if given {
             return Err(format!(
                 "{what} is not available in the product spaces (H²×R, S²×R) yet: walk {} without it",
@@ -426,6 +435,12 @@ fn walk_product(args: &WalkArgs, chosen: super::render::ProductChoice) -> Result
             commands.spawn((Camera3d::default(), CurvedSpaceCamera::default()));
         },
     );
+    if let Some(flight) = flight {
+        eprintln!("replaying the flight ({:.1} s, looping)", flight.duration());
+        app.insert_resource(
+            bevy_curved_spaces::plugin::flight::ProductFlightReplay::new(flight, true),
+        );
+    }
     if let Some(path) = &args.screenshot {
         app.insert_resource(ScreenshotThenExit {
             path: path.clone(),
