@@ -315,12 +315,12 @@ fn radius_holding(g: Geometry, want: f64, pad: f64) -> f64 {
 /// plus the circumradius.
 fn lamp_cell_reach(space: &Space, lamp: DVec4) -> f64 {
     let g = space.geometry;
-    let vertices = (0..space.vertices.len()).map(|v| g.distance(lamp, space.vertex_point(v)));
     if space.vertices.is_empty() {
-        g.distance(lamp, DVec4::W) + circumradius(space)
-    } else {
-        vertices.fold(0.0, f64::max)
+        return g.distance(lamp, DVec4::W) + circumradius(space);
     }
+    (0..space.vertices.len())
+        .map(|v| g.distance(lamp, space.vertex_point(v)))
+        .fold(0.0, f64::max)
 }
 
 /// Half the distance from the lamp to its nearest other image: the balls of that radius
@@ -391,9 +391,8 @@ fn ln_ball_volume(g: Geometry, r: f64) -> f64 {
 
 /// The range of the true tail beyond `reach`: `−f(R) N(R) + ∫_R^∞ N (−f′) dr` with `N`
 /// between the [`Counts`] (`V(r − ρ)/vol` below, the smaller of `V(r + ρ)/vol` and
-/// `V(r + p)/V(p)` above), `f`
-/// the falloff `e^(−r/λ) / max(S(r), s₀)²` (`s₀ = S(r₀)` the lamp's floor, below which `f`
-/// falls only with the fog: `−f′ = f/λ` there).
+/// `V(r + p)/V(p)` above), `f` the falloff `e^(−r/λ) / max(S(r), s₀)²` (`s₀ = S(r₀)` the
+/// lamp's floor, below which `f` falls only with the fog: `−f′ = f/λ` there).
 ///
 /// The integrands are products of a count growing like `r³` or `e^(2r)` and a falloff
 /// shrinking like `e^(−2r − r/λ)`: each is taken through its logarithm, so neither overflows
@@ -435,13 +434,14 @@ fn tail_range(
     let mut width = (fog.min(counts.rho.max(1e-3)) / 40.0).max(reach * f64::EPSILON);
     let (mut lo_sum, mut hi_sum) = (0.0, 0.0);
     let mut a = reach;
+    // Each panel's end is the next one's start: evaluated once.
+    let (mut la, mut ha) = integrands(a);
     while a < end {
         let b = (a + width).min(end);
-        let m = 0.5 * (a + b);
-        let ((la, ha), (lm, hm), (lb, hb)) = (integrands(a), integrands(m), integrands(b));
+        let ((lm, hm), (lb, hb)) = (integrands(0.5 * (a + b)), integrands(b));
         lo_sum += (b - a) / 6.0 * (la + 4.0 * lm + lb);
         hi_sum += (b - a) / 6.0 * (ha + 4.0 * hm + hb);
-        a = b;
+        (a, la, ha) = (b, lb, hb);
         width *= 1.05;
     }
     let start = -(ln_f(reach)).exp() * counted;

@@ -142,10 +142,9 @@ fn fixes_hyperplane(m: &DMat4, covector: DVec4) -> bool {
         return false;
     }
     let along = covector.abs().max_position();
+    let largest = m.to_cols_array().iter().fold(0.0f64, |a, x| a.max(x.abs()));
     (0..4).filter(|&k| k != along).all(|k| {
-        let e = DVec4::AXES[k];
-        let v = e - covector * (covector[k] / n2);
-        let largest = m.to_cols_array().iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        let v = DVec4::AXES[k] - covector * (covector[k] / n2);
         (*m * v - v).length() <= 1e-9 * v.length().max(largest)
     })
 }

@@ -272,7 +272,7 @@ impl<V: Vector4> CellWalk<V> for CellWalker<V> {
     }
 
     fn through(&self, ray: &Ray<V>, exit: &Self::Exit) -> Ray<V> {
-        self.cross(ray, exit).0
+        self.crossed(ray, exit)
     }
 
     fn moved_by(&self, ray: &Ray<V>, t: f64) -> Ray<V> {
@@ -420,6 +420,13 @@ impl<V: Vector4> CellWalker<V> {
     /// arithmetic lost digits beyond the problem's conditioning.
     #[must_use]
     pub fn cross(&self, ray: &Ray<V>, exit: &Exit<V::Real>) -> (Ray<V>, V::Real) {
+        let length = self.geometry.distance_from_ratio(exit.num, exit.den);
+        (self.crossed(ray, exit), length)
+    }
+
+    /// The ray of [`Self::cross`] without the segment's length (the walk has taken it
+    /// already, [`CellWalk::exit_length`]).
+    fn crossed(&self, ray: &Ray<V>, exit: &Exit<V::Real>) -> Ray<V> {
         let g = self.geometry;
         let k = V::Real::from_f64(g.kappa());
         let (num, den) = (exit.num, exit.den);
@@ -428,11 +435,11 @@ impl<V: Vector4> CellWalker<V> {
         if exit.face == NO_FACE {
             let point = self.onto_model(at_face);
             let tangent = g.unit_tangent(point, tangent);
-            return (Ray { point, tangent }, g.distance_from_ratio(num, den));
+            return Ray { point, tangent };
         }
         let point = self.onto_model(self.apply_pairing(exit.face, at_face));
         let tangent = g.unit_tangent(point, self.apply_pairing(exit.face, tangent));
-        (Ray { point, tangent }, g.distance_from_ratio(num, den))
+        Ray { point, tangent }
     }
 
     /// The ray moved by `t` along its geodesic (within the cell), re-normalized.
@@ -445,9 +452,10 @@ impl<V: Vector4> CellWalker<V> {
         Ray { point, tangent }
     }
 
-    /// A point put back onto the model. In a cell that reaches the equator
-    /// ([`Self::step_cap`]) a point of S³ is only scaled to unit length, never turned to
-    /// its antipode as [`Geometry::project_point`] turns it into the hemisphere `w ≥ 0`:
+    /// A point put back onto the model. In a cell walked in steps ([`Self::step_cap`]:
+    /// those that reach the equator among them) a point of S³ is only scaled to unit
+    /// length, never turned to its antipode as [`Geometry::project_point`] turns it into
+    /// the hemisphere `w ≥ 0`:
     /// there the 3-sphere's points past the equator are other points than their antipodes,
     /// and where a point and its antipode are one (projective space, on its equator face)
     /// the tangent would have to turn with it, so a turn of the point alone sent the ray

@@ -172,8 +172,8 @@ fn the_tail_stands_for_the_far_images() {
         let fog = 3.0 * space.scale();
         let x = point(g, 0.3 * space.scale(), 1.0, 0.1 * space.length());
         let short = 2.0 * space.scale();
-        let (n, exact, tail) = product_fluence(&space, lamp, x, fog, short);
-        let (far_n, far_exact, far_tail) = product_fluence(&space, lamp, x, fog, 4.0 * short);
+        let (n, exact, tail, _) = product_fluence(&space, lamp, x, fog, short);
+        let (far_n, far_exact, far_tail, _) = product_fluence(&space, lamp, x, fog, 4.0 * short);
         assert!(far_n > n, "{id}: {far_n} paths against {n}");
         let reference = far_exact + far_tail;
         let with = (exact + tail - reference).abs();

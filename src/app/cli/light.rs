@@ -4,28 +4,7 @@
 use super::*;
 use bevy_curved_spaces::scene::Shading;
 use bevy_curved_spaces::scene::light_images::{fluence, fluence_within};
-use glam::DVec4;
 use serde_json::json;
-
-/// The model point of the chart point `x` (option `what`), which must lie in the cell of
-/// `name`: `to_model` reads the chart, `outside_by` says how far outside the cell a point
-/// is (NaN, a point the model cannot hold, counts as outside).
-fn point_in_cell(
-    x: DVec3,
-    what: &str,
-    name: &str,
-    to_model: impl Fn(DVec3) -> Result<DVec4, String>,
-    outside_by: impl Fn(DVec4) -> f64,
-) -> Result<DVec4, String> {
-    let p = to_model(x).map_err(|e| format!("{what}: {e}"))?;
-    if !(outside_by(p) <= 1e-12) {
-        return Err(format!(
-            "{what} {:?} is outside the cell of {name}",
-            x.to_array()
-        ));
-    }
-    Ok(p)
-}
 
 /// The stated bound the default reach aims for, as a fraction of the total.
 const DEFAULT_BOUND_FRACTION: f64 = 0.01;
@@ -165,7 +144,7 @@ fn light_product(
     space: &bevy_curved_spaces::space::product::ProductSpace,
 ) -> Result<(), String> {
     use bevy_curved_spaces::scene::Lighting;
-    use bevy_curved_spaces::trace::product::lighting::{lamp_images, product_fluence, reach};
+    use bevy_curved_spaces::trace::product::lighting::{product_fluence, reach};
     if args.radius.is_some() {
         return Err(
             "a product space's lamp is a point: its light's floor is the falloff at distance 1, \
@@ -203,8 +182,7 @@ fn light_product(
         ));
     }
     let sum = |r: f64| {
-        let (_, covered) = lamp_images(space, lamp, r);
-        let (paths, exact, tail) = product_fluence(space, lamp, at, fog, r);
+        let (paths, exact, tail, covered) = product_fluence(space, lamp, at, fog, r);
         (covered, paths, exact, tail)
     };
     let (mut covered, mut paths, mut exact, mut tail) = sum(wanted);

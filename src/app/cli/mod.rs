@@ -686,6 +686,26 @@ fn product(arg: &str) -> Result<Option<bevy_curved_spaces::space::product::Produ
     }
 }
 
+/// The model point of the chart point `x` (option `what`), which must lie in the cell of
+/// `name`: `to_model` reads the chart, `outside_by` says how far outside the cell a point
+/// is (NaN, a point the model cannot hold, counts as outside).
+pub(super) fn point_in_cell(
+    x: DVec3,
+    what: &str,
+    name: &str,
+    to_model: impl Fn(DVec3) -> Result<glam::DVec4, String>,
+    outside_by: impl Fn(glam::DVec4) -> f64,
+) -> Result<glam::DVec4, String> {
+    let p = to_model(x).map_err(|e| format!("{what}: {e}"))?;
+    if !(outside_by(p) <= 1e-12) {
+        return Err(format!(
+            "{what} {:?} is outside the cell of {name}",
+            x.to_array()
+        ));
+    }
+    Ok(p)
+}
+
 /// `render`'s picture size when none is given.
 const DEFAULT_SIZE: &str = "640x360";
 /// `render`'s output file when none is given (also where `walk` renders without a display).

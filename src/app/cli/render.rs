@@ -172,14 +172,13 @@ fn render_product_command(args: &RenderArgs, chosen: ProductChoice) -> Result<()
     // --from` takes them.
     if let (Some(eye), Some(target)) = (args.eye, args.look_at) {
         use bevy_curved_spaces::space::product::chart_point;
-        let at = chart_point(space.base(), eye)?;
-        if !(space.outside_by(at) <= 1e-12) {
-            return Err(format!(
-                "camera position {:?} is outside the cell of {}",
-                eye.to_array(),
-                space.name()
-            ));
-        }
+        let at = super::point_in_cell(
+            eye,
+            "camera position",
+            space.name(),
+            |x| chart_point(space.base(), x),
+            |p| space.outside_by(p),
+        )?;
         let towards = chart_point(space.base(), target)?;
         camera = bevy_curved_spaces::trace::product::file::camera_between(
             &space,
@@ -364,17 +363,13 @@ fn camera(args: &RenderArgs, chosen: &Chosen) -> Result<TraceCamera, String> {
                 .unwrap_or_else(|| TraceCamera::default_for(space).frame),
         });
     };
-    let probe = space
-        .geometry()
-        .from_chart(eye)
-        .map_err(|e| e.to_string())?;
-    if !(space.outside_by(probe) <= 1e-12) {
-        return Err(format!(
-            "camera position {:?} is outside the cell of {}",
-            eye.to_array(),
-            space.name()
-        ));
-    }
+    super::point_in_cell(
+        eye,
+        "camera position",
+        space.name(),
+        |x| space.geometry().from_chart(x).map_err(|e| e.to_string()),
+        |p| space.outside_by(p),
+    )?;
     TraceCamera::looking_at(space.geometry(), eye, target, fov).map_err(|e| e.to_string())
 }
 

@@ -192,12 +192,7 @@ impl<V: Vector4> ProductWalker<V> {
     ) -> Option<ProductExit<V::Real>> {
         let zero = V::Real::ZERO;
         let (p, v) = (ray.point, ray.tangent);
-        let vb = V::new(v.component(0), v.component(1), zero, v.w());
-        let lambda = self.speed_squared(p, vb).max(zero).sqrt();
-        let mu = v.component(2);
-        if !(lambda.is_finite() && mu.is_finite()) || lambda == zero && mu == zero {
-            return None;
-        }
+        let (lambda, mu) = self.speeds(ray)?;
         let mut best: Option<ProductExit<V::Real>> = None;
         let mut consider = |e: ProductExit<V::Real>| {
             if best.is_none_or(|b| e.distance < b.distance) {
@@ -377,15 +372,16 @@ impl<V: Vector4> ProductWalker<V> {
         CellWalk::trace(self, start, limit)
     }
 
-    /// Whether the ray has no direction to walk: no finite speed along the surface or the
-    /// circle, or none at all.
-    fn degenerate(&self, ray: &Ray<V>) -> bool {
+    /// The ray's speeds `(λ, μ)` along the surface and along the circle; `None` for a ray
+    /// with no direction to walk (a speed not finite, or both zero).
+    fn speeds(&self, ray: &Ray<V>) -> Option<(V::Real, V::Real)> {
         let zero = V::Real::ZERO;
         let v = ray.tangent;
         let vb = V::new(v.component(0), v.component(1), zero, v.w());
         let lambda = self.speed_squared(ray.point, vb).max(zero).sqrt();
         let mu = v.component(2);
-        !(lambda.is_finite() && mu.is_finite()) || lambda == zero && mu == zero
+        let degenerate = !(lambda.is_finite() && mu.is_finite()) || lambda == zero && mu == zero;
+        (!degenerate).then_some((lambda, mu))
     }
 }
 
@@ -403,7 +399,7 @@ impl<V: Vector4> CellWalk<V> for ProductWalker<V> {
             self.step_cap && !self.covectors.is_empty() && steps < MAX_STEPS_WITHOUT_CROSSING;
         match self.exit_stepping(ray, skip, stepping) {
             Some(exit) => NextExit::Exit(exit),
-            None if self.degenerate(ray) => NextExit::Degenerate,
+            None if self.speeds(ray).is_none() => NextExit::Degenerate,
             None => NextExit::NoFaceAhead,
         }
     }

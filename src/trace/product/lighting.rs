@@ -315,7 +315,9 @@ fn shadowed(g: Geometry, occluded: &mut Occluded<'_>, x: DVec4, path: LampPath) 
 
 /// The fluence at `x` from a unit lamp at `lamp`, summed over every path to its images
 /// within `reach` with the fog's absorption (no Lambert factor), and the tail's mean: the
-/// check the tests and `curved-spaces light` make of the sums.
+/// check the tests and `curved-spaces light` make of the sums. Returns the paths summed,
+/// their sum, the tail, and the reach the images gathered cover (shorter than `reach`
+/// where more than [`MAX_LAMP_IMAGES`] lie within it).
 #[must_use]
 pub fn product_fluence(
     space: &ProductSpace,
@@ -323,7 +325,7 @@ pub fn product_fluence(
     x: DVec4,
     fog: f64,
     reach: f64,
-) -> (usize, f64, f64) {
+) -> (usize, f64, f64, f64) {
     let g = space.base();
     let (images, covered) = lamp_images(space, lamp, reach);
     let mut exact = 0.0;
@@ -338,5 +340,6 @@ pub fn product_fluence(
         paths,
         exact,
         product_tail_fluence(covered, fog, space.volume()),
+        covered,
     )
 }
