@@ -92,6 +92,43 @@ fn every_seed_space_walks_at_the_conditioning_limit() {
     }
 }
 
+/// The spherical cells walked in steps of π/4 (their chords pass π/2, or they reach the
+/// equator) against the double-double walk of the same cell: the steps and the points past
+/// the equator, which are scaled back to the sphere but never turned to their antipodes,
+/// keep the walk at the conditioning limit as the seed spaces are.
+#[test]
+fn the_stepped_spherical_cells_walk_at_the_conditioning_limit() {
+    for id in [
+        "lens-7-2",
+        "prism-3",
+        "mirrored-tetrahedron",
+        "projective-space",
+        "lens-7-1",
+    ] {
+        let space = crate::common::library_space(id);
+        assert!(space.walks_in_steps(), "{id}");
+        let rays = sample_rays(&space, 16, 0x57e);
+        for (name, rows) in [
+            ("f64", collect::<DVec4>(&space, &rays)),
+            ("f32", collect::<Vec4>(&space, &rays)),
+        ] {
+            let s = summarize(&rows).unwrap_or_else(|| panic!("{id}: no crossing counts"));
+            assert!(
+                s.median <= 2.0 && s.worst <= 5.0,
+                "{id} {name}: error / conditioning median {:.2}, worst {:.2} over {} crossings",
+                s.median,
+                s.worst,
+                s.counted
+            );
+            assert!(s.counted >= 40, "{id} {name}: only {} crossings", s.counted);
+            eprintln!(
+                "{id} {name}: error / conditioning median {:.2}, worst {:.2} ({} crossings)",
+                s.median, s.worst, s.counted
+            );
+        }
+    }
+}
+
 fn collect<V: Vector4>(
     space: &Space,
     rays: &[Ray<DVec4>],
