@@ -66,7 +66,7 @@ fn spawn_camera(mut commands: Commands) {
 
 fn spawn_rocks(mut commands: Commands, active: Res<ActiveSpace>) {
     let r = active.inradius;
-    let g = active.space.geometry();
+    let g = active.space.model_geometry();
     let cube = Arc::new(
         TracedModel::new(
             g,
@@ -120,7 +120,7 @@ fn fire(
     }
     let r = active.inradius;
     for player in &players {
-        let g = active.space.geometry();
+        let g = active.space.model_geometry();
         // Just ahead of the eye, flying forward (−back) at two inradii a second.
         let start = CurvedTransform::relative_to(
             g,

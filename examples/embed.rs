@@ -98,7 +98,7 @@ fn follow_player(
     let r = active.inradius as f32;
     let offset = Transform::from_xyz(0.25 * r, -0.15 * r, -0.6 * r);
     for (mut at, mut object) in &mut companions {
-        *at = CurvedTransform::relative_to(active.space.geometry(), player.0, &offset);
+        *at = CurvedTransform::relative_to(active.space.model_geometry(), player.0, &offset);
         let radius = 0.06 * active.inradius;
         if object.shape != (CurvedShape::Ball { radius }) {
             object.shape = CurvedShape::Ball { radius };

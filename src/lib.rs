@@ -106,7 +106,7 @@ pub mod bench;
 
 pub use plugin::CurvedSpacesPlugin;
 pub use plugin::components::{
-    ActiveProduct, ActiveSpace, BaseProductScene, BaseScene, CurvedSpaceCamera, CurvedSpaceEye,
+    ActiveSpace, BaseProductScene, BaseScene, CurvedSpaceCamera, CurvedSpaceEye,
     CurvedSpacesSystems, Quality, SceneObjects, TracerSettings, TracerStatus,
 };
 
@@ -115,7 +115,7 @@ pub mod prelude {
     pub use crate::geometry::{Geometry, GeometryError, ORIGIN, Ray, chart_ray};
     pub use crate::plugin::CurvedSpacesPlugin;
     pub use crate::plugin::components::{
-        ActiveProduct, ActiveSpace, BaseProductScene, BaseScene, CurvedSpaceCamera, CurvedSpaceEye,
+        ActiveSpace, BaseProductScene, BaseScene, CurvedSpaceCamera, CurvedSpaceEye,
         CurvedSpacesSystems, KeyBindings, PlayerFrame, PlayerSettings, Quality, SceneObjects,
         StereoSettings, TracerSettings, TracerStatus,
     };
@@ -130,7 +130,8 @@ pub mod prelude {
         Tube,
     };
     pub use crate::space::{
-        CellWalk, CellWalker, Holonomy, Limit, SEED_SPACES, Space, SpaceError, seed_space,
+        AnySpace, CellWalk, CellWalker, Family, Holonomy, Limit, SEED_SPACES, Space, SpaceError,
+        seed_space,
     };
     pub use crate::view::{StereoMode, TraceCamera};
 }

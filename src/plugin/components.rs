@@ -4,7 +4,8 @@
 //! one and not on each other.
 
 use crate::scene::{CurvedScene, Object, SceneParts, Shading};
-use crate::space::{Holonomy, Space, SpaceError, invariants, seed_space};
+use crate::space::product::ProductSpace;
+use crate::space::{AnySpace, Family, Holonomy, Space, SpaceError, seed_space};
 use crate::trace::BudgetChoice;
 use crate::view::stereo::{HUMAN_IPD_METRES, StereoMode, check_ipd, default_ipd};
 use crate::view::{Lens, TraceCamera};
@@ -118,32 +119,38 @@ impl Default for CurvedSpaceCamera {
     }
 }
 
-/// The space every curved-space camera shows. Replace it (or use [`ActiveSpace::seed`]) to
-/// switch spaces at run time: the players are put back at the space's start view.
+/// The space every curved-space camera shows, of whichever geometry family: a
+/// constant-curvature space (E³, S³, H³) or a product space (H²×R, S²×R). Replace it (or use
+/// [`ActiveSpace::seed`], [`ActiveSpace::named`]) to switch spaces at run time: the players
+/// are put back at the space's start view. The plugin's systems for each family run while it
+/// holds a space of that family ([`ActiveSpace::shows`]).
 #[derive(Resource, Clone, Debug)]
 pub struct ActiveSpace {
     /// The seed id or the file the space came from.
     pub id: String,
     /// The validated space.
-    pub space: Arc<Space>,
+    pub space: AnySpace,
     /// Its volume.
     pub volume: f64,
-    /// Its cell's inradius (the default fog and eye distance scale with it).
+    /// A length of the cell's size ([`AnySpace::scale`]: the cell's inradius; a product's
+    /// smaller of its polygon's inradius and half its circle): the default fog, the walking
+    /// speed and the eye distance scale with it.
     pub inradius: f64,
     /// `None` where the group was too large to enumerate.
     pub injectivity_radius: Option<f64>,
 }
 
 impl ActiveSpace {
-    /// A space with its read-outs computed.
+    /// A space of any family with its read-outs computed.
     #[must_use]
-    pub fn new(id: impl Into<String>, space: Space) -> Self {
+    pub fn new(id: impl Into<String>, space: impl Into<AnySpace>) -> Self {
+        let space = space.into();
         Self {
             id: id.into(),
-            volume: invariants::volume(&space),
-            inradius: invariants::inradius(&space),
-            injectivity_radius: invariants::injectivity_radius(&space),
-            space: Arc::new(space),
+            volume: space.volume(),
+            inradius: space.scale(),
+            injectivity_radius: space.injectivity_radius(),
+            space,
         }
     }
 
@@ -152,75 +159,36 @@ impl ActiveSpace {
         Ok(Self::new(id, seed_space(id)?))
     }
 
-    /// A space by name, as the command line takes it: a seed space, a library family member
-    /// (`lens-7-2`, `weeks`) or a path to a space file (`.gen` or JSON). Slow for spaces from
-    /// large groups (a census manifold takes a fraction of a second in a release build).
+    /// A space by name, as the command line takes it, of any family: a seed space, a library
+    /// family member (`lens-7-2`, `weeks`), a product space (`bitorus-circle`,
+    /// `surface-abABcdCD-circle-2`) or a path to a space file (`.gen` or JSON). Slow for spaces
+    /// from large groups (a census manifold takes a fraction of a second in a release build).
     pub fn named(id: &str) -> Result<Self, String> {
-        let space = crate::space::resolve_space(
-            id,
-            std::path::Path::new(""),
-            &crate::space::dirichlet::DirichletOptions::default(),
-        )?;
-        Ok(Self::new(id, space))
-    }
-}
-
-/// Surface group elements enumerated at most for a product space's injectivity radius.
-const PRODUCT_GROUP_LIMIT: usize = 200_000;
-
-/// The product space (H²×R or S²×R) every curved-space camera shows, in place of an
-/// [`ActiveSpace`]: the plugin holds exactly one of the two. Insert it (and remove the
-/// `ActiveSpace`) to switch to a product space at run time, or name one in
-/// [`crate::CurvedSpacesPlugin::space`] (`bitorus-circle`, `surface-abABcdCD-circle-2`).
-/// Players keep the fibre as up, walk horizontally, and wrap through the sides, the top and
-/// the bottom ([`crate::space::product::motion`]).
-#[derive(Resource, Clone, Debug)]
-pub struct ActiveProduct {
-    /// The library id the space came from.
-    pub id: String,
-    /// The validated space.
-    pub space: Arc<crate::space::product::ProductSpace>,
-    /// A length of the cell's size: the smaller of the base polygon's inradius and half the
-    /// circle (walking speeds and the eye distance scale with it).
-    pub inradius: f64,
-    /// Its volume (the surface's area by Gauss–Bonnet times the circle).
-    pub volume: f64,
-    /// `None` where the surface group was too large to enumerate.
-    pub injectivity_radius: Option<f64>,
-}
-
-impl ActiveProduct {
-    /// A product space with its read-outs.
-    #[must_use]
-    pub fn new(id: impl Into<String>, space: crate::space::product::ProductSpace) -> Self {
-        Self {
-            id: id.into(),
-            inradius: space.scale(),
-            volume: space.volume(),
-            injectivity_radius: space.injectivity_radius(PRODUCT_GROUP_LIMIT),
-            space: Arc::new(space),
-        }
+        Ok(Self::new(id, AnySpace::named(id)?))
     }
 
-    /// Where players start: the default camera of the space's default scene
-    /// ([`crate::trace::product::default_camera`]).
+    /// The space's family.
     #[must_use]
-    pub fn start_frame(&self) -> DMat4 {
-        let camera = crate::trace::product::default_camera(&self.space);
-        crate::space::product::motion::camera_frame(camera.point, camera.frame)
+    pub fn family(&self) -> Family {
+        self.space.family()
     }
 
-    /// A product space by its library id (`bitorus-circle`) or its word id
-    /// (`surface-abABcdCD-circle-2-turn-2`). `None` when `id` names no product space (a
-    /// flat word's product is an [`ActiveSpace`]); an error names what is wrong with it.
+    /// The constant-curvature space shown, if the space is one.
     #[must_use]
-    pub fn named(id: &str) -> Option<Result<Self, String>> {
-        use crate::space::product::{ProductOrFlat, product_space};
-        match product_space(id)? {
-            Ok(ProductOrFlat::Product(p)) => Some(Ok(Self::new(id, *p))),
-            Ok(ProductOrFlat::Flat(_)) => None,
-            Err(e) => Some(Err(e)),
-        }
+    pub fn constant(&self) -> Option<&Arc<Space>> {
+        self.space.constant()
+    }
+
+    /// The product space shown, if the space is one.
+    #[must_use]
+    pub fn product(&self) -> Option<&Arc<ProductSpace>> {
+        self.space.product()
+    }
+
+    /// A run condition: whether the active space is of `family` (the plugin's systems of a
+    /// family run under it).
+    pub fn shows(family: Family) -> impl Fn(Option<Res<ActiveSpace>>) -> bool + Clone {
+        move |active: Option<Res<ActiveSpace>>| active.is_some_and(|a| a.family() == family)
     }
 }
 
@@ -252,13 +220,14 @@ impl BaseProductScene {
         }
     }
 
-    /// Where players start in `active`: the scene's start view, else the space's default.
+    /// Where players start in `space`: the scene's start view, else the default camera of
+    /// the space's default scene ([`crate::trace::product::default_camera`]).
     #[must_use]
-    pub fn start_frame(base: Option<&Self>, active: &ActiveProduct) -> DMat4 {
-        match base.and_then(|b| b.start) {
-            Some(c) => crate::space::product::motion::camera_frame(c.point, c.frame),
-            None => active.start_frame(),
-        }
+    pub fn start_frame(base: Option<&Self>, space: &ProductSpace) -> DMat4 {
+        let camera = base
+            .and_then(|b| b.start)
+            .unwrap_or_else(|| crate::trace::product::default_camera(space));
+        crate::space::product::motion::camera_frame(camera.point, camera.frame)
     }
 }
 
@@ -373,12 +342,12 @@ impl BaseScene {
         self.scene.as_deref().filter(|_| active.id == self.space_id)
     }
 
-    /// Where players start in the active space.
+    /// Where players start in the active constant-curvature space `space`.
     #[must_use]
-    pub fn start_frame(&self, active: &ActiveSpace) -> DMat4 {
+    pub fn start_frame(&self, active: &ActiveSpace, space: &Space) -> DMat4 {
         self.start
             .filter(|_| active.id == self.space_id)
-            .unwrap_or_else(|| TraceCamera::default_for(&active.space).frame)
+            .unwrap_or_else(|| TraceCamera::default_for(space).frame)
     }
 }
 

@@ -91,15 +91,15 @@ impl ProductFlightReplay {
 /// wins over the player's own motion.
 pub fn replay_product_flight(
     time: Res<Time>,
-    active: Res<crate::plugin::components::ActiveProduct>,
+    active: Res<ActiveSpace>,
     replay: Option<ResMut<ProductFlightReplay>>,
     mut cameras: Query<&mut PlayerFrame, With<CurvedSpaceCamera>>,
 ) {
-    let Some(mut replay) = replay else {
+    let (Some(mut replay), Some(space)) = (replay, active.product()) else {
         return;
     };
     let t = replay.flight_time(time.elapsed_secs_f64());
-    let frame = replay.flight.frame(&active.space, t);
+    let frame = replay.flight.frame(space, t);
     for mut f in &mut cameras {
         f.0 = frame;
     }
@@ -114,11 +114,11 @@ pub fn replay_flight(
     replay: Option<ResMut<FlightReplay>>,
     mut cameras: Query<(&mut PlayerFrame, Option<&mut Holonomy>), With<CurvedSpaceCamera>>,
 ) {
-    let Some(mut replay) = replay else {
+    let (Some(mut replay), Some(space)) = (replay, active.constant()) else {
         return;
     };
     let t = replay.flight_time(time.elapsed_secs_f64());
-    let (frame, crossed) = replay.flight.frame_and_crossings(&active.space, t);
+    let (frame, crossed) = replay.flight.frame_and_crossings(space, t);
     for (mut f, holonomy) in &mut cameras {
         f.0 = frame;
         // The holonomy of the way from the first key, so the panel's crossings are the
@@ -126,7 +126,7 @@ pub fn replay_flight(
         if let Some(mut h) = holonomy {
             let mut way = Holonomy::default();
             for &face in &crossed {
-                way.record(face, active.space.faces()[face].pairing);
+                way.record(face, space.faces()[face].pairing);
             }
             *h = way;
         }
@@ -251,7 +251,7 @@ pub fn record_flight(
     recorder: Option<ResMut<FlightRecorder>>,
     cameras: Query<(&PlayerFrame, &Holonomy, &CurvedSpaceCamera)>,
 ) {
-    let Some(mut recorder) = recorder else {
+    let (Some(mut recorder), Some(space)) = (recorder, active.constant()) else {
         return;
     };
     let Some((frame, holonomy, camera)) = cameras.iter().next() else {
@@ -259,7 +259,7 @@ pub fn record_flight(
     };
     let now = time.elapsed_secs_f64();
     recorder.record(
-        &active.space,
+        space,
         &active.id,
         now,
         frame.0,

@@ -6,8 +6,7 @@ use crate::plugin::CurvedSpacesPlugin;
 use crate::plugin::components::PlayerFrame;
 use crate::plugin::components::StereoSettings;
 use crate::plugin::components::{
-    ActiveProduct, ActiveSpace, BaseProductScene, BaseScene, CurvedSpaceCamera, SceneObjects,
-    TracerSettings,
+    ActiveSpace, BaseProductScene, BaseScene, CurvedSpaceCamera, SceneObjects, TracerSettings,
 };
 use crate::plugin::render::FramesTraced;
 use crate::plugin::screenshot::image_to_rgb;
@@ -122,6 +121,10 @@ pub enum OffscreenError {
     /// The tracer's shader did not build for this scene (the compiler's message attached).
     #[error("the GPU tracer's shader did not build: {0}")]
     Shader(String),
+    /// A request of one family's renderer was given a space of another (the space's id and
+    /// the renderer to use attached).
+    #[error("{0} is not a space this renderer draws: use {1}")]
+    WrongFamily(String, &'static str),
     /// The captured picture has an unexpected format (described in the message).
     #[error("the captured picture has an unexpected format: {0}")]
     Format(String),
@@ -213,7 +216,12 @@ impl OffscreenRenderer {
             lighting: request.lighting,
         };
         // A scene the GPU cannot take would only time out below: say why now.
-        let space = &request.space.space;
+        let Some(space) = request.space.constant() else {
+            return Err(OffscreenError::WrongFamily(
+                request.space.id.clone(),
+                "OffscreenRenderer::render_product",
+            ));
+        };
         let (scene, _) = crate::plugin::render::upload::build_scene(
             space,
             &settings,
@@ -230,11 +238,10 @@ impl OffscreenRenderer {
         // The same space again (a flight's frames) is not inserted anew: that would count as
         // a change of space.
         let same_space = world.get_resource::<ActiveSpace>().is_some_and(|a| {
-            a.id == request.space.id && Arc::ptr_eq(&a.space, &request.space.space)
+            a.id == request.space.id && a.constant().is_some_and(|s| Arc::ptr_eq(s, space))
         });
         if !same_space {
             world.insert_resource(request.space.clone());
-            world.remove_resource::<ActiveProduct>();
         }
         world.insert_resource(settings);
         world.insert_resource(request.base.clone());
@@ -275,7 +282,7 @@ impl OffscreenRenderer {
 
     /// Renders a product space (H²×R, S²×R) and its scene from a product camera with the
     /// GPU tracer's `PRODUCT` variant, through the plugin's own product systems (the space
-    /// becomes the [`ActiveProduct`], the scene its [`BaseProductScene`]). Traced at full
+    /// becomes the [`ActiveSpace`], the scene its [`BaseProductScene`]). Traced at full
     /// resolution; the picture matches the CPU reference
     /// ([`crate::trace::product::render_product`]) but for f32 rounding at silhouettes.
     pub fn render_product(
@@ -317,11 +324,11 @@ impl OffscreenRenderer {
             .map_err(|e| OffscreenError::Scene(e.to_string()))?;
         let world = self.app.world_mut();
         let same_space = world
-            .get_resource::<ActiveProduct>()
-            .is_some_and(|a| a.space.name() == space.name());
+            .get_resource::<ActiveSpace>()
+            .and_then(|a| a.product())
+            .is_some_and(|a| a.name() == space.name());
         if !same_space {
-            world.insert_resource(ActiveProduct::new(space.name(), space.clone()));
-            world.remove_resource::<ActiveSpace>();
+            world.insert_resource(ActiveSpace::new(space.name(), space.clone()));
         }
         world.insert_resource(BaseProductScene::new(scene.clone()));
         world.insert_resource(stereo);

@@ -1,34 +1,33 @@
-//! Product spaces (H²×R, S²×R) in the plugin: while an [`ActiveProduct`] is the space
-//! shown, these systems take the place of the constant-curvature ones. Players move with
+//! Product spaces (H²×R, S²×R) in the plugin: while the [`ActiveSpace`] is a product
+//! space, these systems take the place of the constant-curvature ones. Players move with
 //! [`step_product_frame`] (the fibre up, unless [`PlayerSettings::fibre_up`] is off), wrap
 //! through the sides, the top and the bottom with [`wrap_product_frame`] (recorded in each
 //! camera's [`Holonomy`]: the pairings' linear parts), and the scene is packed for the
 //! tracer's `PRODUCT` variant when the space or the settings change.
 
 use crate::plugin::components::{
-    AUTO_BUDGET_SAMPLES, ActiveProduct, ActiveSpace, BaseProductScene, BaseScene, PlayerFrame,
-    PlayerMotion, PlayerSettings, TracerSettings, TracerStatus,
+    AUTO_BUDGET_SAMPLES, ActiveSpace, BaseProductScene, BaseScene, PlayerFrame, PlayerMotion,
+    PlayerSettings, TracerSettings, TracerStatus,
 };
 use crate::plugin::render::PreparedScene;
 use crate::plugin::render::gpu::{GpuScene, MAX_GPU_BUDGET};
-use crate::space::Holonomy;
+use crate::space::product::ProductSpace;
 use crate::space::product::motion::{ProductMotion, step_product_frame, wrap_product_frame};
+use crate::space::{AnySpace, Holonomy};
 use crate::trace::product::{ProductScene, default_scene, product_auto_budget};
 use bevy::prelude::*;
 use std::sync::Arc;
 
-/// Whether a product space is shown (the run condition of this module's systems).
-pub(crate) fn product_shown(product: Option<Res<ActiveProduct>>) -> bool {
-    product.is_some()
-}
-
 /// Applies each player's motion to its frame in the product space.
 pub(crate) fn move_product_players(
-    active: Res<ActiveProduct>,
+    active: Res<ActiveSpace>,
     settings: Res<PlayerSettings>,
     mut players: Query<(&mut PlayerFrame, &PlayerMotion)>,
 ) {
-    let g = active.space.base();
+    let Some(space) = active.product() else {
+        return;
+    };
+    let g = space.base();
     for (mut frame, motion) in &mut players {
         if *motion != PlayerMotion::default() {
             frame.0 = step_product_frame(
@@ -46,12 +45,15 @@ pub(crate) fn move_product_players(
 
 /// Wraps players that left the product cell and puts every frame back on the model.
 pub(crate) fn wrap_product_players(
-    active: Res<ActiveProduct>,
+    active: Res<ActiveSpace>,
     settings: Res<PlayerSettings>,
     mut players: Query<(&mut PlayerFrame, &mut Holonomy)>,
 ) {
+    let Some(space) = active.product() else {
+        return;
+    };
     for (mut frame, mut holonomy) in &mut players {
-        let (wrapped, crossed) = wrap_product_frame(&active.space, frame.0, settings.wrap_margin);
+        let (wrapped, crossed) = wrap_product_frame(space, frame.0, settings.wrap_margin);
         for c in crossed {
             holonomy.record(c.face, c.pairing);
         }
@@ -63,7 +65,6 @@ pub(crate) fn wrap_product_players(
 /// kind, either way); not on the first frame, which keeps frames set before it.
 pub(crate) fn reset_players_on_switch(
     active: Option<Res<ActiveSpace>>,
-    product: Option<Res<ActiveProduct>>,
     base: Res<BaseScene>,
     product_base: Option<Res<BaseProductScene>>,
     mut started: Local<bool>,
@@ -73,10 +74,12 @@ pub(crate) fn reset_players_on_switch(
         *started = true;
         return;
     }
-    let start = match (&product, &active) {
-        (Some(p), _) if p.is_changed() => BaseProductScene::start_frame(product_base.as_deref(), p),
-        (None, Some(a)) if a.is_changed() => base.start_frame(a),
-        _ => return,
+    let Some(active) = active.filter(|a| a.is_changed()) else {
+        return;
+    };
+    let start = match &active.space {
+        AnySpace::Product(p) => BaseProductScene::start_frame(product_base.as_deref(), p),
+        AnySpace::Constant(s) => base.start_frame(&active, s),
     };
     for (mut frame, mut holonomy) in &mut players {
         frame.0 = start;
@@ -111,11 +114,11 @@ pub(crate) struct BudgetFor {
 /// the fog set in the settings.
 #[must_use]
 pub fn product_scene(
-    active: &ActiveProduct,
+    space: &ProductSpace,
     settings: &TracerSettings,
     base: Option<&BaseProductScene>,
 ) -> ProductScene {
-    let mut scene = base.map_or_else(|| default_scene(&active.space), |b| b.scene.clone());
+    let mut scene = base.map_or_else(|| default_scene(space), |b| b.scene.clone());
     if let Some(fog) = settings.fog_distance.filter(|f| f.is_finite() && *f > 0.0) {
         scene.fog_distance = fog;
     }
@@ -134,7 +137,7 @@ pub fn product_scene(
         scene.lighting = lighting;
     } else {
         let light = scene.light;
-        if let Err(e) = scene.set_lighting(&active.space, light, lighting) {
+        if let Err(e) = scene.set_lighting(space, light, lighting) {
             bevy::log::warn!("lighting: {e}");
         }
     }
@@ -146,7 +149,7 @@ pub fn product_scene(
 // A Bevy system takes its resources as arguments.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn upload_product_scene(
-    active: Res<ActiveProduct>,
+    active: Res<ActiveSpace>,
     settings: Res<TracerSettings>,
     base: Option<Res<BaseProductScene>>,
     entities: Res<crate::plugin::objects::product::ProductEntityObjects>,
@@ -156,8 +159,11 @@ pub(crate) fn upload_product_scene(
     mut budget_for: Local<Option<BudgetFor>>,
     mut commands: Commands,
 ) {
+    let Some(space) = active.product() else {
+        return;
+    };
     let key = ProductKey {
-        space: Arc::as_ptr(&active.space) as usize,
+        space: Arc::as_ptr(space) as usize,
         fog: settings.fog_distance,
         walls: settings.walls,
         colour_by: settings.colour_by,
@@ -171,7 +177,7 @@ pub(crate) fn upload_product_scene(
     if prepared.is_some() && !active.is_changed() && !base_changed && last.as_ref() == Some(&now) {
         return;
     }
-    let mut scene = product_scene(&active, &settings, base.as_deref());
+    let mut scene = product_scene(space, &settings, base.as_deref());
     // The budget is chosen for the scene without the entities, and kept while only they
     // change.
     let fresh = active.is_changed() || base_changed;
@@ -179,9 +185,9 @@ pub(crate) fn upload_product_scene(
         (Some(b), _) => (b.clamp(1, MAX_GPU_BUDGET), None),
         (None, Some(b)) if !fresh && b.key == key => (b.budget, b.choice),
         (None, _) => {
-            let eye = BaseProductScene::start_frame(base.as_deref(), &active).w_axis;
+            let eye = BaseProductScene::start_frame(base.as_deref(), space).w_axis;
             let choice = product_auto_budget(
-                &active.space,
+                space,
                 &scene,
                 eye,
                 settings.quality.miss_fraction(),
@@ -198,7 +204,7 @@ pub(crate) fn upload_product_scene(
     };
     scene.objects.extend(entities.objects.iter().copied());
     *last = Some(now);
-    match GpuScene::product(&active.space, &scene, budget) {
+    match GpuScene::product(space, &scene, budget) {
         Ok(gpu) => {
             commands.insert_resource(PreparedScene(Arc::new(gpu)));
             status.error = None;

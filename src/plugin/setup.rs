@@ -15,17 +15,16 @@
 //! ```
 
 use crate::plugin::components::{
-    ActiveProduct, ActiveSpace, BaseProductScene, BaseScene, CurvedSpaceCamera,
-    CurvedSpacesSystems, KeyBindings, MouseLook, PlayerFrame, PlayerSettings, Quality,
-    SceneObjects, StereoSettings, TracerSettings, TracerStatus,
+    ActiveSpace, BaseProductScene, BaseScene, CurvedSpaceCamera, CurvedSpacesSystems, KeyBindings,
+    MouseLook, PlayerFrame, PlayerSettings, Quality, SceneObjects, StereoSettings, TracerSettings,
+    TracerStatus,
 };
 use crate::plugin::frame_rate::{BudgetShare, FrameRateTarget, hold_frame_rate};
 use crate::plugin::player;
-use crate::plugin::product::product_shown;
 use crate::plugin::render::TracerRenderPlugin;
 use crate::plugin::render::upload::upload_scene;
 use crate::scene::SceneParts;
-use crate::space::DEFAULT_SPACE;
+use crate::space::{AnySpace, DEFAULT_SPACE, Family};
 use bevy::core_pipeline::tonemapping::{DebandDither, Tonemapping};
 use bevy::prelude::*;
 
@@ -87,24 +86,12 @@ impl Default for CurvedSpacesPlugin {
 impl Plugin for CurvedSpacesPlugin {
     fn build(&self, app: &mut App) {
         // A space inserted before the plugin (e.g. from a file) wins over `self.space`.
-        if !app.world().contains_resource::<ActiveSpace>()
-            && !app.world().contains_resource::<ActiveProduct>()
-        {
-            let fallback = |e: String| {
+        if !app.world().contains_resource::<ActiveSpace>() {
+            let active = ActiveSpace::named(&self.space).unwrap_or_else(|e| {
                 error!("{e}; starting in {DEFAULT_SPACE} instead");
                 ActiveSpace::seed(DEFAULT_SPACE).expect("the default seed space is valid")
-            };
-            match ActiveProduct::named(&self.space) {
-                Some(Ok(product)) => {
-                    app.insert_resource(product);
-                }
-                Some(Err(e)) => {
-                    app.insert_resource(fallback(e));
-                }
-                None => {
-                    app.insert_resource(ActiveSpace::named(&self.space).unwrap_or_else(fallback));
-                }
-            }
+            });
+            app.insert_resource(active);
         }
         app.insert_resource(TracerSettings {
             fog_distance: self.fog_distance,
@@ -155,15 +142,17 @@ impl Plugin for CurvedSpacesPlugin {
                 (
                     crate::plugin::product::reset_players_on_switch,
                     (
-                        player::move_players.run_if(constant_curvature),
-                        crate::plugin::product::move_product_players.run_if(product_shown),
+                        player::move_players.run_if(ActiveSpace::shows(Family::Constant)),
+                        crate::plugin::product::move_product_players
+                            .run_if(ActiveSpace::shows(Family::Product)),
                     ),
                 )
                     .chain()
                     .in_set(CurvedSpacesSystems::Move),
                 (
-                    player::wrap_players.run_if(constant_curvature),
-                    crate::plugin::product::wrap_product_players.run_if(product_shown),
+                    player::wrap_players.run_if(ActiveSpace::shows(Family::Constant)),
+                    crate::plugin::product::wrap_product_players
+                        .run_if(ActiveSpace::shows(Family::Product)),
                 )
                     .in_set(CurvedSpacesSystems::Wrap),
                 #[cfg(feature = "scene-files")]
@@ -172,21 +161,21 @@ impl Plugin for CurvedSpacesPlugin {
                     crate::plugin::flight::record_flight,
                 )
                     .chain()
-                    .run_if(constant_curvature)
+                    .run_if(ActiveSpace::shows(Family::Constant))
                     .after(CurvedSpacesSystems::Wrap)
                     .before(CurvedSpacesSystems::Upload),
                 #[cfg(feature = "scene-files")]
                 crate::plugin::flight::replay_product_flight
-                    .run_if(product_shown)
+                    .run_if(ActiveSpace::shows(Family::Product))
                     .after(CurvedSpacesSystems::Wrap)
                     .before(CurvedSpacesSystems::Upload),
                 (
                     upload_scene
                         .after(crate::plugin::objects::collect_objects)
-                        .run_if(constant_curvature),
+                        .run_if(ActiveSpace::shows(Family::Constant)),
                     crate::plugin::product::upload_product_scene
                         .after(crate::plugin::objects::product::collect_product_objects)
-                        .run_if(product_shown),
+                        .run_if(ActiveSpace::shows(Family::Product)),
                     check_stereo_settings,
                 )
                     .in_set(CurvedSpacesSystems::Upload),
@@ -227,18 +216,17 @@ impl Plugin for CurvedSpacesPlugin {
 fn start_camera(
     add: On<Add, CurvedSpaceCamera>,
     active: Option<Res<ActiveSpace>>,
-    product: Option<Res<ActiveProduct>>,
     base: Res<BaseScene>,
     product_base: Option<Res<BaseProductScene>>,
     mut commands: Commands,
     frames: Query<&PlayerFrame>,
 ) {
     let mut entity = commands.entity(add.entity);
-    let start = match (&product, &active) {
-        (Some(p), _) => Some(BaseProductScene::start_frame(product_base.as_deref(), p)),
-        (None, Some(a)) => Some(base.start_frame(a)),
-        (None, None) => None,
-    };
+    let start = active.as_ref().map(|a| match &a.space {
+        AnySpace::Product(p) => BaseProductScene::start_frame(product_base.as_deref(), p),
+        AnySpace::Constant(s) => base.start_frame(a, s),
+    });
+    let product = active.as_ref().and_then(|a| a.product());
     if let Some(start) = start
         && frames
             .get(add.entity)
@@ -262,23 +250,14 @@ fn start_camera(
     entity.insert((Msaa::Off, Tonemapping::None, DebandDither::Disabled));
 }
 
-/// Whether a constant-curvature space is shown (the run condition of the systems that
-/// walk an [`ActiveSpace`]).
-pub(crate) fn constant_curvature(active: Option<Res<ActiveSpace>>) -> bool {
-    active.is_some()
-}
-
 /// Reports an eye distance that cannot be used (the tracer falls back to the default).
 fn check_stereo_settings(
     stereo: Res<StereoSettings>,
     active: Option<Res<ActiveSpace>>,
-    product: Option<Res<ActiveProduct>>,
     mut status: ResMut<TracerStatus>,
 ) {
-    let (inradius, changed) = match (&product, &active) {
-        (Some(p), _) => (p.inradius, p.is_changed()),
-        (None, Some(a)) => (a.inradius, a.is_changed()),
-        (None, None) => return,
+    let Some((inradius, changed)) = active.map(|a| (a.inradius, a.is_changed())) else {
+        return;
     };
     if !stereo.is_changed() && !changed {
         return;

@@ -323,11 +323,14 @@ fn suggest_bindings(
 
 /// A new space starts the head at its default view.
 fn reset_head_on_switch(active: Res<ActiveSpace>, head: Option<ResMut<XrHead>>) {
+    let Some(space) = active.constant() else {
+        return;
+    };
     if let Some(mut head) = head
         && active.is_changed()
         && !active.is_added()
     {
-        head.0.frame = TraceCamera::default_for(&active.space).frame;
+        head.0.frame = TraceCamera::default_for(space).frame;
         head.0.holonomy = default();
     }
 }
@@ -363,6 +366,9 @@ fn thumbstick_locomotion(
     time: Res<Time>,
     head: Option<ResMut<XrHead>>,
 ) {
+    let Some(space) = active.constant() else {
+        return;
+    };
     let Some(mut head) = head else {
         return;
     };
@@ -387,7 +393,7 @@ fn thumbstick_locomotion(
         snap.0 = snapped;
     }
     if step != DVec3::ZERO || yaw != 0.0 {
-        head.0.locomote(&active.space, step, yaw);
+        head.0.locomote(space, step, yaw);
     }
 }
 
@@ -469,12 +475,14 @@ fn drive_eyes(
     mut commands: Commands,
     mut eyes: Query<(&XrCamera, &mut PlayerFrame, &mut CurvedSpaceEye)>,
 ) {
+    let Some(space) = active.constant() else {
+        return;
+    };
     let [left, right] = views.as_slice() else {
         return;
     };
     let poses = [room_pose(&left.pose), room_pose(&right.pose)];
     let head_pose = RoomPose::between(&poses[0], &poses[1]);
-    let space = &active.space;
     let scale = stereo.units_per_metre(active.inradius);
     // The head is tracked in place; the first frame creates it at the space's start view.
     let mut created = None;

@@ -18,28 +18,24 @@ pub fn is_gen_path(path: &Path) -> bool {
         .is_some_and(|e| e.eq_ignore_ascii_case("gen"))
 }
 
-/// A seed space by id, or a space file by path (relative to `base`): a `.gen` generator file
-/// is made into its group's Dirichlet domain about the basepoint of `options`, anything else
-/// is read as a JSON space file.
-pub fn resolve_space(id: &str, base: &Path, options: &DirichletOptions) -> Result<Space, String> {
+/// A seed space or a library family's member by id, else a space file by path (relative to
+/// `base`): a `.gen` generator file is made into its group's Dirichlet domain about the
+/// basepoint of `options`, anything else is read as a JSON space file. `None` for an id
+/// that names none of these but may name a product space (checked between the library and
+/// the files).
+pub(crate) fn seed_or_library(id: &str) -> Option<Result<Space, String>> {
     if SEED_SPACES.iter().any(|s| s.id == id) {
-        return seed_space(id).map_err(|e| e.to_string());
+        return Some(seed_space(id).map_err(|e| e.to_string()));
     }
-    if let Some(space) = library_space(id) {
-        return space;
-    }
-    if let Some(product) = super::product::product_space(id) {
-        return match product? {
-            super::product::ProductOrFlat::Flat(space) => Ok(*space),
-            super::product::ProductOrFlat::Product(space) => Err(format!(
-                "{id} is a space of the geometry {} ({}): this takes the constant-curvature \
-                 geometries only (E³, S³, H³); `info`, `trace`, `render`, `walk`, `flight` and \
-                 `bench --products` take the product spaces too",
-                space.geometry_name(),
-                space.description()
-            )),
-        };
-    }
+    library_space(id)
+}
+
+/// A space file by path (relative to `base`): `.gen` or JSON.
+pub(crate) fn space_file(
+    id: &str,
+    base: &Path,
+    options: &DirichletOptions,
+) -> Result<Space, String> {
     let path = base.join(id);
     if is_gen_path(&path) {
         return load_gen_file(&path, options);

@@ -6,6 +6,7 @@ pub mod catalog;
 pub mod dirichlet;
 mod error;
 pub mod exact;
+pub mod family;
 pub mod file;
 pub mod group;
 pub mod homology;
@@ -21,7 +22,7 @@ mod wrap;
 
 pub use catalog::{DEFAULT_SPACE, SEED_SPACES, SeedSpace, seed_space};
 pub use error::SpaceError;
-pub use library::resolve_space;
+pub use family::{AnySpace, Family, Feature, Unsupported, resolve_space};
 pub use walk::{CellWalk, CellWalker, Crossing, Exit, Limit, NextExit, Trace};
 pub use wrap::{Holonomy, MAX_WRAPS_PER_STEP, frame_on_model, wrap_into_cell};
 

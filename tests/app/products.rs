@@ -264,7 +264,7 @@ fn walking_a_product_space_without_a_display_renders_it() {
     assert!(dir.join("curved-spaces.png").exists(), "{said}");
     fails_with(
         &["walk", "bitorus-circle", "--record", "x.toml"],
-        "--record is not available in the product spaces",
+        "recording a flight (`walk --record`) is not available in the product",
     );
     let _ = std::fs::remove_dir_all(&dir);
 }

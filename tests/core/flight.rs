@@ -228,7 +228,12 @@ fn a_recorded_walk_replays_to_the_same_frames() {
         assert!(recorder.stopped.is_none(), "{id}: {:?}", recorder.stopped);
         let file = load_flight_file(&path).unwrap();
         assert!(file.keys.len() >= 110, "{id}: {} keys", file.keys.len());
-        let space = app.world().resource::<ActiveSpace>().space.clone();
+        let space = app
+            .world()
+            .resource::<ActiveSpace>()
+            .constant()
+            .unwrap()
+            .clone();
         let flight = Flight::new(&space, &file).unwrap();
         // The keys are the frames from the first recorded one on, DT apart.
         let first = frames.len() - file.keys.len();

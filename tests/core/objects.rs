@@ -60,7 +60,10 @@ fn an_object_flying_through_a_face_comes_back_turned_by_its_pairing() {
     for id in ["seifert-weber", "poincare", "half-turn", "mirrored-cube"] {
         let mut app = test_app(id, 1);
         let active = app.world().resource::<ActiveSpace>().clone();
-        let (space, g) = (&active.space, active.space.geometry());
+        let (space, g) = (
+            active.constant().unwrap(),
+            active.constant().unwrap().geometry(),
+        );
         let r = active.inradius;
         let start = CurvedTransform::from_geodesic(space, DVec3::new(0.1, -0.05, 0.02) * r);
         let velocity = Velocity {
@@ -127,7 +130,10 @@ fn a_long_flight_keeps_a_valid_frame_and_matches_fly() {
         .resource_mut::<Time<Virtual>>()
         .set_max_delta(Duration::from_secs(10));
     let active = app.world().resource::<ActiveSpace>().clone();
-    let (space, g) = (&active.space, active.space.geometry());
+    let (space, g) = (
+        active.constant().unwrap(),
+        active.constant().unwrap().geometry(),
+    );
     let r = active.inradius;
     let start = CurvedTransform::from_geodesic(space, DVec3::new(0.2, 0.1, -0.3) * r);
     let velocity = Velocity {
@@ -200,7 +206,12 @@ fn spawn_move_and_despawn_update_the_gpu_scene() {
     let mut app = test_app("seifert-weber", 1);
     let before = prepared(&app);
     let r = app.world().resource::<ActiveSpace>().inradius;
-    let space = app.world().resource::<ActiveSpace>().space.clone();
+    let space = app
+        .world()
+        .resource::<ActiveSpace>()
+        .constant()
+        .unwrap()
+        .clone();
     let model = std::sync::Arc::new(
         TracedModel::new(
             space.geometry(),
@@ -257,7 +268,7 @@ fn spawn_move_and_despawn_update_the_gpu_scene() {
 /// entities' objects as the plugin gathered them.
 fn centre_pixel(app: &App) -> DVec3 {
     let active = app.world().resource::<ActiveSpace>();
-    let space = &active.space;
+    let space = active.constant().unwrap();
     let mut scene = CurvedScene::with_parts(
         space,
         Shading::default_fog_distance(space),
@@ -290,8 +301,8 @@ fn centre_pixel(app: &App) -> DVec3 {
 fn a_changed_material_shows_in_the_next_frame() {
     let mut app = test_app("torus", 1);
     let active = app.world().resource::<ActiveSpace>().clone();
-    let g = active.space.geometry();
-    let camera = TraceCamera::default_for(&active.space);
+    let g = active.constant().unwrap().geometry();
+    let camera = TraceCamera::default_for(active.constant().unwrap());
     // A ball straight ahead of the default view.
     let ahead = CurvedTransform(translate_ahead(g, camera.frame, 0.5 * active.inradius));
     let ball = app
@@ -376,8 +387,10 @@ fn the_plugin_offers_sightlines_between_entities() {
     app.update();
     let active = app.world().resource::<ActiveSpace>().clone();
     let r = active.inradius;
-    let a = CurvedTransform::from_geodesic(&active.space, DVec3::new(0.5, 0.0, 0.0) * r);
-    let b = CurvedTransform::from_geodesic(&active.space, DVec3::new(-0.5, 0.0, 0.0) * r);
+    let a =
+        CurvedTransform::from_geodesic(active.constant().unwrap(), DVec3::new(0.5, 0.0, 0.0) * r);
+    let b =
+        CurvedTransform::from_geodesic(active.constant().unwrap(), DVec3::new(-0.5, 0.0, 0.0) * r);
     let s = app
         .world()
         .resource::<ActiveSightlines>()
@@ -521,7 +534,7 @@ fn bevy_mesh_assets_are_traced_when_loaded_and_when_changed() {
         .world_mut()
         .spawn((
             CurvedObject::mesh(handle.clone(), 0.3 * r),
-            CurvedTransform::from_geodesic(&active.space, DVec3::ZERO),
+            CurvedTransform::from_geodesic(active.constant().unwrap(), DVec3::ZERO),
         ))
         .id();
     app.update();

@@ -82,7 +82,12 @@ fn max_diff(a: DMat4, b: DMat4) -> f64 {
 #[test]
 fn walking_one_unit_in_the_torus_returns_to_the_start() {
     let (mut app, camera) = test_app("torus");
-    let space = app.world().resource::<ActiveSpace>().space.clone();
+    let space = app
+        .world()
+        .resource::<ActiveSpace>()
+        .constant()
+        .unwrap()
+        .clone();
     set_frame(&mut app, camera, DMat4::IDENTITY);
     set_step(&mut app, 0.01);
     hold(&mut app, KeyCode::KeyW, 100);
@@ -108,7 +113,12 @@ fn walking_one_unit_in_the_torus_returns_to_the_start() {
 #[test]
 fn crossing_a_seifert_weber_face_applies_exactly_its_pairing() {
     let (mut app, camera) = test_app("seifert-weber");
-    let space = app.world().resource::<ActiveSpace>().space.clone();
+    let space = app
+        .world()
+        .resource::<ActiveSpace>()
+        .constant()
+        .unwrap()
+        .clone();
     let g = space.geometry();
     let target = 3;
     let n = space.faces()[target].normal;
@@ -150,7 +160,12 @@ fn walking_through_edges_and_vertices_lands_inside_the_cell() {
         "hantzsche-wendt",
     ] {
         let (mut app, camera) = test_app(id);
-        let space = app.world().resource::<ActiveSpace>().space.clone();
+        let space = app
+            .world()
+            .resource::<ActiveSpace>()
+            .constant()
+            .unwrap()
+            .clone();
         let g = space.geometry();
         let margin = app.world().resource::<PlayerSettings>().wrap_margin;
         let edge = &space.edges()[0];
@@ -198,7 +213,12 @@ fn handedness(f: DMat4) -> f64 {
 #[test]
 fn crossing_a_mirror_flips_handedness_and_the_controls_stay_natural() {
     let (mut app, camera) = test_app("mirrored-cube");
-    let space = app.world().resource::<ActiveSpace>().space.clone();
+    let space = app
+        .world()
+        .resource::<ActiveSpace>()
+        .constant()
+        .unwrap()
+        .clone();
     let g = space.geometry();
     set_frame(&mut app, camera, DMat4::IDENTITY);
     assert_eq!(handedness(frame(&app, camera)), 1.0);
@@ -268,10 +288,10 @@ fn switching_space_at_run_time_resets_the_player() {
         .insert_resource(ActiveSpace::seed("poincare").expect("seed space"));
     app.update();
     let active = app.world().resource::<ActiveSpace>();
-    assert_eq!(active.space.geometry(), Geometry::Spherical);
+    assert_eq!(active.constant().unwrap().geometry(), Geometry::Spherical);
     assert_eq!(holonomy(&app, camera).crossings, 0);
     let f = frame(&app, camera);
-    assert!(active.space.outside_by(f.w_axis) < 0.0);
+    assert!(active.constant().unwrap().outside_by(f.w_axis) < 0.0);
     assert!(Geometry::Spherical.frame_defect(f) < 1e-12);
     // On to spaces from groups, walking through faces in each.
     for id in ["weeks", "lens-7-2", "second-amphidicosm"] {
@@ -286,8 +306,14 @@ fn switching_space_at_run_time_resets_the_player() {
             holonomy(&app, camera).crossings > 0,
             "{id}: no face crossed"
         );
-        assert!(active.space.outside_by(f.w_axis) < 1e-3, "{id}");
-        assert!(active.space.geometry().frame_defect(f) < 1e-9, "{id}");
+        assert!(
+            active.constant().unwrap().outside_by(f.w_axis) < 1e-3,
+            "{id}"
+        );
+        assert!(
+            active.constant().unwrap().geometry().frame_defect(f) < 1e-9,
+            "{id}"
+        );
     }
 }
 

@@ -1,5 +1,5 @@
 //! The plugin in a product space (H²×R, S²×R): `CurvedSpacesPlugin { space:
-//! "bitorus-circle" }` shows an `ActiveProduct`, its players walk with the fibre up, climb
+//! "bitorus-circle" }` shows a product space as its `ActiveSpace`, its players walk with the fibre up, climb
 //! along it through the top (with the turn), and switching to and from a constant-curvature
 //! space at run time puts them at the new start view. Headless: MinimalPlugins, fake keys.
 
@@ -42,7 +42,7 @@ fn holonomy(app: &App, camera: Entity) -> Holonomy {
 
 /// Speed such that one update moves `step`.
 fn set_step(app: &mut App, step: f64) {
-    let r = app.world().resource::<ActiveProduct>().inradius;
+    let r = app.world().resource::<ActiveSpace>().inradius;
     app.world_mut().resource_mut::<PlayerSettings>().speed = step / (r * DT);
 }
 
@@ -61,26 +61,38 @@ fn hold(app: &mut App, key: KeyCode, updates: usize) {
 
 /// The frame's defect from orthonormal in the active product space's metric.
 fn frame_defect(app: &App, f: DMat4) -> f64 {
-    let g = app.world().resource::<ActiveProduct>().space.base();
+    let g = app
+        .world()
+        .resource::<ActiveSpace>()
+        .product()
+        .unwrap()
+        .base();
     crate::common::product_frame_defect(g, f)
 }
 
 #[test]
 fn the_plugin_starts_in_a_named_product_space_at_its_default_view() {
     let (app, camera) = test_app("bitorus-circle");
-    assert!(app.world().get_resource::<ActiveSpace>().is_none());
-    let active = app.world().resource::<ActiveProduct>();
+    let active = app.world().resource::<ActiveSpace>();
+    assert_eq!(active.family(), Family::Product);
     assert_eq!(active.space.geometry_name(), "H2xR");
+    let space = active.product().unwrap();
     let f = frame(&app, camera);
-    assert!((f.w_axis - active.start_frame().w_axis).length() < 1e-9);
-    assert!(active.space.outside_by(f.w_axis) < 0.0);
+    let start = BaseProductScene::start_frame(None, space);
+    assert!((f.w_axis - start.w_axis).length() < 1e-9);
+    assert!(space.outside_by(f.w_axis) < 0.0);
 }
 
 #[test]
 fn walking_ahead_keeps_the_height_and_follows_the_horizontal_geodesic() {
     for id in ["bitorus-circle", "crosscaps-circle", "sphere-circle-turn"] {
         let (mut app, camera) = test_app(id);
-        let space = app.world().resource::<ActiveProduct>().space.clone();
+        let space = app
+            .world()
+            .resource::<ActiveSpace>()
+            .product()
+            .unwrap()
+            .clone();
         let start = frame(&app, camera);
         // The default view looks down a little: walking follows its horizontal part.
         let back = start.z_axis;
@@ -126,7 +138,12 @@ fn walking_ahead_keeps_the_height_and_follows_the_horizontal_geodesic() {
 #[test]
 fn climbing_the_fibre_crosses_the_top_and_applies_the_turn() {
     let (mut app, camera) = test_app("sphere-circle-turn");
-    let space = app.world().resource::<ActiveProduct>().space.clone();
+    let space = app
+        .world()
+        .resource::<ActiveSpace>()
+        .product()
+        .unwrap()
+        .clone();
     let start = frame(&app, camera);
     let sides = space.polygon().sides.len();
     let length = space.length();
@@ -164,37 +181,35 @@ fn switching_between_product_and_constant_curvature_spaces_resets_the_players() 
     // To a constant-curvature space and back, as the panel's picker does it.
     app.world_mut()
         .insert_resource(ActiveSpace::seed("seifert-weber").expect("seed space"));
-    app.world_mut().remove_resource::<ActiveProduct>();
     app.update();
     assert_eq!(holonomy(&app, camera).crossings, 0);
     let active = app.world().resource::<ActiveSpace>();
+    let space = active.constant().expect("a constant-curvature space");
     let f = frame(&app, camera);
-    assert!(active.space.outside_by(f.w_axis) < 0.0);
-    assert!(active.space.geometry().frame_defect(f) < 1e-12);
+    assert!(space.outside_by(f.w_axis) < 0.0);
+    assert!(space.geometry().frame_defect(f) < 1e-12);
     hold(&mut app, KeyCode::KeyW, 5);
-    let product = ActiveProduct::named("projective-plane-circle")
-        .expect("a product id")
-        .expect("a valid product space");
+    let product = ActiveSpace::named("projective-plane-circle").expect("a valid product space");
+    assert_eq!(product.family(), Family::Product);
     app.world_mut().insert_resource(product);
-    app.world_mut().remove_resource::<ActiveSpace>();
     app.update();
-    let active = app.world().resource::<ActiveProduct>();
+    let active = app.world().resource::<ActiveSpace>();
     let f = frame(&app, camera);
-    assert!((f.w_axis - active.start_frame().w_axis).length() < 1e-9);
+    let start = BaseProductScene::start_frame(None, active.product().unwrap());
+    assert!((f.w_axis - start.w_axis).length() < 1e-9);
     assert_eq!(holonomy(&app, camera).crossings, 0);
-    // A flat word is not a product space: it is the flat space ActiveSpace shows.
-    assert!(ActiveProduct::named("surface-abAB-circle-1").is_none());
-    assert!(matches!(
-        ActiveProduct::named("surface-abc-circle-1"),
-        Some(Err(_))
-    ));
+    // A flat word is not a product space: it is the flat space it makes.
+    let flat = ActiveSpace::named("surface-abAB-circle-1").expect("a flat space");
+    assert_eq!(flat.family(), Family::Constant);
+    assert!(ActiveSpace::named("surface-abc-circle-1").is_err());
 }
 
 #[test]
 fn a_bad_product_id_falls_back_to_the_default_space() {
     let (app, _) = test_app("surface-aab-circle-1");
-    assert!(app.world().get_resource::<ActiveProduct>().is_none());
-    assert!(app.world().get_resource::<ActiveSpace>().is_some());
+    let active = app.world().resource::<ActiveSpace>();
+    assert_eq!(active.id, bevy_curved_spaces::space::DEFAULT_SPACE);
+    assert_eq!(active.family(), Family::Constant);
 }
 
 #[test]
@@ -206,8 +221,9 @@ fn entities_fly_through_the_product_cell_and_are_drawn_with_their_images() {
     let (mut app, _camera) = test_app("bitorus-circle");
     let space = app
         .world()
-        .resource::<bevy_curved_spaces::ActiveProduct>()
-        .space
+        .resource::<ActiveSpace>()
+        .product()
+        .unwrap()
         .clone();
     let g = space.base();
     // Along its own right (+x, towards side 0) and a little up the fibre, turning slowly.

@@ -172,7 +172,7 @@ fn head(app: &App) -> &bevy_curved_spaces::view::headset::HeadTracker {
 
 /// The head's frame in the universal cover (its frame with the holonomy undone).
 fn head_in_cover(app: &App) -> DMat4 {
-    let space = &app.world().resource::<ActiveSpace>().space;
+    let space = &app.world().resource::<ActiveSpace>().constant().unwrap();
     let h = head(app);
     space.geometry().inverse(h.holonomy.matrix) * h.frame
 }
@@ -419,7 +419,7 @@ fn a_headset_session_runs_traces_both_eyes_and_walks_through_faces() {
     drop(app);
 
     // 7. The eyes against the CPU reference from the same frames and frusta, and each other.
-    let space = &active.space;
+    let space = active.constant().unwrap();
     let fog = Shading::default_fog_distance(space);
     let scene = CurvedScene::with_parts(space, fog, tracer_settings().parts);
     for (eye, gpu) in &eyes {
@@ -483,7 +483,7 @@ fn a_headset_session_runs_traces_both_eyes_and_walks_through_faces() {
 /// point where the head no longer goes when an update is slow).
 fn crossing_by_head_motion(app: &mut App) {
     let active = app.world().resource::<ActiveSpace>().clone();
-    let space = &active.space;
+    let space = active.constant().unwrap();
     let g = space.geometry();
     let scale = head(app).units_per_metre;
     let wrap_margin = head(app).wrap_margin;
@@ -569,7 +569,7 @@ fn crossing_by_head_motion(app: &mut App) {
 
 fn thumbsticks(app: &mut App) {
     let active = app.world().resource::<ActiveSpace>().clone();
-    let g = active.space.geometry();
+    let g = active.constant().unwrap().geometry();
     println!(
         "the runtime reported the sticks bound to a controller: {}",
         app.world().resource::<RuntimeBound>().0

@@ -66,7 +66,7 @@ fn time_updates(space: &str, n: usize, kind: &'static str, updates: usize) -> f6
     app.update();
     let active = app.world().resource::<ActiveSpace>().clone();
     let r = active.inradius;
-    let g = active.space.geometry;
+    let g = active.space.model_geometry();
     let cube = Arc::new(
         TracedModel::new(
             g,

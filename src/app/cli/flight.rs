@@ -2,7 +2,7 @@
 //! installed), resumable and sliceable across machines.
 
 use super::FlightArgs;
-use super::render::{Chosen, choose_scene};
+use super::render::{Choice, Chosen, choose};
 use bevy::prelude::*;
 use bevy_curved_spaces::plugin::components::{AUTO_BUDGET_SAMPLES, ActiveSpace, Quality};
 use bevy_curved_spaces::plugin::offscreen::{OffscreenRender, OffscreenRenderer};
@@ -36,18 +36,14 @@ pub(super) fn flight(args: &FlightArgs) -> Result<(), String> {
     let name = args.file.display().to_string();
     let file = load_flight_file(&args.file)?;
     let base = args.file.parent().unwrap_or(Path::new(""));
-    let product = match (&file.scene, &file.space) {
-        (Some(scene), _) => super::render::choose_product("", Some(&base.join(scene)))?,
-        (None, Some(space)) => super::render::choose_product(space, None)?,
-        (None, None) => None,
+    let choice = match (&file.scene, &file.space) {
+        (Some(scene), _) => choose("", Some(&base.join(scene)), None)?,
+        (None, Some(space)) => choose(space, None, None)?,
+        (None, None) => return Err(format!("{name}: a flight names a space or a scene")),
     };
-    if let Some(product) = product {
-        return flight_product(args, &name, &file, product);
-    }
-    let chosen: Chosen = match (&file.scene, &file.space) {
-        (Some(scene), _) => choose_scene("", Some(&base.join(scene)), None)?,
-        (None, Some(space)) => choose_scene(space, None, None)?,
-        (None, None) => unreachable!("parse_flight requires a space or a scene"),
+    let chosen: Chosen = match choice {
+        Choice::Constant(chosen) => chosen,
+        Choice::Product(product) => return flight_product(args, &name, &file, product),
     };
     let space = &chosen.space;
     let flight = Flight::new(space, &file).map_err(|e| format!("{name}: {e}"))?;

@@ -10,10 +10,10 @@ use serde_json::json;
 const DEFAULT_BOUND_FRACTION: f64 = 0.01;
 
 pub(super) fn light(args: &LightArgs) -> Result<(), String> {
-    if let Some(space) = super::product(&args.space)? {
-        return light_product(args, &space);
-    }
-    let space = resolve_space(&args.space)?;
+    let space = match super::space_named(&args.space)? {
+        AnySpace::Constant(space) => space,
+        AnySpace::Product(space) => return light_product(args, &space),
+    };
     let g = space.geometry();
     let point = |x: DVec3, what: &str| {
         point_in_cell(

@@ -7,6 +7,7 @@ mod info;
 mod light;
 mod parse;
 mod render;
+mod spaces;
 mod trace;
 mod walk;
 
@@ -16,15 +17,15 @@ use bevy_curved_spaces::plugin::components::StereoSettings;
 use bevy_curved_spaces::scene::walls::DEFAULT_WALL_OPACITY;
 use bevy_curved_spaces::scene::{Centrepiece, LightPaths, Lighting, SceneParts, WallStyle};
 use bevy_curved_spaces::space::DEFAULT_SPACE;
-use bevy_curved_spaces::space::Space;
-use bevy_curved_spaces::space::dirichlet::DirichletOptions;
 use bevy_curved_spaces::space::invariants::inradius;
+use bevy_curved_spaces::space::{AnySpace, Feature, Space};
 use bevy_curved_spaces::view::StereoMode;
 use bevy_curved_spaces::view::stereo::check_ipd;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use glam::DVec3;
 use parse::*;
-use std::path::{Path, PathBuf};
+use spaces::*;
+use std::path::PathBuf;
 
 #[derive(Parser)]
 #[command(
@@ -663,49 +664,6 @@ fn parse_flight_fps(s: &str) -> Result<f64, String> {
     parse_in_range(s, "frames per second", 1.0..=240.0)
 }
 
-/// The basepoint given by `--basepoint`, for every space made from a generator file.
-static BASEPOINT: std::sync::OnceLock<Option<DVec3>> = std::sync::OnceLock::new();
-
-/// A seed space by id, or a space file by path (`.gen` generator file or JSON).
-fn resolve_space(arg: &str) -> Result<Space, String> {
-    let options = DirichletOptions {
-        basepoint: BASEPOINT.get().copied().flatten(),
-        ..DirichletOptions::default()
-    };
-    bevy_curved_spaces::space::resolve_space(arg, Path::new(""), &options)
-}
-
-/// The product space (H²×R, S²×R) an id names, if it names one; a flat word's product is a
-/// constant-curvature space and comes from [`resolve_space`].
-fn product(arg: &str) -> Result<Option<bevy_curved_spaces::space::product::ProductSpace>, String> {
-    use bevy_curved_spaces::space::product::{ProductOrFlat, product_space};
-    match product_space(arg) {
-        Some(Ok(ProductOrFlat::Product(p))) => Ok(Some(*p)),
-        Some(Err(e)) => Err(e),
-        Some(Ok(ProductOrFlat::Flat(_))) | None => Ok(None),
-    }
-}
-
-/// The model point of the chart point `x` (option `what`), which must lie in the cell of
-/// `name`: `to_model` reads the chart, `outside_by` says how far outside the cell a point
-/// is (NaN, a point the model cannot hold, counts as outside).
-pub(super) fn point_in_cell(
-    x: DVec3,
-    what: &str,
-    name: &str,
-    to_model: impl Fn(DVec3) -> Result<glam::DVec4, String>,
-    outside_by: impl Fn(glam::DVec4) -> f64,
-) -> Result<glam::DVec4, String> {
-    let p = to_model(x).map_err(|e| format!("{what}: {e}"))?;
-    if !(outside_by(p) <= 1e-12) {
-        return Err(format!(
-            "{what} {:?} is outside the cell of {name}",
-            x.to_array()
-        ));
-    }
-    Ok(p)
-}
-
 /// `render`'s picture size when none is given.
 const DEFAULT_SIZE: &str = "640x360";
 /// `render`'s output file when none is given (also where `walk` renders without a display).
@@ -770,9 +728,9 @@ pub fn run(cli: Cli) -> Result<(), String> {
             info::list();
             Ok(())
         }
-        Some(Command::Info { space, json }) => match product(&space)? {
-            Some(p) => info::product_info(&p, json),
-            None => info::info(&resolve_space(&space)?, json),
+        Some(Command::Info { space, json }) => match space_named(&space)? {
+            AnySpace::Product(p) => info::product_info(&p, json),
+            AnySpace::Constant(s) => info::info(&s, json),
         },
         Some(Command::Trace(args)) => trace::trace(&args),
         Some(Command::Light(args)) => light::light(&args),
@@ -783,6 +741,10 @@ pub fn run(cli: Cli) -> Result<(), String> {
             space,
             out,
             gen_format,
-        }) => info::export(&resolve_space(&space)?, out.as_deref(), gen_format),
+        }) => info::export(
+            constant_for(&space_named(&space)?, Feature::Export)?,
+            out.as_deref(),
+            gen_format,
+        ),
     }
 }

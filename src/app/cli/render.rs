@@ -2,7 +2,7 @@
 //! offscreen or the f64 CPU reference. Both renderers take the same view: camera, budget,
 //! stereo eyes and scene are decided once here, then handed to the one asked for.
 
-use super::{DEFAULT_FOV, RenderArgs, resolve_space};
+use super::{DEFAULT_FOV, RenderArgs};
 use bevy_curved_spaces::plugin::components::StereoSettings;
 use bevy_curved_spaces::plugin::components::{
     AUTO_BUDGET_SAMPLES, ActiveSpace, BaseScene, Quality,
@@ -68,29 +68,62 @@ impl Chosen {
     }
 }
 
-pub(super) fn choose_scene(
+/// What `render`, `walk` and `flight` show, in whichever family the space is of: a scene
+/// file's space, scene and start view (the file's `space` key picks the family), or the space
+/// `space_arg` names with its default scene. `fog` replaces a constant-curvature scene's fog
+/// (a product scene's is set where the view is made).
+pub(super) enum Choice {
+    /// E³, S³, H³.
+    Constant(Chosen),
+    /// H²×R, S²×R.
+    Product(ProductChoice),
+}
+
+pub(super) fn choose(
     space_arg: &str,
     scene: Option<&Path>,
     fog: Option<f64>,
-) -> Result<Chosen, String> {
-    match scene {
-        Some(path) => {
-            let mut file = load_scene_file(path).map_err(|e| e.to_string())?;
-            if let Some(fog) = fog {
-                file.base.shading.fog_distance = fog;
-            }
-            Ok(Chosen {
-                id: file.space_id.clone(),
-                scene: file.scene(),
-                base: BaseScene::from_file(&file),
-                parts: file.parts,
+) -> Result<Choice, String> {
+    use bevy_curved_spaces::space::AnySpace;
+    use bevy_curved_spaces::trace::product::{default_camera, default_scene};
+    if let Some(path) = scene {
+        if let Some(file) = bevy_curved_spaces::trace::product::file::load_product_scene_file(path)
+            .map_err(|e| e.to_string())?
+        {
+            let camera = file.start.unwrap_or_else(|| default_camera(&file.space));
+            return Ok(Choice::Product(ProductChoice {
+                base: Some(bevy_curved_spaces::BaseProductScene::from_file(&file)),
+                scene: file.scene,
+                camera,
                 space: file.space,
+            }));
+        }
+        let mut file = load_scene_file(path).map_err(|e| e.to_string())?;
+        if let Some(fog) = fog {
+            file.base.shading.fog_distance = fog;
+        }
+        return Ok(Choice::Constant(Chosen {
+            id: file.space_id.clone(),
+            scene: file.scene(),
+            base: BaseScene::from_file(&file),
+            parts: file.parts,
+            space: file.space,
+        }));
+    }
+    Ok(match super::space_named(space_arg)? {
+        AnySpace::Product(space) => {
+            let space = std::sync::Arc::unwrap_or_clone(space);
+            Choice::Product(ProductChoice {
+                scene: default_scene(&space),
+                camera: default_camera(&space),
+                base: None,
+                space,
             })
         }
-        None => {
-            let space = resolve_space(space_arg)?;
+        AnySpace::Constant(space) => {
+            let space = std::sync::Arc::unwrap_or_clone(space);
             let fog = fog.unwrap_or_else(|| Shading::default_fog_distance(&space));
-            Ok(Chosen {
+            Choice::Constant(Chosen {
                 id: space_arg.to_string(),
                 scene: CurvedScene::default_for(&space, fog),
                 space,
@@ -98,7 +131,7 @@ pub(super) fn choose_scene(
                 parts: SceneParts::default(),
             })
         }
-    }
+    })
 }
 
 /// The view both renderers take: camera, eyes, budget, stereo settings and the scene at
@@ -120,36 +153,6 @@ pub(super) struct ProductChoice {
     pub(super) base: Option<bevy_curved_spaces::BaseProductScene>,
 }
 
-/// The product scene `render` and `walk` show: the scene file's where `--scene` names a
-/// product scene file, the default scene of `space_arg` where it names a product space;
-/// `None` for the constant-curvature spaces and their scene files.
-pub(super) fn choose_product(
-    space_arg: &str,
-    scene: Option<&Path>,
-) -> Result<Option<ProductChoice>, String> {
-    use bevy_curved_spaces::trace::product::{default_camera, default_scene};
-    if let Some(path) = scene {
-        let Some(file) = bevy_curved_spaces::trace::product::file::load_product_scene_file(path)
-            .map_err(|e| e.to_string())?
-        else {
-            return Ok(None);
-        };
-        let camera = file.start.unwrap_or_else(|| default_camera(&file.space));
-        return Ok(Some(ProductChoice {
-            base: Some(bevy_curved_spaces::BaseProductScene::from_file(&file)),
-            scene: file.scene,
-            camera,
-            space: file.space,
-        }));
-    }
-    Ok(super::product(space_arg)?.map(|space| ProductChoice {
-        scene: default_scene(&space),
-        camera: default_camera(&space),
-        base: None,
-        space,
-    }))
-}
-
 /// `render` of a product space (H²×R, S²×R): its default scene and view or a scene file's,
 /// mono or stereo, on the GPU or with the CPU reference (`--cpu`).
 fn render_product_command(args: &RenderArgs, chosen: ProductChoice) -> Result<(), String> {
@@ -161,12 +164,14 @@ fn render_product_command(args: &RenderArgs, chosen: ProductChoice) -> Result<()
         mut camera,
         ..
     } = chosen;
+    use bevy_curved_spaces::space::{Family, Feature};
+    let refuse = |feature| {
+        Family::Product
+            .supports(feature)
+            .map_err(|e| format!("{}: {e}", space.name()))
+    };
     if args.time != 0.0 {
-        return Err(
-            "--time turns a scene's moving objects; nothing moves in a product space's scene \
-             (H²×R, S²×R) yet, so it takes no time"
-                .into(),
-        );
+        refuse(Feature::MovingObjects)?;
     }
     // `--eye X,Y,Z --look-at X,Y,Z`: the surface's chart points and heights, as `trace
     // --from` takes them.
@@ -188,11 +193,7 @@ fn render_product_command(args: &RenderArgs, chosen: ProductChoice) -> Result<()
         )?;
     }
     if args.view.changes_parts() {
-        return Err(
-            "the scene-part switches are not available in the product spaces (H²×R, S²×R); a \
-             product scene file's edges and centre_ball choose the parts"
-                .into(),
-        );
+        refuse(Feature::SceneParts)?;
     }
     if args.view.light.any() {
         let lighting = args.view.light.lighting(scene.lighting);
@@ -280,10 +281,10 @@ fn render_product_command(args: &RenderArgs, chosen: ProductChoice) -> Result<()
 }
 
 pub(super) fn render_command(args: &RenderArgs) -> Result<(), String> {
-    if let Some(chosen) = choose_product(&args.space, args.scene.as_deref())? {
-        return render_product_command(args, chosen);
-    }
-    let mut chosen = choose_scene(&args.space, args.scene.as_deref(), args.fog)?.at(args.time)?;
+    let mut chosen = match choose(&args.space, args.scene.as_deref(), args.fog)? {
+        Choice::Product(chosen) => return render_product_command(args, chosen),
+        Choice::Constant(chosen) => chosen.at(args.time)?,
+    };
     if args.view.changes_parts() {
         let parts = args.view.parts(chosen.parts);
         chosen = chosen.with_parts(parts);

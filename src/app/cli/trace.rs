@@ -319,19 +319,21 @@ fn in_precision<A: CellWalk<DVec4>, B: CellWalk<Vec4>>(
 }
 
 pub(super) fn trace(args: &TraceArgs) -> Result<(), String> {
-    if let Some(space) = product(&args.space)? {
-        let start =
-            bevy_curved_spaces::space::product::chart_ray(space.base(), args.from, args.dir)?;
-        let limit = start_and_limit(args, space.outside_by(start.point), space.name())?;
-        return in_precision(
-            args,
-            &ProductFamily(&space),
-            (start, limit),
-            || ProductWalker::<DVec4>::new(&space),
-            || ProductWalker::<Vec4>::new(&space),
-        );
-    }
-    let space = resolve_space(&args.space)?;
+    let space = match space_named(&args.space)? {
+        AnySpace::Constant(space) => space,
+        AnySpace::Product(space) => {
+            let start =
+                bevy_curved_spaces::space::product::chart_ray(space.base(), args.from, args.dir)?;
+            let limit = start_and_limit(args, space.outside_by(start.point), space.name())?;
+            return in_precision(
+                args,
+                &ProductFamily(&space),
+                (start, limit),
+                || ProductWalker::<DVec4>::new(&space),
+                || ProductWalker::<Vec4>::new(&space),
+            );
+        }
+    };
     let start = chart_ray(space.geometry(), args.from, args.dir).map_err(|e| e.to_string())?;
     let limit = start_and_limit(args, space.outside_by(start.point), space.name())?;
     in_precision(

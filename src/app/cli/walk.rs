@@ -2,7 +2,7 @@
 //! display.
 
 use super::render::Chosen;
-use super::render::{choose_scene, render_command};
+use super::render::{Choice, choose, render_command};
 use super::*;
 use bevy::prelude::*;
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
@@ -103,19 +103,21 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
         }
         None => args,
     };
-    if let Some(product) = super::render::choose_product(&args.space, args.scene.as_deref())? {
-        let flight = match &replay {
-            Some(file) => Some(
-                bevy_curved_spaces::trace::product::flight::ProductFlight::new(
-                    &product.space,
-                    file,
-                )?,
-            ),
-            None => None,
-        };
-        return walk_product(args, product, flight);
-    }
-    let chosen = choose_scene(&args.space, args.scene.as_deref(), args.fog)?;
+    let chosen = match choose(&args.space, args.scene.as_deref(), args.fog)? {
+        Choice::Constant(chosen) => chosen,
+        Choice::Product(product) => {
+            let flight = match &replay {
+                Some(file) => Some(
+                    bevy_curved_spaces::trace::product::flight::ProductFlight::new(
+                        &product.space,
+                        file,
+                    )?,
+                ),
+                None => None,
+            };
+            return walk_product(args, product, flight);
+        }
+    };
     let flight = match &replay {
         Some(file) => Some(Flight::new(&chosen.space, file)?),
         None => None,
@@ -371,13 +373,15 @@ fn walk_product(
     chosen: super::render::ProductChoice,
     flight: Option<bevy_curved_spaces::trace::product::flight::ProductFlight>,
 ) -> Result<(), String> {
-    use bevy_curved_spaces::ActiveProduct;
-    for (given, what) in [(args.record.is_some(), "--record"), (args.xr, "--xr")] {
+    use bevy_curved_spaces::space::{Family, Feature};
+    for (given, feature) in [
+        (args.record.is_some(), Feature::RecordFlight),
+        (args.xr, Feature::Headset),
+    ] {
         if given {
-            return Err(format!(
-                "{what} is not available in the product spaces (H²×R, S²×R) yet: walk {} without it",
-                args.space
-            ));
+            Family::Product
+                .supports(feature)
+                .map_err(|e| format!("{}: {e}", args.space))?;
         }
     }
     if !display_available() {
@@ -400,7 +404,7 @@ fn walk_product(
         .scene
         .as_ref()
         .map_or_else(|| args.space.clone(), |_| chosen.space.name().to_string());
-    let active = ActiveProduct::new(id, chosen.space);
+    let active = ActiveSpace::new(id, chosen.space);
     let stereo = args.stereo.settings_for(active.inradius)?;
     eprintln!(
         "walking in {} ({}): click to look around, WASD to walk, Space/Shift along the fibre, Esc releases the mouse, F1 the panel",

@@ -44,6 +44,7 @@ use crate::scene::texture::Texture;
 use crate::scene::{
     Ball, BallTexture, CurvedScene, Disc, MeshInstance, Object, SurfaceMaterial, TracedModel, Tube,
 };
+use crate::space::Family;
 use crate::space::motion::{Sightline, Sightlines, Velocity};
 use crate::space::{Holonomy, Space, frame_on_model, wrap_into_cell};
 use bevy::asset::{AssetEvent, AssetId, Assets, Handle};
@@ -284,10 +285,8 @@ impl CurvedTransform {
     /// direction in the centre's axes, its length the distance), with the centre's axes
     /// carried along: geodesic coordinates about the centre.
     #[must_use]
-    pub fn from_geodesic(space: &Space, offset: DVec3) -> Self {
-        let g = space.geometry;
-        let centre = g.translation_to(space.centre());
-        Self(crate::geometry::translate_local(g, centre, offset))
+    pub fn from_geodesic(space: &impl crate::space::family::CentreFrame, offset: DVec3) -> Self {
+        Self(space.frame_from_centre(offset))
     }
 
     /// The frame `frame` moved as a Bevy [`Transform`] would move a child: by its
@@ -373,10 +372,10 @@ pub(crate) fn add_systems(app: &mut App) {
             (
                 (move_objects, wrap_objects)
                     .chain()
-                    .run_if(resource_exists::<ActiveSpace>),
+                    .run_if(ActiveSpace::shows(Family::Constant)),
                 (product::move_product_objects, product::wrap_product_objects)
                     .chain()
-                    .run_if(resource_exists::<crate::plugin::components::ActiveProduct>),
+                    .run_if(ActiveSpace::shows(Family::Product)),
             ),
         )
         .add_systems(
@@ -385,7 +384,7 @@ pub(crate) fn add_systems(app: &mut App) {
                 product::wrap_product_objects.in_set(CurvedSpacesSystems::Wrap),
                 product::collect_product_objects.in_set(CurvedSpacesSystems::Upload),
             )
-                .run_if(resource_exists::<crate::plugin::components::ActiveProduct>),
+                .run_if(ActiveSpace::shows(Family::Product)),
         )
         .add_systems(
             Update,
@@ -396,7 +395,7 @@ pub(crate) fn add_systems(app: &mut App) {
                 update_sightlines.before(CurvedSpacesSystems::Upload),
                 spawn_scene_movers.before(CurvedSpacesSystems::Move),
             )
-                .run_if(resource_exists::<ActiveSpace>),
+                .run_if(ActiveSpace::shows(Family::Constant)),
         );
 }
 

@@ -1,4 +1,4 @@
-//! A game's entities in a product space (H²×R, S²×R): while an [`ActiveProduct`] is shown,
+//! A game's entities in a product space (H²×R, S²×R): while a product space is shown,
 //! [`CurvedObject`]s move along the product's geodesics ([`move_product_objects`]), come back
 //! into the cell through the sides, the top and the bottom ([`wrap_product_objects`], with
 //! their [`Holonomy`] and an [`ObjectCrossedFace`] each), and are drawn as product objects
@@ -14,7 +14,7 @@
 
 use super::{CurvedObject, CurvedShape, CurvedTransform, CurvedVelocity, ObjectCrossedFace};
 use crate::geometry::Geometry;
-use crate::plugin::components::{ActiveProduct, PlayerSettings};
+use crate::plugin::components::{ActiveSpace, PlayerSettings};
 use crate::space::Holonomy;
 use crate::space::product::motion::{
     ProductMotion, orthonormal, step_product_frame, wrap_product_frame,
@@ -78,10 +78,13 @@ pub fn step_product_object(
 /// Moves every object with a velocity by one fixed step in the product space.
 pub fn move_product_objects(
     time: Res<Time>,
-    active: Res<ActiveProduct>,
+    active: Res<ActiveSpace>,
     mut objects: Query<(&mut CurvedTransform, &CurvedVelocity)>,
 ) {
-    let g = active.space.base();
+    let Some(space) = active.product() else {
+        return;
+    };
+    let g = space.base();
     let dt = time.delta_secs_f64();
     for (mut transform, velocity) in &mut objects {
         if !velocity.0.is_zero() {
@@ -94,17 +97,19 @@ pub fn move_product_objects(
 /// margin), recording each crossing in their [`Holonomy`] and as an [`ObjectCrossedFace`]
 /// (faces numbered as the walk does: the sides, then the top, then the bottom).
 pub fn wrap_product_objects(
-    active: Res<ActiveProduct>,
+    active: Res<ActiveSpace>,
     settings: Res<PlayerSettings>,
     mut objects: Query<(Entity, &mut CurvedTransform, &mut Holonomy), With<CurvedObject>>,
     mut crossed_faces: MessageWriter<ObjectCrossedFace>,
 ) {
+    let Some(space) = active.product() else {
+        return;
+    };
     for (entity, mut transform, mut holonomy) in &mut objects {
         if !(transform.is_changed() || active.is_changed()) {
             continue;
         }
-        let (wrapped, crossed) =
-            wrap_product_frame(&active.space, transform.0, settings.wrap_margin);
+        let (wrapped, crossed) = wrap_product_frame(space, transform.0, settings.wrap_margin);
         if crossed.is_empty() {
             continue;
         }
@@ -234,7 +239,7 @@ fn images_through_faces(
 /// Gathers the entities' objects (and the images of balls reaching through faces) into
 /// [`ProductEntityObjects`] when any of them or the space changed.
 pub fn collect_product_objects(
-    active: Res<ActiveProduct>,
+    active: Res<ActiveSpace>,
     objects: Query<(Entity, &CurvedObject, &CurvedTransform)>,
     changed: Changed,
     mut removed: RemovedComponents<CurvedObject>,
@@ -242,15 +247,18 @@ pub fn collect_product_objects(
     mut walker: Local<Option<(usize, ProductWalker<DVec4>)>>,
     mut out: ResMut<ProductEntityObjects>,
 ) {
+    let Some(space) = active.product() else {
+        return;
+    };
     let removed_any = removed.read().count() > 0;
     if !(active.is_changed() || removed_any || !changed.is_empty()) {
         return;
     }
-    let g = active.space.base();
+    let g = space.base();
     // The walker of the space shown, built once per space, not on every frame an object moves.
-    let key = std::sync::Arc::as_ptr(&active.space) as usize;
+    let key = std::sync::Arc::as_ptr(space) as usize;
     if walker.as_ref().is_none_or(|(k, _)| *k != key) {
-        *walker = Some((key, ProductWalker::<DVec4>::new(&active.space)));
+        *walker = Some((key, ProductWalker::<DVec4>::new(space)));
     }
     let Some((_, walker)) = walker.as_ref() else {
         return;
@@ -261,7 +269,7 @@ pub fn collect_product_objects(
     for (entity, object, transform) in sorted {
         match product_object(g, object, transform.0) {
             Ok(o) => {
-                gathered.extend(images_through_faces(&active.space, walker, &o));
+                gathered.extend(images_through_faces(space, walker, &o));
                 gathered.push(o);
             }
             Err(why) => {

@@ -7,8 +7,11 @@ pub(super) fn update_sightlines(
     active: Res<ActiveSpace>,
     mut sightlines: ResMut<ActiveSightlines>,
 ) {
+    let Some(space) = active.constant() else {
+        return;
+    };
     if active.is_changed() || sightlines.0.is_none() {
-        sightlines.0 = Some(Arc::new(Sightlines::new(&active.space)));
+        sightlines.0 = Some(Arc::new(Sightlines::new(space)));
     }
 }
 
@@ -18,11 +21,14 @@ pub fn move_objects(
     active: Res<ActiveSpace>,
     mut objects: Query<(&mut CurvedTransform, &CurvedVelocity)>,
 ) {
-    let g = active.space.geometry;
+    let Some(space) = active.constant() else {
+        return;
+    };
+    let g = space.geometry;
     let dt = time.delta_secs_f64();
     for (mut transform, velocity) in &mut objects {
         if !velocity.0.is_zero() {
-            transform.0 = frame_on_model(&active.space, velocity.0.step(g, transform.0, dt));
+            transform.0 = frame_on_model(space, velocity.0.step(g, transform.0, dt));
         }
     }
 }
@@ -37,7 +43,9 @@ pub fn wrap_objects(
     mut objects: Query<(Entity, &mut CurvedTransform, &mut Holonomy), With<CurvedObject>>,
     mut crossed_faces: MessageWriter<ObjectCrossedFace>,
 ) {
-    let space = &active.space;
+    let Some(space) = active.constant() else {
+        return;
+    };
     for (entity, mut transform, mut holonomy) in &mut objects {
         if !(transform.is_changed() || active.is_changed()) {
             continue;
@@ -83,6 +91,9 @@ pub fn collect_objects(
     mut traced: ResMut<TracedMeshes>,
     mut out: ResMut<EntityObjects>,
 ) {
+    let Some(space) = active.constant() else {
+        return;
+    };
     let removed_any = removed.read().count() > 0;
     if !(active.is_changed()
         || removed_any
@@ -93,7 +104,7 @@ pub fn collect_objects(
         return;
     }
     traced.changed = false;
-    let g = active.space.geometry;
+    let g = space.geometry;
     let mut ready = Vec::with_capacity(objects.iter().len());
     let mut pending = 0;
     let mut problems = Vec::new();
@@ -189,12 +200,11 @@ pub fn collect_objects(
                 if transform.0.is_finite() {
                     // A frame the game set past a face this frame (wrapped in the next
                     // update) is drawn where it is: at its image in the cell.
-                    let frame =
-                        if active.space.outside_by(g.project_point(transform.0.w_axis)) > 0.0 {
-                            wrap_into_cell(&active.space, transform.0, 0.0).0
-                        } else {
-                            transform.0
-                        };
+                    let frame = if space.outside_by(g.project_point(transform.0.w_axis)) > 0.0 {
+                        wrap_into_cell(space, transform.0, 0.0).0
+                    } else {
+                        transform.0
+                    };
                     ready.push(ReadyObject {
                         entity,
                         shape,

@@ -7,7 +7,7 @@
 //! as they would have without the wrap.
 
 use crate::plugin::components::{
-    ActiveProduct, ActiveSpace, KeyBindings, MouseLook, PlayerFrame, PlayerMotion, PlayerSettings,
+    ActiveSpace, KeyBindings, MouseLook, PlayerFrame, PlayerMotion, PlayerSettings,
 };
 
 use crate::geometry::{Geometry, translate_local};
@@ -45,13 +45,10 @@ pub(crate) fn read_input(
     mut settings: ResMut<PlayerSettings>,
     look: Res<MouseLook>,
     time: Res<Time>,
-    (active, product): (Option<Res<ActiveSpace>>, Option<Res<ActiveProduct>>),
+    active: Option<Res<ActiveSpace>>,
     mut players: Query<&mut PlayerMotion>,
 ) {
-    let Some(inradius) = product
-        .map(|p| p.inradius)
-        .or_else(|| active.map(|a| a.inradius))
-    else {
+    let Some(inradius) = active.map(|a| a.inradius) else {
         return;
     };
     let dt = time.delta_secs_f64();
@@ -130,7 +127,10 @@ pub(crate) fn move_players(
     active: Res<ActiveSpace>,
     mut players: Query<(&mut PlayerFrame, &PlayerMotion)>,
 ) {
-    let g = active.space.geometry;
+    let Some(space) = active.constant() else {
+        return;
+    };
+    let g = space.geometry;
     for (mut frame, motion) in &mut players {
         if *motion != PlayerMotion::default() {
             frame.0 = step_frame(g, frame.0, motion);
@@ -144,7 +144,9 @@ pub(crate) fn wrap_players(
     settings: Res<PlayerSettings>,
     mut players: Query<(&mut PlayerFrame, &mut Holonomy)>,
 ) {
-    let space = &active.space;
+    let Some(space) = active.constant() else {
+        return;
+    };
     for (mut frame, mut holonomy) in &mut players {
         let (wrapped, crossed) = wrap_into_cell(space, frame.0, settings.wrap_margin);
         for face in crossed {

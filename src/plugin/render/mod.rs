@@ -11,6 +11,7 @@ pub mod upload;
 
 use crate::plugin::components::StereoSettings;
 use crate::plugin::components::{CurvedSpaceCamera, CurvedSpaceEye, PlayerFrame};
+use crate::space::AnySpace;
 use crate::view::StereoMode;
 use crate::view::stereo::eye_frames;
 use crate::view::{Lens, ViewKind, ViewLayout};
@@ -205,25 +206,12 @@ type CurvedCameras<'w, 's> = Query<
     ),
 >;
 
-/// The main world's space resources: one of the two exists.
-type ShownSpaces<'w, 's> = (
-    Extract<'w, 's, Option<Res<'static, crate::plugin::components::ActiveSpace>>>,
-    Extract<'w, 's, Option<Res<'static, crate::plugin::components::ActiveProduct>>>,
-);
-
-/// The space the cameras show.
-#[derive(Clone, Copy)]
-enum Shown<'a> {
-    Constant(&'a crate::plugin::components::ActiveSpace),
-    Product(&'a crate::plugin::components::ActiveProduct),
-}
-
 fn extract_curved_views(
     mut commands: Commands,
     scene: Extract<Option<Res<PreparedScene>>>,
     settings: Extract<Option<Res<crate::plugin::components::TracerSettings>>>,
     stereo: Extract<Option<Res<StereoSettings>>>,
-    (active, product): ShownSpaces,
+    active: Extract<Option<Res<crate::plugin::components::ActiveSpace>>>,
     time: Extract<Option<Res<Time>>>,
     views: Extract<CurvedCameras>,
 ) {
@@ -238,12 +226,11 @@ fn extract_curved_views(
     let Some(scene) = scene.as_ref() else {
         return;
     };
-    let shown = match (product.as_deref(), active.as_deref()) {
-        (Some(p), _) => Shown::Product(p),
-        (None, Some(a)) => Shown::Constant(a),
-        (None, None) => return,
+    let Some(active) = active.as_deref() else {
+        return;
     };
     let stereo = stereo.as_deref().copied().unwrap_or_default();
+    let ipd = stereo.ipd_for(active.inradius);
     for (entity, camera, frame, eye) in &views {
         // An XR eye is one view with its own frustum; other cameras show the stereo mode.
         let mode = if eye.is_some() {
@@ -251,21 +238,17 @@ fn extract_curved_views(
         } else {
             stereo.mode
         };
-        let eyes = match shown {
+        let eyes = match &active.space {
             _ if !mode.is_stereo() => [frame.0; 2],
-            Shown::Constant(a) => {
-                eye_frames(&a.space, frame.0, stereo.ipd_for(a.inradius)).map(|e| e.frame)
+            AnySpace::Constant(s) => eye_frames(s, frame.0, ipd).map(|e| e.frame),
+            AnySpace::Product(p) => {
+                crate::space::product::motion::product_eye_frames(p, frame.0, ipd)
             }
-            Shown::Product(p) => crate::space::product::motion::product_eye_frames(
-                &p.space,
-                frame.0,
-                stereo.ipd_for(p.inradius),
-            ),
         };
-        let extras = match shown {
-            Shown::Constant(a) => ViewExtras::new(&a.space, &scene.0, frame.0, seconds),
+        let extras = match &active.space {
+            AnySpace::Constant(s) => ViewExtras::new(s, &scene.0, frame.0, seconds),
             // No avatar in a product space.
-            Shown::Product(_) => ViewExtras {
+            AnySpace::Product(_) => ViewExtras {
                 time: seconds,
                 ..ViewExtras::default()
             },

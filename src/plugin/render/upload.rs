@@ -77,6 +77,9 @@ pub(crate) fn upload_scene(
     mut cache: Local<UploadCache>,
     mut commands: Commands,
 ) {
+    let Some(space) = active.constant() else {
+        return;
+    };
     let static_changed = prepared.is_none()
         || active.is_changed()
         || settings.is_changed()
@@ -87,7 +90,6 @@ pub(crate) fn upload_scene(
     if !static_changed && !entities.is_changed() {
         return;
     }
-    let space = &active.space;
     if static_changed {
         cache.fixed = Some(build_scene(
             space,

@@ -8,9 +8,14 @@ use super::*;
 /// shown), and the player: a white dot and
 /// the direction it looks in. An oblique view of the chart, fixed so that it reads the
 /// same as you move.
-pub(super) fn minimap(ui: &mut egui::Ui, active: &ActiveSpace, frame: &PlayerFrame, walls: bool) {
+pub(super) fn minimap(
+    ui: &mut egui::Ui,
+    space: &crate::space::Space,
+    inradius: f64,
+    frame: &PlayerFrame,
+    walls: bool,
+) {
     use crate::scene::palette;
-    let space = &active.space;
     // With walls shown, faces are labelled in their walls' colours (glued faces alike).
     let wall_colours = walls.then(|| {
         let (partners, reflections) = crate::scene::walls::gluing(space);
@@ -61,8 +66,7 @@ pub(super) fn minimap(ui: &mut egui::Ui, active: &ActiveSpace, frame: &PlayerFra
         );
     }
     let here = g.to_chart(frame.0.w_axis);
-    let ahead =
-        g.to_chart((frame.0 * g.translation(glam::DVec3::NEG_Z, 0.3 * active.inradius)).w_axis);
+    let ahead = g.to_chart((frame.0 * g.translation(glam::DVec3::NEG_Z, 0.3 * inradius)).w_axis);
     let (p, q) = (to_screen(here), to_screen(ahead));
     painter.line_segment([p, q], egui::Stroke::new(2.0, egui::Color32::WHITE));
     painter.circle_filled(p, 4.0, egui::Color32::WHITE);
@@ -74,7 +78,7 @@ pub(super) fn minimap(ui: &mut egui::Ui, active: &ActiveSpace, frame: &PlayerFra
 #[allow(clippy::too_many_arguments)]
 pub(super) fn inspector(
     ui: &mut egui::Ui,
-    active: &ActiveSpace,
+    space: &crate::space::Space,
     scene: &crate::scene::CurvedScene,
     camera: &CurvedSpaceCamera,
     frame: &PlayerFrame,
@@ -101,7 +105,6 @@ pub(super) fn inspector(
         (at.x.max(0.0) as u32).min(pw - 1),
         (at.y.max(0.0) as u32).min(ph - 1),
     );
-    let space = &active.space;
     let ray = view.ray(space.geometry, i, j, pw, ph);
     let walker = crate::space::CellWalker::<glam::DVec4>::new(space);
     let story = ray_story(&walker, scene, ray, budget.max(1) as usize);

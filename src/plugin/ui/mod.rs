@@ -2,13 +2,13 @@
 //! a screenshot (without the panel) to the working directory.
 
 use crate::plugin::components::{
-    ActiveProduct, ActiveSpace, CurvedSpaceCamera, Quality, TracerSettings, TracerStatus,
+    ActiveSpace, CurvedSpaceCamera, Quality, TracerSettings, TracerStatus,
 };
 use crate::plugin::components::{PlayerFrame, PlayerSettings};
 use crate::plugin::components::{PointerOverUi, StereoSettings};
 use crate::plugin::frame_rate::FrameRateTarget;
 use crate::space::Holonomy;
-use crate::space::SEED_SPACES;
+use crate::space::{Family, SEED_SPACES};
 use crate::view::StereoMode;
 use crate::view::stereo::{HUMAN_IPD_METRES, default_ipd};
 use bevy::diagnostic::{DiagnosticsStore, FrameTimeDiagnosticsPlugin};
@@ -82,8 +82,8 @@ impl Plugin for CurvedSpacesUiPlugin {
             .add_systems(
                 EguiPrimaryContextPass,
                 (
-                    panel.run_if(resource_exists::<ActiveSpace>),
-                    product::product_panel.run_if(resource_exists::<ActiveProduct>),
+                    panel.run_if(ActiveSpace::shows(Family::Constant)),
+                    product::product_panel.run_if(ActiveSpace::shows(Family::Product)),
                 ),
             );
     }
@@ -130,7 +130,6 @@ fn take_screenshot(
     keys: Res<ButtonInput<KeyCode>>,
     ui: Res<UiKeys>,
     active: Option<Res<ActiveSpace>>,
-    product: Option<Res<ActiveProduct>>,
     mut shown: ResMut<PanelVisible>,
     mut commands: Commands,
 ) {
@@ -142,10 +141,7 @@ fn take_screenshot(
     let stamp = std::time::SystemTime::now()
         .duration_since(std::time::UNIX_EPOCH)
         .map_or(0, |d| d.as_secs());
-    let id = product
-        .map(|p| p.id.clone())
-        .or_else(|| active.map(|a| a.id.clone()))
-        .unwrap_or_default();
+    let id = active.map(|a| a.id.clone()).unwrap_or_default();
     let path = format!("curved-spaces-{}-{stamp}.png", id.replace(['/', '\\'], "_"));
     info!("saving a screenshot to {path}");
     commands.spawn(Screenshot::primary_window()).observe(
@@ -187,6 +183,9 @@ fn panel(
         Commands,
     ),
 ) -> Result {
+    let Some(space) = active.constant() else {
+        return Ok(());
+    };
     let ctx = contexts.ctx_mut()?;
     if !shown.0 {
         over_ui.0 = false;
@@ -198,7 +197,7 @@ fn panel(
         .vscroll(true)
         .default_height(690.0)
         .show(ctx, |ui| {
-            if let Some(id) = space_picker(ui, &active.id, active.space.description(), &mut picker)
+            if let Some(id) = space_picker(ui, &active.id, space.description(), &mut picker)
                 && id != active.id
             {
                 picker.error = switch_space(&id, &mut commands).err();
@@ -207,7 +206,7 @@ fn panel(
                 }
             }
             ui.separator();
-            let default_fog = crate::scene::Shading::default_fog_distance(&active.space);
+            let default_fog = crate::scene::Shading::default_fog_distance(space);
             tracer_controls(ui, &mut settings, &status, default_fog);
             let mut hold = frame_rate.target_ms.is_some();
             let mut fps = frame_rate.target_ms.map_or(30.0, |ms| 1e3 / ms);
@@ -262,7 +261,7 @@ fn panel(
                     }
                 });
             ui.checkbox(&mut parts.avatar, "your ship (seen round the space)");
-            if active.space.geometry == crate::geometry::Geometry::Spherical {
+            if space.geometry == crate::geometry::Geometry::Spherical {
                 ui.checkbox(&mut parts.clifford, "Clifford parallels");
             }
             if parts != settings.parts {
@@ -283,7 +282,7 @@ fn panel(
             );
             ui.separator();
             stereo_controls(ui, &mut stereo, active.inradius);
-            colour_by_controls(ui, &mut settings, active.space.faces.len());
+            colour_by_controls(ui, &mut settings, space.faces.len());
             ui.separator();
             let fps = diagnostics
                 .get(&FrameTimeDiagnosticsPlugin::FPS)
@@ -295,7 +294,7 @@ fn panel(
                 ui.label(format!("{fps:.0} fps, {ms:.1} ms per frame"));
             }
             for (_, frame, holonomy) in &cameras {
-                let chart = active.space.geometry.to_chart(frame.0.w_axis);
+                let chart = space.geometry.to_chart(frame.0.w_axis);
                 ui.label(format!(
                     "position in the cell: ({:+.3}, {:+.3}, {:+.3})",
                     chart.x, chart.y, chart.z
@@ -310,7 +309,7 @@ fn panel(
             }
             ui.label(format!(
                 "{} geometry, volume {:.6}",
-                active.space.geometry.name(),
+                space.geometry.name(),
                 active.volume
             ));
             match active.injectivity_radius {
@@ -318,10 +317,10 @@ fn panel(
                 None => ui.label("injectivity radius: not enumerated"),
             };
             if let Some((_, frame, _)) = cameras.iter().next()
-                && !active.space.vertices.is_empty()
+                && !space.vertices.is_empty()
             {
                 egui::CollapsingHeader::new("mini-map").default_open(true).show(ui, |ui| {
-                    minimap(ui, &active, frame, walls_shown);
+                    minimap(ui, space, active.inradius, frame, walls_shown);
                 });
             }
             if let (Some(scene), Some((camera, frame, _))) =
@@ -329,7 +328,7 @@ fn panel(
             {
                 egui::CollapsingHeader::new("inspector").default_open(true).show(ui, |ui| {
                     let window = windows.iter().next();
-                    inspector(ui, &active, &scene.0, camera, frame, window, look.grabbed, status.budget);
+                    inspector(ui, space, &scene.0, camera, frame, window, look.grabbed, status.budget);
                 });
             }
             if !entities.objects.is_empty() || entities.pending > 0 {

@@ -147,20 +147,9 @@ pub(super) fn space_picker(
     chosen
 }
 
-/// Shows the space an id names: a product space (H²×R, S²×R) takes the place of the
-/// [`ActiveSpace`], and any other space the place of the [`ActiveProduct`]; players go to
-/// its start view. An error names what is wrong with the id.
+/// Shows the space an id names, of any family, as the [`ActiveSpace`]; players go to its
+/// start view. An error names what is wrong with the id.
 pub(super) fn switch_space(id: &str, commands: &mut Commands) -> Result<(), String> {
-    match ActiveProduct::named(id) {
-        Some(Ok(product)) => {
-            commands.insert_resource(product);
-            commands.remove_resource::<ActiveSpace>();
-        }
-        Some(Err(e)) => return Err(e),
-        None => {
-            commands.insert_resource(ActiveSpace::named(id)?);
-            commands.remove_resource::<ActiveProduct>();
-        }
-    }
+    commands.insert_resource(ActiveSpace::named(id)?);
     Ok(())
 }

@@ -9,7 +9,7 @@ pub(super) fn product_panel(
     mut contexts: EguiContexts,
     shown: Res<PanelVisible>,
     mut over_ui: ResMut<PointerOverUi>,
-    active: Res<ActiveProduct>,
+    active: Res<ActiveSpace>,
     base: Option<Res<BaseProductScene>>,
     mut settings: ResMut<TracerSettings>,
     mut player: ResMut<PlayerSettings>,
@@ -20,12 +20,14 @@ pub(super) fn product_panel(
     mut picker: Local<SpacePicker>,
     mut commands: Commands,
 ) -> Result {
+    let Some(space) = active.product() else {
+        return Ok(());
+    };
     let ctx = contexts.ctx_mut()?;
     if !shown.0 {
         over_ui.0 = false;
         return Ok(());
     }
-    let space = &active.space;
     egui::Window::new("Curved spaces")
         .default_pos((12.0, 12.0))
         .default_width(300.0)
