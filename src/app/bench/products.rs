@@ -8,7 +8,8 @@
 use super::*;
 use crate::plugin::render::gpu::GpuScene;
 use crate::space::product::accuracy::product_walk_accuracy;
-use crate::space::product::{ProductOrFlat, ProductSpace, ProductWalker, product_space};
+use crate::space::AnySpace;
+use crate::space::product::{ProductSpace, ProductWalker};
 use crate::trace::product::{
     ProductRayEnd, default_camera, default_scene, first_product_hit, product_auto_budget,
     render_product,
@@ -65,16 +66,15 @@ pub struct ProductRow {
     pub f32_worst: f64,
 }
 
-/// A product space by library id.
+/// A product space by id, through the crate's one registry ([`AnySpace::resolve`]).
 fn product(id: &str) -> Result<ProductSpace, BenchError> {
-    match product_space(id) {
-        Some(Ok(ProductOrFlat::Product(p))) => Ok(*p),
-        Some(Ok(ProductOrFlat::Flat(_))) => Err(BenchError::Product(format!(
-            "{id} is a flat space (its word is flat), not a product space: --spaces benches the seed spaces"
-        ))),
-        Some(Err(e)) => Err(BenchError::Product(e)),
-        None => Err(BenchError::Product(format!(
-            "{id} is not a product space (see `curved-spaces list`)"
+    let space = AnySpace::named(id)
+        .map_err(|e| BenchError::Product(format!("{id} is not a product space: {e}")))?;
+    match space {
+        AnySpace::Product(p) => Ok(std::sync::Arc::unwrap_or_clone(p)),
+        AnySpace::Constant(s) => Err(BenchError::Product(format!(
+            "{id} is a space of the geometry {}, not a product space: --spaces benches those",
+            s.geometry().name()
         ))),
     }
 }
