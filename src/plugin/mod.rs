@@ -4,9 +4,10 @@
 //!
 //! - [`components`]: the components on curved-space cameras and the resources that configure
 //!   and report on the tracer, shared by the modules below;
+//! - [`family`]: the systems written once over the geometry contract, added per family;
 //! - [`player`]: input, motion and the wrap of each camera's frame through the faces;
 //! - [`objects`]: a game's things as entities, moving along geodesics through the faces;
-//! - [`product`]: the same for the product spaces (H²×R, S²×R), while one is shown;
+//! - [`product`]: the product spaces' (H²×R, S²×R) scene upload, while one is shown;
 //! - [`flight`]: replaying and recording camera flights;
 //! - [`render`]: the scene packed for the WGSL tracer and the render node that draws it;
 //! - [`frame_rate`]: the traced resolution (and the crossing budget) following frame times;
@@ -15,10 +16,11 @@
 //! - `ui` (feature `ui`): the egui panel;
 //! - `xr` (feature `xr`): OpenXR headsets.
 //!
-//! Dependencies run one way: `components` is read by all, `setup` names the systems of the
-//! others and orders them, and `offscreen` builds the plugin.
+//! Dependencies run one way: `components` is read by all, `setup` and `family` name the systems of
+//! the others and order them, and `offscreen` builds the plugin.
 
 pub mod components;
+pub mod family;
 #[cfg(feature = "scene-files")]
 pub mod flight;
 pub mod frame_rate;

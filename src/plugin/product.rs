@@ -6,86 +6,14 @@
 //! tracer's `PRODUCT` variant when the space or the settings change.
 
 use crate::plugin::components::{
-    AUTO_BUDGET_SAMPLES, ActiveSpace, BaseProductScene, BaseScene, PlayerFrame, PlayerMotion,
-    PlayerSettings, TracerSettings, TracerStatus,
+    AUTO_BUDGET_SAMPLES, ActiveSpace, BaseProductScene, TracerSettings, TracerStatus,
 };
 use crate::plugin::render::PreparedScene;
 use crate::plugin::render::gpu::{GpuScene, MAX_GPU_BUDGET};
 use crate::space::product::ProductSpace;
-use crate::space::product::motion::{ProductMotion, step_product_frame, wrap_product_frame};
-use crate::space::{AnySpace, Holonomy};
 use crate::trace::product::{ProductScene, default_scene, product_auto_budget};
 use bevy::prelude::*;
 use std::sync::Arc;
-
-/// Applies each player's motion to its frame in the product space.
-pub(crate) fn move_product_players(
-    active: Res<ActiveSpace>,
-    settings: Res<PlayerSettings>,
-    mut players: Query<(&mut PlayerFrame, &PlayerMotion)>,
-) {
-    let Some(space) = active.product() else {
-        return;
-    };
-    let g = space.base();
-    for (mut frame, motion) in &mut players {
-        if *motion != PlayerMotion::default() {
-            frame.0 = step_product_frame(
-                g,
-                frame.0,
-                &ProductMotion {
-                    translation: motion.translation,
-                    rotation: motion.rotation,
-                    level: settings.fibre_up,
-                },
-            );
-        }
-    }
-}
-
-/// Wraps players that left the product cell and puts every frame back on the model.
-pub(crate) fn wrap_product_players(
-    active: Res<ActiveSpace>,
-    settings: Res<PlayerSettings>,
-    mut players: Query<(&mut PlayerFrame, &mut Holonomy)>,
-) {
-    let Some(space) = active.product() else {
-        return;
-    };
-    for (mut frame, mut holonomy) in &mut players {
-        let (wrapped, crossed) = wrap_product_frame(space, frame.0, settings.wrap_margin);
-        for c in crossed {
-            holonomy.record(c.face, c.pairing);
-        }
-        frame.0 = wrapped;
-    }
-}
-
-/// Puts every player at the new space's start view when the space shown changes (either
-/// kind, either way); not on the first frame, which keeps frames set before it.
-pub(crate) fn reset_players_on_switch(
-    active: Option<Res<ActiveSpace>>,
-    base: Res<BaseScene>,
-    product_base: Option<Res<BaseProductScene>>,
-    mut started: Local<bool>,
-    mut players: Query<(&mut PlayerFrame, &mut Holonomy)>,
-) {
-    if !*started {
-        *started = true;
-        return;
-    }
-    let Some(active) = active.filter(|a| a.is_changed()) else {
-        return;
-    };
-    let start = match &active.space {
-        AnySpace::Product(p) => BaseProductScene::start_frame(product_base.as_deref(), p),
-        AnySpace::Constant(s) => base.start_frame(&active, s),
-    };
-    for (mut frame, mut holonomy) in &mut players {
-        frame.0 = start;
-        *holonomy = Holonomy::default();
-    }
-}
 
 /// What the packed product scene was made from.
 #[derive(Clone, Debug, PartialEq)]

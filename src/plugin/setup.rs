@@ -19,6 +19,7 @@ use crate::plugin::components::{
     MouseLook, PlayerFrame, PlayerSettings, Quality, SceneObjects, StereoSettings, TracerSettings,
     TracerStatus,
 };
+use crate::plugin::family::FamilyPlugin;
 use crate::plugin::frame_rate::{BudgetShare, FrameRateTarget, hold_frame_rate};
 use crate::plugin::player;
 use crate::plugin::render::TracerRenderPlugin;
@@ -139,22 +140,7 @@ impl Plugin for CurvedSpacesPlugin {
         .add_systems(
             Update,
             (
-                (
-                    crate::plugin::product::reset_players_on_switch,
-                    (
-                        player::move_players.run_if(ActiveSpace::shows(Family::Constant)),
-                        crate::plugin::product::move_product_players
-                            .run_if(ActiveSpace::shows(Family::Product)),
-                    ),
-                )
-                    .chain()
-                    .in_set(CurvedSpacesSystems::Move),
-                (
-                    player::wrap_players.run_if(ActiveSpace::shows(Family::Constant)),
-                    crate::plugin::product::wrap_product_players
-                        .run_if(ActiveSpace::shows(Family::Product)),
-                )
-                    .in_set(CurvedSpacesSystems::Wrap),
+                player::reset_players_on_switch.in_set(CurvedSpacesSystems::Move),
                 #[cfg(feature = "scene-files")]
                 (
                     crate::plugin::flight::replay_flight,
@@ -182,7 +168,12 @@ impl Plugin for CurvedSpacesPlugin {
                 hold_frame_rate.before(CurvedSpacesSystems::Upload),
             ),
         )
-        .add_observer(start_camera);
+        .add_observer(start_camera)
+        // The systems written once over the geometry contract, one set per family.
+        .add_plugins((
+            FamilyPlugin::<crate::space::Space>::default(),
+            FamilyPlugin::<crate::space::product::ProductSpace>::default(),
+        ));
         #[cfg(feature = "scene-files")]
         app.add_systems(Last, crate::plugin::flight::finish_recording);
         crate::plugin::objects::add_systems(app);

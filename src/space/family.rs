@@ -213,6 +213,16 @@ impl AnySpace {
         }
     }
 
+    /// The space of family `F`, if it is one (the plugin's systems of a family ask so).
+    #[must_use]
+    pub fn get<F: super::FamilySpace>(&self) -> Option<&Arc<F>> {
+        let shared: &dyn std::any::Any = match self {
+            AnySpace::Constant(s) => s,
+            AnySpace::Product(p) => p,
+        };
+        shared.downcast_ref::<Arc<F>>()
+    }
+
     /// The product space, if it is one.
     #[must_use]
     pub fn product(&self) -> Option<&Arc<ProductSpace>> {

@@ -3,6 +3,7 @@
 
 pub mod accuracy;
 pub mod catalog;
+pub mod contract;
 pub mod dirichlet;
 mod error;
 pub mod exact;
@@ -21,6 +22,7 @@ pub mod walk;
 mod wrap;
 
 pub use catalog::{DEFAULT_SPACE, SEED_SPACES, SeedSpace, seed_space};
+pub use contract::{FamilySpace, FrameCrossing, FrameMotion};
 pub use error::SpaceError;
 pub use family::{AnySpace, Family, Feature, Unsupported, resolve_space};
 pub use walk::{CellWalk, CellWalker, Crossing, Exit, Limit, NextExit, Trace};

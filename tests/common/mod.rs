@@ -91,16 +91,7 @@ pub const HOSTILE: [&str; 10] = [
 /// The largest deviation of a product frame's columns (right, up, back) from orthonormal in
 /// the product metric of the surface's geometry `g`.
 pub fn product_frame_defect(g: bevy_curved_spaces::geometry::Geometry, f: glam::DMat4) -> f64 {
-    use bevy_curved_spaces::space::product::motion::product_dot;
-    let cols = [f.x_axis, f.y_axis, f.z_axis];
-    let mut worst: f64 = 0.0;
-    for i in 0..3 {
-        for j in 0..3 {
-            let want = if i == j { 1.0 } else { 0.0 };
-            worst = worst.max((product_dot(g, cols[i], cols[j]) - want).abs());
-        }
-    }
-    worst
+    bevy_curved_spaces::space::product::motion::product_frame_defect(g, f)
 }
 
 /// A space by id (a seed space or one of the library's), with the default Dirichlet options.

@@ -11,28 +11,22 @@
 //!   carried by the holonomy of its wraps.
 
 use bevy_curved_spaces::geometry::{Geometry, Ray, Vector4};
-use bevy_curved_spaces::plugin::components::PlayerMotion;
 use bevy_curved_spaces::random::SplitMix64;
-use bevy_curved_spaces::space::product::motion::{
-    ProductMotion, camera_frame, step_product_frame, wrap_product_frame,
-};
-use bevy_curved_spaces::space::product::{ProductSpace, ProductWalker, ray_from_centre};
-use bevy_curved_spaces::space::{CellWalk, CellWalker, Limit, Space};
+use bevy_curved_spaces::space::product::motion::camera_frame;
+use bevy_curved_spaces::space::product::{ProductSpace, ProductWalker};
+use bevy_curved_spaces::space::{CellWalk, FamilySpace, FrameMotion, Limit, Space};
 use glam::{DMat4, DVec3, DVec4, Vec4};
 
-/// What the laws need of a family beyond its walk: its spaces, rays from the centre, the
-/// cover's geodesics, how a crossing carries a cover point, and the cell.
+/// What the laws need of a family beyond the geometry contract ([`FamilySpace`]: the walkers,
+/// the chart's rays, the cell, the player's step and wrap): its spaces, the cover's
+/// geodesics and how a crossing carries a cover point, which the tests know independently.
 trait LawFamily: Sized {
-    /// The f64 walker.
-    type Walker: CellWalk<DVec4>;
-    /// The f32 walker.
-    type WalkerF32: CellWalk<Vec4>;
+    /// The family's space.
+    type Space: FamilySpace;
     /// The family's spaces the laws run in, by name.
     fn cases() -> Vec<(String, Self)>;
-    fn walker(&self) -> Self::Walker;
-    fn walker_f32(&self) -> Self::WalkerF32;
-    /// A unit ray from the cell's centre in the chart direction `d`.
-    fn ray(&self, d: DVec3) -> Ray<DVec4>;
+    /// The space.
+    fn space(&self) -> &Self::Space;
     /// The point at distance `t` along the cover geodesic of `start`.
     fn cover_point(&self, start: &Ray<DVec4>, t: f64) -> DVec4;
     /// A cover point carried through the pairing of `face`, as the walk carries its ray.
@@ -42,31 +36,25 @@ trait LawFamily: Sized {
     fn gap(&self, a: DVec4, b: DVec4) -> f64 {
         (a - b).abs().max_element()
     }
-    /// How far a point lies outside the cell.
-    fn outside_by(&self, p: DVec4) -> f64;
     /// The tolerance of a walk of length `d`: the problem's conditioning (`e^d` in H³).
     fn tolerance(&self, d: f64) -> f64;
-    /// The player's length unit (the cell's size).
-    fn scale(&self) -> f64;
     /// The player's start frame.
     fn player_start(&self) -> DMat4;
-    /// One step of the player: a local translation, then local turns.
-    fn player_step(&self, frame: DMat4, translation: DVec3, rotation: DVec3) -> DMat4;
-    /// The frame wrapped back into the cell past the margin, with the isometries crossed
-    /// (each a matrix, and a shift along a product's fibre).
-    fn player_wrap(&self, frame: DMat4) -> (DMat4, Vec<(DMat4, f64)>);
-    /// How far a frame is from orthonormal on the model.
-    fn frame_defect(&self, frame: DMat4) -> f64;
-    /// How many faces the cell has.
-    fn faces(&self) -> usize;
+    /// The shift along the fibre of a wrap through `face` (a product's top and bottom).
+    fn fibre_shift(&self, _face: usize) -> f64 {
+        0.0
+    }
+    /// A unit ray from the cell's centre in the chart direction `d`.
+    fn ray(&self, d: DVec3) -> Ray<DVec4> {
+        self.space().chart_ray(DVec3::ZERO, d).expect("a chart ray")
+    }
 }
 
 /// A constant-curvature space (E³, S³, H³).
 struct Constant(Space);
 
 impl LawFamily for Constant {
-    type Walker = CellWalker<DVec4>;
-    type WalkerF32 = CellWalker<Vec4>;
+    type Space = Space;
     fn cases() -> Vec<(String, Self)> {
         [
             "torus",
@@ -85,14 +73,8 @@ impl LawFamily for Constant {
         .map(|id| (id.to_string(), Constant(crate::common::library_space(id))))
         .collect()
     }
-    fn walker(&self) -> Self::Walker {
-        CellWalker::new(&self.0)
-    }
-    fn walker_f32(&self) -> Self::WalkerF32 {
-        CellWalker::new(&self.0)
-    }
-    fn ray(&self, d: DVec3) -> Ray<DVec4> {
-        bevy_curved_spaces::geometry::chart_ray(self.0.geometry(), DVec3::ZERO, d).unwrap()
+    fn space(&self) -> &Space {
+        &self.0
     }
     fn cover_point(&self, start: &Ray<DVec4>, t: f64) -> DVec4 {
         let g = self.0.geometry();
@@ -109,44 +91,14 @@ impl LawFamily for Constant {
             _ => q,
         }
     }
-    fn outside_by(&self, p: DVec4) -> f64 {
-        self.0.outside_by(p)
-    }
     fn tolerance(&self, d: f64) -> f64 {
         match self.0.geometry() {
             Geometry::Hyperbolic => 1e-12 * d.exp().powi(2),
             _ => 1e-10 * (1.0 + d),
         }
     }
-    fn scale(&self) -> f64 {
-        bevy_curved_spaces::space::invariants::inradius(&self.0)
-    }
     fn player_start(&self) -> DMat4 {
         bevy_curved_spaces::view::TraceCamera::default_for(&self.0).frame
-    }
-    fn player_step(&self, frame: DMat4, translation: DVec3, rotation: DVec3) -> DMat4 {
-        bevy_curved_spaces::plugin::player::step_frame(
-            self.0.geometry(),
-            frame,
-            &PlayerMotion {
-                translation,
-                rotation,
-            },
-        )
-    }
-    fn player_wrap(&self, frame: DMat4) -> (DMat4, Vec<(DMat4, f64)>) {
-        let (f, crossed) = bevy_curved_spaces::space::wrap_into_cell(&self.0, frame, MARGIN);
-        let carried = crossed
-            .iter()
-            .map(|&c| (self.0.faces()[c].pairing, 0.0))
-            .collect();
-        (f, carried)
-    }
-    fn frame_defect(&self, frame: DMat4) -> f64 {
-        self.0.geometry().frame_defect(frame)
-    }
-    fn faces(&self) -> usize {
-        self.0.faces().len()
     }
 }
 
@@ -154,8 +106,7 @@ impl LawFamily for Constant {
 struct Product(ProductSpace);
 
 impl LawFamily for Product {
-    type Walker = ProductWalker<DVec4>;
-    type WalkerF32 = ProductWalker<Vec4>;
+    type Space = ProductSpace;
     fn cases() -> Vec<(String, Self)> {
         [
             "bitorus-circle",
@@ -169,14 +120,8 @@ impl LawFamily for Product {
         .map(|id| (id.to_string(), Product(crate::common::product(id))))
         .collect()
     }
-    fn walker(&self) -> Self::Walker {
-        ProductWalker::new(&self.0)
-    }
-    fn walker_f32(&self) -> Self::WalkerF32 {
-        ProductWalker::new(&self.0)
-    }
-    fn ray(&self, d: DVec3) -> Ray<DVec4> {
-        ray_from_centre(d)
+    fn space(&self) -> &ProductSpace {
+        &self.0
     }
     fn cover_point(&self, start: &Ray<DVec4>, t: f64) -> DVec4 {
         let g = self.0.base();
@@ -201,57 +146,26 @@ impl LawFamily for Product {
         let q = m * base;
         DVec4::new(q.x, q.y, p.z + dz, q.w)
     }
-    fn outside_by(&self, p: DVec4) -> f64 {
-        self.0.outside_by(p)
-    }
     fn tolerance(&self, d: f64) -> f64 {
         match self.0.base() {
             Geometry::Hyperbolic => 1e-12 * d.exp().powi(2),
             _ => 1e-10 * (1.0 + d),
         }
     }
-    fn scale(&self) -> f64 {
-        self.0.scale()
-    }
     fn player_start(&self) -> DMat4 {
         let camera = bevy_curved_spaces::trace::product::default_camera(&self.0);
         camera_frame(camera.point, camera.frame)
     }
-    fn player_step(&self, frame: DMat4, translation: DVec3, rotation: DVec3) -> DMat4 {
-        step_product_frame(
-            self.0.base(),
-            frame,
-            &ProductMotion {
-                translation,
-                rotation,
-                level: true,
-            },
-        )
-    }
-    fn player_wrap(&self, frame: DMat4) -> (DMat4, Vec<(DMat4, f64)>) {
-        let (f, crossed) = wrap_product_frame(&self.0, frame, MARGIN);
-        let walker = ProductWalker::<DVec4>::new(&self.0);
-        let carried = crossed
-            .iter()
-            .map(|c| {
-                // The top's and bottom's shifts along the fibre, a circle at a time.
-                let shift = if c.face == walker.top() {
-                    -self.0.length()
-                } else if c.face == walker.bottom() {
-                    self.0.length()
-                } else {
-                    0.0
-                };
-                (c.pairing, shift)
-            })
-            .collect();
-        (f, carried)
-    }
-    fn frame_defect(&self, frame: DMat4) -> f64 {
-        crate::common::product_frame_defect(self.0.base(), frame)
-    }
-    fn faces(&self) -> usize {
-        self.0.face_count()
+    fn fibre_shift(&self, face: usize) -> f64 {
+        // The top's and bottom's shifts along the fibre, a circle at a time.
+        let sides = self.0.face_count() - 2;
+        if face == sides {
+            -self.0.length()
+        } else if face == sides + 1 {
+            self.0.length()
+        } else {
+            0.0
+        }
     }
 }
 
@@ -266,7 +180,7 @@ fn directions(seed: u64, n: usize) -> Vec<DVec3> {
 /// A walk's end is the cover geodesic's point carried by the pairings it crossed.
 fn walk_ends_on_the_cover_geodesic<F: LawFamily>() {
     for (name, family) in F::cases() {
-        let walker = family.walker();
+        let walker = family.space().walker::<DVec4>();
         for d in directions(0x1a3, 12) {
             let start = family.ray(d);
             let length = 3.0;
@@ -293,11 +207,11 @@ fn walk_ends_on_the_cover_geodesic<F: LawFamily>() {
 /// 10⁵ crossings, every entry point in the cell.
 fn long_walks_stay_in_the_cell<F: LawFamily>() {
     for (name, family) in F::cases() {
-        let walker = family.walker();
+        let walker = family.space().walker::<DVec4>();
         for d in directions(0x5e1, 2) {
             let mut worst = f64::NEG_INFINITY;
             let (end, _) = walker.walk(family.ray(d), Limit::Crossings(100_000), |c| {
-                worst = worst.max(family.outside_by(c.ray.point));
+                worst = worst.max(family.space().outside_by(c.ray.point));
                 true
             });
             assert!(
@@ -312,7 +226,10 @@ fn long_walks_stay_in_the_cell<F: LawFamily>() {
 /// f32 keeps the f64 walk's faces over its first crossings (a few units of distance).
 fn f32_walks_keep_the_f64_faces<F: LawFamily>() {
     for (name, family) in F::cases() {
-        let (w64, w32) = (family.walker(), family.walker_f32());
+        let (w64, w32) = (
+            family.space().walker::<DVec4>(),
+            family.space().walker::<Vec4>(),
+        );
         for d in directions(0x32f, 8) {
             let start = family.ray(d);
             let start32 = Ray {
@@ -340,7 +257,7 @@ fn f32_walks_keep_the_f64_faces<F: LawFamily>() {
 /// `a` continued by `b` ends.
 fn walks_by_distance_compose<F: LawFamily>() {
     for (name, family) in F::cases() {
-        let walker = family.walker();
+        let walker = family.space().walker::<DVec4>();
         for d in directions(0xc0, 6) {
             let start = family.ray(d);
             let (whole, l) = walker.walk(start, Limit::Distance(2.5), |_| true);
@@ -359,23 +276,34 @@ fn a_player_wraps_with_its_holonomy<F: LawFamily>() {
     for (name, family) in F::cases() {
         let mut rng = SplitMix64(0x91a);
         let mut next = || 2.0 * rng.unit() - 1.0;
-        let step = 0.05 * family.scale();
+        let space = family.space();
+        let step = 0.05 * space.scale();
+        let walk = |frame, translation, rotation| {
+            space.step_frame(
+                frame,
+                &FrameMotion {
+                    translation,
+                    rotation,
+                    level: true,
+                },
+            )
+        };
         let (mut wrapped, mut cover) = (family.player_start(), family.player_start());
         let (mut held, mut shift) = (DMat4::IDENTITY, 0.0);
         let mut crossings = 0;
         for _ in 0..2_000 {
             let t = DVec3::new(next(), next(), next()) * step;
             let r = DVec3::new(next(), next(), next()) * 0.1;
-            cover = family.player_step(cover, t, r);
-            let (f, crossed) = family.player_wrap(family.player_step(wrapped, t, r));
-            for (m, dz) in crossed {
-                held = m * held;
-                shift += dz;
+            cover = walk(cover, t, r);
+            let (f, crossed) = space.wrap_frame(walk(wrapped, t, r), MARGIN);
+            for c in crossed {
+                held = c.pairing * held;
+                shift += family.fibre_shift(c.face);
                 crossings += 1;
             }
             wrapped = f;
-            assert!(family.outside_by(wrapped.w_axis) <= 2.0 * MARGIN, "{name}");
-            assert!(family.frame_defect(wrapped) < 1e-9, "{name}");
+            assert!(space.outside_by(wrapped.w_axis) <= 2.0 * MARGIN, "{name}");
+            assert!(space.frame_defect(wrapped) < 1e-9, "{name}");
         }
         let mut carried = held * cover;
         carried.w_axis.z += shift;
@@ -383,7 +311,7 @@ fn a_player_wraps_with_its_holonomy<F: LawFamily>() {
             .map(|c| family.gap(carried.col(c), wrapped.col(c)))
             .fold(0.0, f64::max);
         assert!(
-            crossings > 5 || family.faces() == 0,
+            crossings > 5 || space.face_count() == 0,
             "{name}: only {crossings} crossings"
         );
         assert!(

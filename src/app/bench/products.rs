@@ -7,8 +7,8 @@
 
 use super::*;
 use crate::plugin::render::gpu::GpuScene;
-use crate::space::product::accuracy::product_walk_accuracy;
 use crate::space::AnySpace;
+use crate::space::product::accuracy::product_walk_accuracy;
 use crate::space::product::{ProductSpace, ProductWalker};
 use crate::trace::product::{
     ProductRayEnd, default_camera, default_scene, first_product_hit, product_auto_budget,
@@ -73,8 +73,12 @@ fn product(id: &str) -> Result<ProductSpace, BenchError> {
     match space {
         AnySpace::Product(p) => Ok(std::sync::Arc::unwrap_or_clone(p)),
         AnySpace::Constant(s) => Err(BenchError::Product(format!(
-            "{id} is a space of the geometry {}, not a product space: --spaces benches those",
-            s.geometry().name()
+            "{id} is {}, not a product space: --spaces benches the constant-curvature spaces",
+            if s.geometry() == crate::geometry::Geometry::Euclidean {
+                "a flat space (E³: a flat word's product is one)".to_string()
+            } else {
+                format!("a space of constant curvature ({})", s.geometry().name())
+            }
         ))),
     }
 }

@@ -46,7 +46,7 @@ use crate::scene::{
 };
 use crate::space::Family;
 use crate::space::motion::{Sightline, Sightlines, Velocity};
-use crate::space::{Holonomy, Space, frame_on_model, wrap_into_cell};
+use crate::space::{Holonomy, Space, wrap_into_cell};
 use bevy::asset::{AssetEvent, AssetId, Assets, Handle};
 use bevy::image::Image;
 use bevy::mesh::{Mesh, PrimitiveTopology};
@@ -368,28 +368,14 @@ pub(crate) fn add_systems(app: &mut App) {
         .init_resource::<product::ProductEntityObjects>()
         .add_message::<ObjectCrossedFace>()
         .add_systems(
-            FixedUpdate,
-            (
-                (move_objects, wrap_objects)
-                    .chain()
-                    .run_if(ActiveSpace::shows(Family::Constant)),
-                (product::move_product_objects, product::wrap_product_objects)
-                    .chain()
-                    .run_if(ActiveSpace::shows(Family::Product)),
-            ),
-        )
-        .add_systems(
             Update,
-            (
-                product::wrap_product_objects.in_set(CurvedSpacesSystems::Wrap),
-                product::collect_product_objects.in_set(CurvedSpacesSystems::Upload),
-            )
+            product::collect_product_objects
+                .in_set(CurvedSpacesSystems::Upload)
                 .run_if(ActiveSpace::shows(Family::Product)),
         )
         .add_systems(
             Update,
             (
-                wrap_objects.in_set(CurvedSpacesSystems::Wrap),
                 // The plugin orders the upload after it.
                 collect_objects.in_set(CurvedSpacesSystems::Upload),
                 update_sightlines.before(CurvedSpacesSystems::Upload),

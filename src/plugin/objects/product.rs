@@ -1,7 +1,8 @@
 //! A game's entities in a product space (H²×R, S²×R): while a product space is shown,
-//! [`CurvedObject`]s move along the product's geodesics ([`move_product_objects`]), come back
-//! into the cell through the sides, the top and the bottom ([`wrap_product_objects`], with
-//! their [`Holonomy`] and an [`ObjectCrossedFace`] each), and are drawn as product objects
+//! [`CurvedObject`]s move along the product's geodesics and come back into the cell through
+//! the sides, the top and the bottom (with their [`crate::space::Holonomy`] and an
+//! [`super::ObjectCrossedFace`] each) by the family's generic systems
+//! ([`super::move_objects`], [`super::wrap_objects`]), and are drawn as product objects
 //! ([`collect_product_objects`] into [`ProductEntityObjects`]).
 //!
 //! A product scene has balls and horizontal discs among its shapes, so those are what an
@@ -12,17 +13,13 @@
 //! face seen from the partner side), so one flying through a face is never cut off; near a
 //! corner the images through two faces are added, not their composition.
 
-use super::{CurvedObject, CurvedShape, CurvedTransform, CurvedVelocity, ObjectCrossedFace};
+use super::{CurvedObject, CurvedShape, CurvedTransform};
 use crate::geometry::Geometry;
-use crate::plugin::components::{ActiveSpace, PlayerSettings};
-use crate::space::Holonomy;
-use crate::space::product::motion::{
-    ProductMotion, orthonormal, step_product_frame, wrap_product_frame,
-};
+use crate::plugin::components::ActiveSpace;
 use crate::space::product::{ProductSpace, ProductWalker};
 use crate::trace::product::{ProductObject, ProductShape};
 use bevy::prelude::*;
-use glam::{DMat3, DMat4, DVec4};
+use glam::{DMat4, DVec4};
 use std::collections::HashSet;
 
 /// The entities' objects in the product space shown, gathered when they change (read by
@@ -35,96 +32,7 @@ pub struct ProductEntityObjects {
     pub generation: u64,
 }
 
-/// The frame after `dt` seconds of `velocity`: translated along the product geodesic of
-/// its linear part (in the frame's own axes), then turned by its angular part about the
-/// frame's own axes, exactly.
-#[must_use]
-pub fn step_product_object(
-    g: Geometry,
-    frame: DMat4,
-    velocity: &crate::space::motion::Velocity,
-    dt: f64,
-) -> DMat4 {
-    if !velocity.is_finite() || !dt.is_finite() {
-        return frame;
-    }
-    let moved = step_product_frame(
-        g,
-        frame,
-        &ProductMotion {
-            translation: velocity.linear * dt,
-            rotation: glam::DVec3::ZERO,
-            level: false,
-        },
-    );
-    let rate = velocity.angular.length();
-    if rate == 0.0 {
-        return moved;
-    }
-    let r = DMat3::from_axis_angle(velocity.angular / rate, rate * dt);
-    let cols = [moved.x_axis, moved.y_axis, moved.z_axis];
-    let turned = |c: glam::DVec3| cols[0] * c.x + cols[1] * c.y + cols[2] * c.z;
-    orthonormal(
-        g,
-        DMat4::from_cols(
-            turned(r.x_axis),
-            turned(r.y_axis),
-            turned(r.z_axis),
-            moved.w_axis,
-        ),
-    )
-}
-
-/// Moves every object with a velocity by one fixed step in the product space.
-pub fn move_product_objects(
-    time: Res<Time>,
-    active: Res<ActiveSpace>,
-    mut objects: Query<(&mut CurvedTransform, &CurvedVelocity)>,
-) {
-    let Some(space) = active.product() else {
-        return;
-    };
-    let g = space.base();
-    let dt = time.delta_secs_f64();
-    for (mut transform, velocity) in &mut objects {
-        if !velocity.0.is_zero() {
-            transform.0 = step_product_object(g, transform.0, &velocity.0, dt);
-        }
-    }
-}
-
-/// Brings objects that left the product cell back in ([`wrap_product_frame`], the player's
-/// margin), recording each crossing in their [`Holonomy`] and as an [`ObjectCrossedFace`]
-/// (faces numbered as the walk does: the sides, then the top, then the bottom).
-pub fn wrap_product_objects(
-    active: Res<ActiveSpace>,
-    settings: Res<PlayerSettings>,
-    mut objects: Query<(Entity, &mut CurvedTransform, &mut Holonomy), With<CurvedObject>>,
-    mut crossed_faces: MessageWriter<ObjectCrossedFace>,
-) {
-    let Some(space) = active.product() else {
-        return;
-    };
-    for (entity, mut transform, mut holonomy) in &mut objects {
-        if !(transform.is_changed() || active.is_changed()) {
-            continue;
-        }
-        let (wrapped, crossed) = wrap_product_frame(space, transform.0, settings.wrap_margin);
-        if crossed.is_empty() {
-            continue;
-        }
-        for c in crossed {
-            holonomy.record(c.face, c.pairing);
-            crossed_faces.write(ObjectCrossedFace {
-                entity,
-                face: c.face,
-                pairing: c.pairing,
-                crossings: holonomy.crossings,
-            });
-        }
-        transform.0 = wrapped;
-    }
-}
+pub use crate::space::product::motion::step_product_velocity as step_product_object;
 
 /// The objects whose shape or frame changed since the last run.
 type Changed<'w, 's> = Query<

@@ -2,6 +2,7 @@
 
 use super::meshes::MeshKey;
 use super::*;
+use crate::space::FamilySpace;
 
 pub(super) fn update_sightlines(
     active: Res<ActiveSpace>,
@@ -15,59 +16,6 @@ pub(super) fn update_sightlines(
     }
 }
 
-/// Moves every object with a velocity by one fixed step (`FixedUpdate`).
-pub fn move_objects(
-    time: Res<Time>,
-    active: Res<ActiveSpace>,
-    mut objects: Query<(&mut CurvedTransform, &CurvedVelocity)>,
-) {
-    let Some(space) = active.constant() else {
-        return;
-    };
-    let g = space.geometry;
-    let dt = time.delta_secs_f64();
-    for (mut transform, velocity) in &mut objects {
-        if !velocity.0.is_zero() {
-            transform.0 = frame_on_model(space, velocity.0.step(g, transform.0, dt));
-        }
-    }
-}
-
-/// Brings objects that left the cell back in through the faces (the player's rule and
-/// margin), recording each crossing in their [`Holonomy`] and as an [`ObjectCrossedFace`].
-/// Runs after the fixed-step motion and again after `Update`'s motion (objects the game
-/// moved itself); on a change of space every object is checked.
-pub fn wrap_objects(
-    active: Res<ActiveSpace>,
-    settings: Res<PlayerSettings>,
-    mut objects: Query<(Entity, &mut CurvedTransform, &mut Holonomy), With<CurvedObject>>,
-    mut crossed_faces: MessageWriter<ObjectCrossedFace>,
-) {
-    let Some(space) = active.constant() else {
-        return;
-    };
-    for (entity, mut transform, mut holonomy) in &mut objects {
-        if !(transform.is_changed() || active.is_changed()) {
-            continue;
-        }
-        let (wrapped, crossed) = wrap_into_cell(space, transform.0, settings.wrap_margin);
-        if crossed.is_empty() {
-            continue;
-        }
-        for face in crossed {
-            let pairing = space.faces[face].pairing;
-            holonomy.record(face, pairing);
-            crossed_faces.write(ObjectCrossedFace {
-                entity,
-                face,
-                pairing,
-                crossings: holonomy.crossings,
-            });
-        }
-        transform.0 = wrapped;
-    }
-}
-
 /// The objects whose shape or frame changed since the last run.
 type ChangedObjects<'w, 's> =
     Query<'w, 's, (), Or<(Changed<CurvedObject>, Changed<CurvedTransform>)>>;
@@ -75,6 +23,58 @@ type ChangedObjects<'w, 's> =
 /// The scale of a size as a key (sizes are compared exactly).
 fn size_key(size: f64) -> u64 {
     size.to_bits()
+}
+
+/// Moves every object with a velocity by one fixed step (`FixedUpdate`), in the family `F` of
+/// the space shown.
+pub fn move_objects<F: FamilySpace>(
+    time: Res<Time>,
+    active: Res<ActiveSpace>,
+    mut objects: Query<(&mut CurvedTransform, &CurvedVelocity)>,
+) {
+    let Some(space) = active.space.get::<F>() else {
+        return;
+    };
+    let dt = time.delta_secs_f64();
+    for (mut transform, velocity) in &mut objects {
+        if !velocity.0.is_zero() {
+            transform.0 = space.step_velocity(transform.0, &velocity.0, dt);
+        }
+    }
+}
+
+/// Brings objects that left the cell of the family `F`'s space back in through the faces
+/// (the player's rule and margin), recording each crossing in their [`Holonomy`] and as an
+/// [`ObjectCrossedFace`]. Runs after the fixed-step motion and again after `Update`'s
+/// motion (objects the game moved itself); on a change of space every object is checked.
+pub fn wrap_objects<F: FamilySpace>(
+    active: Res<ActiveSpace>,
+    settings: Res<PlayerSettings>,
+    mut objects: Query<(Entity, &mut CurvedTransform, &mut Holonomy), With<CurvedObject>>,
+    mut crossed_faces: MessageWriter<ObjectCrossedFace>,
+) {
+    let Some(space) = active.space.get::<F>() else {
+        return;
+    };
+    for (entity, mut transform, mut holonomy) in &mut objects {
+        if !(transform.is_changed() || active.is_changed()) {
+            continue;
+        }
+        let (wrapped, crossed) = space.wrap_frame(transform.0, settings.wrap_margin);
+        if crossed.is_empty() {
+            continue;
+        }
+        for c in crossed {
+            holonomy.record(c.face, c.pairing);
+            crossed_faces.write(ObjectCrossedFace {
+                entity,
+                face: c.face,
+                pairing: c.pairing,
+                crossings: holonomy.crossings,
+            });
+        }
+        transform.0 = wrapped;
+    }
 }
 
 /// Gathers the entities' objects into [`EntityObjects`] when any of them, the space or a

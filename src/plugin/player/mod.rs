@@ -7,12 +7,13 @@
 //! as they would have without the wrap.
 
 use crate::plugin::components::{
-    ActiveSpace, KeyBindings, MouseLook, PlayerFrame, PlayerMotion, PlayerSettings,
+    ActiveSpace, BaseProductScene, BaseScene, KeyBindings, MouseLook, PlayerFrame, PlayerMotion,
+    PlayerSettings,
 };
 
-use crate::geometry::{Geometry, translate_local};
-use crate::space::Holonomy;
-use crate::space::wrap_into_cell;
+use crate::geometry::Geometry;
+use crate::space::contract::step_constant_frame;
+use crate::space::{AnySpace, FamilySpace, FrameMotion, Holonomy};
 use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll, MouseScrollUnit};
 use bevy::prelude::*;
 use bevy::window::{CursorGrabMode, CursorOptions, PrimaryWindow};
@@ -22,17 +23,50 @@ use glam::{DMat4, DVec3};
 /// Rotations are applied about right, up and back in that order, each by its angle.
 #[must_use]
 pub fn step_frame(geometry: Geometry, frame: DMat4, motion: &PlayerMotion) -> DMat4 {
-    let mut f = translate_local(geometry, frame, motion.translation);
-    for (axis, angle) in [
-        (DVec3::X, motion.rotation.x),
-        (DVec3::Y, motion.rotation.y),
-        (DVec3::Z, motion.rotation.z),
-    ] {
-        if angle != 0.0 && angle.is_finite() {
-            f *= geometry.rotation(axis, angle);
+    step_constant_frame(geometry, frame, motion.translation, motion.rotation)
+}
+
+/// Applies each player's motion to its frame, in the family `F` of the space shown (the
+/// fibre kept up in a product space while [`PlayerSettings::fibre_up`] is on).
+pub(crate) fn move_players<F: FamilySpace>(
+    active: Res<ActiveSpace>,
+    settings: Res<PlayerSettings>,
+    mut players: Query<(&mut PlayerFrame, &PlayerMotion)>,
+) {
+    let Some(space) = active.space.get::<F>() else {
+        return;
+    };
+    for (mut frame, motion) in &mut players {
+        if *motion != PlayerMotion::default() {
+            frame.0 = space.step_frame(
+                frame.0,
+                &FrameMotion {
+                    translation: motion.translation,
+                    rotation: motion.rotation,
+                    level: settings.fibre_up,
+                },
+            );
         }
     }
-    f
+}
+
+/// Wraps players that left the cell of the family `F`'s space back in (past the margin),
+/// recording each crossing in their [`Holonomy`], and puts every frame back on the model.
+pub(crate) fn wrap_players<F: FamilySpace>(
+    active: Res<ActiveSpace>,
+    settings: Res<PlayerSettings>,
+    mut players: Query<(&mut PlayerFrame, &mut Holonomy)>,
+) {
+    let Some(space) = active.space.get::<F>() else {
+        return;
+    };
+    for (mut frame, mut holonomy) in &mut players {
+        let (wrapped, crossed) = space.wrap_frame(frame.0, settings.wrap_margin);
+        for c in crossed {
+            holonomy.record(c.face, c.pairing);
+        }
+        frame.0 = wrapped;
+    }
 }
 
 /// Reads keys, mouse and scroll into each player's [`PlayerMotion`].
@@ -122,36 +156,28 @@ pub(crate) fn grab_cursor(
     }
 }
 
-/// Applies each player's motion to its frame.
-pub(crate) fn move_players(
-    active: Res<ActiveSpace>,
-    mut players: Query<(&mut PlayerFrame, &PlayerMotion)>,
-) {
-    let Some(space) = active.constant() else {
-        return;
-    };
-    let g = space.geometry;
-    for (mut frame, motion) in &mut players {
-        if *motion != PlayerMotion::default() {
-            frame.0 = step_frame(g, frame.0, motion);
-        }
-    }
-}
-
-/// Wraps players that left the cell and re-orthonormalizes every frame.
-pub(crate) fn wrap_players(
-    active: Res<ActiveSpace>,
-    settings: Res<PlayerSettings>,
+/// Puts every player at the new space's start view when the space shown changes (either
+/// kind, either way); not on the first frame, which keeps frames set before it.
+pub(crate) fn reset_players_on_switch(
+    active: Option<Res<ActiveSpace>>,
+    base: Res<BaseScene>,
+    product_base: Option<Res<BaseProductScene>>,
+    mut started: Local<bool>,
     mut players: Query<(&mut PlayerFrame, &mut Holonomy)>,
 ) {
-    let Some(space) = active.constant() else {
+    if !*started {
+        *started = true;
+        return;
+    }
+    let Some(active) = active.filter(|a| a.is_changed()) else {
         return;
     };
+    let start = match &active.space {
+        AnySpace::Product(p) => BaseProductScene::start_frame(product_base.as_deref(), p),
+        AnySpace::Constant(s) => base.start_frame(&active, s),
+    };
     for (mut frame, mut holonomy) in &mut players {
-        let (wrapped, crossed) = wrap_into_cell(space, frame.0, settings.wrap_margin);
-        for face in crossed {
-            holonomy.record(face, space.faces[face].pairing);
-        }
-        frame.0 = wrapped;
+        frame.0 = start;
+        *holonomy = Holonomy::default();
     }
 }

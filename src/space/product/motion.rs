@@ -9,8 +9,11 @@
 //! (the surface normal to the path, and the fibre) stays as it is.
 
 use super::ProductSpace;
-use crate::geometry::Geometry;
-use glam::{DMat4, DVec3, DVec4};
+use crate::geometry::{Geometry, Ray, Vector4};
+use crate::space::Family;
+use crate::space::contract::{FamilySpace, FrameCrossing, FrameMotion};
+use crate::space::motion::Velocity;
+use glam::{DMat3, DMat4, DVec3, DVec4};
 
 /// The surface model's form on the base parts of two vectors.
 fn base_form(g: Geometry, a: DVec4, b: DVec4) -> f64 {
@@ -146,16 +149,10 @@ pub fn step_product_frame(g: Geometry, frame: DMat4, motion: &ProductMotion) -> 
     f
 }
 
-/// A face the player crossed: the side index, or the top (`sides`) or the bottom
-/// (`sides + 1`), and the linear part of its pairing (the top and bottom also shift the
-/// height by `∓L`).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ProductCrossing {
-    /// The face.
-    pub face: usize,
-    /// The pairing's linear part (fixing `z`).
-    pub pairing: DMat4,
-}
+/// A face a frame crossed: the side index, or the top (`sides`) or the bottom (`sides + 1`),
+/// and the linear part of its pairing (the top and bottom also shift the height, which the
+/// holonomy does not hold).
+pub type ProductCrossing = FrameCrossing;
 
 /// The frame back inside the cell: while its position is past a face by more than `margin`
 /// (side faces by the unit base point's `N·X`, the top and bottom by `|z| − L/2`), the
@@ -251,6 +248,21 @@ pub fn orthonormal(g: Geometry, frame: DMat4) -> DMat4 {
     DMat4::from_cols(cols[0], cols[1], cols[2], point)
 }
 
+/// How far a frame's first three columns are from orthonormal in the product metric (the
+/// largest entry of `FᵀGF − I`).
+#[must_use]
+pub fn product_frame_defect(g: Geometry, frame: DMat4) -> f64 {
+    let cols = [frame.x_axis, frame.y_axis, frame.z_axis];
+    let mut worst: f64 = 0.0;
+    for (i, a) in cols.iter().enumerate() {
+        for (j, b) in cols.iter().enumerate() {
+            let want = if i == j { 1.0 } else { 0.0 };
+            worst = worst.max((product_dot(g, *a, *b) - want).abs());
+        }
+    }
+    worst
+}
+
 /// The frame of a product camera: columns right, up, back and the eye.
 #[must_use]
 pub fn camera_frame(point: DVec4, [right, up, back]: [DVec4; 3]) -> DMat4 {
@@ -267,4 +279,88 @@ pub fn product_eye_frames(space: &ProductSpace, head: DMat4, ipd: f64) -> [DMat4
         let eye = transport(g, head, head.x_axis, t);
         wrap_product_frame(space, eye, 0.0).0
     })
+}
+
+/// The frame after `dt` seconds of `velocity`: translated along the product geodesic of
+/// its linear part (in the frame's own axes), then turned by its angular part about the
+/// frame's own axes, exactly. A non-finite velocity or time leaves the frame where it is.
+#[must_use]
+pub fn step_product_velocity(g: Geometry, frame: DMat4, velocity: &Velocity, dt: f64) -> DMat4 {
+    if !velocity.is_finite() || !dt.is_finite() {
+        return frame;
+    }
+    let moved = step_product_frame(
+        g,
+        frame,
+        &ProductMotion {
+            translation: velocity.linear * dt,
+            rotation: DVec3::ZERO,
+            level: false,
+        },
+    );
+    let rate = velocity.angular.length();
+    if rate == 0.0 {
+        return moved;
+    }
+    let r = DMat3::from_axis_angle(velocity.angular / rate, rate * dt);
+    let cols = [moved.x_axis, moved.y_axis, moved.z_axis];
+    let turned = |c: DVec3| cols[0] * c.x + cols[1] * c.y + cols[2] * c.z;
+    orthonormal(
+        g,
+        DMat4::from_cols(
+            turned(r.x_axis),
+            turned(r.y_axis),
+            turned(r.z_axis),
+            moved.w_axis,
+        ),
+    )
+}
+
+impl FamilySpace for ProductSpace {
+    const FAMILY: Family = Family::Product;
+    type Walker<V: Vector4> = super::ProductWalker<V>;
+
+    fn walker<V: Vector4>(&self) -> super::ProductWalker<V> {
+        super::ProductWalker::new(self)
+    }
+
+    fn chart_ray(&self, from: DVec3, dir: DVec3) -> Result<Ray<DVec4>, String> {
+        super::chart_ray(self.base(), from, dir)
+    }
+
+    fn outside_by(&self, p: DVec4) -> f64 {
+        ProductSpace::outside_by(self, p)
+    }
+
+    fn face_count(&self) -> usize {
+        ProductSpace::face_count(self)
+    }
+
+    fn scale(&self) -> f64 {
+        ProductSpace::scale(self)
+    }
+
+    fn frame_defect(&self, frame: DMat4) -> f64 {
+        product_frame_defect(self.base(), frame)
+    }
+
+    fn step_frame(&self, frame: DMat4, motion: &FrameMotion) -> DMat4 {
+        step_product_frame(
+            self.base(),
+            frame,
+            &ProductMotion {
+                translation: motion.translation,
+                rotation: motion.rotation,
+                level: motion.level,
+            },
+        )
+    }
+
+    fn step_velocity(&self, frame: DMat4, velocity: &Velocity, dt: f64) -> DMat4 {
+        step_product_velocity(self.base(), frame, velocity, dt)
+    }
+
+    fn wrap_frame(&self, frame: DMat4, margin: f64) -> (DMat4, Vec<FrameCrossing>) {
+        wrap_product_frame(self, frame, margin)
+    }
 }
