@@ -5,9 +5,9 @@
 
 use super::*;
 use bevy::prelude::*;
-use bevy_curved_spaces::geometry::{Geometry, Ray, Vector4, chart_ray};
-use bevy_curved_spaces::space::product::{ProductSpace, ProductWalker};
-use bevy_curved_spaces::space::{CellWalk, CellWalker, Crossing, Limit, Space};
+use bevy_curved_spaces::geometry::{Geometry, Ray, Vector4};
+use bevy_curved_spaces::space::product::ProductSpace;
+use bevy_curved_spaces::space::{CellWalk, Crossing, FamilySpace, Limit, Space};
 use glam::{DVec4, Vec4};
 use serde_json::{Map, Value, json};
 
@@ -304,43 +304,26 @@ fn stream<V: Vector4, W: CellWalk<V>>(
     }
 }
 
-/// `stream` in the precision `--precision` asks for, with the family's walker in it.
-fn in_precision<A: CellWalk<DVec4>, B: CellWalk<Vec4>>(
+/// `trace` in the space `space` of any family: the start from the family's chart, the walk
+/// by the family's walker in the precision `--precision` asks for ([`FamilySpace::walker`]),
+/// printed as `family` reads points and faces.
+fn trace_in<S: FamilySpace>(
     args: &TraceArgs,
+    space: &S,
+    name: &str,
     family: &dyn TraceFamily,
-    (start, limit): (Ray<DVec4>, Limit),
-    f64_walker: impl FnOnce() -> A,
-    f32_walker: impl FnOnce() -> B,
 ) -> Result<(), String> {
+    let start = space.chart_ray(args.from, args.dir)?;
+    let limit = start_and_limit(args, space.outside_by(start.point), name)?;
     match args.precision {
-        Precision::F64 => stream(&f64_walker(), family, start, limit, args.json),
-        Precision::F32 => stream(&f32_walker(), family, start, limit, args.json),
+        Precision::F64 => stream(&space.walker::<DVec4>(), family, start, limit, args.json),
+        Precision::F32 => stream(&space.walker::<Vec4>(), family, start, limit, args.json),
     }
 }
 
 pub(super) fn trace(args: &TraceArgs) -> Result<(), String> {
-    let space = match space_named(&args.space)? {
-        AnySpace::Constant(space) => space,
-        AnySpace::Product(space) => {
-            let start =
-                bevy_curved_spaces::space::product::chart_ray(space.base(), args.from, args.dir)?;
-            let limit = start_and_limit(args, space.outside_by(start.point), space.name())?;
-            return in_precision(
-                args,
-                &ProductFamily(&space),
-                (start, limit),
-                || ProductWalker::<DVec4>::new(&space),
-                || ProductWalker::<Vec4>::new(&space),
-            );
-        }
-    };
-    let start = chart_ray(space.geometry(), args.from, args.dir).map_err(|e| e.to_string())?;
-    let limit = start_and_limit(args, space.outside_by(start.point), space.name())?;
-    in_precision(
-        args,
-        &ConstantFamily(&space),
-        (start, limit),
-        || CellWalker::<DVec4>::new(&space),
-        || CellWalker::<Vec4>::new(&space),
-    )
+    match space_named(&args.space)? {
+        AnySpace::Constant(space) => trace_in(args, &*space, space.name(), &ConstantFamily(&space)),
+        AnySpace::Product(space) => trace_in(args, &*space, space.name(), &ProductFamily(&space)),
+    }
 }
