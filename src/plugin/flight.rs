@@ -6,7 +6,7 @@ use crate::scene::flight::{
     DEFAULT_FLIGHT_FOV, Flight, FlightSource, MAX_FLIGHT_SECONDS, MAX_KEYS, flight_text,
     recorded_key,
 };
-use crate::space::{Holonomy, Space};
+use crate::space::{AnySpace, Holonomy, Space};
 use bevy::prelude::*;
 use glam::{DMat4, DVec3};
 
@@ -204,6 +204,20 @@ impl FlightRecorder {
         holonomy: &Holonomy,
         fov: f64,
     ) {
+        self.record_key(space_id, now, fov, || recorded_key(space, frame, holonomy));
+    }
+
+    /// Adds a key at clock time `now`, if one is due: `key` gives the camera's position,
+    /// look-at and up points in the flight file's coordinates of the space's family
+    /// ([`recorded_key`], [`crate::trace::product::flight::recorded_product_key`]), or
+    /// `None` where the file cannot hold them.
+    pub fn record_key(
+        &mut self,
+        space_id: &str,
+        now: f64,
+        fov: f64,
+        key: impl FnOnce() -> Option<(DVec3, DVec3, DVec3)>,
+    ) {
         if self.stopped.is_some() {
             return;
         }
@@ -224,14 +238,14 @@ impl FlightRecorder {
             ));
             return;
         }
-        match recorded_key(space, frame, holonomy) {
+        match key() {
             Some((p, look, up)) => {
                 self.keys.push((t, p, look, up));
                 self.fov = fov;
                 self.unwritten = true;
             }
             None => self.stop(format!(
-                "at {t:.2} s the walk left what a flight file can hold (in S³ the hemisphere about the centre; a cell centred off the origin); the keys so far are kept"
+                "at {t:.2} s the walk left what a flight file can hold (in S³ the hemisphere about the centre; a cell centred off the origin; π round S² or a million circles up a product's fibre); the keys so far are kept"
             )),
         }
     }
@@ -251,21 +265,21 @@ pub fn record_flight(
     recorder: Option<ResMut<FlightRecorder>>,
     cameras: Query<(&PlayerFrame, &Holonomy, &CurvedSpaceCamera)>,
 ) {
-    let (Some(mut recorder), Some(space)) = (recorder, active.constant()) else {
+    let Some(mut recorder) = recorder else {
         return;
     };
     let Some((frame, holonomy, camera)) = cameras.iter().next() else {
         return;
     };
     let now = time.elapsed_secs_f64();
-    recorder.record(
-        space,
-        &active.id,
-        now,
-        frame.0,
-        holonomy,
-        camera.fov_y_degrees,
-    );
+    recorder.record_key(&active.id, now, camera.fov_y_degrees, || {
+        match &active.space {
+            AnySpace::Constant(space) => recorded_key(space, frame.0, holonomy),
+            AnySpace::Product(space) => {
+                crate::trace::product::flight::recorded_product_key(space, frame.0, holonomy)
+            }
+        }
+    });
     if recorder.unwritten && recorder.last_write.is_none_or(|w| now - w >= 1.0) {
         recorder.last_write = Some(now);
         if let Err(e) = recorder.write() {

@@ -143,16 +143,15 @@ impl Plugin for CurvedSpacesPlugin {
                 player::reset_players_on_switch.in_set(CurvedSpacesSystems::Move),
                 #[cfg(feature = "scene-files")]
                 (
-                    crate::plugin::flight::replay_flight,
+                    (
+                        crate::plugin::flight::replay_flight
+                            .run_if(ActiveSpace::shows(Family::Constant)),
+                        crate::plugin::flight::replay_product_flight
+                            .run_if(ActiveSpace::shows(Family::Product)),
+                    ),
                     crate::plugin::flight::record_flight,
                 )
                     .chain()
-                    .run_if(ActiveSpace::shows(Family::Constant))
-                    .after(CurvedSpacesSystems::Wrap)
-                    .before(CurvedSpacesSystems::Upload),
-                #[cfg(feature = "scene-files")]
-                crate::plugin::flight::replay_product_flight
-                    .run_if(ActiveSpace::shows(Family::Product))
                     .after(CurvedSpacesSystems::Wrap)
                     .before(CurvedSpacesSystems::Upload),
                 (

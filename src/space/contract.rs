@@ -34,8 +34,11 @@ pub struct FrameMotion {
 pub struct FrameCrossing {
     /// The face left through (numbered as the family's walk numbers its exits).
     pub face: usize,
-    /// The pairing applied.
+    /// The pairing applied (its linear part where it also shifts along a fibre).
     pub pairing: DMat4,
+    /// How far the pairing shifted the point along a product's fibre (the top and the
+    /// bottom: a circle down or up, several at once past a far height); 0 elsewhere.
+    pub fibre_shift: f64,
 }
 
 /// A geometry family's validated space: the contract every family implements.
@@ -159,6 +162,7 @@ impl FamilySpace for Space {
             .map(|face| FrameCrossing {
                 face,
                 pairing: self.faces[face].pairing,
+                fibre_shift: 0.0,
             })
             .collect();
         (wrapped, crossed)

@@ -99,15 +99,12 @@ impl Family {
     /// family lacks.
     pub fn supports(self, feature: Feature) -> Result<(), Unsupported> {
         let reason = match (self, feature) {
-            (Family::Constant, _) => return Ok(()),
+            (Family::Constant, _) | (Family::Product, Feature::RecordFlight) => return Ok(()),
             (Family::Product, Feature::MovingObjects) => {
                 "nothing moves in a product scene yet, so it takes no time"
             }
             (Family::Product, Feature::SceneParts) => {
                 "a product scene file's `edges` and `centre_ball` choose the parts"
-            }
-            (Family::Product, Feature::RecordFlight) => {
-                "the product flight format is read (`walk --replay`) but not yet recorded"
             }
             (Family::Product, Feature::Headset) => {
                 "the headset's eyes are not yet moved along the fibre; use `--stereo` in the \

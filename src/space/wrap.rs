@@ -60,6 +60,10 @@ pub struct Holonomy {
     pub matrix: DMat4,
     /// The face crossed last.
     pub last_face: Option<usize>,
+    /// The height the pairings added along a product space's fibre (the top's and bottom's
+    /// shifts; 0 in constant curvature): a product frame's cover position is
+    /// `matrix⁻¹` applied to its surface part, this subtracted from its height.
+    pub fibre_shift: f64,
 }
 
 impl Default for Holonomy {
@@ -68,6 +72,7 @@ impl Default for Holonomy {
             crossings: 0,
             matrix: DMat4::IDENTITY,
             last_face: None,
+            fibre_shift: 0.0,
         }
     }
 }
@@ -78,5 +83,12 @@ impl Holonomy {
         self.crossings += 1;
         self.matrix = g * self.matrix;
         self.last_face = Some(face);
+    }
+
+    /// Records a crossing a frame made on its way back into the cell (its face, pairing and
+    /// fibre shift: [`super::FamilySpace::wrap_frame`]).
+    pub fn record_crossing(&mut self, crossing: &super::FrameCrossing) {
+        self.record(crossing.face, crossing.pairing);
+        self.fibre_shift += crossing.fibre_shift;
     }
 }

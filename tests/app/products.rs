@@ -263,8 +263,8 @@ fn walking_a_product_space_without_a_display_renders_it() {
     assert!(said.contains("no display found"), "{said}");
     assert!(dir.join("curved-spaces.png").exists(), "{said}");
     fails_with(
-        &["walk", "bitorus-circle", "--record", "x.toml"],
-        "recording a flight (`walk --record`) is not available in the product",
+        &["walk", "bitorus-circle", "--xr"],
+        "the headset mode (`walk --xr`) is not available in the product",
     );
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -3,6 +3,7 @@
 //! arrives turned by the top's gluing, and keys no geodesic joins are refused by name.
 
 use bevy_curved_spaces::scene::flight::{load_flight_file, parse_flight};
+use bevy_curved_spaces::space::FamilySpace;
 use bevy_curved_spaces::space::product::ProductSpace;
 use bevy_curved_spaces::trace::product::flight::ProductFlight;
 use glam::{DMat4, DVec4};
@@ -142,4 +143,133 @@ fn the_plugin_replays_a_product_flight_on_its_cameras() {
     }
     // It moved: the flight goes somewhere.
     assert!((seen[0] - seen[11]).length() > 1e-3);
+}
+
+/// A walk in a product space recorded as a flight (`walk --record`) replays to the walk's
+/// own frames at every key: through the sides and round the fibre (the top's and bottom's
+/// shifts and turns undone by the holonomy), across an orientation-reversing side, with the
+/// fibre kept up and the view pitched.
+#[test]
+fn a_recorded_product_walk_replays_to_the_same_frames() {
+    use bevy::prelude::*;
+    use bevy::time::TimeUpdateStrategy;
+    use bevy_curved_spaces::plugin::components::{PlayerFrame, PlayerMotion};
+    use bevy_curved_spaces::plugin::flight::FlightRecorder;
+    use bevy_curved_spaces::prelude::{
+        ActiveSpace, CurvedSpaceCamera, CurvedSpacesPlugin, Holonomy,
+    };
+    use bevy_curved_spaces::scene::flight::FlightSource;
+    const DT: f64 = 0.05;
+    for id in ["bitorus-circle", "sphere-circle-turn", "crosscaps-circle"] {
+        let dir = crate::common::scratch_dir(&format!("record-product-{id}"));
+        let path = dir.join("walk.toml");
+        let mut app = App::new();
+        app.add_plugins(MinimalPlugins)
+            .insert_resource(TimeUpdateStrategy::ManualDuration(
+                std::time::Duration::from_secs_f64(DT),
+            ))
+            .add_plugins(CurvedSpacesPlugin {
+                space: id.into(),
+                controls: false,
+                ..default()
+            })
+            .insert_resource(FlightRecorder::new(
+                path.clone(),
+                FlightSource::Space(id.into()),
+                DT,
+            ));
+        app.finish();
+        let camera = app.world_mut().spawn(CurvedSpaceCamera::default()).id();
+        app.update();
+        let r = app.world().resource::<ActiveSpace>().inradius;
+        // Forward and up the fibre, turning about it and pitching: through sides and the top.
+        *app.world_mut().get_mut::<PlayerMotion>(camera).unwrap() = PlayerMotion {
+            translation: glam::DVec3::new(0.1, 0.5, -0.8) * r * DT,
+            rotation: glam::DVec3::new(0.08, 0.25, 0.0) * DT,
+        };
+        let mut frames = vec![app.world().get::<PlayerFrame>(camera).unwrap().0];
+        for _ in 0..120 {
+            app.update();
+            frames.push(app.world().get::<PlayerFrame>(camera).unwrap().0);
+        }
+        let holonomy = *app.world().get::<Holonomy>(camera).unwrap();
+        assert!(
+            holonomy.crossings >= 2,
+            "{id}: {} crossings",
+            holonomy.crossings
+        );
+        app.world_mut()
+            .resource_mut::<FlightRecorder>()
+            .write()
+            .unwrap();
+        let recorder = app.world().resource::<FlightRecorder>().clone();
+        assert!(recorder.stopped.is_none(), "{id}: {:?}", recorder.stopped);
+        let file = load_flight_file(&path).unwrap();
+        assert!(file.keys.len() >= 110, "{id}: {} keys", file.keys.len());
+        let space = app
+            .world()
+            .resource::<ActiveSpace>()
+            .product()
+            .unwrap()
+            .clone();
+        let flight = ProductFlight::new(&space, &file).unwrap();
+        let first = frames.len() - file.keys.len();
+        let mut worst: f64 = 0.0;
+        for (k, &(t, _, _)) in file.keys.iter().enumerate() {
+            // The walk wraps past a margin, the replay at the face: a frame within the margin
+            // of a face is compared as the replay holds it.
+            let walked = space.wrap_frame(frames[first + k], 0.0).0;
+            let replayed = flight.frame(&space, t);
+            let gap = (0..4)
+                .map(|c| (replayed.col(c) - walked.col(c)).abs().max_element())
+                .fold(0.0, f64::max);
+            worst = worst.max(gap);
+            assert!(
+                gap < 1e-8,
+                "{id}: key {k} at {t} s differs by {gap:e}\nwalked {walked:?}\nreplayed {replayed:?}"
+            );
+        }
+        eprintln!(
+            "{id}: {} keys, {} crossings (fibre shift {}), worst {worst:e}",
+            file.keys.len(),
+            holonomy.crossings,
+            holonomy.fibre_shift
+        );
+        std::fs::remove_dir_all(&dir).ok();
+    }
+}
+
+/// A camera looking at a target has one handedness all over the surface: its frame's
+/// determinant (right, up, back and the eye as the columns) keeps the sign it has at the
+/// centre, past the sphere's equator too, where the camera once saw the world mirrored.
+#[test]
+fn a_camera_looking_at_a_target_is_never_mirrored() {
+    use bevy_curved_spaces::geometry::Geometry;
+    use bevy_curved_spaces::space::product::motion::camera_frame;
+    use bevy_curved_spaces::trace::product::ProductCamera;
+    let mut rng = bevy_curved_spaces::random::SplitMix64(0xa11);
+    for g in [Geometry::Spherical, Geometry::Hyperbolic] {
+        let frame_of = |eye: DVec4, target: DVec4| {
+            let c = ProductCamera::looking_at(g, eye, target, 60.0);
+            camera_frame(c.point, c.frame)
+        };
+        let reference = frame_of(DVec4::W, DVec4::new(0.3, 0.1, 0.2, 0.95)).determinant();
+        assert!(reference.abs() > 0.5, "{g:?}: {reference}");
+        for _ in 0..400 {
+            // A surface point up to 3 from the centre (past the sphere's equator at π/2),
+            // and a target a little way off it.
+            let d = 3.0 * rng.unit();
+            let a = std::f64::consts::TAU * rng.unit();
+            let (c, s) = g.cs(d);
+            let eye = DVec4::new(s * a.cos(), s * a.sin(), 2.0 * rng.unit() - 1.0, c);
+            let (c2, s2) = g.cs(d + 0.4 * rng.unit() - 0.2);
+            let b = a + 0.6 * rng.unit() - 0.3;
+            let target = DVec4::new(s2 * b.cos(), s2 * b.sin(), eye.z + 0.3, c2);
+            let det = frame_of(eye, target).determinant();
+            assert!(
+                det * reference > 0.0,
+                "{g:?}: the camera at {eye:?} is mirrored (determinant {det} against {reference})"
+            );
+        }
+    }
 }

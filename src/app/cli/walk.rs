@@ -186,32 +186,7 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
             .resource_mut::<bevy_curved_spaces::plugin::components::TracerSettings>();
         settings.parts = args.view.parts(settings.parts);
     }
-    if let Some(path) = &args.record {
-        use bevy_curved_spaces::plugin::flight::FlightRecorder;
-        use bevy_curved_spaces::scene::flight::FlightSource;
-        let source = match &args.scene {
-            Some(scene) => FlightSource::Scene(
-                std::fs::canonicalize(scene)
-                    .unwrap_or_else(|_| scene.clone())
-                    .display()
-                    .to_string(),
-            ),
-            None => FlightSource::Space(args.space.clone()),
-        };
-        // Fail now, not after the walk, where the file cannot be written.
-        bevy_curved_spaces::files::write_atomic(path, b"")
-            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-        eprintln!(
-            "recording the walk to {} (a key every {} s; replay it with walk --replay)",
-            path.display(),
-            args.record_interval
-        );
-        app.insert_resource(FlightRecorder::new(
-            path.clone(),
-            source,
-            args.record_interval,
-        ));
-    }
+    record_to(&mut app, args)?;
     if let Some(path) = &args.screenshot {
         app.insert_resource(ScreenshotThenExit {
             path: path.clone(),
@@ -220,6 +195,39 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
         .add_systems(Update, screenshot_then_exit);
     }
     exit_result(app.run())
+}
+
+/// Starts recording the walk to `--record`'s file, if given (a key every
+/// `--record-interval` seconds, in the flight format of the space's family).
+fn record_to(app: &mut App, args: &WalkArgs) -> Result<(), String> {
+    let Some(path) = &args.record else {
+        return Ok(());
+    };
+    use bevy_curved_spaces::plugin::flight::FlightRecorder;
+    use bevy_curved_spaces::scene::flight::FlightSource;
+    let source = match &args.scene {
+        Some(scene) => FlightSource::Scene(
+            std::fs::canonicalize(scene)
+                .unwrap_or_else(|_| scene.clone())
+                .display()
+                .to_string(),
+        ),
+        None => FlightSource::Space(args.space.clone()),
+    };
+    // Fail now, not after the walk, where the file cannot be written.
+    bevy_curved_spaces::files::write_atomic(path, b"")
+        .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    eprintln!(
+        "recording the walk to {} (a key every {} s; replay it with walk --replay)",
+        path.display(),
+        args.record_interval
+    );
+    app.insert_resource(FlightRecorder::new(
+        path.clone(),
+        source,
+        args.record_interval,
+    ));
+    Ok(())
 }
 
 /// The window of `walk`.
@@ -374,15 +382,10 @@ fn walk_product(
     flight: Option<bevy_curved_spaces::trace::product::flight::ProductFlight>,
 ) -> Result<(), String> {
     use bevy_curved_spaces::space::{Family, Feature};
-    for (given, feature) in [
-        (args.record.is_some(), Feature::RecordFlight),
-        (args.xr, Feature::Headset),
-    ] {
-        if given {
-            Family::Product
-                .supports(feature)
-                .map_err(|e| format!("{}: {e}", args.space))?;
-        }
+    if args.xr {
+        Family::Product
+            .supports(Feature::Headset)
+            .map_err(|e| format!("{}: {e}", args.space))?;
     }
     if !display_available() {
         eprintln!(
@@ -445,6 +448,7 @@ fn walk_product(
             bevy_curved_spaces::plugin::flight::ProductFlightReplay::new(flight, true),
         );
     }
+    record_to(&mut app, args)?;
     if let Some(path) = &args.screenshot {
         app.insert_resource(ScreenshotThenExit {
             path: path.clone(),

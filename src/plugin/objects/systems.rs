@@ -65,7 +65,7 @@ pub fn wrap_objects<F: FamilySpace>(
             continue;
         }
         for c in crossed {
-            holonomy.record(c.face, c.pairing);
+            holonomy.record_crossing(&c);
             crossed_faces.write(ObjectCrossedFace {
                 entity,
                 face: c.face,

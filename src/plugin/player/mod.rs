@@ -63,7 +63,7 @@ pub(crate) fn wrap_players<F: FamilySpace>(
     for (mut frame, mut holonomy) in &mut players {
         let (wrapped, crossed) = space.wrap_frame(frame.0, settings.wrap_margin);
         for c in crossed {
-            holonomy.record(c.face, c.pairing);
+            holonomy.record_crossing(&c);
         }
         frame.0 = wrapped;
     }

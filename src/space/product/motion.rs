@@ -210,7 +210,11 @@ pub fn wrap_product_frame(
         };
         f = pairing * f;
         f.w_axis.z += shift;
-        crossed.push(ProductCrossing { face, pairing });
+        crossed.push(ProductCrossing {
+            face,
+            pairing,
+            fibre_shift: shift,
+        });
     }
     (orthonormal(g, f), crossed)
 }

@@ -10,8 +10,9 @@
 use super::{ProductCamera, along, tangent_towards};
 use crate::geometry::{Geometry, Ray};
 use crate::scene::flight::FlightFile;
+use crate::space::Holonomy;
 use crate::space::product::ProductSpace;
-use crate::space::product::motion::{camera_frame, wrap_product_frame};
+use crate::space::product::motion::{camera_frame, transport, wrap_product_frame};
 use glam::{DMat4, DVec3, DVec4};
 
 /// A flight through a product space: its keys as points of the universal cover.
@@ -59,6 +60,55 @@ pub(super) fn point_at(space: &ProductSpace, p: DVec3, what: &str) -> Result<DVe
         ));
     }
     Ok(point)
+}
+
+/// The key coordinates of a point of the product (the inverse of [`point_at`]); `None` where
+/// a key cannot hold it (π or more round the sphere, too far up the fibre, not finite).
+fn key_coordinates(space: &ProductSpace, p: DVec4) -> Option<DVec3> {
+    let g = space.base();
+    let scale = space.scale();
+    let planar = p.x.hypot(p.y);
+    let d = match g {
+        Geometry::Spherical => planar.atan2(p.w),
+        Geometry::Hyperbolic => planar.asinh(),
+        Geometry::Euclidean => planar,
+    };
+    if (g == Geometry::Spherical && d >= 0.999 * std::f64::consts::PI)
+        || p.z.abs() > MAX_CIRCLES * space.length()
+    {
+        return None;
+    }
+    let dir = if planar > 0.0 {
+        DVec3::new(p.x / planar, p.y / planar, 0.0)
+    } else {
+        DVec3::ZERO
+    };
+    let key = DVec3::new(dir.x * d / scale, dir.y * d / scale, p.z / scale);
+    key.is_finite().then_some(key)
+}
+
+/// The key of a camera at `frame` in a product cell that reached it through `holonomy`
+/// (`walk --record`): its position and a point half a unit ahead that it looks at, carried
+/// back into the universal cover (the pairings' surface parts undone, the fibre shift taken
+/// off the height), in the keys' coordinates; the `up` written is the point above (the
+/// replay keeps the fibre up). `None` where a key cannot hold them.
+#[must_use]
+pub fn recorded_product_key(
+    space: &ProductSpace,
+    frame: DMat4,
+    holonomy: &Holonomy,
+) -> Option<(DVec3, DVec3, DVec3)> {
+    let g = space.base();
+    let mut cover = g.inverse(holonomy.matrix) * frame;
+    cover.w_axis.z -= holonomy.fibre_shift;
+    let r = 0.5 * space.scale();
+    let ahead = transport(g, cover, -cover.z_axis, r).w_axis;
+    let above = cover.w_axis + DVec4::Z * r;
+    Some((
+        key_coordinates(space, cover.w_axis)?,
+        key_coordinates(space, ahead)?,
+        key_coordinates(space, above)?,
+    ))
 }
 
 /// The point a fraction `s` of the way along the product geodesic from `a` to `b`.

@@ -410,10 +410,16 @@ fn surface_basis(g: Geometry, p: DVec4) -> [DVec4; 2] {
         }
     }
     // A point off the model (not finite) has no basis: the axes stand in, never a panic.
-    [
-        out.first().copied().unwrap_or(DVec4::X),
-        out.get(1).copied().unwrap_or(DVec4::Y),
-    ]
+    let e0 = out.first().copied().unwrap_or(DVec4::X);
+    let mut e1 = out.get(1).copied().unwrap_or(DVec4::Y);
+    // One orientation everywhere, counter-clockwise seen from the fibre's +z as at the
+    // centre (e0, e1, p) = (x, y, w): the axes the Gram–Schmidt starts from give the other
+    // one past the sphere's equator, where a camera built on them saw the world mirrored.
+    let xyw = |v: DVec4| DVec3::new(v.x, v.y, v.w);
+    if xyw(e0).cross(xyw(e1)).dot(xyw(pb)) < 0.0 {
+        e1 = -e1;
+    }
+    [e0, e1]
 }
 
 /// Where a ray of a product scene ends: at an object (the distance walked, the crossings
