@@ -185,6 +185,17 @@ impl ActiveSpace {
         self.space.product()
     }
 
+    /// Where players start in this space: the base scene's start view where it was made for
+    /// this space ([`BaseScene::start_frame`], [`BaseProductScene::start_frame`]), else the
+    /// space's default view.
+    #[must_use]
+    pub fn start_frame(&self, base: &BaseScene, product_base: Option<&BaseProductScene>) -> DMat4 {
+        match &self.space {
+            AnySpace::Constant(s) => base.start_frame(self, s),
+            AnySpace::Product(p) => BaseProductScene::start_frame(product_base, p),
+        }
+    }
+
     /// A run condition: whether the active space is of `family` (the plugin's systems of a
     /// family run under it).
     pub fn shows(family: Family) -> impl Fn(Option<Res<ActiveSpace>>) -> bool + Clone {

@@ -25,7 +25,7 @@ use crate::plugin::player;
 use crate::plugin::render::TracerRenderPlugin;
 use crate::plugin::render::upload::upload_scene;
 use crate::scene::SceneParts;
-use crate::space::{AnySpace, DEFAULT_SPACE, Family};
+use crate::space::{DEFAULT_SPACE, Family};
 use bevy::core_pipeline::tonemapping::{DebandDither, Tonemapping};
 use bevy::prelude::*;
 
@@ -212,10 +212,9 @@ fn start_camera(
     frames: Query<&PlayerFrame>,
 ) {
     let mut entity = commands.entity(add.entity);
-    let start = active.as_ref().map(|a| match &a.space {
-        AnySpace::Product(p) => BaseProductScene::start_frame(product_base.as_deref(), p),
-        AnySpace::Constant(s) => base.start_frame(a, s),
-    });
+    let start = active
+        .as_ref()
+        .map(|a| a.start_frame(&base, product_base.as_deref()));
     let product = active.as_ref().and_then(|a| a.product());
     if let Some(start) = start
         && frames

@@ -36,11 +36,13 @@
 
 use crate::plugin::components::CurvedSpaceEye;
 use crate::plugin::components::StereoSettings;
-use crate::plugin::components::{ActiveSpace, CurvedSpaceCamera, CurvedSpacesSystems};
+use crate::plugin::components::{
+    ActiveSpace, BaseProductScene, BaseScene, CurvedSpaceCamera, CurvedSpacesSystems,
+};
 use crate::plugin::components::{PlayerFrame, PlayerSettings};
 use crate::plugin::frame_rate::FrameRateTarget;
+use crate::space::FamilySpace;
 use crate::view::Lens;
-use crate::view::TraceCamera;
 pub use crate::view::headset::TurnStyle;
 use crate::view::headset::{DEAD_ZONE, HeadTracker, RoomPose, turn_yaw};
 use bevy::app::PluginGroupBuilder;
@@ -226,21 +228,20 @@ impl Plugin for CurvedSpacesXrPlugin {
         )
         .add_systems(
             Update,
-            (reset_head_on_switch, thumbstick_locomotion)
-                .chain()
+            reset_head_on_switch
                 .in_set(CurvedSpacesSystems::Move)
                 .run_if(openxr_session_running)
                 .run_if(resource_exists::<ActiveSpace>),
         )
         .init_resource::<XrDisplayPeriod>()
         .add_observer(mark_xr_camera)
-        .add_systems(
+        .configure_sets(
             PostUpdate,
-            drive_eyes
-                .after(bevy_mod_openxr::render::update_views)
-                .run_if(openxr_session_running)
-                .run_if(resource_exists::<ActiveSpace>),
+            DriveEyes.after(bevy_mod_openxr::render::update_views),
         );
+        // The head's systems, written once over the geometry contract, per family.
+        add_head_systems::<crate::space::Space>(app);
+        add_head_systems::<crate::space::product::ProductSpace>(app);
         app.add_systems(
             Update,
             follow_display_rate
@@ -250,9 +251,33 @@ impl Plugin for CurvedSpacesXrPlugin {
         app.add_oxr_event_handler(reanchor_on_recentre);
         if self.mirror {
             app.add_systems(Startup, spawn_mirror)
-                .add_systems(PostUpdate, mirror_head.after(drive_eyes));
+                .add_systems(PostUpdate, mirror_head.after(DriveEyes));
         }
     }
+}
+
+/// Where the eye cameras get their frames (after the runtime's views are read).
+#[derive(SystemSet, Clone, Debug, PartialEq, Eq, Hash)]
+struct DriveEyes;
+
+/// The head's locomotion and eyes for the family `F`, run while its space is shown.
+fn add_head_systems<F: FamilySpace>(app: &mut App) {
+    let shown = ActiveSpace::shows(F::FAMILY);
+    app.add_systems(
+        Update,
+        thumbstick_locomotion::<F>
+            .after(reset_head_on_switch)
+            .in_set(CurvedSpacesSystems::Move)
+            .run_if(openxr_session_running)
+            .run_if(shown.clone()),
+    )
+    .add_systems(
+        PostUpdate,
+        drive_eyes::<F>
+            .in_set(DriveEyes)
+            .run_if(openxr_session_running)
+            .run_if(shown),
+    );
 }
 
 fn spawn_mirror(mut commands: Commands) {
@@ -322,15 +347,17 @@ fn suggest_bindings(
 }
 
 /// A new space starts the head at its default view.
-fn reset_head_on_switch(active: Res<ActiveSpace>, head: Option<ResMut<XrHead>>) {
-    let Some(space) = active.constant() else {
-        return;
-    };
+fn reset_head_on_switch(
+    active: Res<ActiveSpace>,
+    base: Res<BaseScene>,
+    product_base: Option<Res<BaseProductScene>>,
+    head: Option<ResMut<XrHead>>,
+) {
     if let Some(mut head) = head
         && active.is_changed()
         && !active.is_added()
     {
-        head.0.frame = TraceCamera::default_for(space).frame;
+        head.0.frame = active.start_frame(&base, product_base.as_deref());
         head.0.holonomy = default();
     }
 }
@@ -358,7 +385,7 @@ fn read_thumbsticks(
     };
 }
 
-fn thumbstick_locomotion(
+fn thumbstick_locomotion<F: FamilySpace>(
     sticks: Res<XrSticks>,
     comfort: Res<XrComfort>,
     mut snap: ResMut<SnapHeld>,
@@ -366,10 +393,7 @@ fn thumbstick_locomotion(
     time: Res<Time>,
     head: Option<ResMut<XrHead>>,
 ) {
-    let Some(space) = active.constant() else {
-        return;
-    };
-    let Some(mut head) = head else {
+    let (Some(space), Some(mut head)) = (active.space.get::<F>(), head) else {
         return;
     };
     let dt = time.delta_secs_f64();
@@ -393,7 +417,7 @@ fn thumbstick_locomotion(
         snap.0 = snapped;
     }
     if step != DVec3::ZERO || yaw != 0.0 {
-        head.0.locomote(space, step, yaw);
+        head.0.locomote(&**space, step, yaw);
     }
 }
 
@@ -466,18 +490,22 @@ fn room_pose(pose: &openxr::Posef) -> RoomPose {
 }
 
 /// Moves the head by the headset's motion and gives each eye camera its frame and frustum.
-fn drive_eyes(
+#[allow(clippy::too_many_arguments)]
+fn drive_eyes<F: FamilySpace>(
     views: Res<OxrViews>,
     active: Res<ActiveSpace>,
+    base: Res<BaseScene>,
+    product_base: Option<Res<BaseProductScene>>,
     stereo: Res<StereoSettings>,
     player: Res<PlayerSettings>,
     mut existing: Option<ResMut<XrHead>>,
     mut commands: Commands,
     mut eyes: Query<(&XrCamera, &mut PlayerFrame, &mut CurvedSpaceEye)>,
 ) {
-    let Some(space) = active.constant() else {
+    let Some(space) = active.space.get::<F>() else {
         return;
     };
+    let space = &**space;
     let [left, right] = views.as_slice() else {
         return;
     };
@@ -491,7 +519,7 @@ fn drive_eyes(
         None => {
             &mut created
                 .insert(XrHead(HeadTracker::new(
-                    TraceCamera::default_for(space).frame,
+                    active.start_frame(&base, product_base.as_deref()),
                     scale,
                     player.wrap_margin,
                 )))

@@ -99,16 +99,14 @@ impl Family {
     /// family lacks.
     pub fn supports(self, feature: Feature) -> Result<(), Unsupported> {
         let reason = match (self, feature) {
-            (Family::Constant, _) | (Family::Product, Feature::RecordFlight) => return Ok(()),
+            (Family::Constant, _) | (Family::Product, Feature::RecordFlight | Feature::Headset) => {
+                return Ok(());
+            }
             (Family::Product, Feature::MovingObjects) => {
                 "nothing moves in a product scene yet, so it takes no time"
             }
             (Family::Product, Feature::SceneParts) => {
                 "a product scene file's `edges` and `centre_ball` choose the parts"
-            }
-            (Family::Product, Feature::Headset) => {
-                "the headset's eyes are not yet moved along the fibre; use `--stereo` in the \
-                 window"
             }
             (Family::Product, Feature::Export) => {
                 "a product space is written by its id (`surface-WORD-circle-L`), which holds all \

@@ -15,8 +15,7 @@
 
 use crate::geometry::Geometry;
 use crate::geometry::translate_local;
-use crate::space::wrap_into_cell;
-use crate::space::{Holonomy, Space};
+use crate::space::{FamilySpace, FrameMotion, Holonomy};
 use crate::view::stereo::{Eye, wrap_eye};
 use glam::{DMat4, DQuat, DVec3};
 
@@ -82,7 +81,32 @@ pub fn local_motion(geometry: Geometry, frame: DMat4, t: DVec3, rotation: DQuat)
     f
 }
 
-/// The head of a headset wearer in the curved space.
+/// [`local_motion`] in a space of any family: the translation along the family's geodesic
+/// with the frame carried along ([`FamilySpace::step_frame`]), then the turn of the frame's
+/// own axes. Bit for bit [`local_motion`] in constant curvature.
+#[must_use]
+pub fn local_motion_in<S: FamilySpace>(
+    space: &S,
+    frame: DMat4,
+    t: DVec3,
+    rotation: DQuat,
+) -> DMat4 {
+    let mut f = space.step_frame(
+        frame,
+        &FrameMotion {
+            translation: t,
+            rotation: DVec3::ZERO,
+            level: false,
+        },
+    );
+    if rotation != DQuat::IDENTITY && rotation.is_finite() {
+        f *= DMat4::from_quat(rotation.normalize());
+    }
+    f
+}
+
+/// The head of a headset wearer in the curved space (any family: the product spaces' head
+/// moves along the product's geodesics and wraps through the sides, the top and the bottom).
 #[derive(Clone, Debug, PartialEq)]
 pub struct HeadTracker {
     /// The head's frame (columns right, up, back, position), inside the cell.
@@ -111,12 +135,12 @@ impl HeadTracker {
 
     /// Moves the head by its motion in the room since the last pose and wraps it into the
     /// cell. Returns the faces crossed.
-    pub fn track(&mut self, space: &Space, head: RoomPose) -> Vec<usize> {
+    pub fn track<S: FamilySpace>(&mut self, space: &S, head: RoomPose) -> Vec<usize> {
         let Some(last) = self.last.replace(head) else {
             return Vec::new();
         };
         let (t, r) = last.relative(&head);
-        let moved = local_motion(space.geometry, self.frame, t * self.units_per_metre, r);
+        let moved = local_motion_in(space, self.frame, t * self.units_per_metre, r);
         self.wrap(space, moved)
     }
 
@@ -129,29 +153,34 @@ impl HeadTracker {
     /// Controller locomotion: a local translation (space units, head axes) and a turn about
     /// the head's up axis (radians, counter-clockwise seen from above). The room reference
     /// is kept, so the next pose continues from here.
-    pub fn locomote(&mut self, space: &Space, translation: DVec3, yaw: f64) -> Vec<usize> {
+    pub fn locomote<S: FamilySpace>(
+        &mut self,
+        space: &S,
+        translation: DVec3,
+        yaw: f64,
+    ) -> Vec<usize> {
         let turn = DQuat::from_rotation_y(yaw);
-        let moved = local_motion(space.geometry, self.frame, translation, turn);
+        let moved = local_motion_in(space, self.frame, translation, turn);
         self.wrap(space, moved)
     }
 
-    fn wrap(&mut self, space: &Space, frame: DMat4) -> Vec<usize> {
-        let (wrapped, crossed) = wrap_into_cell(space, frame, self.wrap_margin);
-        for &face in &crossed {
-            self.holonomy.record(face, space.faces[face].pairing);
+    fn wrap<S: FamilySpace>(&mut self, space: &S, frame: DMat4) -> Vec<usize> {
+        let (wrapped, crossed) = space.wrap_frame(frame, self.wrap_margin);
+        for c in &crossed {
+            self.holonomy.record_crossing(c);
         }
         self.frame = wrapped;
-        crossed
+        crossed.iter().map(|c| c.face).collect()
     }
 
     /// An eye's frame from its room pose and the head's: the head's frame moved by the
     /// eye's pose relative to the head, wrapped into the cell with its own pairing.
     #[must_use]
-    pub fn eye(&self, space: &Space, head: &RoomPose, eye: &RoomPose) -> Eye {
+    pub fn eye<S: FamilySpace>(&self, space: &S, head: &RoomPose, eye: &RoomPose) -> Eye {
         let (t, r) = head.relative(eye);
         wrap_eye(
             space,
-            local_motion(space.geometry, self.frame, t * self.units_per_metre, r),
+            local_motion_in(space, self.frame, t * self.units_per_metre, r),
         )
     }
 }

@@ -238,16 +238,15 @@ pub fn offset_eye(space: &Space, head: DMat4, offset: f64) -> Eye {
     )
 }
 
-/// A frame wrapped into the cell (no margin: an eye past a face by any amount is moved).
+/// A frame wrapped into the cell of a space of any family (no margin: an eye past a face by
+/// any amount is moved).
 #[must_use]
-pub fn wrap_eye(space: &Space, frame: DMat4) -> Eye {
-    let (frame, crossed) = crate::space::wrap_into_cell(space, frame, 0.0);
-    let pairing = crossed
-        .iter()
-        .fold(DMat4::IDENTITY, |m, &f| space.faces[f].pairing * m);
+pub fn wrap_eye<S: crate::space::FamilySpace>(space: &S, frame: DMat4) -> Eye {
+    let (frame, crossed) = space.wrap_frame(frame, 0.0);
+    let pairing = crossed.iter().fold(DMat4::IDENTITY, |m, c| c.pairing * m);
     Eye {
         frame,
-        crossed,
+        crossed: crossed.iter().map(|c| c.face).collect(),
         pairing,
     }
 }

@@ -396,6 +396,10 @@ fn a_headset_session_runs_traces_both_eyes_and_walks_through_faces() {
     // 5. The thumbsticks: walk forward, then two snap turns.
     thumbsticks(&mut app);
 
+    // 5b. A product space (H²×R): the head walks along the product's geodesics and stays in
+    //     the cell, and both eyes are traced (compared with the CPU reference at the end).
+    let (product, product_eyes) = product_walk(&mut app);
+
     // 6. Frame pacing: the wall time of each update (the runtime's wait for the next frame
     //    included) over 20 frames at full resolution, after 10 to settle.
     for _ in 0..10 {
@@ -459,6 +463,37 @@ fn a_headset_session_runs_traces_both_eyes_and_walks_through_faces() {
         };
         assert!(spread > 5.0, "eye {} is blank (spread {spread})", eye.index);
     }
+    // The product space's eyes against its CPU reference, from the same frames and frusta.
+    let space = product.product().expect("a product space");
+    let scene = bevy_curved_spaces::plugin::product::product_scene(space, &tracer_settings(), None);
+    for (eye, gpu) in &product_eyes {
+        let layout = ViewLayout::mono(eye.frame, eye.lens, w, h);
+        let cpu = bevy_curved_spaces::trace::product::render_product_view(
+            space,
+            &scene,
+            &layout,
+            CROSSINGS as usize,
+        );
+        let (c, diff) = compare(gpu, &cpu, TOLERANCE);
+        println!(
+            "product eye {}: against the CPU reference {:.3} % of pixels differ, mean error {:.3}/255, max {}",
+            eye.index,
+            100.0 * c.differing,
+            c.mean_error,
+            c.max_error
+        );
+        for (name, img) in [("headset", gpu), ("cpu", &cpu), ("diff", &diff)] {
+            img.save(out.join(format!("product-eye{}-{name}.png", eye.index)))
+                .expect("write the picture");
+        }
+        assert!(
+            c.differing <= MAX_DIFFERING,
+            "product eye {}: {:.2} % of pixels differ from the CPU reference (pictures in {})",
+            eye.index,
+            100.0 * c.differing,
+            out.display()
+        );
+    }
     let (left, right) = (&eyes[0].1, &eyes[1].1);
     let between = common::differing_fraction(left, right, TOLERANCE);
     let (shift, residual) = best_shift(left, right, i64::from(w) / 8);
@@ -471,6 +506,67 @@ fn a_headset_session_runs_traces_both_eyes_and_walks_through_faces() {
         shift > 0,
         "parallax: near things must sit further right in the left eye (best shift {shift})"
     );
+}
+
+/// Switches to a product space (the bitorus times a circle) and walks the head forward with
+/// the left stick: it moves along the product's geodesic, stays in the cell with an
+/// orthonormal frame (in the product metric), and its eyes are product frames about the
+/// eye distance apart. Returns the space and both eyes, read back.
+fn product_walk(app: &mut App) -> (ActiveSpace, Vec<(EyeShot, RgbImage)>) {
+    use bevy_curved_spaces::space::FamilySpace;
+    app.insert_resource(ActiveSpace::named("bitorus-circle").expect("a product space"));
+    for _ in 0..3 {
+        app.update();
+    }
+    let active = app.world().resource::<ActiveSpace>().clone();
+    let space = active.product().expect("a product space").clone();
+    let margin = head(app).wrap_margin;
+    let before = head(app).frame;
+    assert!(
+        space.outside_by(before.w_axis) <= 2.0 * margin,
+        "the head starts in the product cell"
+    );
+    app.world_mut().resource_mut::<PushedSticks>().0 = Some(XrSticks {
+        walk: Vec2::new(0.0, 1.0),
+        ..default()
+    });
+    for _ in 0..20 {
+        app.update();
+    }
+    app.world_mut().resource_mut::<PushedSticks>().0 = Some(XrSticks::default());
+    let after = head(app).frame;
+    let moved = (after.w_axis - before.w_axis).abs().max_element();
+    println!(
+        "in {}: the left stick moved the head {moved:.4} (model entries), {} crossings",
+        active.id,
+        head(app).holonomy.crossings
+    );
+    assert!(
+        moved > 1e-3,
+        "the stick walks the head in the product space"
+    );
+    assert!(space.outside_by(after.w_axis) <= 2.0 * margin);
+    assert!(
+        space.frame_defect(after) < 1e-9,
+        "{}",
+        space.frame_defect(after)
+    );
+    let eyes = read_back_eyes(app);
+    for (eye, _) in &eyes {
+        assert!(space.frame_defect(eye.frame) < 1e-9, "eye {}", eye.index);
+        assert!(
+            space.outside_by(eye.frame.w_axis) <= 1e-9,
+            "eye {}",
+            eye.index
+        );
+    }
+    let between = common::differing_fraction(&eyes[0].1, &eyes[1].1, TOLERANCE);
+    println!(
+        "the product eyes differ in {:.2} % of pixels",
+        100.0 * between
+    );
+    assert!(between > 0.01, "the two product eyes show the same picture");
+    (active, eyes)
 }
 
 /// Places the head just inside a z face in the direction the simulated head is moving and

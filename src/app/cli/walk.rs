@@ -321,13 +321,29 @@ pub(super) fn exit_result(exit: AppExit) -> Result<(), String> {
 /// `walk --xr` with a runtime: the headset's views are traced, the window mirrors the head.
 #[cfg(feature = "xr")]
 pub(super) fn walk_xr(args: &WalkArgs, chosen: &Chosen) -> Result<(), String> {
-    use bevy_curved_spaces::plugin::xr::{
-        CurvedSpacesXrPlugin, PlayArea, TurnStyle, xr_available, xr_plugins,
-    };
     let stereo = args.stereo.settings(&chosen.space)?;
     let walls = args.view.walls.style(chosen.scene.shading.walls)?;
     let lighting = walk_lighting(args, chosen)?;
     let active = ActiveSpace::new(&chosen.id, chosen.space.clone());
+    run_xr(args, active, (stereo, walls, lighting), |_| {})
+}
+
+/// The headset session of `walk --xr` in `active`, a space of any family: `add_scene` adds
+/// the scene's resources (a product scene file's base scene).
+#[cfg(feature = "xr")]
+fn run_xr(
+    args: &WalkArgs,
+    active: ActiveSpace,
+    (stereo, walls, lighting): (
+        StereoSettings,
+        Option<bevy_curved_spaces::scene::WallStyle>,
+        Option<bevy_curved_spaces::scene::lighting::Lighting>,
+    ),
+    add_scene: impl FnOnce(&mut App),
+) -> Result<(), String> {
+    use bevy_curved_spaces::plugin::xr::{
+        CurvedSpacesXrPlugin, PlayArea, TurnStyle, xr_available, xr_plugins,
+    };
     let name = active.space.name().to_string();
     let play_area = match args.play_area {
         super::PlayAreaArg::Standing => PlayArea::Standing,
@@ -355,6 +371,7 @@ pub(super) fn walk_xr(args: &WalkArgs, chosen: &Chosen) -> Result<(), String> {
             .set(window_titled(format!("curved spaces (XR mirror): {name}"))),
     );
     app.insert_resource(active);
+    add_scene(&mut app);
     add_walk_plugins(&mut app, args, stereo, walls, lighting);
     if xr_available(app.world()) {
         app.add_plugins(CurvedSpacesXrPlugin {
@@ -374,6 +391,44 @@ pub(super) fn walk_xr(args: &WalkArgs, chosen: &Chosen) -> Result<(), String> {
     exit_result(app.run())
 }
 
+/// The light switches over a product scene file's lighting (or the default), or `None`
+/// where none is given.
+fn product_lighting(
+    args: &WalkArgs,
+    chosen: &super::render::ProductChoice,
+) -> Result<Option<bevy_curved_spaces::scene::lighting::Lighting>, String> {
+    if !args.view.light.any() {
+        return Ok(None);
+    }
+    let lighting = args.view.light.lighting(
+        chosen
+            .base
+            .as_ref()
+            .map_or_else(Default::default, |b| b.scene.lighting),
+    );
+    lighting.check()?;
+    Ok(Some(lighting))
+}
+
+/// `walk --xr` in a product space: the head walks H²×R or S²×R, its eyes carried along the
+/// product's geodesics.
+#[cfg(feature = "xr")]
+fn walk_product_xr(args: &WalkArgs, chosen: super::render::ProductChoice) -> Result<(), String> {
+    let lighting = product_lighting(args, &chosen)?;
+    let id = args
+        .scene
+        .as_ref()
+        .map_or_else(|| args.space.clone(), |_| chosen.space.name().to_string());
+    let active = ActiveSpace::new(id, chosen.space);
+    let stereo = args.stereo.settings_for(active.inradius)?;
+    let base = chosen.base;
+    run_xr(args, active, (stereo, None, lighting), move |app| {
+        if let Some(base) = base {
+            app.insert_resource(base);
+        }
+    })
+}
+
 /// `walk` in a product space (H²×R, S²×R): its default scene, the fibre up; offscreen to a
 /// picture where there is no display.
 fn walk_product(
@@ -381,11 +436,21 @@ fn walk_product(
     chosen: super::render::ProductChoice,
     flight: Option<bevy_curved_spaces::trace::product::flight::ProductFlight>,
 ) -> Result<(), String> {
-    use bevy_curved_spaces::space::{Family, Feature};
+    let mut stereo_args = args.stereo;
     if args.xr {
-        Family::Product
-            .supports(Feature::Headset)
-            .map_err(|e| format!("{}: {e}", args.space))?;
+        match xr_runtime() {
+            #[cfg(feature = "xr")]
+            Ok(()) if display_available() => return walk_product_xr(args, chosen),
+            Ok(()) => {
+                eprintln!("an OpenXR runtime was found, but no display to open the app's window on")
+            }
+            Err(e) => eprintln!("{e}"),
+        }
+        stereo_args.stereo = desktop_stereo(stereo_args.stereo);
+        eprintln!(
+            "falling back to desktop stereo: {} (choose another with --stereo)",
+            stereo_args.stereo.label()
+        );
     }
     if !display_available() {
         eprintln!(
@@ -397,6 +462,7 @@ fn walk_product(
         render.fog = args.fog;
         render.crossings = args.crossings.map(|c| c as usize);
         render.view.light = args.view.light;
+        render.stereo = stereo_args;
         if !gpu_available() {
             eprintln!("no GPU adapter found: using the CPU reference renderer");
             render.cpu = true;
@@ -407,8 +473,9 @@ fn walk_product(
         .scene
         .as_ref()
         .map_or_else(|| args.space.clone(), |_| chosen.space.name().to_string());
+    let lighting = product_lighting(args, &chosen)?;
     let active = ActiveSpace::new(id, chosen.space);
-    let stereo = args.stereo.settings_for(active.inradius)?;
+    let stereo = stereo_args.settings_for(active.inradius)?;
     eprintln!(
         "walking in {} ({}): click to look around, WASD to walk, Space/Shift along the fibre, Esc releases the mouse, F1 the panel",
         active.space.name(),
@@ -420,19 +487,6 @@ fn walk_product(
         active.space.name()
     ))));
     app.insert_resource(active);
-    // The light switches over the scene file's lighting (or the default).
-    let lighting = if args.view.light.any() {
-        let lighting = args.view.light.lighting(
-            chosen
-                .base
-                .as_ref()
-                .map_or_else(Default::default, |b| b.scene.lighting),
-        );
-        lighting.check()?;
-        Some(lighting)
-    } else {
-        None
-    };
     if let Some(base) = chosen.base {
         app.insert_resource(base);
     }

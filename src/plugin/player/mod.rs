@@ -13,7 +13,7 @@ use crate::plugin::components::{
 
 use crate::geometry::Geometry;
 use crate::space::contract::step_constant_frame;
-use crate::space::{AnySpace, FamilySpace, FrameMotion, Holonomy};
+use crate::space::{FamilySpace, FrameMotion, Holonomy};
 use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll, MouseScrollUnit};
 use bevy::prelude::*;
 use bevy::window::{CursorGrabMode, CursorOptions, PrimaryWindow};
@@ -172,10 +172,7 @@ pub(crate) fn reset_players_on_switch(
     let Some(active) = active.filter(|a| a.is_changed()) else {
         return;
     };
-    let start = match &active.space {
-        AnySpace::Product(p) => BaseProductScene::start_frame(product_base.as_deref(), p),
-        AnySpace::Constant(s) => base.start_frame(&active, s),
-    };
+    let start = active.start_frame(&base, product_base.as_deref());
     for (mut frame, mut holonomy) in &mut players {
         frame.0 = start;
         *holonomy = Holonomy::default();
