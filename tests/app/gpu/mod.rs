@@ -17,6 +17,7 @@ use bevy_curved_spaces::view::TraceCamera;
 use image::RgbImage;
 use std::path::{Path, PathBuf};
 
+mod laws;
 mod light;
 mod scenes;
 mod spaces;
