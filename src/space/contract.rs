@@ -41,8 +41,11 @@ pub struct FrameCrossing {
     pub fibre_shift: f64,
 }
 
-/// A geometry family's validated space: the contract every family implements.
-pub trait FamilySpace: Send + Sync + std::fmt::Debug + 'static {
+/// A geometry family's validated space: the contract every family implements. Its walker
+/// is here (generic over precision); the rest, which needs no type of its own, is
+/// [`FrameSpace`], which a caller may hold as `&dyn FrameSpace` whatever the family
+/// ([`crate::space::AnySpace::frames`]).
+pub trait FamilySpace: FrameSpace + Sized + 'static {
     /// The family.
     const FAMILY: Family;
 
@@ -53,7 +56,11 @@ pub trait FamilySpace: Send + Sync + std::fmt::Debug + 'static {
     /// The walker of this space in the precision of `V`.
     #[must_use]
     fn walker<V: Vector4>(&self) -> Self::Walker<V>;
+}
 
+/// The part of the geometry contract that is the same for every precision: the chart, the
+/// cell, and the motion of frames (players, entities, stereo and headset eyes).
+pub trait FrameSpace: Send + Sync + std::fmt::Debug {
     /// The unit ray from the chart point `from` along the chart direction `dir` (the
     /// family's chart: the gnomonic chart in E³, S³ and H³; the surface's chart and the
     /// height in a product); an error names a point or direction the chart cannot take.
@@ -92,6 +99,24 @@ pub trait FamilySpace: Send + Sync + std::fmt::Debug + 'static {
     /// through the faces' pairings, with the faces it crossed in order.
     #[must_use]
     fn wrap_frame(&self, frame: DMat4, margin: f64) -> (DMat4, Vec<FrameCrossing>);
+
+    /// The two eyes of a head `ipd` apart, left first: each half the distance along the
+    /// head's right, its frame carried along the geodesic and wrapped into the cell on its
+    /// own (no margin).
+    #[must_use]
+    fn eye_frames(&self, head: DMat4, ipd: f64) -> [DMat4; 2] {
+        [-0.5 * ipd, 0.5 * ipd].map(|t| {
+            let eye = self.step_frame(
+                head,
+                &FrameMotion {
+                    translation: DVec3::X * t,
+                    rotation: DVec3::ZERO,
+                    level: false,
+                },
+            );
+            self.wrap_frame(eye, 0.0).0
+        })
+    }
 }
 
 /// The frame after a local motion in a constant-curvature geometry: translated along the
@@ -123,7 +148,9 @@ impl FamilySpace for Space {
     fn walker<V: Vector4>(&self) -> CellWalker<V> {
         CellWalker::new(self)
     }
+}
 
+impl FrameSpace for Space {
     fn chart_ray(&self, from: DVec3, dir: DVec3) -> Result<Ray<DVec4>, String> {
         crate::geometry::chart_ray(self.geometry, from, dir).map_err(|e| e.to_string())
     }

@@ -208,6 +208,16 @@ impl AnySpace {
         }
     }
 
+    /// The space as the object-safe part of the geometry contract ([`super::FrameSpace`]: the
+    /// chart, the cell, the motion of frames), whatever its family.
+    #[must_use]
+    pub fn frames(&self) -> &dyn super::FrameSpace {
+        match self {
+            AnySpace::Constant(s) => &**s,
+            AnySpace::Product(p) => &**p,
+        }
+    }
+
     /// The space of family `F`, if it is one (the plugin's systems of a family ask so).
     #[must_use]
     pub fn get<F: super::FamilySpace>(&self) -> Option<&Arc<F>> {

@@ -22,7 +22,7 @@ pub mod walk;
 mod wrap;
 
 pub use catalog::{DEFAULT_SPACE, SEED_SPACES, SeedSpace, seed_space};
-pub use contract::{FamilySpace, FrameCrossing, FrameMotion};
+pub use contract::{FamilySpace, FrameCrossing, FrameMotion, FrameSpace};
 pub use error::SpaceError;
 pub use family::{AnySpace, Family, Feature, Unsupported, resolve_space};
 pub use walk::{CellWalk, CellWalker, Crossing, Exit, Limit, NextExit, Trace};

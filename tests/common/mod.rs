@@ -111,3 +111,23 @@ pub fn product(id: &str) -> bevy_curved_spaces::space::product::ProductSpace {
         other => panic!("{id} is not a product space: {other:?}"),
     }
 }
+
+/// The constant-curvature space a plugin app shows.
+pub fn shown_constant(app: &bevy::app::App) -> std::sync::Arc<bevy_curved_spaces::space::Space> {
+    app.world()
+        .resource::<bevy_curved_spaces::plugin::components::ActiveSpace>()
+        .constant()
+        .expect("a constant-curvature space is shown")
+        .clone()
+}
+
+/// The product space a plugin app shows.
+pub fn shown_product(
+    app: &bevy::app::App,
+) -> std::sync::Arc<bevy_curved_spaces::space::product::ProductSpace> {
+    app.world()
+        .resource::<bevy_curved_spaces::plugin::components::ActiveSpace>()
+        .product()
+        .expect("a product space is shown")
+        .clone()
+}

@@ -1,7 +1,7 @@
 //! Flights: keyframes through the universal cover, brought back into the cell.
 
 use bevy_curved_spaces::geometry::Geometry;
-use bevy_curved_spaces::scene::flight::{Flight, load_flight_file, parse_flight};
+use bevy_curved_spaces::scene::flight::{Flight, FlightFile, load_flight_file, parse_flight};
 use bevy_curved_spaces::space::seed_space;
 use glam::DMat4;
 
@@ -172,10 +172,16 @@ fn a_replayed_flight_drives_the_camera_frame_for_frame() {
     }
 }
 
-/// A walk recorded as a flight (`walk --record`) replays to the walk's own frames: through
-/// faces (turned by their pairings), with pitch and roll, at every recorded key.
-#[test]
-fn a_recorded_walk_replays_to_the_same_frames() {
+/// A walk the plugin records as a flight (`walk --record`): the camera of a plugin app in
+/// space `id` moves by `translation` (in inradii a second) and turns by `rotation` (radians
+/// a second) for 120 updates of 0.05 s, a key each update. Returns the app, the frames
+/// walked (from the first update on) and the file read back, after checking that the walk
+/// crossed faces and the recording kept every key.
+pub(crate) fn recorded_walk(
+    id: &str,
+    translation: glam::DVec3,
+    rotation: glam::DVec3,
+) -> (bevy::app::App, Vec<glam::DMat4>, FlightFile) {
     use bevy::prelude::*;
     use bevy::time::TimeUpdateStrategy;
     use bevy_curved_spaces::plugin::components::{PlayerFrame, PlayerMotion};
@@ -185,55 +191,63 @@ fn a_recorded_walk_replays_to_the_same_frames() {
     };
     use bevy_curved_spaces::scene::flight::FlightSource;
     const DT: f64 = 0.05;
-    for id in ["seifert-weber", "half-turn", "mirrored-cube"] {
-        let dir = crate::common::scratch_dir(&format!("record-{id}"));
-        let path = dir.join("walk.toml");
-        let mut app = App::new();
-        app.add_plugins(MinimalPlugins)
-            .insert_resource(TimeUpdateStrategy::ManualDuration(
-                std::time::Duration::from_secs_f64(DT),
-            ))
-            .add_plugins(CurvedSpacesPlugin {
-                space: id.into(),
-                controls: false,
-                ..default()
-            })
-            .insert_resource(FlightRecorder::new(
-                path.clone(),
-                FlightSource::Space(id.into()),
-                DT,
-            ));
-        app.finish();
-        let camera = app.world_mut().spawn(CurvedSpaceCamera::default()).id();
+    let dir = crate::common::scratch_dir(&format!("record-{id}"));
+    let path = dir.join("walk.toml");
+    let mut app = App::new();
+    app.add_plugins(MinimalPlugins)
+        .insert_resource(TimeUpdateStrategy::ManualDuration(
+            std::time::Duration::from_secs_f64(DT),
+        ))
+        .add_plugins(CurvedSpacesPlugin {
+            space: id.into(),
+            controls: false,
+            ..default()
+        })
+        .insert_resource(FlightRecorder::new(
+            path.clone(),
+            FlightSource::Space(id.into()),
+            DT,
+        ));
+    app.finish();
+    let camera = app.world_mut().spawn(CurvedSpaceCamera::default()).id();
+    app.update();
+    let r = app.world().resource::<ActiveSpace>().inradius;
+    *app.world_mut().get_mut::<PlayerMotion>(camera).unwrap() = PlayerMotion {
+        translation: translation * r * DT,
+        rotation: rotation * DT,
+    };
+    // The first update recorded the start already.
+    let mut frames = vec![app.world().get::<PlayerFrame>(camera).unwrap().0];
+    for _ in 0..120 {
         app.update();
-        let r = app.world().resource::<ActiveSpace>().inradius;
+        frames.push(app.world().get::<PlayerFrame>(camera).unwrap().0);
+    }
+    let crossings = app.world().get::<Holonomy>(camera).unwrap().crossings;
+    assert!(crossings >= 2, "{id}: {crossings} crossings");
+    app.world_mut()
+        .resource_mut::<FlightRecorder>()
+        .write()
+        .unwrap();
+    let recorder = app.world().resource::<FlightRecorder>().clone();
+    assert!(recorder.stopped.is_none(), "{id}: {:?}", recorder.stopped);
+    let file = load_flight_file(&path).unwrap();
+    assert!(file.keys.len() >= 110, "{id}: {} keys", file.keys.len());
+    std::fs::remove_dir_all(&dir).ok();
+    (app, frames, file)
+}
+
+/// A walk recorded as a flight (`walk --record`) replays to the walk's own frames: through
+/// faces (turned by their pairings), with pitch and roll, at every recorded key.
+#[test]
+fn a_recorded_walk_replays_to_the_same_frames() {
+    for id in ["seifert-weber", "half-turn", "mirrored-cube"] {
         // Forward, turning and rolling: through several faces in 6 s.
-        *app.world_mut().get_mut::<PlayerMotion>(camera).unwrap() = PlayerMotion {
-            translation: glam::DVec3::new(0.1, 0.0, -0.8) * r * DT,
-            rotation: glam::DVec3::new(0.15, 0.25, 0.3) * DT,
-        };
-        // The first update recorded the start already.
-        let mut frames = vec![app.world().get::<PlayerFrame>(camera).unwrap().0];
-        for _ in 0..120 {
-            app.update();
-            frames.push(app.world().get::<PlayerFrame>(camera).unwrap().0);
-        }
-        let crossings = app.world().get::<Holonomy>(camera).unwrap().crossings;
-        assert!(crossings >= 2, "{id}: {crossings} crossings");
-        app.world_mut()
-            .resource_mut::<FlightRecorder>()
-            .write()
-            .unwrap();
-        let recorder = app.world().resource::<FlightRecorder>().clone();
-        assert!(recorder.stopped.is_none(), "{id}: {:?}", recorder.stopped);
-        let file = load_flight_file(&path).unwrap();
-        assert!(file.keys.len() >= 110, "{id}: {} keys", file.keys.len());
-        let space = app
-            .world()
-            .resource::<ActiveSpace>()
-            .constant()
-            .unwrap()
-            .clone();
+        let (app, frames, file) = recorded_walk(
+            id,
+            glam::DVec3::new(0.1, 0.0, -0.8),
+            glam::DVec3::new(0.15, 0.25, 0.3),
+        );
+        let space = crate::common::shown_constant(&app);
         let flight = Flight::new(&space, &file).unwrap();
         // The keys are the frames from the first recorded one on, DT apart.
         let first = frames.len() - file.keys.len();
@@ -246,6 +260,5 @@ fn a_recorded_walk_replays_to_the_same_frames() {
                 max_entry(replayed - walked)
             );
         }
-        std::fs::remove_dir_all(&dir).ok();
     }
 }

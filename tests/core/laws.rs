@@ -14,7 +14,7 @@ use bevy_curved_spaces::geometry::{Geometry, Ray, Vector4};
 use bevy_curved_spaces::random::SplitMix64;
 use bevy_curved_spaces::space::product::motion::camera_frame;
 use bevy_curved_spaces::space::product::{ProductSpace, ProductWalker};
-use bevy_curved_spaces::space::{CellWalk, FamilySpace, FrameMotion, Limit, Space};
+use bevy_curved_spaces::space::{CellWalk, FamilySpace, FrameMotion, FrameSpace, Limit, Space};
 use glam::{DMat4, DVec3, DVec4, Vec4};
 
 /// What the laws need of a family beyond the geometry contract ([`FamilySpace`]: the walkers,

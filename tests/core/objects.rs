@@ -206,12 +206,7 @@ fn spawn_move_and_despawn_update_the_gpu_scene() {
     let mut app = test_app("seifert-weber", 1);
     let before = prepared(&app);
     let r = app.world().resource::<ActiveSpace>().inradius;
-    let space = app
-        .world()
-        .resource::<ActiveSpace>()
-        .constant()
-        .unwrap()
-        .clone();
+    let space = crate::common::shown_constant(&app);
     let model = std::sync::Arc::new(
         TracedModel::new(
             space.geometry(),

@@ -82,12 +82,7 @@ fn max_diff(a: DMat4, b: DMat4) -> f64 {
 #[test]
 fn walking_one_unit_in_the_torus_returns_to_the_start() {
     let (mut app, camera) = test_app("torus");
-    let space = app
-        .world()
-        .resource::<ActiveSpace>()
-        .constant()
-        .unwrap()
-        .clone();
+    let space = crate::common::shown_constant(&app);
     set_frame(&mut app, camera, DMat4::IDENTITY);
     set_step(&mut app, 0.01);
     hold(&mut app, KeyCode::KeyW, 100);
@@ -113,12 +108,7 @@ fn walking_one_unit_in_the_torus_returns_to_the_start() {
 #[test]
 fn crossing_a_seifert_weber_face_applies_exactly_its_pairing() {
     let (mut app, camera) = test_app("seifert-weber");
-    let space = app
-        .world()
-        .resource::<ActiveSpace>()
-        .constant()
-        .unwrap()
-        .clone();
+    let space = crate::common::shown_constant(&app);
     let g = space.geometry();
     let target = 3;
     let n = space.faces()[target].normal;
@@ -160,12 +150,7 @@ fn walking_through_edges_and_vertices_lands_inside_the_cell() {
         "hantzsche-wendt",
     ] {
         let (mut app, camera) = test_app(id);
-        let space = app
-            .world()
-            .resource::<ActiveSpace>()
-            .constant()
-            .unwrap()
-            .clone();
+        let space = crate::common::shown_constant(&app);
         let g = space.geometry();
         let margin = app.world().resource::<PlayerSettings>().wrap_margin;
         let edge = &space.edges()[0];
@@ -213,12 +198,7 @@ fn handedness(f: DMat4) -> f64 {
 #[test]
 fn crossing_a_mirror_flips_handedness_and_the_controls_stay_natural() {
     let (mut app, camera) = test_app("mirrored-cube");
-    let space = app
-        .world()
-        .resource::<ActiveSpace>()
-        .constant()
-        .unwrap()
-        .clone();
+    let space = crate::common::shown_constant(&app);
     let g = space.geometry();
     set_frame(&mut app, camera, DMat4::IDENTITY);
     assert_eq!(handedness(frame(&app, camera)), 1.0);

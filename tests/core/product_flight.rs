@@ -3,7 +3,7 @@
 //! arrives turned by the top's gluing, and keys no geodesic joins are refused by name.
 
 use bevy_curved_spaces::scene::flight::{load_flight_file, parse_flight};
-use bevy_curved_spaces::space::FamilySpace;
+use bevy_curved_spaces::space::FrameSpace;
 use bevy_curved_spaces::space::product::ProductSpace;
 use bevy_curved_spaces::trace::product::flight::ProductFlight;
 use glam::{DMat4, DVec4};
@@ -151,67 +151,20 @@ fn the_plugin_replays_a_product_flight_on_its_cameras() {
 /// fibre kept up and the view pitched.
 #[test]
 fn a_recorded_product_walk_replays_to_the_same_frames() {
-    use bevy::prelude::*;
-    use bevy::time::TimeUpdateStrategy;
-    use bevy_curved_spaces::plugin::components::{PlayerFrame, PlayerMotion};
-    use bevy_curved_spaces::plugin::flight::FlightRecorder;
-    use bevy_curved_spaces::prelude::{
-        ActiveSpace, CurvedSpaceCamera, CurvedSpacesPlugin, Holonomy,
-    };
-    use bevy_curved_spaces::scene::flight::FlightSource;
-    const DT: f64 = 0.05;
+    use bevy_curved_spaces::prelude::Holonomy;
     for id in ["bitorus-circle", "sphere-circle-turn", "crosscaps-circle"] {
-        let dir = crate::common::scratch_dir(&format!("record-product-{id}"));
-        let path = dir.join("walk.toml");
-        let mut app = App::new();
-        app.add_plugins(MinimalPlugins)
-            .insert_resource(TimeUpdateStrategy::ManualDuration(
-                std::time::Duration::from_secs_f64(DT),
-            ))
-            .add_plugins(CurvedSpacesPlugin {
-                space: id.into(),
-                controls: false,
-                ..default()
-            })
-            .insert_resource(FlightRecorder::new(
-                path.clone(),
-                FlightSource::Space(id.into()),
-                DT,
-            ));
-        app.finish();
-        let camera = app.world_mut().spawn(CurvedSpaceCamera::default()).id();
-        app.update();
-        let r = app.world().resource::<ActiveSpace>().inradius;
         // Forward and up the fibre, turning about it and pitching: through sides and the top.
-        *app.world_mut().get_mut::<PlayerMotion>(camera).unwrap() = PlayerMotion {
-            translation: glam::DVec3::new(0.1, 0.5, -0.8) * r * DT,
-            rotation: glam::DVec3::new(0.08, 0.25, 0.0) * DT,
-        };
-        let mut frames = vec![app.world().get::<PlayerFrame>(camera).unwrap().0];
-        for _ in 0..120 {
-            app.update();
-            frames.push(app.world().get::<PlayerFrame>(camera).unwrap().0);
-        }
-        let holonomy = *app.world().get::<Holonomy>(camera).unwrap();
-        assert!(
-            holonomy.crossings >= 2,
-            "{id}: {} crossings",
-            holonomy.crossings
+        let (mut app, frames, file) = crate::flight::recorded_walk(
+            id,
+            glam::DVec3::new(0.1, 0.5, -0.8),
+            glam::DVec3::new(0.08, 0.25, 0.0),
         );
-        app.world_mut()
-            .resource_mut::<FlightRecorder>()
-            .write()
-            .unwrap();
-        let recorder = app.world().resource::<FlightRecorder>().clone();
-        assert!(recorder.stopped.is_none(), "{id}: {:?}", recorder.stopped);
-        let file = load_flight_file(&path).unwrap();
-        assert!(file.keys.len() >= 110, "{id}: {} keys", file.keys.len());
-        let space = app
-            .world()
-            .resource::<ActiveSpace>()
-            .product()
-            .unwrap()
-            .clone();
+        let holonomy = *app
+            .world_mut()
+            .query::<&Holonomy>()
+            .single(app.world())
+            .expect("one camera");
+        let space = crate::common::shown_product(&app);
         let flight = ProductFlight::new(&space, &file).unwrap();
         let first = frames.len() - file.keys.len();
         let mut worst: f64 = 0.0;
@@ -235,7 +188,6 @@ fn a_recorded_product_walk_replays_to_the_same_frames() {
             holonomy.crossings,
             holonomy.fibre_shift
         );
-        std::fs::remove_dir_all(&dir).ok();
     }
 }
 

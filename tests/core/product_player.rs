@@ -87,12 +87,7 @@ fn the_plugin_starts_in_a_named_product_space_at_its_default_view() {
 fn walking_ahead_keeps_the_height_and_follows_the_horizontal_geodesic() {
     for id in ["bitorus-circle", "crosscaps-circle", "sphere-circle-turn"] {
         let (mut app, camera) = test_app(id);
-        let space = app
-            .world()
-            .resource::<ActiveSpace>()
-            .product()
-            .unwrap()
-            .clone();
+        let space = crate::common::shown_product(&app);
         let start = frame(&app, camera);
         // The default view looks down a little: walking follows its horizontal part.
         let back = start.z_axis;
@@ -138,12 +133,7 @@ fn walking_ahead_keeps_the_height_and_follows_the_horizontal_geodesic() {
 #[test]
 fn climbing_the_fibre_crosses_the_top_and_applies_the_turn() {
     let (mut app, camera) = test_app("sphere-circle-turn");
-    let space = app
-        .world()
-        .resource::<ActiveSpace>()
-        .product()
-        .unwrap()
-        .clone();
+    let space = crate::common::shown_product(&app);
     let start = frame(&app, camera);
     let sides = space.polygon().sides.len();
     let length = space.length();
@@ -219,12 +209,7 @@ fn entities_fly_through_the_product_cell_and_are_drawn_with_their_images() {
     use bevy_curved_spaces::trace::product::ProductShape;
     use glam::DVec3;
     let (mut app, _camera) = test_app("bitorus-circle");
-    let space = app
-        .world()
-        .resource::<ActiveSpace>()
-        .product()
-        .unwrap()
-        .clone();
+    let space = crate::common::shown_product(&app);
     let g = space.base();
     // Along its own right (+x, towards side 0) and a little up the fibre, turning slowly.
     let ball = app

@@ -434,25 +434,7 @@ fn a_headset_session_runs_traces_both_eyes_and_walks_through_faces() {
             max_crossings: CROSSINGS as usize,
         };
         let cpu = render_view(space, &scene, &layout, &settings, |_, _| {});
-        let (c, diff) = compare(gpu, &cpu, TOLERANCE);
-        println!(
-            "eye {}: against the CPU reference {:.3} % of pixels differ, mean error {:.3}/255, max {}",
-            eye.index,
-            100.0 * c.differing,
-            c.mean_error,
-            c.max_error
-        );
-        for (name, img) in [("headset", gpu), ("cpu", &cpu), ("diff", &diff)] {
-            img.save(out.join(format!("eye{}-{name}.png", eye.index)))
-                .expect("write the picture");
-        }
-        assert!(
-            c.differing <= MAX_DIFFERING,
-            "eye {}: {:.2} % of pixels differ from the CPU reference (pictures in {})",
-            eye.index,
-            100.0 * c.differing,
-            out.display()
-        );
+        judge_eye(&format!("eye{}", eye.index), gpu, &cpu, &out);
         let spread = {
             let lum: Vec<f64> = gpu
                 .pixels()
@@ -474,25 +456,7 @@ fn a_headset_session_runs_traces_both_eyes_and_walks_through_faces() {
             &layout,
             CROSSINGS as usize,
         );
-        let (c, diff) = compare(gpu, &cpu, TOLERANCE);
-        println!(
-            "product eye {}: against the CPU reference {:.3} % of pixels differ, mean error {:.3}/255, max {}",
-            eye.index,
-            100.0 * c.differing,
-            c.mean_error,
-            c.max_error
-        );
-        for (name, img) in [("headset", gpu), ("cpu", &cpu), ("diff", &diff)] {
-            img.save(out.join(format!("product-eye{}-{name}.png", eye.index)))
-                .expect("write the picture");
-        }
-        assert!(
-            c.differing <= MAX_DIFFERING,
-            "product eye {}: {:.2} % of pixels differ from the CPU reference (pictures in {})",
-            eye.index,
-            100.0 * c.differing,
-            out.display()
-        );
+        judge_eye(&format!("product-eye{}", eye.index), gpu, &cpu, &out);
     }
     let (left, right) = (&eyes[0].1, &eyes[1].1);
     let between = common::differing_fraction(left, right, TOLERANCE);
@@ -508,12 +472,35 @@ fn a_headset_session_runs_traces_both_eyes_and_walks_through_faces() {
     );
 }
 
+/// An eye's picture against its CPU reference: the figures printed, the three pictures
+/// written to `out` as `{name}-headset.png`, `-cpu`, `-diff`, and at most
+/// [`MAX_DIFFERING`] of the pixels may differ.
+fn judge_eye(name: &str, gpu: &RgbImage, cpu: &RgbImage, out: &std::path::Path) {
+    let (c, diff) = compare(gpu, cpu, TOLERANCE);
+    println!(
+        "{name}: against the CPU reference {:.3} % of pixels differ, mean error {:.3}/255, max {}",
+        100.0 * c.differing,
+        c.mean_error,
+        c.max_error
+    );
+    for (kind, img) in [("headset", gpu), ("cpu", cpu), ("diff", &diff)] {
+        img.save(out.join(format!("{name}-{kind}.png")))
+            .expect("write the picture");
+    }
+    assert!(
+        c.differing <= MAX_DIFFERING,
+        "{name}: {:.2} % of pixels differ from the CPU reference (pictures in {})",
+        100.0 * c.differing,
+        out.display()
+    );
+}
+
 /// Switches to a product space (the bitorus times a circle) and walks the head forward with
 /// the left stick: it moves along the product's geodesic, stays in the cell with an
 /// orthonormal frame (in the product metric), and its eyes are product frames about the
 /// eye distance apart. Returns the space and both eyes, read back.
 fn product_walk(app: &mut App) -> (ActiveSpace, Vec<(EyeShot, RgbImage)>) {
-    use bevy_curved_spaces::space::FamilySpace;
+    use bevy_curved_spaces::space::FrameSpace;
     app.insert_resource(ActiveSpace::named("bitorus-circle").expect("a product space"));
     for _ in 0..3 {
         app.update();

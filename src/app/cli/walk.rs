@@ -80,6 +80,30 @@ pub(super) fn xr_runtime() -> Result<(), String> {
     }
 }
 
+/// `walk --xr`'s start: where a runtime and a display are there (in a build with the `xr`
+/// feature), the headset `session` runs and its result is returned; else this says which is
+/// missing, switches `stereo` to the desktop fallback and returns `None`.
+#[cfg_attr(not(feature = "xr"), allow(unused_variables))]
+fn headset_or_desktop(
+    stereo: &mut StereoArgs,
+    session: impl FnOnce() -> Result<(), String>,
+) -> Option<Result<(), String>> {
+    match xr_runtime() {
+        #[cfg(feature = "xr")]
+        Ok(()) if display_available() => return Some(session()),
+        Ok(()) => {
+            eprintln!("an OpenXR runtime was found, but no display to open the app's window on")
+        }
+        Err(e) => eprintln!("{e}"),
+    }
+    stereo.stereo = desktop_stereo(stereo.stereo);
+    eprintln!(
+        "falling back to desktop stereo: {} (choose another with --stereo)",
+        stereo.stereo.label()
+    );
+    None
+}
+
 pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
     // A replayed flight names its own space or scene.
     let replay = match &args.replay {
@@ -124,20 +148,10 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
     };
     let space = chosen.space.clone();
     let mut stereo_args = args.stereo;
-    if args.xr {
-        match xr_runtime() {
-            #[cfg(feature = "xr")]
-            Ok(()) if display_available() => return walk_xr(args, &chosen),
-            Ok(()) => {
-                eprintln!("an OpenXR runtime was found, but no display to open the app's window on")
-            }
-            Err(e) => eprintln!("{e}"),
-        }
-        stereo_args.stereo = desktop_stereo(stereo_args.stereo);
-        eprintln!(
-            "falling back to desktop stereo: {} (choose another with --stereo)",
-            stereo_args.stereo.label()
-        );
+    if args.xr
+        && let Some(done) = headset_or_desktop(&mut stereo_args, || walk_xr(args, &chosen))
+    {
+        return done;
     }
     if !display_available() {
         eprintln!(
@@ -319,7 +333,6 @@ pub(super) fn exit_result(exit: AppExit) -> Result<(), String> {
 }
 
 /// `walk --xr` with a runtime: the headset's views are traced, the window mirrors the head.
-#[cfg(feature = "xr")]
 pub(super) fn walk_xr(args: &WalkArgs, chosen: &Chosen) -> Result<(), String> {
     let stereo = args.stereo.settings(&chosen.space)?;
     let walls = args.view.walls.style(chosen.scene.shading.walls)?;
@@ -330,8 +343,31 @@ pub(super) fn walk_xr(args: &WalkArgs, chosen: &Chosen) -> Result<(), String> {
 
 /// The headset session of `walk --xr` in `active`, a space of any family: `add_scene` adds
 /// the scene's resources (a product scene file's base scene).
-#[cfg(feature = "xr")]
+#[cfg_attr(not(feature = "xr"), allow(unused_variables))]
 fn run_xr(
+    args: &WalkArgs,
+    active: ActiveSpace,
+    settings: (
+        StereoSettings,
+        Option<bevy_curved_spaces::scene::WallStyle>,
+        Option<bevy_curved_spaces::scene::lighting::Lighting>,
+    ),
+    add_scene: impl FnOnce(&mut App),
+) -> Result<(), String> {
+    #[cfg(feature = "xr")]
+    {
+        run_headset(args, active, settings, add_scene)
+    }
+    // Not reached (`walk --xr` finds no runtime in such a build), but says why if it were.
+    #[cfg(not(feature = "xr"))]
+    {
+        xr_runtime()
+    }
+}
+
+/// [`run_xr`] in a build with the `xr` feature.
+#[cfg(feature = "xr")]
+fn run_headset(
     args: &WalkArgs,
     active: ActiveSpace,
     (stereo, walls, lighting): (
@@ -412,16 +448,15 @@ fn product_lighting(
 
 /// `walk --xr` in a product space: the head walks H²×R or S²×R, its eyes carried along the
 /// product's geodesics.
-#[cfg(feature = "xr")]
-fn walk_product_xr(args: &WalkArgs, chosen: super::render::ProductChoice) -> Result<(), String> {
-    let lighting = product_lighting(args, &chosen)?;
+fn walk_product_xr(args: &WalkArgs, chosen: &super::render::ProductChoice) -> Result<(), String> {
+    let lighting = product_lighting(args, chosen)?;
     let id = args
         .scene
         .as_ref()
         .map_or_else(|| args.space.clone(), |_| chosen.space.name().to_string());
-    let active = ActiveSpace::new(id, chosen.space);
+    let active = ActiveSpace::new(id, chosen.space.clone());
     let stereo = args.stereo.settings_for(active.inradius)?;
-    let base = chosen.base;
+    let base = chosen.base.clone();
     run_xr(args, active, (stereo, None, lighting), move |app| {
         if let Some(base) = base {
             app.insert_resource(base);
@@ -437,20 +472,10 @@ fn walk_product(
     flight: Option<bevy_curved_spaces::trace::product::flight::ProductFlight>,
 ) -> Result<(), String> {
     let mut stereo_args = args.stereo;
-    if args.xr {
-        match xr_runtime() {
-            #[cfg(feature = "xr")]
-            Ok(()) if display_available() => return walk_product_xr(args, chosen),
-            Ok(()) => {
-                eprintln!("an OpenXR runtime was found, but no display to open the app's window on")
-            }
-            Err(e) => eprintln!("{e}"),
-        }
-        stereo_args.stereo = desktop_stereo(stereo_args.stereo);
-        eprintln!(
-            "falling back to desktop stereo: {} (choose another with --stereo)",
-            stereo_args.stereo.label()
-        );
+    if args.xr
+        && let Some(done) = headset_or_desktop(&mut stereo_args, || walk_product_xr(args, &chosen))
+    {
+        return done;
     }
     if !display_available() {
         eprintln!(

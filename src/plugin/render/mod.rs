@@ -13,7 +13,6 @@ use crate::plugin::components::StereoSettings;
 use crate::plugin::components::{CurvedSpaceCamera, CurvedSpaceEye, PlayerFrame};
 use crate::space::AnySpace;
 use crate::view::StereoMode;
-use crate::view::stereo::eye_frames;
 use crate::view::{Lens, ViewKind, ViewLayout};
 use bevy::asset::{load_internal_asset, uuid_handle};
 use bevy::core_pipeline::{Core3d, Core3dSystems, tonemapping::tonemapping};
@@ -238,12 +237,10 @@ fn extract_curved_views(
         } else {
             stereo.mode
         };
-        let eyes = match &active.space {
-            _ if !mode.is_stereo() => [frame.0; 2],
-            AnySpace::Constant(s) => eye_frames(s, frame.0, ipd).map(|e| e.frame),
-            AnySpace::Product(p) => {
-                crate::space::product::motion::product_eye_frames(p, frame.0, ipd)
-            }
+        let eyes = if mode.is_stereo() {
+            active.space.frames().eye_frames(frame.0, ipd)
+        } else {
+            [frame.0; 2]
         };
         let extras = match &active.space {
             AnySpace::Constant(s) => ViewExtras::new(s, &scene.0, frame.0, seconds),

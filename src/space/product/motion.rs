@@ -11,7 +11,7 @@
 use super::ProductSpace;
 use crate::geometry::{Geometry, Ray, Vector4};
 use crate::space::Family;
-use crate::space::contract::{FamilySpace, FrameCrossing, FrameMotion};
+use crate::space::contract::{FamilySpace, FrameCrossing, FrameMotion, FrameSpace};
 use crate::space::motion::Velocity;
 use glam::{DMat3, DMat4, DVec3, DVec4};
 
@@ -278,11 +278,7 @@ pub fn camera_frame(point: DVec4, [right, up, back]: [DVec4; 3]) -> DMat4 {
 /// where it left it (the stereo views of the CLI and the plugin).
 #[must_use]
 pub fn product_eye_frames(space: &ProductSpace, head: DMat4, ipd: f64) -> [DMat4; 2] {
-    let g = space.base();
-    [-0.5 * ipd, 0.5 * ipd].map(|t| {
-        let eye = transport(g, head, head.x_axis, t);
-        wrap_product_frame(space, eye, 0.0).0
-    })
+    space.eye_frames(head, ipd)
 }
 
 /// The frame after `dt` seconds of `velocity`: translated along the product geodesic of
@@ -327,7 +323,9 @@ impl FamilySpace for ProductSpace {
     fn walker<V: Vector4>(&self) -> super::ProductWalker<V> {
         super::ProductWalker::new(self)
     }
+}
 
+impl FrameSpace for ProductSpace {
     fn chart_ray(&self, from: DVec3, dir: DVec3) -> Result<Ray<DVec4>, String> {
         super::chart_ray(self.base(), from, dir)
     }
