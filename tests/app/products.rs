@@ -265,7 +265,13 @@ fn walking_a_product_space_without_a_display_renders_it() {
     // The headset mode works here too: without a runtime it says so and falls back to
     // desktop stereo (here, without a display, a stereo picture).
     let out = Command::new(env!("CARGO_BIN_EXE_curved-spaces"))
-        .args(["walk", "projective-plane-circle", "--xr", "--crossings", "8"])
+        .args([
+            "walk",
+            "projective-plane-circle",
+            "--xr",
+            "--crossings",
+            "8",
+        ])
         .current_dir(&dir)
         .env_remove("DISPLAY")
         .env_remove("WAYLAND_DISPLAY")
