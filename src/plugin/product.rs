@@ -1,9 +1,9 @@
 //! Product spaces (H²×R, S²×R) in the plugin: while the [`ActiveSpace`] is a product
-//! space, these systems take the place of the constant-curvature ones. Players move with
-//! [`step_product_frame`] (the fibre up, unless [`PlayerSettings::fibre_up`] is off), wrap
-//! through the sides, the top and the bottom with [`wrap_product_frame`] (recorded in each
-//! camera's [`Holonomy`]: the pairings' linear parts), and the scene is packed for the
-//! tracer's `PRODUCT` variant when the space or the settings change.
+//! space, the scene is packed for the tracer's `PRODUCT` variant when the space or the
+//! settings change. Players and entities move and wrap by the systems written once over the
+//! geometry contract ([`crate::plugin::family::FamilyPlugin`]): with the fibre up unless
+//! [`crate::plugin::components::PlayerSettings::fibre_up`] is off, through the sides, the
+//! top and the bottom ([`crate::space::product::motion::wrap_product_frame`]).
 
 use crate::plugin::components::{
     AUTO_BUDGET_SAMPLES, ActiveSpace, BaseProductScene, TracerSettings, TracerStatus,

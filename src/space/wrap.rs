@@ -86,7 +86,7 @@ impl Holonomy {
     }
 
     /// Records a crossing a frame made on its way back into the cell (its face, pairing and
-    /// fibre shift: [`super::FamilySpace::wrap_frame`]).
+    /// fibre shift: [`super::FrameSpace::wrap_frame`]).
     pub fn record_crossing(&mut self, crossing: &super::FrameCrossing) {
         self.record(crossing.face, crossing.pairing);
         self.fibre_shift += crossing.fibre_shift;

@@ -82,7 +82,7 @@ pub fn local_motion(geometry: Geometry, frame: DMat4, t: DVec3, rotation: DQuat)
 }
 
 /// [`local_motion`] in a space of any family: the translation along the family's geodesic
-/// with the frame carried along ([`FamilySpace::step_frame`]), then the turn of the frame's
+/// with the frame carried along ([`crate::space::FrameSpace::step_frame`]), then the turn of the frame's
 /// own axes. Bit for bit [`local_motion`] in constant curvature.
 #[must_use]
 pub fn local_motion_in<S: FamilySpace>(
