@@ -44,12 +44,12 @@
 
 #import curved_spaces::layout::{space}
 #import curved_spaces::hit_id::{hit_id}
+// The one place a family is chosen: each family's tracer module has the camera ray's
+// colour under the same name, `ray_colour`.
 #ifdef PRODUCT
-#import curved_spaces::product::{product_ray, trace_product}
+#import curved_spaces::product::{ray_colour}
 #else
-#import curved_spaces::geometry::{unit_tangent}
-#import curved_spaces::walls::{veil_colour, veil_through}
-#import curved_spaces::trace::{trace}
+#import curved_spaces::trace::{ray_colour}
 #endif
 
 // ---------------------------------------------------------------------------------------
@@ -79,21 +79,7 @@ fn eye_colour(eye: u32, uv: vec2<f32>) -> vec3<f32> {
     let px = mix(lens.x, lens.y, uv.x);
     let py = mix(lens.w, lens.z, uv.y);
     let f = space.view.frames[eye];
-    let p = f[3];
-#ifdef PRODUCT
-    let ray = product_ray(p, px * f[0] + py * f[1] - f[2]);
-    return clamp(trace_product(ray), vec3<f32>(0.0), vec3<f32>(1.0));
-#else
-    let v = unit_tangent(p, px * f[0] + py * f[1] - f[2]);
-#ifdef WALLS
-    veil_colour = vec3<f32>(0.0);
-    veil_through = 1.0;
-    let behind = trace(p, v);
-    return clamp(veil_colour + veil_through * behind, vec3<f32>(0.0), vec3<f32>(1.0));
-#else
-    return clamp(trace(p, v), vec3<f32>(0.0), vec3<f32>(1.0));
-#endif
-#endif
+    return clamp(ray_colour(f[3], px * f[0] + py * f[1] - f[2]), vec3<f32>(0.0), vec3<f32>(1.0));
 }
 
 // The linear colour seen through a fragment of the viewport (ViewLayout::eye_at and

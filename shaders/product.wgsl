@@ -24,6 +24,12 @@ fn product_ray(point: vec4<f32>, direction: vec4<f32>) -> Ray {
     return normalized(Ray(point, direction));
 }
 
+// The colour seen from the eye `p` in the direction `d`: the entry point every family's
+// tracer module has under this name (curved_space.wgsl calls it).
+fn ray_colour(p: vec4<f32>, d: vec4<f32>) -> vec3<f32> {
+    return trace_product(product_ray(p, d));
+}
+
 #ifdef WALLS
 // What the walls crossed so far added and let through (Rust: `scene::walls::Veil`).
 var<private> veil_colour: vec3<f32>;

@@ -26,6 +26,21 @@ fn c_of(t: f32) -> f32 {
     return 1.0;
 }
 
+// The colour seen from the eye `p` in the direction `d` (any vector of the tangent space
+// there: it is made a unit tangent), the walls crossed on the way included: the entry point
+// every family's tracer module has under this name (curved_space.wgsl calls it).
+fn ray_colour(p: vec4<f32>, d: vec4<f32>) -> vec3<f32> {
+    let v = unit_tangent(p, d);
+#ifdef WALLS
+    veil_colour = vec3<f32>(0.0);
+    veil_through = 1.0;
+    let behind = trace(p, v);
+    return veil_colour + veil_through * behind;
+#else
+    return trace(p, v);
+#endif
+}
+
 #ifdef STRAIGHTFORWARD
 // The arc length t > 0 at which C(t)·a + S(t)·b = k along γ(t) = C(t) p + S(t) v, the first
 // root, or NO_HIT: a ball's boundary (a = ⟨p,c⟩, b = ⟨v,c⟩, k = C(ρ) in S³ and H³; in E³
