@@ -212,23 +212,54 @@ pub struct BaseProductScene {
     pub scene: crate::trace::product::ProductScene,
     /// The start view (`None`: the space's default camera).
     pub start: Option<crate::trace::product::ProductCamera>,
+    /// Balls that move (a product scene file's balls with a `velocity`): while the scene is
+    /// shown the plugin spawns each as an entity that flies from its start through the
+    /// faces.
+    pub moving: Vec<crate::trace::product::moving::ProductMover>,
 }
 
 impl BaseProductScene {
     /// A scene, players starting at the space's default view.
     #[must_use]
     pub fn new(scene: crate::trace::product::ProductScene) -> Self {
-        Self { scene, start: None }
+        Self {
+            scene,
+            start: None,
+            moving: Vec::new(),
+        }
     }
 
-    /// A product scene file's scene and start view.
+    /// A product scene file's scene, start view and moving balls.
     #[cfg(feature = "scene-files")]
     #[must_use]
     pub fn from_file(file: &crate::trace::product::file::ProductSceneFile) -> Self {
         Self {
             scene: file.scene.clone(),
             start: file.start,
+            moving: file.moving.clone(),
         }
+    }
+
+    /// This base scene with its moving balls fixed where they are at `time` seconds (a
+    /// still picture, or a flight's frame): no entities are spawned for them.
+    pub fn at_time(
+        &self,
+        space: &ProductSpace,
+        time: f64,
+    ) -> Result<Self, crate::space::motion::MotionError> {
+        let mut scene = self.scene.clone();
+        scene
+            .objects
+            .extend(crate::trace::product::moving::movers_at(
+                space,
+                &self.moving,
+                time,
+            )?);
+        Ok(Self {
+            scene,
+            start: self.start,
+            moving: Vec::new(),
+        })
     }
 
     /// Where players start in `space`: the scene's start view, else the default camera of

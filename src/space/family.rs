@@ -99,12 +99,11 @@ impl Family {
     /// family lacks.
     pub fn supports(self, feature: Feature) -> Result<(), Unsupported> {
         let reason = match (self, feature) {
-            (Family::Constant, _) | (Family::Product, Feature::RecordFlight | Feature::Headset) => {
-                return Ok(());
-            }
-            (Family::Product, Feature::MovingObjects) => {
-                "nothing moves in a product scene yet, so it takes no time"
-            }
+            (Family::Constant, _)
+            | (
+                Family::Product,
+                Feature::RecordFlight | Feature::Headset | Feature::MovingObjects,
+            ) => return Ok(()),
             (Family::Product, Feature::SceneParts) => {
                 "a product scene file's `edges` and `centre_ball` choose the parts"
             }

@@ -5,14 +5,14 @@
 //! One step moves the frame by `F ← F · T(v dt) · R(ω dt)`: a translation along its own
 //! direction `v` (a geodesic: steps along the same local direction compose exactly), then
 //! a turn about its own axis `ω`. After every step the frame is wrapped into the cell by
-//! [`wrap_into_cell`], so its numbers stay those of a point in the cell however long it
+//! the family's wrap ([`super::FrameSpace::wrap_frame`]), so its numbers stay those of a point in the cell however long it
 //! flies (a frame carried along in the cover would lose digits as `cosh d` grows in H³).
 //! The plugin's fixed-step systems and a scene file's `velocity` at a time `T` use the same
 //! steps of [`MOTION_STEP`], so they agree.
 
 use super::invariants::circumradius;
 use super::orbit::OrbitPoints;
-use super::{Holonomy, Space, wrap_into_cell};
+use super::{Holonomy, Space};
 use crate::geometry::{Geometry, translate_local};
 use glam::{DMat4, DVec3, DVec4};
 
@@ -79,11 +79,12 @@ pub enum MotionError {
     },
 }
 
-/// The frame `frame` (in the cell) after `time` seconds at `velocity`: stepped by
-/// [`MOTION_STEP`] (the last step shorter) and wrapped into the cell after each step with
-/// margin `margin`, every crossing recorded in `holonomy`.
-pub fn fly(
-    space: &Space,
+/// The frame `frame` (in the cell of a space of any family) after `time` seconds at
+/// `velocity`: stepped by [`MOTION_STEP`] (the last step shorter) and wrapped into the cell
+/// after each step with margin `margin`, every crossing recorded in `holonomy` (the
+/// plugin's entities move by the same steps and the same rule).
+pub fn fly<S: super::FrameSpace + ?Sized>(
+    space: &S,
     frame: DMat4,
     velocity: &Velocity,
     time: f64,
@@ -107,12 +108,11 @@ pub fn fly(
     }
     let whole = (time / MOTION_STEP).floor() as u64;
     let rest = time - whole as f64 * MOTION_STEP;
-    let g = space.geometry;
     let mut f = frame;
     let mut advance = |f: DMat4, dt: f64| {
-        let (wrapped, crossed) = wrap_into_cell(space, velocity.step(g, f, dt), margin);
-        for face in crossed {
-            holonomy.record(face, space.faces[face].pairing);
+        let (wrapped, crossed) = space.wrap_frame(space.step_velocity(f, velocity, dt), margin);
+        for c in &crossed {
+            holonomy.record_crossing(c);
         }
         wrapped
     };

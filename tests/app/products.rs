@@ -189,9 +189,49 @@ fn product_scene_files_render_alike_on_the_cpu_and_the_gpu_in_mono_and_stereo() 
         ],
         "nothing to look towards",
     );
+    // A ball with a velocity: `--time` moves it (the GPU drawing what the CPU does), and a
+    // time that cannot be flown is refused.
+    let moving = dir.join("moving.toml");
+    std::fs::write(
+        &moving,
+        "space = \"bitorus-circle\"\n[start]\nposition = [0.0, 0.0, 0.0]\nlook_at = [1.0, 0.0, 0.0]\n\
+         [[object]]\ntype = \"ball\"\nposition = [0.4, 0.0, 0.0]\nradius = 0.15\n\
+         colour = [1.0, 0.2, 0.2]\nvelocity = [0.0, 0.25, 0.0]\n",
+    )
+    .unwrap();
+    let moving = moving.to_str().unwrap();
+    let picture = |time: &str, cpu: bool| {
+        let out = dir.join(format!("moving-{time}-{cpu}.png"));
+        let mut args = vec![
+            "render",
+            "--scene",
+            moving,
+            "--time",
+            time,
+            "--size",
+            "64x36",
+            "--crossings",
+            "16",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        if cpu {
+            args.push("--cpu");
+        }
+        ok(&args);
+        image::open(&out).expect("a picture").to_rgb8()
+    };
+    let (start, later) = (picture("0", true), picture("1.5", true));
+    assert!(
+        differing(&start, &later) > 20,
+        "the ball moved: {} pixels changed",
+        differing(&start, &later)
+    );
+    let gpu = picture("1.5", false);
+    assert!(differing(&gpu, &later) <= 23, "{}", differing(&gpu, &later));
     fails_with(
-        &["render", "--scene", scene, "--time", "1", "--cpu"],
-        "nothing moves",
+        &["render", "--scene", moving, "--time", "1e9", "--cpu"],
+        "motion steps",
     );
     let bad = dir.join("bad.toml");
     std::fs::write(

@@ -162,7 +162,7 @@ fn a_long_flight_keeps_a_valid_frame_and_matches_fly() {
             let holonomy = *app.world().get::<Holonomy>(entity).unwrap();
             let mut h = Holonomy::default();
             let flown = fly(
-                space,
+                &**space,
                 start.0,
                 &velocity,
                 fixed_time(&app) - t0,

@@ -608,3 +608,99 @@ fn a_hit_knows_its_crossings_last_face_and_the_copy_it_was_seen_in() {
         bevy_curved_spaces::scene::palette(3)
     );
 }
+
+/// A ball with a `velocity` flies along the product geodesic and through the faces: at a
+/// time it is where the exact flight (`space::motion::fly`, the plugin's steps) puts it,
+/// inside the cell, drawn with its images where it reaches through a face; the plugin
+/// flies it as an entity to the same place; a time that cannot be flown is refused.
+#[test]
+fn a_moving_ball_flies_through_the_faces_in_pictures_and_in_the_plugin() {
+    use bevy_curved_spaces::space::Holonomy;
+    use bevy_curved_spaces::space::motion::fly;
+    let text = r#"
+space = "bitorus-circle"
+[[object]]
+type = "ball"
+position = [0.3, 0.1, 0.2]
+radius = 0.1
+colour = [1.0, 0.3, 0.2]
+velocity = [0.9, 0.2, 0.4]
+"#;
+    let file = parse_product_scene(text, "moving.toml").expect("a product scene");
+    assert_eq!(file.moving.len(), 1);
+    let space = &file.space;
+    let mover = file.moving[0];
+    let still = file.scene.objects.len();
+    // At the start: the ball where the file puts it.
+    let at0 = file.scene_at(0.0).expect("time 0");
+    let ProductShape::Point(p0) = at0.objects[still].shape else {
+        panic!("a ball")
+    };
+    assert!((p0 - mover.frame.w_axis).abs().max_element() < 1e-15);
+    // Later: where the flight puts it, in the cell, after crossing faces.
+    for t in [0.7, 2.5, 6.0] {
+        let mut h = Holonomy::default();
+        let flown = fly(space, mover.frame, &mover.velocity, t, 1e-4, &mut h).expect("flies");
+        let scene = file.scene_at(t).expect("a time");
+        let ball = scene.objects[still..]
+            .iter()
+            .rev()
+            .find_map(|o| match o.shape {
+                ProductShape::Point(p) if space.outside_by(p) <= 1e-4 => Some(p),
+                _ => None,
+            })
+            .expect("the ball in the cell");
+        assert!(
+            (ball - flown.w_axis).abs().max_element() < 1e-12,
+            "at {t} s: {ball:?} against {:?}",
+            flown.w_axis
+        );
+        if t >= 2.5 {
+            assert!(h.crossings >= 1, "at {t} s it has crossed a face");
+        }
+    }
+    // The plugin flies it as an entity to the same place.
+    {
+        use bevy::prelude::*;
+        use bevy::time::TimeUpdateStrategy;
+        use bevy_curved_spaces::plugin::objects::CurvedTransform;
+        use bevy_curved_spaces::prelude::{BaseProductScene, CurvedSpacesPlugin};
+        let mut app = App::new();
+        app.add_plugins(MinimalPlugins)
+            .insert_resource(TimeUpdateStrategy::ManualDuration(
+                std::time::Duration::from_secs_f64(1.0 / 64.0),
+            ))
+            .insert_resource(BaseProductScene::from_file(&file))
+            .add_plugins(CurvedSpacesPlugin {
+                space: "bitorus-circle".into(),
+                controls: false,
+                ..default()
+            });
+        app.finish();
+        for _ in 0..130 {
+            app.update();
+        }
+        let frames: Vec<glam::DMat4> = app
+            .world_mut()
+            .query::<&CurvedTransform>()
+            .iter(app.world())
+            .map(|t| t.0)
+            .collect();
+        assert_eq!(frames.len(), 1, "one entity for the one moving ball");
+        let elapsed = app.world().resource::<Time<Fixed>>().elapsed_secs_f64();
+        let mut h = Holonomy::default();
+        let flown = fly(space, mover.frame, &mover.velocity, elapsed, 1e-4, &mut h).unwrap();
+        let gap = (frames[0].w_axis - flown.w_axis).abs().max_element();
+        assert!(
+            gap < 1e-9,
+            "after {elapsed} s the entity is {gap:e} from the flight"
+        );
+    }
+    // Times that cannot be flown.
+    assert!(file.scene_at(-1.0).is_err());
+    assert!(file.scene_at(f64::NAN).is_err());
+    assert!(file.scene_at(1e12).is_err());
+    // A moving ball must start in the cell, and its velocity must be finite.
+    let outside = text.replace("[0.3, 0.1, 0.2]", "[9.0, 0.0, 0.0]");
+    assert!(parse_product_scene(&outside, "m.toml").is_err());
+}

@@ -234,6 +234,16 @@ fn flight_product(
     let mut scene = chosen.scene;
     scene.walls = args.walls.style(scene.walls)?.filter(|w| w.opening < 1.0);
     scene.colour_by = args.colour_by.into();
+    // A scene file's moving balls fly as the frames go on.
+    let moving = chosen.base.map(|b| b.moving).unwrap_or_default();
+    let scene_at = |t: f64| -> Result<_, String> {
+        let mut at = scene.clone();
+        at.objects.extend(
+            bevy_curved_spaces::trace::product::moving::movers_at(space, &moving, t)
+                .map_err(|e| format!("at {t} s: {e}"))?,
+        );
+        Ok(at)
+    };
     let budget = match args.crossings {
         Some(n) => n,
         None => {
@@ -268,6 +278,7 @@ fn flight_product(
     for &n in &todo {
         let t = (n - 1) as f64 / args.fps;
         let camera = flight.camera(space, t);
+        let scene = scene_at(t).map_err(|e| format!("frame {n}: {e}"))?;
         let image = match renderer.as_mut() {
             None => render_product(space, &scene, &camera, args.size.0, args.size.1, budget),
             Some(r) => r

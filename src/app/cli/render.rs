@@ -162,7 +162,7 @@ fn render_product_command(args: &RenderArgs, chosen: ProductChoice) -> Result<()
         space,
         mut scene,
         mut camera,
-        ..
+        base,
     } = chosen;
     use bevy_curved_spaces::space::{Family, Feature};
     let refuse = |feature| {
@@ -170,8 +170,12 @@ fn render_product_command(args: &RenderArgs, chosen: ProductChoice) -> Result<()
             .supports(feature)
             .map_err(|e| format!("{}: {e}", space.name()))
     };
-    if args.time != 0.0 {
-        refuse(Feature::MovingObjects)?;
+    // A scene file's moving balls where they are at `--time`.
+    if let Some(base) = &base {
+        scene = base
+            .at_time(&space, args.time)
+            .map_err(|e| format!("at time {} s: {e}", args.time))?
+            .scene;
     }
     // `--eye X,Y,Z --look-at X,Y,Z`: the surface's chart points and heights, as `trace
     // --from` takes them.

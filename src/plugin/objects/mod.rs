@@ -369,8 +369,10 @@ pub(crate) fn add_systems(app: &mut App) {
         .add_message::<ObjectCrossedFace>()
         .add_systems(
             Update,
-            product::collect_product_objects
-                .in_set(CurvedSpacesSystems::Upload)
+            (
+                product::collect_product_objects.in_set(CurvedSpacesSystems::Upload),
+                product::spawn_product_movers.before(CurvedSpacesSystems::Move),
+            )
                 .run_if(ActiveSpace::shows(Family::Product)),
         )
         .add_systems(

@@ -13,10 +13,10 @@
 //! face seen from the partner side), so one flying through a face is never cut off; near a
 //! corner the images through two faces are added, not their composition.
 
-use super::{CurvedObject, CurvedShape, CurvedTransform};
+use super::{CurvedObject, CurvedShape, CurvedTransform, CurvedVelocity};
 use crate::geometry::Geometry;
 use crate::plugin::components::ActiveSpace;
-use crate::space::product::{ProductSpace, ProductWalker};
+use crate::space::product::ProductWalker;
 use crate::trace::product::{ProductObject, ProductShape};
 use bevy::prelude::*;
 use glam::{DMat4, DVec4};
@@ -93,56 +93,7 @@ fn product_object(
     }
 }
 
-/// The images of a ball through the faces it reaches past (within its radius): the point
-/// the pairing of each such face carries it to.
-fn images_through_faces(
-    space: &ProductSpace,
-    walker: &ProductWalker<DVec4>,
-    object: &ProductObject,
-) -> Vec<ProductObject> {
-    let ProductShape::Point(p) = object.shape else {
-        return Vec::new();
-    };
-    let g = space.base();
-    let pb = DVec4::new(p.x, p.y, 0.0, p.w);
-    let norm = (pb.x * pb.x + pb.y * pb.y + g.kappa() * pb.w * pb.w)
-        .abs()
-        .sqrt();
-    let unit = pb / norm.max(f64::MIN_POSITIVE);
-    let half = 0.5 * space.length();
-    let mut out = Vec::new();
-    for (k, n) in walker.covectors.iter().enumerate() {
-        let x = n.dot(unit);
-        // The distance past the side's line (negative inside).
-        let past = match g {
-            Geometry::Spherical => x.clamp(-1.0, 1.0).asin(),
-            _ => x.asinh(),
-        };
-        if past > -object.radius {
-            out.push(ProductObject {
-                shape: ProductShape::Point(walker.pairings[k] * p),
-                ..*object
-            });
-        }
-    }
-    if p.z > half - object.radius {
-        let mut q = walker.up.0 * p;
-        q.z = p.z - space.length();
-        out.push(ProductObject {
-            shape: ProductShape::Point(q),
-            ..*object
-        });
-    }
-    if p.z < -half + object.radius {
-        let mut q = walker.down.0 * p;
-        q.z = p.z + space.length();
-        out.push(ProductObject {
-            shape: ProductShape::Point(q),
-            ..*object
-        });
-    }
-    out
-}
+use crate::trace::product::moving::images_through_faces;
 
 /// Gathers the entities' objects (and the images of balls reaching through faces) into
 /// [`ProductEntityObjects`] when any of them or the space changed.
@@ -190,5 +141,33 @@ pub fn collect_product_objects(
     if gathered != out.objects {
         out.objects = gathered;
         out.generation += 1;
+    }
+}
+
+/// Spawns an entity (a ball flying with its velocity) for each moving ball of the base
+/// product scene while a product space is shown; on a change of the scene or the space the
+/// ones spawned before go.
+pub fn spawn_product_movers(
+    base: Option<Res<crate::plugin::components::BaseProductScene>>,
+    active: Res<ActiveSpace>,
+    movers: Query<Entity, With<super::SceneMover>>,
+    mut commands: Commands,
+) {
+    if !(active.is_changed() || base.as_ref().is_some_and(|b| b.is_changed())) {
+        return;
+    }
+    for e in &movers {
+        commands.entity(e).despawn();
+    }
+    let (Some(base), Some(_)) = (base, active.product()) else {
+        return;
+    };
+    for (i, m) in base.moving.iter().enumerate() {
+        commands.spawn((
+            super::SceneMover(i),
+            CurvedObject::ball(m.object.radius, m.object.colour),
+            CurvedTransform(m.frame),
+            CurvedVelocity(m.velocity),
+        ));
     }
 }

@@ -25,6 +25,7 @@
 //! position = [0, 0, 0]    # tube); disc: position [x, y, z] (horizontal); geodesic: from
 //! radius = 0.3            # [x, y], to [x, y] and height (a horizontal tube)
 //! colour = [1.0, 0.8, 0.4]
+//! velocity = [0.2, 0, 0]  # a ball may move: units of the scale a second, in its frame
 //!
 //! [[light]]               # one light at most (the default scene's where there is none)
 //! position = [0.3, 0.2, 0.3]
@@ -68,6 +69,8 @@ pub struct ProductSceneFile {
     pub scene: ProductScene,
     /// The start view (`None`: the space's default camera).
     pub start: Option<ProductCamera>,
+    /// The balls with a `velocity`, as they start (not in `scene`).
+    pub moving: Vec<super::moving::ProductMover>,
 }
 
 impl ProductSceneFile {
@@ -76,6 +79,17 @@ impl ProductSceneFile {
     #[must_use]
     pub fn start_frame(&self) -> Option<DMat4> {
         self.start.map(|c| camera_frame(c.point, c.frame))
+    }
+
+    /// The scene with its moving balls where they are at `time` seconds (with their images
+    /// through the faces they reach past); the scene itself without any. An error says why
+    /// a time cannot be flown.
+    pub fn scene_at(&self, time: f64) -> Result<ProductScene, crate::space::motion::MotionError> {
+        let mut scene = self.scene.clone();
+        scene
+            .objects
+            .extend(super::moving::movers_at(&self.space, &self.moving, time)?);
+        Ok(scene)
     }
 }
 
@@ -113,6 +127,7 @@ const KEYS: &[&str] = &[
     "shadows",
     "lamp_radius",
     "soft_samples",
+    "velocity",
 ];
 
 fn default_true() -> bool {
@@ -160,6 +175,9 @@ enum ObjectSpec {
         radius: f64,
         #[serde(default = "white")]
         colour: [f64; 3],
+        /// Units of the scale a second, in the ball's frame (the centre's axes carried to
+        /// it, `z` the fibre): the ball flies through the faces.
+        velocity: Option<[f64; 3]>,
     },
     Fibre {
         position: [f64; 2],
@@ -306,8 +324,19 @@ pub fn parse_product_scene(text: &str, file: &str) -> Result<ProductSceneFile, S
         }
     }
     let mut triangles = 0;
+    let mut moving = Vec::new();
     for object in &spec.objects {
         let at = |m: String| fail(Some(object.span()), m);
+        if let ObjectSpec::Ball {
+            position,
+            radius,
+            colour: c,
+            velocity: Some(v),
+        } = object.get_ref()
+        {
+            moving.push(mover(&space, *position, *radius, *c, *v).map_err(at)?);
+            continue;
+        }
         let made = build_object(&space, object.get_ref()).map_err(at)?;
         triangles += made
             .iter()
@@ -339,6 +368,42 @@ pub fn parse_product_scene(text: &str, file: &str) -> Result<ProductSceneFile, S
         space,
         scene,
         start,
+        moving,
+    })
+}
+
+/// A ball with a velocity: its centre in the cell at the start (it may reach through faces:
+/// it is drawn with its images there), its frame the centre's axes carried to it.
+fn mover(
+    space: &ProductSpace,
+    position: [f64; 3],
+    radius: f64,
+    c: [f64; 3],
+    velocity: [f64; 3],
+) -> Result<super::moving::ProductMover, String> {
+    use crate::space::family::CentreFrame;
+    let scale = space.scale();
+    let r = radius_of(space, radius, true)?;
+    let v = DVec3::from_array(velocity);
+    if !v.is_finite() {
+        return Err(format!(
+            "velocity must be finite (units of the scale a second), got {velocity:?}"
+        ));
+    }
+    // In the cell (its point, as the frame's: both the geodesic from the centre).
+    inside(space, position, 0.0, "the moving ball's centre")?;
+    let frame = space.frame_from_centre(DVec3::from_array(position) * scale);
+    Ok(super::moving::ProductMover {
+        object: ProductObject {
+            shape: ProductShape::Point(frame.w_axis),
+            radius: r,
+            colour: colour(c)?,
+        },
+        frame,
+        velocity: crate::space::motion::Velocity {
+            linear: v * scale,
+            angular: DVec3::ZERO,
+        },
     })
 }
 
@@ -550,6 +615,7 @@ fn build_object(space: &ProductSpace, spec: &ObjectSpec) -> Result<Vec<ProductOb
             position,
             radius,
             colour,
+            ..
         } => {
             let r = radius_of(space, *radius, true)?;
             (

@@ -22,6 +22,7 @@ pub mod file;
 #[cfg(feature = "scene-files")]
 pub mod flight;
 pub mod lighting;
+pub mod moving;
 pub mod triangle;
 pub mod walls;
 
