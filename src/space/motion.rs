@@ -5,8 +5,9 @@
 //! One step moves the frame by `F ← F · T(v dt) · R(ω dt)`: a translation along its own
 //! direction `v` (a geodesic: steps along the same local direction compose exactly), then
 //! a turn about its own axis `ω`. After every step the frame is wrapped into the cell by
-//! the family's wrap ([`super::FrameSpace::wrap_frame`]), so its numbers stay those of a point in the cell however long it
-//! flies (a frame carried along in the cover would lose digits as `cosh d` grows in H³).
+//! its family's wrap ([`super::FrameSpace::wrap_frame`]), so its numbers stay those of a
+//! point in the cell however long it flies (a frame carried along in the cover would lose
+//! digits as `cosh d` grows in H³).
 //! The plugin's fixed-step systems and a scene file's `velocity` at a time `T` use the same
 //! steps of [`MOTION_STEP`], so they agree.
 
