@@ -506,6 +506,18 @@ fn judge_eye(name: &str, gpu: &RgbImage, cpu: &RgbImage, out: &std::path::Path) 
     );
 }
 
+/// The left stick pushed forward for `updates` updates, then released.
+fn walk_forward(app: &mut App, updates: usize) {
+    app.world_mut().resource_mut::<PushedSticks>().0 = Some(XrSticks {
+        walk: Vec2::new(0.0, 1.0),
+        ..default()
+    });
+    for _ in 0..updates {
+        app.update();
+    }
+    app.world_mut().resource_mut::<PushedSticks>().0 = Some(XrSticks::default());
+}
+
 /// Switches to a product space (the bitorus times a circle) and walks the head forward with
 /// the left stick: it moves along the product's geodesic, stays in the cell with an
 /// orthonormal frame (in the product metric), and its eyes are product frames about the
@@ -525,14 +537,7 @@ fn product_walk(app: &mut App) -> (ActiveSpace, Vec<(EyeShot, RgbImage)>) {
         space.outside_by(before.w_axis) <= 2.0 * margin,
         "the head starts in the product cell"
     );
-    app.world_mut().resource_mut::<PushedSticks>().0 = Some(XrSticks {
-        walk: Vec2::new(0.0, 1.0),
-        ..default()
-    });
-    for _ in 0..20 {
-        app.update();
-    }
-    app.world_mut().resource_mut::<PushedSticks>().0 = Some(XrSticks::default());
+    walk_forward(app, 20);
     let after = head(app).frame;
     let moved = (after.w_axis - before.w_axis).abs().max_element();
     println!(
@@ -672,14 +677,7 @@ fn thumbsticks(app: &mut App) {
     // Walk: the left stick pushed forward for a second.
     let before = head_in_cover(app);
     let start = app.world().resource::<Time>().elapsed_secs_f64();
-    app.world_mut().resource_mut::<PushedSticks>().0 = Some(XrSticks {
-        walk: Vec2::new(0.0, 1.0),
-        ..default()
-    });
-    for _ in 0..20 {
-        app.update();
-    }
-    app.world_mut().resource_mut::<PushedSticks>().0 = Some(XrSticks::default());
+    walk_forward(app, 20);
     let elapsed = app.world().resource::<Time>().elapsed_secs_f64() - start;
     let after = head_in_cover(app);
     let walked = g.distance(before.w_axis, after.w_axis);
