@@ -84,7 +84,7 @@ impl Feature {
 
 /// A feature a family does not have, with the reason: the one message every caller shows.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("{} is not available in the {} spaces: {reason}", feature.name(), family.name())]
+#[error("not in the {} spaces: {}: {reason}", family.name(), feature.name())]
 pub struct Unsupported {
     /// The family asked.
     pub family: Family,
@@ -115,7 +115,9 @@ impl Family {
                 "a product cell is centred on its polygon's centre; `--basepoint` moves the \
                  Dirichlet domains of generator files"
             }
-            (Family::Product, Feature::SoftShadows) => "a product lamp is a point",
+            (Family::Product, Feature::SoftShadows) => {
+                "a product lamp is a point (its light's floor is the falloff at distance 1)"
+            }
             (Family::Product, Feature::EveryImageBound) => {
                 "the images are gathered to a reach, but the light beyond it is not bounded"
             }

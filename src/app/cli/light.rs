@@ -146,11 +146,10 @@ fn light_product(
     use bevy_curved_spaces::scene::Lighting;
     use bevy_curved_spaces::trace::product::lighting::{product_fluence, reach};
     if args.radius.is_some() {
-        return Err(
-            "a product space's lamp is a point: its light's floor is the falloff at distance 1, \
-             so it takes no --radius"
-                .into(),
-        );
+        use bevy_curved_spaces::space::{Family, Feature};
+        Family::Product
+            .supports(Feature::SoftShadows)
+            .map_err(|e| format!("{}: --radius: {e}", space.name()))?;
     }
     let g = space.base();
     let point = |x: DVec3, what: &str| {

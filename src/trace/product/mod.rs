@@ -107,11 +107,10 @@ impl ProductScene {
     ) -> Result<(), String> {
         lighting.check()?;
         if lighting.lamp_radius_inradii > 0.0 {
-            return Err(format!(
-                "the lamp of a product space is a point: it takes no radius (soft shadows are \
-                 for the constant-curvature spaces), got {}",
-                lighting.lamp_radius_inradii
-            ));
+            use crate::space::{Family, Feature};
+            Family::Product
+                .supports(Feature::SoftShadows)
+                .map_err(|e| format!("{e}; got a radius of {}", lighting.lamp_radius_inradii))?;
         }
         self.light = light;
         self.lighting = lighting;
