@@ -321,6 +321,24 @@ fn walking_a_product_space_without_a_display_renders_it() {
     let said = String::from_utf8_lossy(&out.stderr).to_string();
     assert!(out.status.success(), "{said}");
     assert!(said.contains("falling back to desktop stereo"), "{said}");
+    // Without a window the options of a walk do nothing, and it says so.
+    let out = Command::new(env!("CARGO_BIN_EXE_curved-spaces"))
+        .args([
+            "walk",
+            "projective-plane-circle",
+            "--record",
+            "walk.toml",
+            "--crossings",
+            "8",
+        ])
+        .current_dir(&dir)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .expect("runs");
+    let said = String::from_utf8_lossy(&out.stderr).to_string();
+    assert!(out.status.success(), "{said}");
+    assert!(said.contains("--record does nothing"), "{said}");
     let _ = std::fs::remove_dir_all(&dir);
 }
 

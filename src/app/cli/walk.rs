@@ -154,12 +154,10 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
         return done;
     }
     if !display_available() {
-        eprintln!(
-            "no display found (DISPLAY and WAYLAND_DISPLAY are unset): rendering {} offscreen to curved-spaces.png instead",
-            args.space
-        );
+        say_no_display(args);
         let mut render = RenderArgs::of(&args.space);
         render.fog = args.fog;
+        render.crossings = args.crossings.map(|c| c as usize);
         render.scene = args.scene.clone();
         render.stereo = stereo_args;
         render.view = args.view;
@@ -242,6 +240,30 @@ fn record_to(app: &mut App, args: &WalkArgs) -> Result<(), String> {
         args.record_interval,
     ));
     Ok(())
+}
+
+/// Says that there is no display and what `walk` does instead: one picture of the start
+/// view, offscreen, and none of the options that need a walk in a window.
+fn say_no_display(args: &WalkArgs) {
+    eprintln!(
+        "no display found (DISPLAY and WAYLAND_DISPLAY are unset): rendering {} offscreen to curved-spaces.png instead",
+        args.space
+    );
+    let skipped: Vec<&str> = [
+        (args.record.is_some(), "--record"),
+        (args.replay.is_some(), "--replay"),
+        (args.screenshot.is_some(), "--screenshot"),
+    ]
+    .into_iter()
+    .filter_map(|(given, name)| given.then_some(name))
+    .collect();
+    if !skipped.is_empty() {
+        eprintln!(
+            "without a window there is no walk: {} {} nothing",
+            skipped.join(", "),
+            if skipped.len() == 1 { "does" } else { "do" }
+        );
+    }
 }
 
 /// The window of `walk`.
@@ -478,10 +500,7 @@ fn walk_product(
         return done;
     }
     if !display_available() {
-        eprintln!(
-            "no display found (DISPLAY and WAYLAND_DISPLAY are unset): rendering {} offscreen to curved-spaces.png instead",
-            args.space
-        );
+        say_no_display(args);
         let mut render = RenderArgs::of(&args.space);
         render.scene = args.scene.clone();
         render.fog = args.fog;
