@@ -288,56 +288,56 @@ fn the_teaching_views_colour_product_spaces_alike_on_the_cpu_and_the_gpu() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-#[test]
-fn walking_a_product_space_without_a_display_renders_it() {
-    let dir = crate::common::scratch_dir("products-walk");
+/// `curved-spaces ARGS` in `dir` with no display (and no OpenXR runtime): it must succeed;
+/// returns what it said.
+fn walk_without_display(dir: &std::path::Path, args: &[&str]) -> String {
     let out = Command::new(env!("CARGO_BIN_EXE_curved-spaces"))
-        .args(["walk", "projective-plane-circle", "--crossings", "16"])
-        .current_dir(&dir)
-        .env_remove("DISPLAY")
-        .env_remove("WAYLAND_DISPLAY")
-        .output()
-        .expect("runs");
-    let said = String::from_utf8_lossy(&out.stderr).to_string();
-    assert!(out.status.success(), "{said}");
-    assert!(said.contains("no display found"), "{said}");
-    assert!(dir.join("curved-spaces.png").exists(), "{said}");
-    // The headset mode works here too: without a runtime it says so and falls back to
-    // desktop stereo (here, without a display, a stereo picture).
-    let out = Command::new(env!("CARGO_BIN_EXE_curved-spaces"))
-        .args([
-            "walk",
-            "projective-plane-circle",
-            "--xr",
-            "--crossings",
-            "8",
-        ])
-        .current_dir(&dir)
+        .args(args)
+        .current_dir(dir)
         .env_remove("DISPLAY")
         .env_remove("WAYLAND_DISPLAY")
         .env("XR_RUNTIME_JSON", dir.join("no-runtime.json"))
         .output()
         .expect("runs");
     let said = String::from_utf8_lossy(&out.stderr).to_string();
-    assert!(out.status.success(), "{said}");
+    assert!(out.status.success(), "{args:?}: {said}");
+    said
+}
+
+#[test]
+fn walking_a_product_space_without_a_display_renders_it() {
+    let dir = crate::common::scratch_dir("products-walk");
+    let said = walk_without_display(
+        &dir,
+        &["walk", "projective-plane-circle", "--crossings", "16"],
+    );
+    assert!(said.contains("no display found"), "{said}");
+    assert!(dir.join("curved-spaces.png").exists(), "{said}");
+    // The headset mode works here too: without a runtime it says so and falls back to
+    // desktop stereo (here, without a display, a stereo picture).
+    let said = walk_without_display(
+        &dir,
+        &[
+            "walk",
+            "projective-plane-circle",
+            "--xr",
+            "--crossings",
+            "8",
+        ],
+    );
     assert!(said.contains("falling back to desktop stereo"), "{said}");
     // Without a window the options of a walk do nothing, and it says so.
-    let out = Command::new(env!("CARGO_BIN_EXE_curved-spaces"))
-        .args([
+    let said = walk_without_display(
+        &dir,
+        &[
             "walk",
             "projective-plane-circle",
             "--record",
             "walk.toml",
             "--crossings",
             "8",
-        ])
-        .current_dir(&dir)
-        .env_remove("DISPLAY")
-        .env_remove("WAYLAND_DISPLAY")
-        .output()
-        .expect("runs");
-    let said = String::from_utf8_lossy(&out.stderr).to_string();
-    assert!(out.status.success(), "{said}");
+        ],
+    );
     assert!(said.contains("--record does nothing"), "{said}");
     let _ = std::fs::remove_dir_all(&dir);
 }
