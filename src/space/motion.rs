@@ -20,6 +20,9 @@ use glam::{DMat4, DVec3, DVec4};
 /// The length of one motion step in seconds: Bevy's default fixed time step (64 Hz).
 pub const MOTION_STEP: f64 = 1.0 / 64.0;
 
+/// How many cell sizes ([`super::FrameSpace::scale`]) one step of [`fly`] may go at most.
+pub const MAX_CELLS_PER_STEP: f64 = 4.0;
+
 /// The most steps [`fly`] takes (about 43 hours of motion at [`MOTION_STEP`]).
 pub const MAX_MOTION_STEPS: u64 = 10_000_000;
 
@@ -78,6 +81,18 @@ pub enum MotionError {
         /// The steps that would be needed.
         steps: u64,
     },
+    /// One step of [`MOTION_STEP`] would go farther than [`MAX_CELLS_PER_STEP`] cell sizes
+    /// (the wrap brings a frame back through a few faces a step, and in H³ or H²×R a step
+    /// of thousands of units leaves f64).
+    #[error(
+        "a speed of {speed} is too fast: one motion step of {MOTION_STEP} s would cross more than {MAX_CELLS_PER_STEP} cells (at most {limit} in this space's units a second)"
+    )]
+    TooFast {
+        /// The linear speed asked for (space units a second).
+        speed: f64,
+        /// The largest speed followed.
+        limit: f64,
+    },
 }
 
 /// The frame `frame` (in the cell of a space of any family) after `time` seconds at
@@ -100,6 +115,13 @@ pub fn fly<S: super::FrameSpace + ?Sized>(
     }
     if velocity.is_zero() || time == 0.0 {
         return Ok(frame);
+    }
+    let (speed, limit) = (
+        velocity.linear.length(),
+        MAX_CELLS_PER_STEP * space.scale() / MOTION_STEP,
+    );
+    if !(speed <= limit) {
+        return Err(MotionError::TooFast { speed, limit });
     }
     let steps = (time / MOTION_STEP).ceil();
     if steps > MAX_MOTION_STEPS as f64 {

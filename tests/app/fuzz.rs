@@ -149,6 +149,18 @@ fn product_outcome(text: &str) -> bool {
                     && s.fog_distance.is_finite(),
                 "a non-finite product scene from:\n{text}"
             );
+            // Moving balls at a few times: placed where they fly (finite), or a reason.
+            for t in [0.0, 1.5, 1e6] {
+                if let Ok(at) = file.scene_at(t) {
+                    assert!(
+                        at.objects.iter().all(|o| match o.shape {
+                            ProductShape::Point(c) => c.is_finite(),
+                            _ => true,
+                        }),
+                        "a moving ball off the model at {t} s from:\n{text}"
+                    );
+                }
+            }
             let camera = file.start.unwrap_or_else(|| default_camera(&file.space));
             assert!(camera.point.is_finite() && camera.frame.iter().all(|v| v.is_finite()));
             let image = render_product(&file.space, s, &camera, 8, 4, 16);
@@ -192,6 +204,24 @@ fn lighting_tables_with_every_hostile_number() {
     }
     // torus_shadows.toml and torus_soft_shadows.toml at least.
     assert!(tried >= 6 * HOSTILE.len(), "{tried} mutations");
+}
+
+/// A product scene with a moving ball, each of its numbers (position, radius, velocity)
+/// replaced by every hostile one: a scene whose ball flies to finite places, or an error
+/// that names the file, never a panic.
+#[test]
+fn moving_product_balls_with_every_hostile_number() {
+    let text = "space = \"bitorus-circle\"\n[[object]]\ntype = \"ball\"\n\
+                position = [0.3, 0.1, 0.2]\nradius = 0.1\nvelocity = [0.9, 0.2, 0.4]\n";
+    let mut tried = 0;
+    for spot in numbers(text) {
+        for value in HOSTILE {
+            let mutated = format!("{}{value}{}", &text[..spot.start], &text[spot.end..]);
+            product_outcome(&mutated);
+            tried += 1;
+        }
+    }
+    assert!(tried >= 7 * HOSTILE.len(), "{tried} mutations");
 }
 
 proptest! {
