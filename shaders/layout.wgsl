@@ -132,6 +132,10 @@ struct SpaceUniform {
     // What rounding g_f to f32 left out: the pairing is applied as hi + lo, compensated.
     pairings_lo: array<mat4x4<f32>, #{FACE_SLOTS}>,
     partners: array<vec4<u32>, #{PARTNER_VECS}>,
+#ifdef CELLS
+    // Per face (four to a vec4): the faces of its cell, the first | one past the last << 16.
+    cell_ranges: array<vec4<u32>, #{PARTNER_VECS}>,
+#endif
 #ifdef PRODUCT
     // Half the circle's length, the number of objects, unused ×2 (the pairings above are the sides', then the
     // top's R⁻¹ and the bottom's R; the covectors of those two slots are unused).

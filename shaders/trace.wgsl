@@ -7,7 +7,7 @@
 #import curved_spaces::object::{NO_HIT, roots}
 #import curved_spaces::shading::{colour_by_tint, colour_tint, shade}
 #import curved_spaces::hit_id::{FNV_OFFSET, FNV_PRIME, hit_id, object_number}
-#import curved_spaces::walk::{NO_FACE, Ray, cross_face, exit_face, partner}
+#import curved_spaces::walk::{NO_FACE, Ray, cross_face, exit_face, partner, walk_faces}
 #import curved_spaces::scene::{SceneHit, intersect_scene, surface_at}
 #import curved_spaces::walls::{cross_wall, veil_colour, veil_through}
 
@@ -97,7 +97,8 @@ fn trace(start_point: vec4<f32>, start_tangent: vec4<f32>) -> vec3<f32> {
         // N·γ(t) = C(t) N·p + S(t) N·v = 0 at T(t) = S/C = −N·p / N·v.
         var t_exit = NO_HIT;
         var face = 0xffffffffu;
-        for (var f = 0u; f < face_count(); f += 1u) {
+        let faces = walk_faces(p, skip);
+        for (var f = faces.x; f < faces.y; f += 1u) {
             let n = space.covectors[f];
             let b = dot(n, v);
             if f != skip && b > 0.0 {

@@ -27,11 +27,66 @@ struct Exit {
     den: f32,
 }
 
+// The faces a walk looks for its exit among, the first and one past the last: all of them,
+// or in a space of several cells (CELLS) those of the cell it is in.
+fn walk_faces(point: vec4<f32>, skip: u32) -> vec2<u32> {
+#ifdef CELLS
+    return walk_cell(point, skip);
+#else
+    return vec2<u32>(0u, face_count());
+#endif
+}
+
+// The faces of face f's cell: every face in a space of one cell.
+fn faces_of_cell(f: u32) -> vec2<u32> {
+#ifdef CELLS
+    return cell_faces(f);
+#else
+    return vec2<u32>(0u, face_count());
+#endif
+}
+
+#ifdef CELLS
+// The faces of face f's cell.
+fn cell_faces(f: u32) -> vec2<u32> {
+    let packed = space.cell_ranges[f / 4u][f % 4u];
+    return vec2<u32>(packed & 0xffffu, packed >> 16u);
+}
+
+// The cell a walk is in: that of the face just entered (`skip`), else the first of those
+// whose faces the point is least outside of (Rust: `CellWalker::cell_of`).
+fn walk_cell(point: vec4<f32>, skip: u32) -> vec2<u32> {
+    if skip < face_count() {
+        return cell_faces(skip);
+    }
+    var best = cell_faces(0u);
+    var least = 3.4e38;
+    var first = 0u;
+    loop {
+        if first >= face_count() {
+            break;
+        }
+        let range = cell_faces(first);
+        var outside = -3.4e38;
+        for (var f = range.x; f < range.y; f += 1u) {
+            outside = max(outside, dot(space.covectors[f], point));
+        }
+        if outside < least {
+            least = outside;
+            best = range;
+        }
+        first = max(range.y, first + 1u);
+    }
+    return best;
+}
+#endif
+
 // The exit face: the smallest T = −(N·p)/(N·v) among faces with N·v > 0, compared without
 // dividing; the face just entered (`skip`) is passed over (Rust: `CellWalker::exit`).
 fn exit_face(ray: Ray, skip: u32) -> Exit {
     var exit = Exit(0xffffffffu, 0.0, 1.0);
-    for (var f = 0u; f < face_count(); f += 1u) {
+    let faces = walk_faces(ray.point, skip);
+    for (var f = faces.x; f < faces.y; f += 1u) {
         let n = space.covectors[f];
         let dn = dot(n, ray.tangent);
         if f == skip || !(dn > 0.0) {

@@ -2,9 +2,9 @@
 // The Rust twin: `scene::walls`.
 #define_import_path curved_spaces::walls
 
-#import curved_spaces::layout::{face_count, kappa, space}
+#import curved_spaces::layout::{kappa, space}
 #import curved_spaces::geometry::{form}
-#import curved_spaces::walk::{Exit, Ray}
+#import curved_spaces::walk::{Exit, Ray, faces_of_cell}
 
 #ifdef WALLS
 // What the walls crossed so far added and let through (Rust: `scene::Veil`).
@@ -27,7 +27,8 @@ fn cross_wall(ray: Ray, exit: Exit, d: f32) {
     let unit = space.wall_units[f];
     let margin = space.wall_colours[f].w;
     var on_panel = false;
-    for (var g = 0u; g < face_count(); g += 1u) {
+    let faces = faces_of_cell(f);
+    for (var g = faces.x; g < faces.y; g += 1u) {
         let other = space.wall_units[g];
         let c = form(unit, other);
         let sine = sqrt(max(1.0 - c * c, 0.0));

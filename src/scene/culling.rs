@@ -42,9 +42,13 @@ pub struct FaceCulling {
 
 impl FaceCulling {
     /// The culling of `scene`'s objects in `space`, or `None` where no object hugs two or
-    /// more faces (then nothing would be skipped).
+    /// more faces (then nothing would be skipped) and in a space of several cells (an
+    /// object's reach would be measured within each cell; every object is tested there).
     #[must_use]
     pub fn new(space: &Space, scene: &CurvedScene) -> Option<Self> {
+        if space.cells().len() > 1 {
+            return None;
+        }
         let g = space.geometry;
         let faces = space.faces.len().min(MAX_CULLED_FACES);
         let reaches: Vec<(Vec<f64>, f64)> = scene

@@ -337,12 +337,8 @@ impl CurvedScene {
         if !(centre.is_finite() && radius.is_finite()) {
             return Err(PlaceError::NotFinite);
         }
-        let faces = space.faces.len();
-        if let Some((f, d)) = (0..faces)
-            .map(|f| (f, space.face_distance(f, centre)))
-            .max_by(|a, b| a.1.total_cmp(&b.1))
-            .filter(|(_, d)| *d > 1e-9)
-        {
+        let (f, d) = space.past_face(centre);
+        if d > 1e-9 || d.is_nan() {
             return Err(PlaceError::Outside(d, f));
         }
         const SAME: f64 = 1e-9;
@@ -368,12 +364,7 @@ impl CurvedScene {
         // `reach` of the cell (the face distances underestimate near edges and vertices).
         let meets_cell = |o: &Object| {
             let (points, reach) = cores(o);
-            points.iter().any(|p| {
-                (0..faces)
-                    .map(|f| space.face_distance(f, *p))
-                    .fold(f64::NEG_INFINITY, f64::max)
-                    < reach
-            })
+            points.iter().any(|p| space.past_face(*p).1 < reach)
         };
         let mut found: Vec<Object> = Vec::new();
         let mut queue = vec![object];
@@ -386,6 +377,10 @@ impl CurvedScene {
             }
             let (points, reach) = cores(&o);
             for (f, face) in space.faces.iter().enumerate() {
+                // A seam's image is the object itself.
+                if space.is_seam(f) {
+                    continue;
+                }
                 if points.iter().any(|p| space.face_distance(f, *p) > -reach) {
                     let image = o.transformed(g, face.pairing);
                     if meets_cell(&image) && !found.iter().any(|x| x.same_as(&image, g, SAME)) {
@@ -512,8 +507,18 @@ impl CurvedScene {
             &[]
         };
         let vertices = if parts.edges { space.vertices.len() } else { 0 };
+        // In a space of several cells, the seams between them are inside the fundamental
+        // domain: their edges and vertices are none of the domain's.
+        let on_seam = |v: usize| {
+            space
+                .faces
+                .iter()
+                .enumerate()
+                .any(|(i, f)| f.vertices.contains(&v) && space.is_seam(i))
+        };
         let mut objects: Vec<Object> = edges
             .iter()
+            .filter(|e| !e.faces.iter().any(|&f| space.is_seam(f)))
             .map(|e| {
                 Object::Tube(Tube::new(
                     g,
@@ -558,7 +563,7 @@ impl CurvedScene {
                 }));
             }
         }
-        objects.extend((0..vertices).map(|v| {
+        objects.extend((0..vertices).filter(|&v| !on_seam(v)).map(|v| {
             Object::Ball(Ball::new(
                 g,
                 space.vertex_point(v),

@@ -217,14 +217,24 @@ impl WallPanels {
     pub fn new(space: &Space, style: WallStyle, shading: &Shading) -> Option<Self> {
         let covectors: Vec<DVec4> = space.faces.iter().map(|f| f.covector).collect();
         let (partners, reflections) = gluing(space);
-        Self::from_parts(
+        let cells: Vec<usize> = space.faces.iter().map(|f| f.cell).collect();
+        let mut walls = Self::in_cells(
             space.geometry,
             &covectors,
             &partners,
             &reflections,
+            &cells,
             style,
             shading,
-        )
+        )?;
+        // A seam between two cells is no face of the space: nothing is drawn on it (each
+        // cell's other faces keep their panels, framed where the cells meet).
+        for (f, face) in walls.faces.iter_mut().enumerate() {
+            if space.is_seam(f) {
+                face.opacity = 0.0;
+            }
+        }
+        Some(walls)
     }
 
     /// [`WallPanels::new`] from the cell's face covectors, partners and which pairings
@@ -235,6 +245,28 @@ impl WallPanels {
         covectors: &[DVec4],
         partners: &[usize],
         reflections: &[bool],
+        style: WallStyle,
+        shading: &Shading,
+    ) -> Option<Self> {
+        Self::in_cells(
+            geometry,
+            covectors,
+            partners,
+            reflections,
+            &[],
+            style,
+            shading,
+        )
+    }
+
+    /// [`WallPanels::from_parts`] for faces that bound several cells (`cells[f]`, face `f`'s
+    /// cell; empty for one): a face's window is framed by the faces of its own cell only.
+    fn in_cells(
+        geometry: Geometry,
+        covectors: &[DVec4],
+        partners: &[usize],
+        reflections: &[bool],
+        cells: &[usize],
         style: WallStyle,
         shading: &Shading,
     ) -> Option<Self> {
@@ -253,7 +285,8 @@ impl WallPanels {
         let mut sines = vec![0.0; n * n];
         for f in 0..n {
             for g in 0..n {
-                if f != g {
+                let same_cell = cells.is_empty() || cells[f] == cells[g];
+                if f != g && same_cell {
                     let c = geometry.form(units[f], units[g]);
                     sines[f * n + g] = (1.0 - c * c).max(0.0).sqrt();
                 }

@@ -41,6 +41,11 @@ pub const SEED_SPACES: &[SeedSpace] = &[
         build: torus,
     },
     SeedSpace {
+        id: "torus-two-cells",
+        summary: "3-torus again, cut into two half-cubes: a space of two cells",
+        build: torus_two_cells,
+    },
+    SeedSpace {
         id: "half-turn",
         summary: "flat manifold: cube, the z faces glued with a half turn",
         build: || turned_cube("half-turn", 2),
@@ -152,6 +157,43 @@ fn torus() -> Result<Space, SpaceError> {
         "torus",
         "The 3-torus E³/Z³: a unit cube whose opposite faces are glued by translations.",
         euclidean(translated_faces(&CUBE_NORMALS.map(dd3))),
+    )
+}
+
+/// The 3-torus of [`torus`] cut by the plane `x = 0` into two half-cubes, each a cell: the
+/// cut is a seam (the halves glued by the identity), the other faces glued as the cube's.
+/// Everything the space is (volume, homology, closed geodesics, its pictures) is the
+/// torus's; only the walk crosses the seam as well.
+fn torus_two_cells() -> Result<Space, SpaceError> {
+    use super::FaceSpec;
+    let shift = |v: DVec3| DMat4::from_translation(v);
+    // Faces of the cell at x ≤ 0 (0..6) then of the cell at x ≥ 0 (6..12): +x, −x, +y,
+    // −y, +z, −z in each.
+    let half = |sign: f64, first: usize, other: usize| {
+        vec![
+            if sign < 0.0 {
+                FaceSpec::paired(DVec3::X, 0.0, other + 1, DMat4::IDENTITY)
+            } else {
+                FaceSpec::paired(DVec3::X, 0.5, other + 1, shift(DVec3::NEG_X))
+            },
+            if sign < 0.0 {
+                FaceSpec::paired(DVec3::NEG_X, 0.5, other, shift(DVec3::X))
+            } else {
+                FaceSpec::paired(DVec3::NEG_X, 0.0, other, DMat4::IDENTITY)
+            },
+            FaceSpec::paired(DVec3::Y, 0.5, first + 3, shift(DVec3::NEG_Y)),
+            FaceSpec::paired(DVec3::NEG_Y, 0.5, first + 2, shift(DVec3::Y)),
+            FaceSpec::paired(DVec3::Z, 0.5, first + 5, shift(DVec3::NEG_Z)),
+            FaceSpec::paired(DVec3::NEG_Z, 0.5, first + 4, shift(DVec3::Z)),
+        ]
+    };
+    Space::new_cells(
+        "torus-two-cells",
+        "The 3-torus E³/Z³ as two cells: a unit cube cut into two half-cubes at x = 0, glued \
+         to each other across the cut (a seam) and across the x faces, each to itself across \
+         the y and z faces.",
+        Geometry::Euclidean,
+        &[half(-1.0, 0, 6), half(1.0, 6, 0)],
     )
 }
 

@@ -109,16 +109,32 @@ pub enum SpaceError {
         order: u32,
         defect: f64,
     },
-    /// The vertex links are not spheres: Euler characteristic `chi` (V `vertex_cycles` − E `edge_cycles` + F `face_pairs` − 1) should be 0 for a manifold.
+    /// The vertex links are not spheres: Euler characteristic `chi` (V `vertex_cycles` − E `edge_cycles` + F `face_pairs` − C `cells`) should be 0 for a manifold.
     #[error(
-        "the vertex links are not spheres: Euler characteristic {chi} (V {vertex_cycles} − E {edge_cycles} + F {face_pairs} − 1) should be 0 for a manifold"
+        "the vertex links are not spheres: Euler characteristic {chi} (V {vertex_cycles} − E {edge_cycles} + F {face_pairs} − C {cells}) should be 0 for a manifold"
     )]
     VertexLinks {
         chi: i64,
         vertex_cycles: usize,
         edge_cycles: usize,
         face_pairs: usize,
+        cells: usize,
     },
+    /// Cells `a` and `b` overlap in the chart: no plane separates them.
+    #[error(
+        "cells {a} and {b} overlap in the chart (no plane separates them): the cells of a space must meet only in faces, edges and vertices"
+    )]
+    CellsOverlap { a: usize, b: usize },
+    /// The chart origin lies in no cell.
+    #[error(
+        "the chart origin lies in no cell (it is {outside:.3e} outside the nearest): the origin is where a space is entered and its scene centred"
+    )]
+    OriginInNoCell { outside: f64 },
+    /// Cell `cell` is glued to none of the cells before it: the space falls apart.
+    #[error(
+        "no gluing joins cell {cell} to cell 0: the cells must be glued into one connected space"
+    )]
+    CellsNotJoined { cell: usize },
     /// No seed space has this id and no space file is at this path.
     #[error("unknown space `{0}`; `curved-spaces list` shows the known ones")]
     UnknownSpace(String),

@@ -16,6 +16,8 @@
 //! A face is the chart half-space `normal · x ≤ offset`. `pairing` is the 4×4 isometry, row
 //! by row, applied to a ray leaving through the face (it maps the face onto its `partner`
 //! with the cell on the far side); `"mirror": true` makes the face a mirror instead.
+//! A space of several cells gives each face its `"cell"` (0, 1, …; faces listed cell by
+//! cell, partners numbered through all of them: [`Space::new_cells`]).
 //! `curved-spaces export SPACE` writes any seed space in this form.
 
 use super::{FaceSpec, Pairing, Space, SpaceError};
@@ -41,6 +43,16 @@ pub struct FaceRecord {
     /// Whether the face is a mirror.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub mirror: bool,
+    /// The cell the face bounds, in a space of several cells (0, the default, for one):
+    /// faces are listed cell by cell, the cells numbered from 0 in order.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub cell: usize,
+}
+
+// A reference, as serde's `skip_serializing_if` passes one.
+#[allow(clippy::trivially_copy_pass_by_ref)]
+fn is_zero(x: &usize) -> bool {
+    *x == 0
 }
 
 /// The contents of a space file.
@@ -117,6 +129,7 @@ impl SpaceRecord {
                     partner: (!mirror).then_some(f.partner),
                     pairing: (!mirror).then(|| f.pairing.transpose().to_cols_array_2d()),
                     mirror,
+                    cell: f.cell,
                 }
             })
             .collect();
@@ -148,8 +161,21 @@ impl SpaceRecord {
                 });
             }
         }
-        let mut specs = Vec::with_capacity(self.faces.len());
+        let mut cells: Vec<Vec<FaceSpec>> = vec![Vec::new()];
         for (i, f) in self.faces.iter().enumerate() {
+            let current = cells.len() - 1;
+            if f.cell == current + 1 && !cells[current].is_empty() {
+                cells.push(Vec::new());
+            } else if f.cell != current {
+                return Err(face_error(
+                    i,
+                    &format!(
+                        "`cell` {} follows cell {current}: list the faces cell by cell, the \
+                         cells numbered 0, 1, 2, … in order",
+                        f.cell
+                    ),
+                ));
+            }
             let normal = DVec3::from_array(f.normal);
             let pairing = match (f.mirror, f.partner, f.pairing) {
                 (true, None, None) => Some(Pairing {
@@ -176,13 +202,15 @@ impl SpaceRecord {
                     return Err(face_error(i, "`partner` given without `pairing`"));
                 }
             };
-            specs.push(FaceSpec {
-                normal,
-                offset: f.offset,
-                pairing,
-            });
+            if let Some(cell) = cells.last_mut() {
+                cell.push(FaceSpec {
+                    normal,
+                    offset: f.offset,
+                    pairing,
+                });
+            }
         }
-        Space::new(&self.name, &self.description, self.geometry, &specs).map_err(|source| {
+        Space::new_cells(&self.name, &self.description, self.geometry, &cells).map_err(|source| {
             SpaceFileError::Invalid {
                 path: path.to_string(),
                 source,

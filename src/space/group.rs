@@ -383,7 +383,8 @@ pub fn write_gen(space: &Space) -> String {
         space.geometry().name()
     );
     for (i, face) in space.faces().iter().enumerate() {
-        if face.partner < i {
+        // A seam between two cells is glued by the identity: no generator.
+        if face.partner < i || space.is_seam(i) {
             continue;
         }
         out.push('\n');

@@ -180,6 +180,26 @@ pub fn first_homology(space: &Space) -> Homology {
             relations.push(r);
         }
     }
+    // Several cells: crossings along a tree of the cells' gluings are no loops. Every seam
+    // is one (the cells it joins lie side by side in the cover, so a path through seams
+    // closes there too), then gluings that join cells not yet joined.
+    if space.cells().len() > 1 {
+        let mut parent: Vec<usize> = (0..space.cells().len()).collect();
+        let seams = (0..faces.len()).filter(|&i| space.is_seam(i));
+        let others = (0..faces.len()).filter(|&i| !space.is_seam(i));
+        for i in seams.chain(others) {
+            let (a, b) = (
+                super::validate::union_find_root(&mut parent, faces[i].cell),
+                super::validate::union_find_root(&mut parent, faces[faces[i].partner].cell),
+            );
+            if a != b || space.is_seam(i) {
+                parent[a.max(b)] = a.min(b);
+                let mut r = vec![0; count];
+                r[generator[i]] = 1;
+                relations.push(r);
+            }
+        }
+    }
     for cycle in space.edge_cycles() {
         let mut r = vec![0i128; count];
         for &f in &cycle.crossings {

@@ -40,10 +40,16 @@ pub fn inradius(space: &Space) -> f64 {
             .map(|f| -space.face_distance(f, ORIGIN))
             .fold(std::f64::consts::PI, f64::min);
     }
+    // In a space of several cells, the faces of their union (the seams between cells are
+    // inside it): the distance to the nearest of their planes that faces the centre, the
+    // inradius wherever the union is convex about the centre (as in `torus-two-cells`).
+    let multi = space.cells.len() > 1;
     space
         .faces
         .iter()
-        .map(|f| space.geometry.distance_from_ratio(f.offset, 1.0))
+        .enumerate()
+        .filter(|(i, f)| !multi || (!space.is_seam(*i) && f.offset > 0.0))
+        .map(|(_, f)| space.geometry.distance_from_ratio(f.offset, 1.0))
         .fold(f64::INFINITY, f64::min)
 }
 
@@ -246,6 +252,7 @@ impl Separation {
             planes: space
                 .faces
                 .iter()
+                .filter(|_| space.cells.len() == 1)
                 .map(|f| {
                     let n = f.covector;
                     n / (n.truncate().length_squared() + k * n.w * n.w).sqrt()
@@ -266,8 +273,9 @@ impl Separation {
             Geometry::Euclidean => gap,
             Geometry::Hyperbolic => gap.sinh(),
         };
-        // A cell without vertices (one reaching π/2 in S³) has no separating planes to test.
-        if self.vertices.is_empty() {
+        // A cell without vertices (one reaching π/2 in S³) has no separating planes to test,
+        // and the union of several cells need not lie behind each face plane.
+        if self.vertices.is_empty() || self.planes.is_empty() {
             return true;
         }
         for m in [h, g.inverse(h)] {
@@ -380,7 +388,9 @@ pub fn injectivity_radius(space: &Space) -> Option<f64> {
     let bound = space
         .faces
         .iter()
-        .map(|f| g.distance(ORIGIN, f.pairing * ORIGIN))
+        .enumerate()
+        .filter(|(i, _)| !space.is_seam(*i))
+        .map(|(_, f)| g.distance(ORIGIN, f.pairing * ORIGIN))
         .fold(f64::INFINITY, f64::min);
     let elements = elements_near(space, bound + 1e-9, MAX_ENUMERATED)?;
     elements
@@ -558,25 +568,35 @@ fn axes_meeting_cell(space: &Space, max_length: f64) -> Option<Axes> {
         }
         let ahead = attracting_point(h);
         let behind = attracting_point(g.inverse(h));
-        let Some((a, b, faces)) = chord(space, behind, ahead) else {
+        // Its chords through each cell, each weighted by the cells that share it.
+        let mut meets = false;
+        let mut chords = 0.0;
+        for cell in space.cells() {
+            let Some((a, b, faces)) = chord(space, cell.clone(), behind, ahead) else {
+                continue;
+            };
+            meets = true;
+            let weight = match faces.as_slice() {
+                [] => 1.0,
+                [_] => 0.5,
+                [f, h, ..] => {
+                    // Along an edge: shared by the cells around its cycle.
+                    let cycle = space
+                        .edges
+                        .iter()
+                        .find(|e| e.faces.contains(f) && e.faces.contains(h))
+                        .map_or(1, |e| space.edge_cycles[e.cycle].edges.len());
+                    1.0 / cycle as f64
+                }
+            };
+            chords += weight * g.distance(a, b);
+        }
+        if !meets {
             continue;
-        };
-        let weight = match faces.as_slice() {
-            [] => 1.0,
-            [_] => 0.5,
-            [f, h, ..] => {
-                // Along an edge: shared by the cells around its cycle.
-                let cycle = space
-                    .edges
-                    .iter()
-                    .find(|e| e.faces.contains(f) && e.faces.contains(h))
-                    .map_or(1, |e| space.edge_cycles[e.cycle].edges.len());
-                1.0 / cycle as f64
-            }
-        };
+        }
         axes.elements.push(h);
         axes.lengths.push(length);
-        axes.chords.push(weight * g.distance(a, b));
+        axes.chords.push(chords);
         axes.points.push(h * ORIGIN);
     }
     Some(axes)
@@ -585,14 +605,19 @@ fn axes_meeting_cell(space: &Space, max_length: f64) -> Option<Axes> {
 /// The part of the chart line from `behind` to `ahead` (points at infinity) in the cell,
 /// widened by 1e-7: its end points in the model and the faces it lies in (`None` if it
 /// misses the cell).
-fn chord(space: &Space, behind: DVec3, ahead: DVec3) -> Option<(DVec4, DVec4, Vec<usize>)> {
+fn chord(
+    space: &Space,
+    cell: std::ops::Range<usize>,
+    behind: DVec3,
+    ahead: DVec3,
+) -> Option<(DVec4, DVec4, Vec<usize>)> {
     let d = ahead - behind;
     // The parameter interval inside the cell widened by `slack`, over the faces not in
     // `skip`.
     let interval = |slack: f64, skip: &[usize]| {
         let (mut lo, mut hi) = (0.0_f64, 1.0_f64);
         for (i, f) in space.faces.iter().enumerate() {
-            if skip.contains(&i) {
+            if skip.contains(&i) || !cell.contains(&i) {
                 continue;
             }
             let (a, b) = (f.normal.dot(d), f.offset + slack - f.normal.dot(behind));
@@ -614,8 +639,9 @@ fn chord(space: &Space, behind: DVec3, ahead: DVec3) -> Option<(DVec4, DVec4, Ve
         .faces
         .iter()
         .enumerate()
-        .filter(|(_, f)| {
-            f.normal.dot(d).abs() <= 1e-6 * d.length()
+        .filter(|(i, f)| {
+            cell.contains(i)
+                && f.normal.dot(d).abs() <= 1e-6 * d.length()
                 && (f.normal.dot(pa) - f.offset).abs() < 2.0 * slack
                 && (f.normal.dot(pb) - f.offset).abs() < 2.0 * slack
         })
@@ -674,6 +700,8 @@ pub struct Invariants {
     pub geometry: Geometry,
     /// Its faces.
     pub faces: Vec<FaceSummary>,
+    /// How many cells it is made of ([`Space::cells`]).
+    pub cells: usize,
     /// Its volume.
     pub volume: f64,
     /// Radius of the largest ball around the cell's centre inside the cell.
@@ -719,6 +747,7 @@ impl Invariants {
                     offset: f.offset,
                 })
                 .collect(),
+            cells: space.cells.len(),
             volume: volume(space),
             inradius: inradius(space),
             circumradius: circumradius(space),

@@ -30,8 +30,9 @@ pub use wrap::{Holonomy, MAX_WRAPS_PER_STEP, frame_on_model, wrap_into_cell};
 
 use crate::geometry::{Geometry, ORIGIN};
 use glam::{DMat4, DVec3, DVec4};
+use std::ops::Range;
 use validate::{
-    check_vertices, checked_faces, escape_direction, find_edge_cycles, find_edges,
+    check_cells, check_vertices, checked_faces, escape_direction, find_edge_cycles, find_edges,
     find_vertex_cycles, find_vertices, order_face_vertices, validate_pairings,
 };
 
@@ -123,6 +124,8 @@ pub struct Face {
     pub pairing: DMat4,
     /// The face's vertices, counter-clockwise seen from outside.
     pub vertices: Vec<usize>,
+    /// The cell the face bounds ([`Space::cells`]; 0 in a space of one cell).
+    pub cell: usize,
 }
 
 impl Face {
@@ -207,6 +210,8 @@ pub struct Space {
     /// The cell in double-double, for a space built from a closed form
     /// ([`Space::from_exact`]).
     pub(crate) exact: Option<std::sync::Arc<exact::ExactCell>>,
+    /// The cells, each a run of faces ([`Space::cells`]).
+    pub(crate) cells: Vec<Range<usize>>,
 }
 
 impl Space {
@@ -321,6 +326,7 @@ impl Space {
                     partner,
                     pairing,
                     vertices: Vec::new(),
+                    cell: 0,
                 }
             })
             .collect();
@@ -360,7 +366,9 @@ impl Space {
             Vec::new()
         };
         let orientable = faces.iter().all(|f| f.pairing.determinant() > 0.0);
+        let cells = vec![0..faces.len()];
         Self {
+            cells,
             name: name.to_string(),
             description: description.to_string(),
             geometry: Geometry::Spherical,
@@ -392,19 +400,44 @@ impl Space {
         geometry: Geometry,
         specs: &[FaceSpec],
     ) -> Result<Self, SpaceError> {
+        Self::new_cells(name, description, geometry, &[specs.to_vec()])
+    }
+
+    /// Builds and validates a space of several cells, each a convex polyhedron given by its
+    /// faces as for [`Space::new`]; faces are numbered through the cells in order (the first
+    /// cell's, then the second's), and a pairing's partner may be a face of another cell.
+    ///
+    /// The cells lie in one chart without overlapping, the chart origin in one of them, and
+    /// the gluings join them all into one space. Where two cells meet in the chart, their
+    /// faces are glued by the identity: a *seam* ([`Space::is_seam`]), which a ray crosses
+    /// without seeing it. The validation is [`Space::new`]'s, with the edge cycles and vertex
+    /// cycles running through every cell and the Euler characteristic counting the cells.
+    pub fn new_cells(
+        name: impl Into<String>,
+        description: impl Into<String>,
+        geometry: Geometry,
+        cells: &[Vec<FaceSpec>],
+    ) -> Result<Self, SpaceError> {
+        let specs: Vec<FaceSpec> = cells.iter().flatten().copied().collect();
+        let mut ranges = Vec::with_capacity(cells.len());
+        let mut start = 0;
+        for cell in cells {
+            ranges.push(start..start + cell.len());
+            start += cell.len();
+        }
         // A flat cell has no scale of its own, and the checks' tolerances are in chart
         // units: build it at unit size (scaled by the power of two nearest its largest face
         // distance, which is exact) and scale the result back.
         if geometry == Geometry::Euclidean
-            && let Some(scale) = flat_scale(specs)
+            && let Some(scale) = flat_scale(&specs)
             && scale != 1.0
         {
             let scaled: Vec<FaceSpec> = specs.iter().map(|f| f.scaled(1.0 / scale)).collect();
-            let mut space = Self::build(name, description, geometry, &scaled)?;
+            let mut space = Self::build(name, description, geometry, &scaled, ranges)?;
             space.scale_flat(scale);
             return Ok(space);
         }
-        Self::build(name, description, geometry, specs)
+        Self::build(name, description, geometry, &specs, ranges)
     }
 
     /// Multiplies a flat space's lengths by `scale` (a power of two: exact).
@@ -428,21 +461,35 @@ impl Space {
         description: impl Into<String>,
         geometry: Geometry,
         specs: &[FaceSpec],
+        cells: Vec<Range<usize>>,
     ) -> Result<Self, SpaceError> {
-        let mut faces = checked_faces(geometry, specs)?;
-        if let Some(direction) = escape_direction(&faces) {
-            return Err(SpaceError::NotBounded {
-                direction: direction.to_array(),
-            });
+        let mut faces = checked_faces(geometry, specs, &cells)?;
+        let mut vertices = Vec::new();
+        let mut cell_vertices = Vec::with_capacity(cells.len());
+        for (c, range) in cells.iter().enumerate() {
+            if let Some(direction) = escape_direction(&faces[range.clone()]) {
+                return Err(SpaceError::NotBounded {
+                    direction: direction.to_array(),
+                });
+            }
+            let found = find_vertices(&faces[range.clone()], VALIDATION_TOLERANCE);
+            let first = vertices.len();
+            vertices.extend(found);
+            cell_vertices.push(first..vertices.len());
+            for face in &mut faces[range.clone()] {
+                face.cell = c;
+            }
         }
-        let vertices = find_vertices(&faces, VALIDATION_TOLERANCE);
         check_vertices(geometry, &vertices)?;
-        order_face_vertices(&mut faces, &vertices)?;
+        order_face_vertices(&mut faces, &vertices, &cell_vertices)?;
+        if cells.len() > 1 {
+            check_cells(&faces, &cells, &vertices, &cell_vertices)?;
+        }
         let points: Vec<DVec4> = vertices
             .iter()
             .map(|&v| geometry.project_point(v.extend(1.0)))
             .collect();
-        let mut edges = find_edges(geometry, &faces, &vertices, &points)?;
+        let mut edges = find_edges(geometry, &faces, &vertices, &points, &cells)?;
         let images = validate_pairings(geometry, &faces, &vertices, &points)?;
         let edge_cycles = find_edge_cycles(geometry, &faces, &mut edges, &points, &images)?;
         let vertex_cycles = find_vertex_cycles(&faces, vertices.len(), &images);
@@ -454,7 +501,8 @@ impl Space {
             .enumerate()
             .filter(|(i, f)| f.partner >= *i)
             .count();
-        let chi = vertex_cycles.len() as i64 - edge_cycles.len() as i64 + face_pairs as i64 - 1;
+        let chi = vertex_cycles.len() as i64 - edge_cycles.len() as i64 + face_pairs as i64
+            - cells.len() as i64;
         let cone_edges = edge_cycles.iter().any(|c| c.order > 1);
         if !has_mirror && !cone_edges && chi != 0 {
             return Err(SpaceError::VertexLinks {
@@ -462,6 +510,7 @@ impl Space {
                 vertex_cycles: vertex_cycles.len(),
                 edge_cycles: edge_cycles.len(),
                 face_pairs,
+                cells: cells.len(),
             });
         }
         Ok(Self {
@@ -477,7 +526,50 @@ impl Space {
             manifold: !has_mirror && !cone_edges,
             equator_order: None,
             exact: None,
+            cells,
         })
+    }
+
+    /// The cells, each as the run of face indices that bound it: one cell for every space
+    /// but those built by [`Space::new_cells`]. A walk leaves the cell it is in through one
+    /// of that cell's faces and enters the cell of the partner face.
+    #[must_use]
+    pub fn cells(&self) -> &[Range<usize>] {
+        &self.cells
+    }
+
+    /// Whether face `f` is a seam: glued by the identity to a face of another cell, where
+    /// two cells meet in the chart. A ray goes through it unchanged; walls, images and
+    /// the default scene's edges leave it out, as it is no face of the space's fundamental
+    /// domain (the union of the cells).
+    #[must_use]
+    pub fn is_seam(&self, f: usize) -> bool {
+        let face = &self.faces[f];
+        face.cell != self.faces[face.partner].cell
+            && crate::geometry::max_abs_entry(&(face.pairing - DMat4::IDENTITY).to_cols_array())
+                <= 1e-12
+    }
+
+    /// The cell that holds the chart point of the model point `p` (the one it is least
+    /// outside of, for a point on a seam or just past a face).
+    #[must_use]
+    pub fn cell_containing(&self, p: DVec4) -> usize {
+        if self.cells.len() == 1 {
+            return 0;
+        }
+        let p = p / p.w;
+        (0..self.cells.len())
+            .map(|c| (c, self.outside_cell(c, p)))
+            .fold((0, f64::INFINITY), |a, b| if b.1 < a.1 { b } else { a })
+            .0
+    }
+
+    /// The largest `N·X` over the faces of cell `c` for a chart point `X` (`w = 1`).
+    fn outside_cell(&self, c: usize, p: DVec4) -> f64 {
+        self.faces[self.cells[c].clone()]
+            .iter()
+            .map(|f| f.covector.dot(p))
+            .fold(f64::NEG_INFINITY, f64::max)
     }
 
     /// The model point of vertex `v`.
@@ -500,10 +592,10 @@ impl Space {
                 .fold(f64::NEG_INFINITY, f64::max);
         }
         let p = p / p.w;
-        self.faces
-            .iter()
-            .map(|f| f.covector.dot(p))
-            .fold(f64::NEG_INFINITY, f64::max)
+        // Outside the union of the cells by as little as the nearest cell.
+        (0..self.cells.len())
+            .map(|c| self.outside_cell(c, p))
+            .fold(f64::INFINITY, f64::min)
     }
 
     /// Signed geodesic distance from the model point `p` to face `f`'s plane (positive
@@ -528,6 +620,21 @@ impl Space {
                 (face.covector.dot(p) / (n * n - r * r).sqrt()).asinh()
             }
         }
+    }
+
+    /// How far the model point `p` lies outside the cell, as a signed geodesic distance
+    /// past the face it is farthest past (negative inside), with that face; in a space of
+    /// several cells, outside the cell it is nearest.
+    #[must_use]
+    pub fn past_face(&self, p: DVec4) -> (usize, f64) {
+        self.cells
+            .iter()
+            .map(|cell| {
+                cell.clone()
+                    .map(|f| (f, self.face_distance(f, p)))
+                    .fold((0, f64::NEG_INFINITY), |a, b| if b.1 > a.1 { b } else { a })
+            })
+            .fold((0, f64::INFINITY), |a, b| if b.1 < a.1 { b } else { a })
     }
 
     /// Whether any face is a mirror.

@@ -8,6 +8,7 @@ use super::{
 use crate::geometry::{Geometry, max_abs_entry};
 use glam::{DMat3, DMat4, DVec3, DVec4};
 use std::f64::consts::TAU;
+use std::ops::Range;
 
 pub(super) fn union_find_root(parent: &mut [usize], mut i: usize) -> usize {
     while parent[i] != i {
@@ -17,14 +18,16 @@ pub(super) fn union_find_root(parent: &mut [usize], mut i: usize) -> usize {
     i
 }
 
-/// Faces with unit normals, checked one by one: finite normal, origin inside, a plane of the
+/// Faces with unit normals, checked one by one: finite normal, origin inside (in a space of
+/// one cell; of several, [`check_cells`] finds the origin in one of them), a plane of the
 /// geometry, a pairing with a partner in range that names this face back.
 pub(super) fn checked_faces(
     geometry: Geometry,
     specs: &[FaceSpec],
+    cells: &[Range<usize>],
 ) -> Result<Vec<Face>, SpaceError> {
-    if specs.len() < 4 {
-        return Err(SpaceError::TooFewFaces { count: specs.len() });
+    if let Some(cell) = cells.iter().find(|c| c.len() < 4) {
+        return Err(SpaceError::TooFewFaces { count: cell.len() });
     }
     if specs.len() > MAX_FACES {
         return Err(SpaceError::TooManyFaces {
@@ -42,13 +45,13 @@ pub(super) fn checked_faces(
             });
         }
         let offset = spec.offset / len;
-        if !(offset.is_finite() && offset > 0.0) {
+        if !(offset.is_finite() && (offset > 0.0 || cells.len() > 1)) {
             return Err(SpaceError::OriginNotInside {
                 face: i,
                 offset: spec.offset,
             });
         }
-        if geometry == Geometry::Hyperbolic && offset >= 1.0 {
+        if geometry == Geometry::Hyperbolic && offset.abs() >= 1.0 {
             return Err(SpaceError::PlaneMissesSpace { face: i, offset });
         }
         let pairing = spec.pairing.ok_or(SpaceError::MissingPairing { face: i })?;
@@ -67,6 +70,7 @@ pub(super) fn checked_faces(
             partner: pairing.partner,
             pairing: pairing.matrix,
             vertices: Vec::new(),
+            cell: 0,
         });
     }
     for (i, face) in faces.iter().enumerate() {
@@ -99,13 +103,16 @@ pub(super) fn check_vertices(geometry: Geometry, vertices: &[DVec3]) -> Result<(
     Ok(())
 }
 
-/// Finds each face's vertices and orders them counter-clockwise seen from outside.
+/// Finds each face's vertices (among its cell's, `cell_vertices`) and orders them
+/// counter-clockwise seen from outside.
 pub(super) fn order_face_vertices(
     faces: &mut [Face],
     vertices: &[DVec3],
+    cell_vertices: &[Range<usize>],
 ) -> Result<(), SpaceError> {
     for (i, face) in faces.iter_mut().enumerate() {
-        let on: Vec<usize> = (0..vertices.len())
+        let on: Vec<usize> = cell_vertices[face.cell]
+            .clone()
             .filter(|&v| {
                 (face.normal.dot(vertices[v]) - face.offset).abs() <= 10.0 * VALIDATION_TOLERANCE
             })
@@ -130,13 +137,14 @@ pub(super) fn order_face_vertices(
     Ok(())
 }
 
-/// Edges: consecutive vertices of a face, each shared by exactly two faces, with the
-/// polyhedron's Euler characteristic 2.
+/// Edges: consecutive vertices of a face, each shared by exactly two faces, with each
+/// cell's Euler characteristic 2 (a cell's vertices are its own, so its edges are too).
 pub(super) fn find_edges(
     geometry: Geometry,
     faces: &[Face],
     vertices: &[DVec3],
     points: &[DVec4],
+    cells: &[Range<usize>],
 ) -> Result<Vec<Edge>, SpaceError> {
     let mut ends: Vec<[usize; 2]> = Vec::new();
     let mut sides: Vec<[usize; 2]> = Vec::new();
@@ -154,8 +162,21 @@ pub(super) fn find_edges(
             }
         }
     }
-    let euler = vertices.len() as i64 - ends.len() as i64 + faces.len() as i64;
-    if euler != 2 || sides.iter().any(|f| f[1] == usize::MAX) {
+    for (c, range) in cells.iter().enumerate() {
+        let in_cell = |f: usize| faces[f].cell == c;
+        let edge_count = sides.iter().filter(|s| in_cell(s[0])).count();
+        let vertex_count = faces[range.clone()]
+            .iter()
+            .flat_map(|f| f.vertices.iter().copied())
+            .collect::<std::collections::BTreeSet<_>>()
+            .len();
+        let euler = vertex_count as i64 - edge_count as i64 + range.len() as i64;
+        if euler != 2 {
+            return Err(SpaceError::NotAPolyhedron { euler });
+        }
+    }
+    if sides.iter().any(|f| f[1] == usize::MAX) {
+        let euler = vertices.len() as i64 - ends.len() as i64 + faces.len() as i64;
         return Err(SpaceError::NotAPolyhedron { euler });
     }
     Ok(ends
@@ -418,4 +439,91 @@ pub(super) fn validate_pairings(
         }
     }
     Ok(images)
+}
+
+/// The checks a space of several cells needs beyond each cell's: the cells do not overlap in
+/// the chart (a plane separates each pair: a face plane of either, or the plane through an
+/// edge of each, the separating-axis test for convex polyhedra), the origin lies in one of
+/// them, and the gluings join them all.
+pub(super) fn check_cells(
+    faces: &[Face],
+    cells: &[Range<usize>],
+    vertices: &[DVec3],
+    cell_vertices: &[Range<usize>],
+) -> Result<(), SpaceError> {
+    let tol = 1e3 * VALIDATION_TOLERANCE;
+    let corners = |c: usize| &vertices[cell_vertices[c].clone()];
+    let edges_of = |c: usize| -> Vec<DVec3> {
+        let mut out = Vec::new();
+        for f in &faces[cells[c].clone()] {
+            let n = f.vertices.len();
+            for k in 0..n {
+                let d = vertices[f.vertices[(k + 1) % n]] - vertices[f.vertices[k]];
+                if d.length() > tol {
+                    out.push(d.normalize());
+                }
+            }
+        }
+        out
+    };
+    // A direction separates the cells when one's corners all lie at or below the other's
+    // along it.
+    let separates = |a: &[DVec3], b: &[DVec3], d: DVec3| {
+        let (a_lo, a_hi) = a
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+                (lo.min(d.dot(*v)), hi.max(d.dot(*v)))
+            });
+        let (b_lo, b_hi) = b
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+                (lo.min(d.dot(*v)), hi.max(d.dot(*v)))
+            });
+        a_hi <= b_lo + tol || b_hi <= a_lo + tol
+    };
+    for a in 0..cells.len() {
+        for b in a + 1..cells.len() {
+            let (pa, pb) = (corners(a), corners(b));
+            let by_face = faces[cells[a].clone()]
+                .iter()
+                .chain(&faces[cells[b].clone()])
+                .any(|f| separates(pa, pb, f.normal));
+            let by_edges = by_face || {
+                let (ea, eb) = (edges_of(a), edges_of(b));
+                ea.iter().any(|x| {
+                    eb.iter().any(|y| {
+                        let d = x.cross(*y);
+                        d.length() > 1e-9 && separates(pa, pb, d.normalize())
+                    })
+                })
+            };
+            if !by_edges {
+                return Err(SpaceError::CellsOverlap { a, b });
+            }
+        }
+    }
+    let outside = cells
+        .iter()
+        .map(|range| {
+            faces[range.clone()]
+                .iter()
+                .map(|f| -f.offset)
+                .fold(f64::NEG_INFINITY, f64::max)
+        })
+        .fold(f64::INFINITY, f64::min);
+    if !(outside <= VALIDATION_TOLERANCE) {
+        return Err(SpaceError::OriginInNoCell { outside });
+    }
+    let mut parent: Vec<usize> = (0..cells.len()).collect();
+    for face in faces {
+        let (a, b) = (
+            union_find_root(&mut parent, face.cell),
+            union_find_root(&mut parent, faces[face.partner].cell),
+        );
+        parent[a.max(b)] = a.min(b);
+    }
+    if let Some(cell) = (0..cells.len()).find(|&c| union_find_root(&mut parent, c) != 0) {
+        return Err(SpaceError::CellsNotJoined { cell });
+    }
+    Ok(())
 }

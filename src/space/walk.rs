@@ -51,6 +51,10 @@ pub struct CellWalker<V: Vector4> {
     /// that meets no face within `T = 1` (π/4) takes a step of π/4 without crossing
     /// ([`NO_FACE`]). `None` elsewhere, where every segment in the cell is shorter than π/2.
     pub step_cap: Option<f64>,
+    /// The cell each face bounds, for a space of several cells ([`Space::cells`]); empty
+    /// for one cell. A walk searches the exit among its cell's faces only: after a crossing
+    /// the cell of the face entered, at the start the cell that holds the ray's point.
+    pub face_cells: Vec<usize>,
 }
 
 /// A double-double matrix rounded once to `V`, and what that rounding left out (rounded
@@ -92,6 +96,8 @@ pub const MAX_STEPS_WITHOUT_CROSSING: usize = 16;
 pub struct Crossing<V> {
     /// The face the ray left through.
     pub face: usize,
+    /// The cell it entered (that of the partner face; 0 in a space of one cell).
+    pub cell: usize,
     /// Cumulative geodesic distance from the start to the crossing.
     pub distance: f64,
     /// The ray after the pairing, on the partner face.
@@ -170,6 +176,14 @@ pub trait CellWalk<V: Vector4> {
     #[must_use]
     fn skip_after(&self, exit: &Self::Exit) -> Option<usize>;
 
+    /// The cell a crossing through `exit` entered, `ray` the ray after it: a family whose
+    /// spaces are one cell keeps the default, 0.
+    #[must_use]
+    fn cell_after(&self, ray: &Ray<V>, exit: &Self::Exit) -> usize {
+        let _ = (ray, exit);
+        0
+    }
+
     /// Walks a ray through the cell until the limit, handing each crossing to `visit`
     /// (`false` stops). Returns where it stopped and the distance walked.
     ///
@@ -223,6 +237,7 @@ pub trait CellWalk<V: Vector4> {
             count += 1;
             if !visit(&Crossing {
                 face,
+                cell: self.cell_after(&ray, &exit),
                 distance,
                 ray,
             }) {
@@ -282,6 +297,10 @@ impl<V: Vector4> CellWalk<V> for CellWalker<V> {
     fn skip_after(&self, exit: &Self::Exit) -> Option<usize> {
         self.entered(exit)
     }
+
+    fn cell_after(&self, ray: &Ray<V>, exit: &Self::Exit) -> usize {
+        self.entered_cell(ray, exit)
+    }
 }
 
 impl<V: Vector4> CellWalker<V> {
@@ -298,6 +317,9 @@ impl<V: Vector4> CellWalker<V> {
         };
         if space.walks_in_steps() {
             walker.step_cap = Some(1.0);
+        }
+        if space.cells.len() > 1 {
+            walker.face_cells = space.faces.iter().map(|f| f.cell).collect();
         }
         walker
     }
@@ -327,6 +349,7 @@ impl<V: Vector4> CellWalker<V> {
             partners: cell.faces.iter().map(|f| f.partner).collect(),
             compensated: true,
             step_cap: None,
+            face_cells: Vec::new(),
         }
     }
 
@@ -350,6 +373,7 @@ impl<V: Vector4> CellWalker<V> {
             partners,
             compensated: true,
             step_cap: None,
+            face_cells: Vec::new(),
         }
     }
 
@@ -384,8 +408,9 @@ impl<V: Vector4> CellWalker<V> {
     pub fn exit(&self, ray: &Ray<V>, skip: Option<usize>) -> Option<Exit<V::Real>> {
         let zero = V::Real::ZERO;
         let mut best: Option<Exit<V::Real>> = None;
+        let cell = self.cell_of(ray, skip);
         for (f, n) in self.covectors.iter().enumerate() {
-            if Some(f) == skip {
+            if Some(f) == skip || cell.is_some_and(|c| self.face_cells[f] != c) {
                 continue;
             }
             let den = n.dot(ray.tangent);
@@ -410,6 +435,31 @@ impl<V: Vector4> CellWalker<V> {
             }
         }
         best
+    }
+
+    /// The cell a walk is in, in a space of several cells (`None` for one): that of the face
+    /// just entered (`skip`), else the one whose faces the ray's point is least outside of.
+    #[must_use]
+    pub fn cell_of(&self, ray: &Ray<V>, skip: Option<usize>) -> Option<usize> {
+        if self.face_cells.is_empty() {
+            return None;
+        }
+        if let Some(f) = skip {
+            return Some(self.face_cells[f]);
+        }
+        let cells = self.face_cells.iter().max().map_or(0, |c| c + 1);
+        let mut outside = vec![V::Real::from_f64(f64::NEG_INFINITY); cells];
+        for (n, &c) in self.covectors.iter().zip(&self.face_cells) {
+            outside[c] = outside[c].max(n.dot(ray.point));
+        }
+        (0..cells).reduce(|a, b| if outside[b] < outside[a] { b } else { a })
+    }
+
+    /// The cell a walk enters through `exit`'s face (0 in a space of one cell, and the
+    /// cell it is in after a step without crossing).
+    #[must_use]
+    pub fn entered_cell(&self, ray_after: &Ray<V>, exit: &Exit<V::Real>) -> usize {
+        self.cell_of(ray_after, self.entered(exit)).unwrap_or(0)
     }
 
     /// Moves the ray to its exit point and applies the face's pairing; returns the new ray

@@ -22,11 +22,14 @@ pub fn wrap_into_cell(space: &Space, frame: DMat4, margin: f64) -> (DMat4, Vec<u
         } else {
             f.w_axis / f.w_axis.w
         };
-        let (face, outside) = space
-            .faces
-            .iter()
-            .enumerate()
-            .map(|(i, face)| (i, face.covector.dot(p)))
+        // In a space of several cells: past the faces of the cell it is nearest, leaving out
+        // the seams between cells (the point is in the union of the cells, or past a face of
+        // the union: never moved by a seam's identity).
+        let cell = &space.cells[space.cell_containing(p)];
+        let (face, outside) = cell
+            .clone()
+            .filter(|&i| space.cells.len() == 1 || !space.is_seam(i))
+            .map(|i| (i, space.faces[i].covector.dot(p)))
             .fold((0, f64::NEG_INFINITY), |a, b| if b.1 > a.1 { b } else { a });
         if !(outside > margin) {
             break;

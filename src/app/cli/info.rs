@@ -114,6 +114,9 @@ pub(super) fn info(space: &Space, as_json: bool) -> Result<(), String> {
     say!("{} ({})", inv.name, inv.geometry.name());
     say!("  {}", space.description());
     say!("  faces               {}", inv.faces.len());
+    if inv.cells > 1 {
+        say!("  cells               {}", inv.cells);
+    }
     say!("  volume              {}", number(inv.volume, 12));
     say!("  inradius            {}", number(inv.inradius, 10));
     say!("  circumradius        {}", number(inv.circumradius, 10));

@@ -29,6 +29,11 @@ trait TraceFamily {
     fn header_json(&self) -> Map<String, Value> {
         Map::new()
     }
+    /// The cell a crossing through `face` enters, in a space of several cells.
+    fn entered_cell(&self, face: usize) -> Option<usize> {
+        let _ = face;
+        None
+    }
 }
 
 /// A constant-curvature space: faces by their outward chart normals, points in the chart
@@ -56,7 +61,14 @@ impl TraceFamily for ConstantFamily<'_> {
         ("face_normal", json!(self.0.faces()[face].normal.to_array()))
     }
     fn face_text(&self, face: usize) -> String {
-        face.to_string()
+        match self.entered_cell(face) {
+            Some(cell) => format!("{face}→{cell}"),
+            None => face.to_string(),
+        }
+    }
+    fn entered_cell(&self, face: usize) -> Option<usize> {
+        let faces = self.0.faces();
+        (self.0.cells().len() > 1).then(|| faces[faces[face].partner].cell)
     }
     fn point_json(&self, p: DVec4) -> Map<String, Value> {
         let mut m = Map::new();
@@ -216,7 +228,7 @@ fn stream<V: Vector4, W: CellWalk<V>>(
         say!(
             "{:>5} {:>8} {:>20}  {}",
             "#",
-            "face",
+            family.entered_cell(0).map_or("face", |_| "face→cell"),
             "distance",
             family.point_heading()
         );
@@ -237,6 +249,9 @@ fn stream<V: Vector4, W: CellWalk<V>>(
             let mut item = family.point_json(ray.point);
             let (key, face) = family.face_json(c.face);
             item.insert(key.into(), face);
+            if let Some(cell) = family.entered_cell(c.face) {
+                item.insert("cell".into(), json!(cell));
+            }
             item.insert("distance".into(), json!(c.distance));
             if let Some(previous) = pending.replace(Value::Object(item).to_string()) {
                 say!("    {previous},");

@@ -47,6 +47,10 @@ pub struct ShaderKey {
     /// A spherical cell whose chords can pass π/2 ([`crate::space::Space::walks_in_steps`]):
     /// rays step at most π/4 without crossing (shader def `STEP_CAP`).
     pub step_cap: bool,
+    /// A space of several cells ([`crate::space::Space::cells`]; shader def `CELLS`): each
+    /// face's cell is packed beside its partner, and a walk looks for its exit among the
+    /// faces of the cell it is in.
+    pub cells: bool,
     /// What surfaces are coloured by over their shading ([`crate::scene::ColourBy::index`]; 0
     /// for the plain picture): shader def `COLOUR_BY`, and `COLOUR_HOLONOMY` for 3.
     pub colour_by: u32,
@@ -103,6 +107,7 @@ impl ShaderKey {
             textures: false,
             culling: false,
             step_cap: false,
+            cells: false,
             colour_by: 0,
             walls: false,
             mirrors: false,
@@ -135,6 +140,9 @@ impl ShaderKey {
         defs.push(ShaderDefVal::UInt("PARTNER_VECS".into(), faces.div_ceil(4)));
         if self.step_cap {
             defs.push("STEP_CAP".into());
+        }
+        if self.cells {
+            defs.push("CELLS".into());
         }
         if self.product {
             defs.push("PRODUCT".into());
@@ -280,6 +288,7 @@ impl ShaderKey {
             + count(self.lights) * (2 + count(self.light_images.max(1))) * vec4
             + faces * FACE_BYTES
             + faces.div_ceil(4) * vec4 // partners, four to a vec4
+            + if self.cells { faces.div_ceil(4) * vec4 } else { 0 } // the faces' cells
             + if self.walls { (3 * faces + 1) * vec4 } else { 0 }
             + balls * size_of::<GpuBall>()
             + tubes * size_of::<GpuTube>()

@@ -363,6 +363,7 @@ impl GpuScene {
             textures: !scene.textures.is_empty(),
             culling: culling.is_some() && balls.len() + tubes.len() > 0,
             step_cap: space.walks_in_steps(),
+            cells: space.cells().len() > 1,
             colour_by: scene.shading.colour_by.index(),
             walls: walls.is_some(),
             mirrors: scene.has_mirrors(),
@@ -452,6 +453,9 @@ impl GpuScene {
         let mut partners: Vec<u32> = faces.iter().map(|f| f.3 as u32).collect();
         partners.resize(4 * faces.len().div_ceil(4), 0);
         out.words.extend(partners);
+        if key.cells {
+            out.words.extend(pack_cells(space.cells()));
+        }
         if let Some(walls) = &walls {
             pack_walls(&mut out, walls);
         }
@@ -496,6 +500,17 @@ impl GpuScene {
         let at = size_of::<GpuShading>() / 4;
         [0, 1, 2, 3].map(|k| self.words[at + k])
     }
+}
+
+/// Each face's cell as the run of faces that bound it, `first | end << 16` (`MAX_FACES`
+/// fits in 16 bits), four faces to a vec4 (the layout's `cell_ranges`).
+fn pack_cells(cells: &[std::ops::Range<usize>]) -> Vec<u32> {
+    let mut words: Vec<u32> = cells
+        .iter()
+        .flat_map(|c| std::iter::repeat_n((c.start | c.end << 16) as u32, c.len()))
+        .collect();
+    words.resize(4 * words.len().div_ceil(4), 0);
+    words
 }
 
 impl GpuScene {
