@@ -58,6 +58,7 @@ impl LawFamily for Constant {
     fn cases() -> Vec<(String, Self)> {
         [
             "torus",
+            "torus-two-cells",
             "half-turn",
             "hantzsche-wendt",
             "poincare",

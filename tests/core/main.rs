@@ -34,6 +34,7 @@ mod product_player;
 mod product_scenes;
 mod products;
 mod render;
+mod several_cells;
 mod soft_shadows;
 mod spaces;
 mod stereo;

@@ -46,7 +46,7 @@ struct Constant(String, Space);
 
 impl GpuLawFamily for Constant {
     fn cases() -> Vec<(String, Self)> {
-        ["torus", "poincare", "seifert-weber"]
+        ["torus", "torus-two-cells", "poincare", "seifert-weber"]
             .into_iter()
             .map(|id| {
                 let space = crate::common::library_space(id);

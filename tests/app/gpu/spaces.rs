@@ -299,3 +299,72 @@ fn product_spaces_render_on_the_gpu_like_the_cpu_reference() {
         failures.join("\n")
     );
 }
+
+/// A space of several cells draws the picture of the same space in one cell on the GPU too:
+/// the torus's shadowed scene in `torus-two-cells` (the cube cut into two half-cubes) and
+/// in `torus`, from the same view, to the GPU's rounding; the walk looks for each exit among
+/// the faces of the cell it is in, and crosses the seam without a trace.
+#[test]
+fn the_torus_of_two_cells_draws_the_torus_picture_on_the_gpu() {
+    use bevy_curved_spaces::plugin::components::BaseScene;
+    use bevy_curved_spaces::scene::file::parse_scene;
+    let _gpu = gpu_lock();
+    let mut renderer = OffscreenRenderer::new().unwrap_or_else(|e| panic!("{e}"));
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/scenes");
+    let text = std::fs::read_to_string(dir.join("torus_shadows.toml")).expect("the scene");
+    let mut picture = |id: &str| {
+        let file = parse_scene(
+            &text.replace("space = \"torus\"", &format!("space = \"{id}\"")),
+            &dir,
+            "torus_shadows.toml",
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
+        let frame = file.start.expect("a start view");
+        renderer
+            .render(&OffscreenRender {
+                fog_distance: Some(file.base.shading.fog_distance),
+                parts: SceneParts {
+                    edges: false,
+                    centrepiece: Centrepiece::None,
+                    avatar: false,
+                    clifford: false,
+                },
+                base: BaseScene {
+                    space_id: id.to_string(),
+                    scene: Some(std::sync::Arc::new(file.scene())),
+                    start: None,
+                    parts: None,
+                    fov: None,
+                    moving: Vec::new(),
+                },
+                ..OffscreenRender::new(
+                    ActiveSpace::new(id, file.space.clone()),
+                    TraceCamera {
+                        frame,
+                        fov_y_degrees: 70.0,
+                    },
+                    (WIDTH, HEIGHT),
+                    64,
+                )
+            })
+            .unwrap_or_else(|e| panic!("{id}: {e}"))
+    };
+    let (one, two) = (picture("torus"), picture("torus-two-cells"));
+    let (c, diff) = compare(&two, &one, 2);
+    println!(
+        "torus-two-cells against torus on the GPU: differing {:.3} %, max {}",
+        100.0 * c.differing,
+        c.max_error
+    );
+    if c.differing > 0.0005 {
+        let out = crate::common::scratch_dir("two-cells");
+        let _ = diff.save(out.join("diff.png"));
+        let _ = two.save(out.join("torus-two-cells.png"));
+        let _ = one.save(out.join("torus.png"));
+        panic!(
+            "{:.3} % of pixels differ by more than 2/255 (pictures in {})",
+            100.0 * c.differing,
+            out.display()
+        );
+    }
+}
