@@ -114,6 +114,9 @@ pub struct WallPanels {
     sines: Vec<f64>,
     /// A ray stops once less than this share of light gets through.
     pub stop_below: f64,
+    /// Each face's cell in a space of several cells (empty for one): a window is framed
+    /// by its own cell's faces.
+    cells: Vec<usize>,
 }
 
 /// What the walls a ray crossed added to its colour, and the share of light they let through.
@@ -218,23 +221,16 @@ impl WallPanels {
         let covectors: Vec<DVec4> = space.faces.iter().map(|f| f.covector).collect();
         let (partners, reflections) = gluing(space);
         let cells: Vec<usize> = space.faces.iter().map(|f| f.cell).collect();
-        let mut walls = Self::in_cells(
+        let seams: Vec<bool> = (0..space.faces.len()).map(|f| space.is_seam(f)).collect();
+        Self::in_cells(
             space.geometry,
             &covectors,
             &partners,
             &reflections,
-            &cells,
+            Some((&cells, &seams)),
             style,
             shading,
-        )?;
-        // A seam between two cells is no face of the space: nothing is drawn on it (each
-        // cell's other faces keep their panels, framed where the cells meet).
-        for (f, face) in walls.faces.iter_mut().enumerate() {
-            if space.is_seam(f) {
-                face.opacity = 0.0;
-            }
-        }
-        Some(walls)
+        )
     }
 
     /// [`WallPanels::new`] from the cell's face covectors, partners and which pairings
@@ -253,23 +249,27 @@ impl WallPanels {
             covectors,
             partners,
             reflections,
-            &[],
+            None,
             style,
             shading,
         )
     }
 
-    /// [`WallPanels::from_parts`] for faces that bound several cells (`cells[f]`, face `f`'s
-    /// cell; empty for one): a face's window is framed by the faces of its own cell only.
-    fn in_cells(
+    /// [`WallPanels::from_parts`] for faces that bound several cells: `cells` gives each
+    /// face's cell and whether it is a seam ([`Space::is_seam`]). A face's window is framed
+    /// by the faces of its own cell only, and nothing is drawn on a seam (no face of the
+    /// space).
+    #[must_use]
+    pub fn in_cells(
         geometry: Geometry,
         covectors: &[DVec4],
         partners: &[usize],
         reflections: &[bool],
-        cells: &[usize],
+        cells: Option<(&[usize], &[bool])>,
         style: WallStyle,
         shading: &Shading,
     ) -> Option<Self> {
+        let (cells, seams) = cells.unwrap_or((&[], &[]));
         if covectors.is_empty() || style.opening >= 1.0 {
             return None;
         }
@@ -307,11 +307,16 @@ impl WallPanels {
                 } else {
                     geometry.s((1.0 - style.opening) * inradius)
                 };
+                let seam = seams.get(f).copied().unwrap_or(false);
                 WallFace {
                     unit: units[f],
                     colour: colours[f],
                     margin,
-                    opacity: style.opacity * if mirror { MIRROR_OPACITY } else { 1.0 },
+                    opacity: if seam {
+                        0.0
+                    } else {
+                        style.opacity * if mirror { MIRROR_OPACITY } else { 1.0 }
+                    },
                     mirror,
                     inradius,
                 }
@@ -322,6 +327,7 @@ impl WallPanels {
             faces,
             sines,
             stop_below: shading.cutoff_weight,
+            cells: cells.to_vec(),
         })
     }
 
@@ -336,10 +342,11 @@ impl WallPanels {
     #[must_use]
     pub fn on_panel(&self, f: usize, x: DVec4) -> bool {
         let margin = self.faces[f].margin;
+        let same_cell = |g: usize| self.cells.is_empty() || self.cells[g] == self.cells[f];
         self.faces
             .iter()
             .enumerate()
-            .any(|(g, face)| g != f && -face.unit.dot(x) < margin * self.sine(f, g))
+            .any(|(g, face)| g != f && same_cell(g) && -face.unit.dot(x) < margin * self.sine(f, g))
     }
 
     /// The panel's lit colour where a ray with tangent `v` (at the crossing point, any

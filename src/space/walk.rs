@@ -55,6 +55,8 @@ pub struct CellWalker<V: Vector4> {
     /// for one cell. A walk searches the exit among its cell's faces only: after a crossing
     /// the cell of the face entered, at the start the cell that holds the ray's point.
     pub face_cells: Vec<usize>,
+    /// Which faces are seams between cells ([`Space::is_seam`]); empty for one cell.
+    pub seams: Vec<bool>,
 }
 
 /// A double-double matrix rounded once to `V`, and what that rounding left out (rounded
@@ -320,6 +322,7 @@ impl<V: Vector4> CellWalker<V> {
         }
         if space.cells.len() > 1 {
             walker.face_cells = space.faces.iter().map(|f| f.cell).collect();
+            walker.seams = (0..space.faces.len()).map(|f| space.is_seam(f)).collect();
         }
         walker
     }
@@ -350,6 +353,7 @@ impl<V: Vector4> CellWalker<V> {
             compensated: true,
             step_cap: None,
             face_cells: Vec::new(),
+            seams: Vec::new(),
         }
     }
 
@@ -374,6 +378,7 @@ impl<V: Vector4> CellWalker<V> {
             compensated: true,
             step_cap: None,
             face_cells: Vec::new(),
+            seams: Vec::new(),
         }
     }
 

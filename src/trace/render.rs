@@ -228,11 +228,12 @@ pub fn walls_of(walker: &CellWalker<DVec4>, scene: &CurvedScene) -> Option<WallP
         .iter()
         .map(|m| m.determinant() < 0.0)
         .collect();
-    WallPanels::from_parts(
+    WallPanels::in_cells(
         walker.geometry,
         &walker.covectors,
         &walker.partners,
         &reflections,
+        (!walker.face_cells.is_empty()).then_some((&walker.face_cells[..], &walker.seams[..])),
         style,
         &scene.shading,
     )

@@ -34,11 +34,11 @@ fn every_seed_space_is_valid_and_of_the_right_kind() {
                 seed.id
             );
         }
-        // Euler characteristic of a closed 3-manifold is 0.
+        // Euler characteristic of a closed 3-manifold is 0 (V − E + F − C, C the cells).
         if s.manifold() {
             let pairs = s.faces().len() / 2;
-            let chi =
-                s.vertex_cycles().len() as i64 - s.edge_cycles().len() as i64 + pairs as i64 - 1;
+            let chi = s.vertex_cycles().len() as i64 - s.edge_cycles().len() as i64 + pairs as i64
+                - s.cells().len() as i64;
             assert_eq!(chi, 0, "{}", seed.id);
         }
     }
@@ -487,7 +487,12 @@ fn broken_spaces_are_rejected_with_the_right_error() {
 fn space_files_round_trip_and_reject_mistakes() {
     let dir = std::env::temp_dir().join(format!("curved-spaces-test-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    for id in ["seifert-weber", "mirrored-cube", "hantzsche-wendt"] {
+    for id in [
+        "seifert-weber",
+        "mirrored-cube",
+        "hantzsche-wendt",
+        "torus-two-cells",
+    ] {
         let s = space(id);
         let path = dir.join(format!("{id}.json"));
         std::fs::write(
@@ -497,6 +502,7 @@ fn space_files_round_trip_and_reject_mistakes() {
         .unwrap();
         let back = load_space_file(&path).unwrap();
         assert_eq!(back.edge_cycles().len(), s.edge_cycles().len());
+        assert_eq!(back.cells(), s.cells());
         assert!(close(volume(&back), volume(&s), 1e-12));
     }
     let bad = [
@@ -512,6 +518,10 @@ fn space_files_round_trip_and_reject_mistakes() {
         (
             r#"{"name":"x","geometry":"euclidean","faces":[{"normal":[1,0,0],"offset":0.5,"mirror":true,"partner":0}]}"#,
             "face 0",
+        ),
+        (
+            r#"{"name":"x","geometry":"euclidean","faces":[{"normal":[1,0,0],"offset":0.5,"mirror":true,"cell":1}]}"#,
+            "face 0: `cell` 1 follows cell 0: list the faces cell by cell",
         ),
     ];
     for (i, (text, expect)) in bad.iter().enumerate() {
@@ -538,6 +548,7 @@ mod hostile_files {
             "seifert-weber",
             "poincare",
             "mirrored-cube",
+            "torus-two-cells",
         ]
         .iter()
         .map(|id| SpaceRecord::from_space(&space(id)))
@@ -563,7 +574,7 @@ mod hostile_files {
         /// panic; the seed spaces' exact numbers are the only ones that pass validation
         /// unchanged in kind.
         #[test]
-        fn corrupted_space_files_never_panic(which in 0usize..5, face in 0usize..12, slot in 0usize..20, value in hostile()) {
+        fn corrupted_space_files_never_panic(which in 0usize..6, face in 0usize..12, slot in 0usize..20, value in hostile()) {
             let mut record = records().swap_remove(which);
             let face = face % record.faces.len();
             let f = &mut record.faces[face];
@@ -580,7 +591,7 @@ mod hostile_files {
 
         /// Dropping or swapping faces is an error or a valid space, never a panic.
         #[test]
-        fn reshuffled_faces_never_panic(which in 0usize..5, drop in 0usize..12, partner in 0usize..14) {
+        fn reshuffled_faces_never_panic(which in 0usize..6, drop in 0usize..12, partner in 0usize..14) {
             let mut record = records().swap_remove(which);
             let n = record.faces.len();
             if let Some(p) = record.faces[drop % n].partner.as_mut() {
@@ -589,6 +600,28 @@ mod hostile_files {
             let _ = record.build("fuzz");
             record.faces.remove(drop % n);
             prop_assert!(record.build("fuzz").is_err());
+        }
+
+        /// Any face moved to another cell (or to a cell number far out of range), or the
+        /// faces of several cells cut off at any point, gives a space or an error naming
+        /// the problem, never a panic: the loader of the `cell` key, the cells' checks
+        /// (overlap, origin, joined) and the walk over them.
+        #[test]
+        fn faces_moved_between_cells_never_panic(which in 0usize..6, face in 0usize..14, cell in prop_oneof![0usize..4, Just(usize::MAX), Just(1usize << 40)], keep in 4usize..14) {
+            let mut record = records().swap_remove(which);
+            let n = record.faces.len();
+            record.faces[face % n].cell = cell;
+            let moved = record.build("fuzz");
+            if let Err(e) = &moved {
+                prop_assert!(!e.to_string().is_empty());
+            }
+            let mut cut = records().swap_remove(which);
+            cut.faces.truncate(keep.min(cut.faces.len()));
+            if let Ok(space) = cut.build("fuzz") {
+                let walker = bevy_curved_spaces::space::CellWalker::<glam::DVec4>::new(&space);
+                let ray = bevy_curved_spaces::geometry::chart_ray(space.geometry(), glam::DVec3::ZERO, glam::DVec3::new(0.3, 0.5, 0.7)).expect("a ray");
+                let _ = walker.trace(ray, bevy_curved_spaces::space::Limit::Crossings(32));
+            }
         }
     }
 }

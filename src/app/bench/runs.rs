@@ -278,9 +278,17 @@ fn gpu_measurements(
         .iter()
         .find(|(f, q, _)| *f == DEFAULT_FOG_FACTOR && *q == Quality::High)
         .map_or(32, |b| b.2);
-    report
-        .specialisation
-        .push(specialisation(harness, subject, auto_default, config)?);
+    match specialisation(harness, subject, auto_default, config)? {
+        Some(row) => report.specialisation.push(row),
+        None => announce(
+            progress,
+            format!(
+                "{}: no general-shader row (the general shader walks one cell of at most \
+                 128 faces, balls and tubes only)",
+                subject.id
+            ),
+        ),
+    }
     progress.inc(1);
     announce(progress, format!("{}: stereo against mono", subject.id));
     report

@@ -276,18 +276,19 @@ pub(super) fn straightforward_cost(
 }
 
 /// Times the specialised and the unspecialised shader on the same view, interleaved, at the
-/// middle timed resolution.
+/// middle timed resolution; `None` where the general shader cannot draw the scene (more
+/// faces or objects than it holds, or several cells).
 pub(super) fn specialisation(
     harness: &mut Harness,
     subject: &Subject,
     budget: u32,
     config: &BenchConfig,
-) -> Result<SpecialisationRow, BenchError> {
+) -> Result<Option<SpecialisationRow>, BenchError> {
     let scene = subject.scene(DEFAULT_FOG_FACTOR);
     let special = subject.pack(&scene, budget)?;
-    let general = special.generalised().ok_or(BenchError::Empty(
-        "the scene is larger than the general shader's capacity",
-    ))?;
+    let Some(general) = special.generalised() else {
+        return Ok(None);
+    };
     let (w, h) = config.middle_size();
     let mono = subject.camera.layout(w, h);
     let a = harness.frame(
@@ -318,7 +319,7 @@ pub(super) fn specialisation(
         .filter(|(x, y)| x != y)
         .count();
     let (sa, sb) = time_interleaved(harness, (&pa, &a), (&pb, &b), config)?;
-    Ok(SpecialisationRow {
+    Ok(Some(SpecialisationRow {
         space: subject.id.clone(),
         geometry: subject.geometry(),
         width: w,
@@ -330,7 +331,7 @@ pub(super) fn specialisation(
         specialised_uniform_bytes: special.key.uniform_bytes(),
         general_uniform_bytes: general.key.uniform_bytes(),
         differing_pixels: differing as f64 / f64::from(w * h),
-    })
+    }))
 }
 
 /// Times side-by-side and anaglyph stereo against mono at the middle timed resolution, each

@@ -560,14 +560,14 @@ impl GpuScene {
 
     /// The same scene for the unspecialised shader variant: arrays padded to
     /// [`GENERAL_CAPACITY`] and the geometry and counts appended. `None` if the scene has
-    /// more faces or objects than that.
+    /// more faces or objects than that, objects of other kinds, or several cells.
     #[must_use]
     pub fn generalised(&self) -> Option<GpuScene> {
         let unculled = self.without_culling();
         let k = unculled.key;
         let (cap_faces, cap_balls, cap_tubes) = GENERAL_CAPACITY;
-        // Only balls and tubes have general arrays.
-        let other_kinds = k.globes + k.discs + k.instances > 0 || k.avatar || k.walls;
+        // Only balls and tubes have general arrays, and the faces of one cell.
+        let other_kinds = k.globes + k.discs + k.instances > 0 || k.avatar || k.walls || k.cells;
         if k.general
             || other_kinds
             || k.faces > cap_faces
