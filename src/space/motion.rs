@@ -85,7 +85,7 @@ pub enum MotionError {
     /// (the wrap brings a frame back through a few faces a step, and in H³ or H²×R a step
     /// of thousands of units leaves f64).
     #[error(
-        "a speed of {speed} is too fast: one motion step of {MOTION_STEP} s would cross more than {MAX_CELLS_PER_STEP} cells (at most {limit} in this space's units a second)"
+        "a speed of {speed} is too fast: one motion step would cross more than {MAX_CELLS_PER_STEP} cells (at most {limit} in this space's units a second)"
     )]
     TooFast {
         /// The linear speed asked for (space units a second).
@@ -93,6 +93,29 @@ pub enum MotionError {
         /// The largest speed followed.
         limit: f64,
     },
+}
+
+/// Whether one step of `dt` seconds at `velocity` stays within [`MAX_CELLS_PER_STEP`] cell
+/// sizes of `space` (the most the wrap after it follows; in H³ or H²×R a step of thousands of
+/// units leaves f64): [`fly`]'s bound on its steps, and the plugin's on an entity's fixed
+/// step. A velocity that is not finite is too fast.
+///
+/// # Errors
+/// [`MotionError::TooFast`] with the speed and the largest speed followed at this step.
+pub fn check_speed<S: super::FrameSpace + ?Sized>(
+    space: &S,
+    velocity: &Velocity,
+    dt: f64,
+) -> Result<(), MotionError> {
+    let (speed, limit) = (
+        velocity.linear.length(),
+        MAX_CELLS_PER_STEP * space.scale() / dt,
+    );
+    if speed <= limit {
+        Ok(())
+    } else {
+        Err(MotionError::TooFast { speed, limit })
+    }
 }
 
 /// The frame `frame` (in the cell of a space of any family) after `time` seconds at
@@ -116,13 +139,7 @@ pub fn fly<S: super::FrameSpace + ?Sized>(
     if velocity.is_zero() || time == 0.0 {
         return Ok(frame);
     }
-    let (speed, limit) = (
-        velocity.linear.length(),
-        MAX_CELLS_PER_STEP * space.scale() / MOTION_STEP,
-    );
-    if !(speed <= limit) {
-        return Err(MotionError::TooFast { speed, limit });
-    }
+    check_speed(space, velocity, MOTION_STEP)?;
     let steps = (time / MOTION_STEP).ceil();
     if steps > MAX_MOTION_STEPS as f64 {
         return Err(MotionError::TooLong {

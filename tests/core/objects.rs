@@ -122,6 +122,55 @@ fn an_object_flying_through_a_face_comes_back_turned_by_its_pairing() {
 /// 10⁵ fixed steps of a spinning, moving object: its frame stays an orthonormal frame inside
 /// the cell and every crossing is reported once; the scene files' rule ([`fly`]) agrees with
 /// the systems.
+/// An entity given a velocity too fast to follow (a fixed step past a few cells: in H³ it
+/// would leave f64 within a few steps) stays where it is, a valid frame in the cell, while a
+/// slow one beside it flies on; once slowed down, it moves again.
+#[test]
+fn an_entity_too_fast_to_follow_stays_where_it_is() {
+    let mut app = test_app("seifert-weber", 1);
+    let active = app.world().resource::<ActiveSpace>().clone();
+    let space = active.constant().unwrap().clone();
+    let r = active.inradius;
+    let start = CurvedTransform::from_geodesic(&space, DVec3::new(0.2, 0.1, -0.3) * r);
+    let fast = Velocity {
+        linear: DVec3::new(0.0, 0.0, -1.2e8),
+        angular: DVec3::ZERO,
+    };
+    let slow = Velocity {
+        linear: DVec3::new(0.0, 0.0, -0.5 * r),
+        angular: DVec3::ZERO,
+    };
+    let spawn = |app: &mut App, v: Velocity| {
+        app.world_mut()
+            .spawn((
+                CurvedObject::ball(0.1 * r, DVec3::ONE),
+                start,
+                CurvedVelocity(v),
+            ))
+            .id()
+    };
+    let (a, b) = (spawn(&mut app, fast), spawn(&mut app, slow));
+    for _ in 0..20 {
+        app.update();
+    }
+    let frame = |app: &App, e| app.world().get::<CurvedTransform>(e).unwrap().0;
+    assert_eq!(frame(&app, a), start.0, "the fast entity stayed");
+    assert!(
+        max_diff(frame(&app, b), start.0) > 1e-3,
+        "the slow one moved"
+    );
+    let g = space.geometry();
+    assert!(g.frame_defect(frame(&app, a)) < 1e-12);
+    app.world_mut().get_mut::<CurvedVelocity>(a).unwrap().0 = slow;
+    for _ in 0..5 {
+        app.update();
+    }
+    assert!(
+        max_diff(frame(&app, a), start.0) > 1e-3,
+        "slowed down, it moves"
+    );
+}
+
 #[test]
 fn a_long_flight_keeps_a_valid_frame_and_matches_fly() {
     // A hundred steps an update (past Bevy's default clamp of the virtual clock, 0.25 s).

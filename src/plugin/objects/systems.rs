@@ -26,20 +26,33 @@ fn size_key(size: f64) -> u64 {
 }
 
 /// Moves every object with a velocity by one fixed step (`FixedUpdate`), in the family `F` of
-/// the space shown.
+/// the space shown. An object too fast to follow (a step past
+/// [`crate::space::motion::MAX_CELLS_PER_STEP`] cell sizes) stays where it is, with a warning
+/// once.
 pub fn move_objects<F: FamilySpace>(
     time: Res<Time>,
     active: Res<ActiveSpace>,
-    mut objects: Query<(&mut CurvedTransform, &CurvedVelocity)>,
+    mut objects: Query<(Entity, &mut CurvedTransform, &CurvedVelocity)>,
+    mut too_fast: Local<std::collections::HashSet<Entity>>,
 ) {
     let Some(space) = active.space.get::<F>() else {
         return;
     };
     let dt = time.delta_secs_f64();
-    for (mut transform, velocity) in &mut objects {
-        if !velocity.0.is_zero() {
-            transform.0 = space.step_velocity(transform.0, &velocity.0, dt);
+    for (entity, mut transform, velocity) in &mut objects {
+        if velocity.0.is_zero() {
+            continue;
         }
+        // A step past a few cells is more than the wrap follows (and in H³ leaves f64):
+        // such an entity stays where it is, and the game is told once.
+        if let Err(e) = crate::space::motion::check_speed(space.as_ref(), &velocity.0, dt) {
+            if too_fast.insert(entity) {
+                warn!("entity {entity} does not move: {e}");
+            }
+            continue;
+        }
+        too_fast.remove(&entity);
+        transform.0 = space.step_velocity(transform.0, &velocity.0, dt);
     }
 }
 
