@@ -366,6 +366,8 @@ impl Space {
             Vec::new()
         };
         let orientable = faces.iter().all(|f| f.pairing.determinant() > 0.0);
+        // One cell of every face (a range, not the list of its indices).
+        #[allow(clippy::single_range_in_vec_init)]
         let cells = vec![0..faces.len()];
         Self {
             cells,
