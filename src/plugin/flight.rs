@@ -6,27 +6,33 @@ use crate::scene::flight::{
     DEFAULT_FLIGHT_FOV, Flight, FlightSource, MAX_FLIGHT_SECONDS, MAX_KEYS, flight_text,
     recorded_key,
 };
+use crate::space::motion::CoverFlight;
 use crate::space::{AnySpace, Holonomy, Space};
 use bevy::prelude::*;
 use glam::{DMat4, DVec3};
 
-/// A flight replayed on every curved-space camera (`walk --replay FILE`): while this
-/// resource exists, [`replay_flight`] sets each camera's frame to the flight's frame at the
-/// time since the replay began (looping when `looped`), after the player's own motion.
+/// A flight replayed on every curved-space camera (`walk --replay FILE`), in the family of
+/// its flight type (a [`Flight`] for the constant-curvature spaces, the default; a
+/// [`crate::trace::product::flight::ProductFlight`] for H²×R and S²×R): while this resource
+/// exists, [`replay_flight`] sets each camera's frame to the flight's frame at the time
+/// since the replay began (looping when `looped`), after the player's own motion.
 #[derive(Resource, Clone, Debug)]
-pub struct FlightReplay {
+pub struct FlightReplay<F: CoverFlight = Flight> {
     /// The flight, made for the active space.
-    pub flight: Flight,
+    pub flight: F,
     /// Start again at the end.
     pub looped: bool,
     /// The clock's time when the replay began (set by the first run).
     pub started: Option<f64>,
 }
 
-impl FlightReplay {
+/// A product flight's replay (H²×R, S²×R).
+pub type ProductFlightReplay = FlightReplay<crate::trace::product::flight::ProductFlight>;
+
+impl<F: CoverFlight> FlightReplay<F> {
     /// A replay of `flight` from the next frame on.
     #[must_use]
-    pub fn new(flight: Flight, looped: bool) -> Self {
+    pub fn new(flight: F, looped: bool) -> Self {
         Self {
             flight,
             looped,
@@ -34,99 +40,45 @@ impl FlightReplay {
         }
     }
 
-    /// The flight's time at clock time `now`.
+    /// The flight's time at clock time `now`: from the first call on, looping or held at
+    /// the end.
     #[must_use]
     pub fn flight_time(&mut self, now: f64) -> f64 {
-        replay_time(&mut self.started, self.looped, self.flight.duration(), now)
-    }
-}
-
-/// A replay's flight time at clock time `now`: from the first call on (`started` is set
-/// then), looping or held at the end.
-fn replay_time(started: &mut Option<f64>, looped: bool, duration: f64, now: f64) -> f64 {
-    let start = *started.get_or_insert(now);
-    let t = (now - start).max(0.0);
-    if duration <= 0.0 {
-        0.0
-    } else if looped {
-        t % duration
-    } else {
-        t.min(duration)
-    }
-}
-
-/// A product flight replayed on every curved-space camera (`walk --replay FILE` in H²×R or
-/// S²×R): while this resource exists, [`replay_product_flight`] sets each camera's frame
-/// to the flight's frame in the cell at the time since the replay began.
-#[derive(Resource, Clone, Debug)]
-pub struct ProductFlightReplay {
-    /// The flight, made for the active product space.
-    pub flight: crate::trace::product::flight::ProductFlight,
-    /// Start again at the end.
-    pub looped: bool,
-    /// The clock's time when the replay began (set by the first run).
-    pub started: Option<f64>,
-}
-
-impl ProductFlightReplay {
-    /// A replay of `flight` from the next frame on.
-    #[must_use]
-    pub fn new(flight: crate::trace::product::flight::ProductFlight, looped: bool) -> Self {
-        Self {
-            flight,
-            looped,
-            started: None,
+        let start = *self.started.get_or_insert(now);
+        let t = (now - start).max(0.0);
+        let duration = self.flight.duration();
+        if duration <= 0.0 {
+            0.0
+        } else if self.looped {
+            t % duration
+        } else {
+            t.min(duration)
         }
     }
-
-    /// The flight's time at clock time `now`.
-    #[must_use]
-    pub fn flight_time(&mut self, now: f64) -> f64 {
-        replay_time(&mut self.started, self.looped, self.flight.duration(), now)
-    }
 }
 
-/// Drives the cameras along a [`ProductFlightReplay`] in a product space (registered by
-/// the plugin; does nothing without the resource), after the frames are wrapped, so it
-/// wins over the player's own motion.
-pub fn replay_product_flight(
+/// Drives the cameras along a [`FlightReplay`] of the flight type `F` (registered by the
+/// plugin for each family; does nothing without the resource or in a space of another
+/// family). Runs after the frames are wrapped, so it wins over the player's own motion; a
+/// camera's holonomy becomes the flight's way from its first key, so the panel's crossings
+/// are the flight's.
+pub fn replay_flight<F: CoverFlight>(
     time: Res<Time>,
     active: Res<ActiveSpace>,
-    replay: Option<ResMut<ProductFlightReplay>>,
-    mut cameras: Query<&mut PlayerFrame, With<CurvedSpaceCamera>>,
-) {
-    let (Some(mut replay), Some(space)) = (replay, active.product()) else {
-        return;
-    };
-    let t = replay.flight_time(time.elapsed_secs_f64());
-    let frame = replay.flight.frame(space, t);
-    for mut f in &mut cameras {
-        f.0 = frame;
-    }
-}
-
-/// Drives the cameras along a [`FlightReplay`] (registered by the plugin; does nothing
-/// without the resource). Runs after the frames are wrapped, so it wins over the player's
-/// own motion.
-pub fn replay_flight(
-    time: Res<Time>,
-    active: Res<ActiveSpace>,
-    replay: Option<ResMut<FlightReplay>>,
+    replay: Option<ResMut<FlightReplay<F>>>,
     mut cameras: Query<(&mut PlayerFrame, Option<&mut Holonomy>), With<CurvedSpaceCamera>>,
 ) {
-    let (Some(mut replay), Some(space)) = (replay, active.constant()) else {
+    let (Some(mut replay), Some(space)) = (replay, active.space.get::<F::Space>()) else {
         return;
     };
     let t = replay.flight_time(time.elapsed_secs_f64());
-    let (frame, crossed) = replay.flight.frame_and_crossings(space, t);
+    let (frame, crossed) = replay.flight.frame_in_cell(space, t);
     for (mut f, holonomy) in &mut cameras {
         f.0 = frame;
-        // The holonomy of the way from the first key, so the panel's crossings are the
-        // flight's.
         if let Some(mut h) = holonomy {
             let mut way = Holonomy::default();
-            for &face in &crossed {
-                way.record(face, space.faces()[face].pairing);
+            for c in &crossed {
+                way.record_crossing(c);
             }
             *h = way;
         }

@@ -144,10 +144,10 @@ impl Plugin for CurvedSpacesPlugin {
                 #[cfg(feature = "scene-files")]
                 (
                     (
-                        crate::plugin::flight::replay_flight
-                            .run_if(ActiveSpace::shows(Family::Constant)),
-                        crate::plugin::flight::replay_product_flight
-                            .run_if(ActiveSpace::shows(Family::Product)),
+                        crate::plugin::flight::replay_flight::<crate::scene::flight::Flight>,
+                        crate::plugin::flight::replay_flight::<
+                            crate::trace::product::flight::ProductFlight,
+                        >,
                     ),
                     crate::plugin::flight::record_flight,
                 )

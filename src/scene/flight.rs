@@ -24,7 +24,8 @@
 
 use crate::geometry::Geometry;
 use crate::space::invariants::inradius_at_most;
-use crate::space::{Holonomy, Space, wrap_into_cell};
+use crate::space::motion::CoverFlight;
+use crate::space::{Holonomy, Space};
 use glam::{DMat4, DVec3, DVec4};
 use serde::Deserialize;
 
@@ -261,17 +262,20 @@ impl Flight {
     /// (the camera's holonomy).
     #[must_use]
     pub fn frame_and_crossings(&self, space: &Space, t: f64) -> (DMat4, Vec<usize>) {
-        let mut frame = self.cover_frame(t);
-        let mut faces = Vec::new();
-        for _ in 0..64 {
-            let (wrapped, crossed) = wrap_into_cell(space, frame, 0.0);
-            frame = wrapped;
-            if crossed.is_empty() {
-                break;
-            }
-            faces.extend(crossed);
-        }
-        (frame, faces)
+        let (frame, crossed) = self.frame_in_cell(space, t);
+        (frame, crossed.iter().map(|c| c.face).collect())
+    }
+}
+
+impl CoverFlight for Flight {
+    type Space = Space;
+
+    fn duration(&self) -> f64 {
+        Flight::duration(self)
+    }
+
+    fn cover_frame(&self, t: f64) -> DMat4 {
+        Flight::cover_frame(self, t)
     }
 }
 

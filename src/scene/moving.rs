@@ -3,40 +3,17 @@
 //! its motion has taken it, turned by every pairing it crossed.
 
 use super::{CurvedScene, Object, PlaceError};
-use crate::space::motion::{MotionError, Velocity, fly};
-use crate::space::{Holonomy, Space};
+use crate::space::Space;
+pub use crate::space::motion::MOVING_WRAP_MARGIN;
+use crate::space::motion::{MotionError, Mover};
 use glam::DMat4;
 
-/// The wrap margin of moving objects (the player's default).
-pub const MOVING_WRAP_MARGIN: f64 = 1e-4;
-
-/// An object that moves: as it is at time 0, its frame then, and its velocity in that
-/// frame's axes.
-#[derive(Clone, Debug, PartialEq)]
-pub struct MovingObject {
-    /// The object at time 0 (its texture, mesh and material indices are its scene's).
-    pub object: Object,
-    /// Its frame at time 0, in the cell.
-    pub frame: DMat4,
-    /// Its velocity in its own axes.
-    pub velocity: Velocity,
-}
+/// An object of a constant-curvature scene that moves: as it is at time 0, its frame then,
+/// and its velocity in that frame's axes (its texture, mesh and material indices are its
+/// scene's).
+pub type MovingObject = Mover<Object>;
 
 impl MovingObject {
-    /// Its frame at `time` (in the cell) and the crossings on the way.
-    pub fn frame_at(&self, space: &Space, time: f64) -> Result<(DMat4, Holonomy), MotionError> {
-        let mut holonomy = Holonomy::default();
-        let frame = fly(
-            space,
-            self.frame,
-            &self.velocity,
-            time,
-            MOVING_WRAP_MARGIN,
-            &mut holonomy,
-        )?;
-        Ok((frame, holonomy))
-    }
-
     /// The object carried from its start frame to `frame`.
     #[must_use]
     pub fn carried_to(&self, space: &Space, frame: DMat4) -> Object {

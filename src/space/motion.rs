@@ -272,3 +272,80 @@ impl Sightlines {
         }
     }
 }
+
+/// A flight through a space of some family: keys in the universal cover, the camera at any
+/// time a frame of the cover, brought back into the cell through the faces it passed. The
+/// frame in the cell and the plugin's replay (`plugin::flight::FlightReplay`) are written
+/// once over it; each family's flight type says how its keys are joined.
+pub trait CoverFlight: Clone + std::fmt::Debug + Send + Sync + 'static {
+    /// The family's space.
+    type Space: super::FamilySpace;
+
+    /// Seconds from the first key to the last.
+    #[must_use]
+    fn duration(&self) -> f64;
+
+    /// The camera's frame at time `t` in the universal cover (before wrapping).
+    #[must_use]
+    fn cover_frame(&self, t: f64) -> DMat4;
+
+    /// The camera frame at time `t` in the cell, with the crossings of the way there from
+    /// the first key's cell, in order (the camera's holonomy).
+    #[must_use]
+    fn frame_in_cell(&self, space: &Self::Space, t: f64) -> (DMat4, Vec<super::FrameCrossing>) {
+        use super::FrameSpace;
+        let mut frame = self.cover_frame(t);
+        let mut crossings = Vec::new();
+        for _ in 0..64 {
+            let (wrapped, crossed) = space.wrap_frame(frame, 0.0);
+            frame = wrapped;
+            if crossed.is_empty() {
+                break;
+            }
+            crossings.extend(crossed);
+        }
+        (frame, crossings)
+    }
+}
+
+/// How far past a face a moving object is let go before it is wrapped back into the cell
+/// (a scene's moving objects and the plugin's entities use the same margin, so a still
+/// picture shows an object where a walk does).
+pub const MOVING_WRAP_MARGIN: f64 = 1e-4;
+
+/// An object of any family's scene that moves: the object as it is at time 0, its frame
+/// then (in the cell) and its velocity in that frame's axes. Where it is at a time is
+/// written once ([`Mover::frame_at`], in the steps of [`fly`]); what an object carried to a
+/// frame is, is its family's (`scene::MovingObject`, `trace::product::moving::ProductMover`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Mover<O> {
+    /// The object at time 0.
+    pub object: O,
+    /// Its frame at time 0, in the cell.
+    pub frame: DMat4,
+    /// Its velocity in its own axes (space units a second).
+    pub velocity: Velocity,
+}
+
+impl<O> Mover<O> {
+    /// Its frame at `time` seconds (in the cell of `space`) and the crossings on the way.
+    ///
+    /// # Errors
+    /// Its motion cannot be followed ([`fly`]'s errors).
+    pub fn frame_at<S: super::FrameSpace + ?Sized>(
+        &self,
+        space: &S,
+        time: f64,
+    ) -> Result<(DMat4, Holonomy), MotionError> {
+        let mut holonomy = Holonomy::default();
+        let frame = fly(
+            space,
+            self.frame,
+            &self.velocity,
+            time,
+            MOVING_WRAP_MARGIN,
+            &mut holonomy,
+        )?;
+        Ok((frame, holonomy))
+    }
+}

@@ -296,6 +296,9 @@ fn correctly_rounded_f32(x: f32, exact: DoubleDouble) -> bool {
 fn seeds() -> Vec<(Space, Reference)> {
     SEED_SPACES
         .iter()
+        // A space of several cells is not built from a closed form: `torus-two-cells` is
+        // given by halves and units, exact in binary (`several_cells.rs` checks them).
+        .filter(|s| s.build().unwrap().cells().len() == 1)
         .map(|s| {
             let space = s.build().unwrap();
             let r = reference(&space).unwrap_or_else(|| panic!("no reference for {}", s.id));

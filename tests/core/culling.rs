@@ -53,6 +53,11 @@ fn culled_rays_end_as_unculled_ones_in_every_seed_space() {
     for seed in SEED_SPACES {
         let space = seed.build().unwrap();
         let scene = CurvedScene::default_for(&space, 3.0 * inradius(&space));
+        // Several cells: every object is tested in every cell.
+        if space.cells().len() > 1 {
+            assert_eq!(FaceCulling::new(&space, &scene), None, "{}", seed.id);
+            continue;
+        }
         let culling = FaceCulling::new(&space, &scene)
             .unwrap_or_else(|| panic!("{}: the default scene has edges to cull", seed.id));
         // Every edge tube and vertex ball has a mask; the centre ball has none.
@@ -101,6 +106,10 @@ fn tests_per_segment(space: &Space, scene: &CurvedScene) -> (f64, f64) {
 fn culling_skips_most_edge_tests() {
     for seed in SEED_SPACES {
         let space = seed.build().unwrap();
+        // Several cells have no culling (the test above).
+        if space.cells().len() > 1 {
+            continue;
+        }
         let scene = CurvedScene::default_for(&space, 3.0 * inradius(&space));
         let (tested, all) = tests_per_segment(&space, &scene);
         // The centre ball is tested everywhere. A segment enters through one face and

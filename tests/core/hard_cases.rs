@@ -62,10 +62,14 @@ fn check_trace<V: Vector4>(walker: &CellWalker<V>, trace: &Trace<V>, what: &str)
             (unit - 1.0).abs() <= tolerance,
             "{what}: tangent of length² {unit} at crossing {i} (tolerance {tolerance:e})"
         );
+        // Outside the cell the crossing entered (every face in a space of one cell).
+        let cell = (!walker.face_cells.is_empty()).then_some(c.cell);
         let outside = walker
             .covectors
             .iter()
-            .map(|n| n.to_f64().dot(p / p.w))
+            .enumerate()
+            .filter(|(f, _)| cell.is_none_or(|cell| walker.face_cells[*f] == cell))
+            .map(|(_, n)| n.to_f64().dot(p / p.w))
             .fold(f64::NEG_INFINITY, f64::max);
         worst = worst.max(outside);
     }

@@ -241,17 +241,23 @@ fn flat_cells_render_the_same_at_every_scale() {
         let at_unit = picture(&unit);
         for k in [1, 4, 6, 10, 20] {
             let scale = 2f64.powi(k);
-            let faces: Vec<FaceSpec> = unit
-                .faces()
+            let cells: Vec<Vec<FaceSpec>> = unit
+                .cells()
                 .iter()
-                .map(|f| {
-                    let mut pairing = f.pairing;
-                    pairing.w_axis = (pairing.w_axis.truncate() * scale).extend(1.0);
-                    FaceSpec::paired(f.normal, f.offset * scale, f.partner, pairing)
+                .map(|cell| {
+                    unit.faces()[cell.clone()]
+                        .iter()
+                        .map(|f| {
+                            let mut pairing = f.pairing;
+                            pairing.w_axis = (pairing.w_axis.truncate() * scale).extend(1.0);
+                            FaceSpec::paired(f.normal, f.offset * scale, f.partner, pairing)
+                        })
+                        .collect()
                 })
                 .collect();
             let scaled =
-                Space::new(unit.name(), unit.description(), Geometry::Euclidean, &faces).unwrap();
+                Space::new_cells(unit.name(), unit.description(), Geometry::Euclidean, &cells)
+                    .unwrap();
             let image = picture(&scaled);
             let differing = image
                 .pixels()

@@ -252,3 +252,21 @@ fn rays_starting_on_the_seam_walk_on() {
         assert!(two.outside_by(trace.end.point) <= 1e-12);
     }
 }
+
+/// The two cells' numbers are exact in binary (no closed form to round: halves and units),
+/// so the f32 walker and the GPU hold the same cell as f64.
+#[test]
+fn the_two_cells_are_exact_in_binary() {
+    let (_, two) = both();
+    for f in two.faces() {
+        assert!(f.offset == 0.0 || f.offset == 0.5, "{}", f.offset);
+        for x in f
+            .pairing
+            .to_cols_array()
+            .into_iter()
+            .chain(f.normal.to_array())
+        {
+            assert!(x == f64::from(x as f32) && (x * 2.0).fract() == 0.0, "{x}");
+        }
+    }
+}

@@ -11,8 +11,9 @@ use super::{ProductCamera, along, tangent_towards};
 use crate::geometry::{Geometry, Ray};
 use crate::scene::flight::FlightFile;
 use crate::space::Holonomy;
+use crate::space::motion::CoverFlight;
 use crate::space::product::ProductSpace;
-use crate::space::product::motion::{camera_frame, transport, wrap_product_frame};
+use crate::space::product::motion::{camera_frame, transport};
 use glam::{DMat4, DVec3, DVec4};
 
 /// A flight through a product space: its keys as points of the universal cover.
@@ -201,16 +202,7 @@ impl ProductFlight {
     /// cover's frame brought back through the faces it passed.
     #[must_use]
     pub fn frame(&self, space: &ProductSpace, t: f64) -> DMat4 {
-        let c = self.cover_camera(t);
-        let mut frame = camera_frame(c.point, c.frame);
-        for _ in 0..64 {
-            let (wrapped, crossed) = wrap_product_frame(space, frame, 0.0);
-            frame = wrapped;
-            if crossed.is_empty() {
-                break;
-            }
-        }
-        frame
+        self.frame_in_cell(space, t).0
     }
 
     /// [`ProductFlight::frame`] as a camera.
@@ -222,5 +214,18 @@ impl ProductFlight {
             frame: [f.x_axis, f.y_axis, f.z_axis],
             fov_y_degrees: self.fov,
         }
+    }
+}
+
+impl CoverFlight for ProductFlight {
+    type Space = ProductSpace;
+
+    fn duration(&self) -> f64 {
+        ProductFlight::duration(self)
+    }
+
+    fn cover_frame(&self, t: f64) -> DMat4 {
+        let c = self.cover_camera(t);
+        camera_frame(c.point, c.frame)
     }
 }

@@ -9,41 +9,22 @@
 
 use super::{ProductObject, ProductShape};
 use crate::geometry::Geometry;
-use crate::scene::moving::MOVING_WRAP_MARGIN;
-use crate::space::motion::{MotionError, Velocity, fly};
+use crate::space::motion::{MotionError, Mover};
 use crate::space::product::{ProductSpace, ProductWalker};
-use glam::{DMat4, DVec4};
+use glam::DVec4;
 
-/// A ball of a product scene that moves.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ProductMover {
-    /// The ball at time 0 (its shape the point of `frame`).
-    pub object: ProductObject,
-    /// Its frame at time 0, in the cell: the centre's axes carried to it, `z` the fibre.
-    pub frame: DMat4,
-    /// Its velocity in that frame's axes (space units a second).
-    pub velocity: Velocity,
-}
+/// A ball of a product scene that moves: the ball at time 0 (its shape the point of
+/// `frame`), its frame then in the cell (the centre's axes carried to it, `z` the fibre)
+/// and its velocity in that frame's axes. Its frame at a time is flown in the steps the
+/// plugin's entities take ([`Mover::frame_at`]), so a still picture shows it where a walk
+/// does.
+pub type ProductMover = Mover<ProductObject>;
 
 impl ProductMover {
-    /// Its frame at `time` seconds, in the cell: flown in the steps the plugin's entities
-    /// take ([`fly`]), so a still picture shows it where a walk does.
-    pub fn frame_at(&self, space: &ProductSpace, time: f64) -> Result<DMat4, MotionError> {
-        let mut holonomy = crate::space::Holonomy::default();
-        fly(
-            space,
-            self.frame,
-            &self.velocity,
-            time,
-            MOVING_WRAP_MARGIN,
-            &mut holonomy,
-        )
-    }
-
     /// The ball where it is at `time` seconds.
     pub fn object_at(&self, space: &ProductSpace, time: f64) -> Result<ProductObject, MotionError> {
         Ok(ProductObject {
-            shape: ProductShape::Point(self.frame_at(space, time)?.w_axis),
+            shape: ProductShape::Point(self.frame_at(space, time)?.0.w_axis),
             ..self.object
         })
     }

@@ -159,15 +159,23 @@ fn every_seed_space_round_trips_through_a_generator_file() {
         let text = write_gen(&space);
         let file = parse_gen(&text).unwrap();
         let faces = space.faces().len();
+        // One generator a pair of faces, none for a seam between cells (the identity).
         let pairs = space
             .faces()
             .iter()
             .enumerate()
-            .filter(|(i, f)| f.partner >= *i)
+            .filter(|(i, f)| f.partner >= *i && !space.is_seam(*i))
             .count();
         assert_eq!(file.matrices.len(), pairs, "{}", seed.id);
         let back = space_from_matrices(seed.id, "", &file.matrices, &DirichletOptions::default())
             .unwrap_or_else(|e| panic!("{}: {e}", seed.id));
+        // A space of several cells comes back as the Dirichlet domain of its group: one
+        // cell, of the same volume.
+        if space.cells().len() > 1 {
+            assert_eq!(back.cells().len(), 1);
+            assert!((volume(&back) - volume(&space)).abs() < 1e-9 * volume(&space));
+            continue;
+        }
         assert_eq!(back.faces().len(), faces, "{}", seed.id);
         assert!(
             congruent(&space, &back, 1e-9),
