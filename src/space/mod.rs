@@ -14,6 +14,7 @@ pub mod homology;
 pub mod invariants;
 pub mod library;
 pub mod motion;
+pub mod nil;
 pub mod orbit;
 pub mod product;
 pub mod surface;

@@ -23,6 +23,7 @@ mod layers;
 mod light_images;
 mod lighting;
 mod mirrors;
+mod nil;
 mod objects;
 mod player;
 #[cfg(feature = "scene-files")]

@@ -31,12 +31,15 @@ use std::path::PathBuf;
 #[command(
     name = "curved-spaces",
     version,
-    about = "Ray tracing inside closed 3-manifolds and orbifolds of constant curvature",
-    long_about = "Ray tracing inside closed 3-manifolds and orbifolds of constant curvature.\n\n\
+    about = "Ray tracing inside closed 3-manifolds and orbifolds: flat, spherical, hyperbolic, \
+             H²×R and S²×R",
+    long_about = "Ray tracing inside closed 3-manifolds and orbifolds: flat, spherical, \
+                  hyperbolic, H²×R and S²×R.\n\n\
                   With no command, walks the default space (seifert-weber) in a window; with no \
                   display, renders it to curved-spaces.png instead.\n\
-                  SPACE is a seed space id (see `curved-spaces list`) or a path to a space file \
-                  (JSON; `curved-spaces export` writes examples)."
+                  SPACE is a seed space id (see `curved-spaces list`), a member of a family of \
+                  the library (lens-7-2, surface-abAB-circle-1, …), or a path to a space file \
+                  (JSON; `curved-spaces export` writes examples) or a generator file (`.gen`)."
 )]
 pub struct Cli {
     #[command(subcommand)]

@@ -1,0 +1,108 @@
+//! Nil's geodesics in closed form, in any precision ([`Real`]: `f32`, `f64`,
+//! double-double).
+//!
+//! From the origin with unit body velocity `(a cos α, a sin α, c)` the geodesic is
+//!
+//! ```text
+//! x(t) = (a/c)(sin(ct + α) − sin α)
+//! y(t) = (a/c)(cos α − cos(ct + α))
+//! z(t) = ct + (a²/2)(ct − sin ct)/c²
+//! ```
+//!
+//! and its body velocity at `t` is `(a cos(α + ct), a sin(α + ct), c)`: the horizontal part
+//! turns at the constant rate `c`. From a point `p` it is `p·γ(t)` (a left translation keeps
+//! the body velocity). Written with `u = ct`, `x = u₁ S − u₂ C`, `y = u₂ S + u₁ C`,
+//! `z = ct + ½(u₁² + u₂²) Z` with
+//!
+//! ```text
+//! S = sin(u)/c = t Σ (−u²)ᵏ/(2k+1)!,   C = (1 − cos u)/c = t u Σ (−u²)ᵏ/(2k+2)!,
+//! Z = (u − sin u)/c² = t² u Σ (−u²)ᵏ/(2k+3)!
+//! ```
+//!
+//! evaluated by these series (no division by `c`: exact at `c = 0`, the horizontal lines,
+//! and without the cancellation of `u − sin u` at small `u`) while `|u| < 2`, and from `sin`
+//! and `cos` of `u` and `u/2` beyond, where nothing cancels (`C = 2 sin²(u/2)/c`). The
+//! series' coefficients come from a recurrence of exact divisions, so double-double keeps
+//! its 32 digits.
+
+use crate::geometry::Real;
+
+/// A point of Nil in the chart and a velocity in the left-invariant frame `E₁, E₂, E₃`
+/// (unit for a ray).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NilRay<R> {
+    /// The chart point `(x, y, z)`.
+    pub point: [R; 3],
+    /// The body velocity `(u₁, u₂, u₃)`.
+    pub velocity: [R; 3],
+}
+
+/// The group product `p·q`: `q` moved by the left translation by `p` (an isometry, affine
+/// in `q`).
+#[must_use]
+pub fn group_product<R: Real>(p: [R; 3], q: [R; 3]) -> [R; 3] {
+    let half = R::from_f64(0.5);
+    [
+        p[0] + q[0],
+        p[1] + q[1],
+        p[2] + q[2] + half * (p[0] * q[1] - p[1] * q[0]),
+    ]
+}
+
+/// Below this `|ct|` the flow's `S`, `C` and `Z` are summed as series.
+const SERIES_BELOW: f64 = 2.0;
+
+/// Terms of each series: `4ᵏ/(2k+1)!` is below 10⁻⁴² at `k = 22`, past double-double's
+/// precision at `|ct| < 2`.
+const SERIES_TERMS: usize = 22;
+
+/// `(S, C, Z)` of the flow for the rate `c` at time `t` (see the module's formulas).
+#[must_use]
+pub fn flow_terms<R: Real>(c: R, t: R) -> (R, R, R) {
+    let u = c * t;
+    if u.abs() < R::from_f64(SERIES_BELOW) {
+        // Σ (−u²)ᵏ/(n+2k)! for n = 1, 2, 3, by the exact recurrence of the terms.
+        let minus_u2 = -(u * u);
+        let sum = |n: u32| {
+            let mut term = R::ONE;
+            for k in 1..=n {
+                term = term / R::from_f64(f64::from(k));
+            }
+            let mut total = term;
+            for k in 0..SERIES_TERMS as u32 {
+                let (a, b) = (n + 2 * k + 1, n + 2 * k + 2);
+                term = term * minus_u2 / R::from_f64(f64::from(a * b));
+                total = total + term;
+            }
+            total
+        };
+        (t * sum(1), t * u * sum(2), t * t * u * sum(3))
+    } else {
+        let (_, sin_u) = u.cos_sin();
+        let (_, sin_half) = (u * R::from_f64(0.5)).cos_sin();
+        let two = R::from_f64(2.0);
+        (
+            sin_u / c,
+            two * sin_half * sin_half / c,
+            (u - sin_u) / (c * c),
+        )
+    }
+}
+
+/// The ray moved by `t` along its geodesic: the chart point and the body velocity there.
+#[must_use]
+pub fn flow<R: Real>(ray: &NilRay<R>, t: R) -> NilRay<R> {
+    let [u1, u2, c] = ray.velocity;
+    let (s, one_minus_cos, z_term) = flow_terms(c, t);
+    let (cos_u, sin_u) = (c * t).cos_sin();
+    let half = R::from_f64(0.5);
+    let from_origin = [
+        u1 * s - u2 * one_minus_cos,
+        u2 * s + u1 * one_minus_cos,
+        c * t + half * (u1 * u1 + u2 * u2) * z_term,
+    ];
+    NilRay {
+        point: group_product(ray.point, from_origin),
+        velocity: [u1 * cos_u - u2 * sin_u, u1 * sin_u + u2 * cos_u, c],
+    }
+}

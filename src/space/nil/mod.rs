@@ -1,0 +1,17 @@
+//! Nil, the Heisenberg group with its left-invariant metric, the first of the geometries
+//! whose metric varies with the point (Thurston's eight: E³, S³, H³, H²×R, S²×R, Nil,
+//! SL̃(2,R), Sol). This folder holds what is Nil's own; so far its geodesic flow in closed
+//! form ([`flow`]), generic over precision, checked against an independent 40-digit
+//! integration of the geodesic equations (`tests/data/nil_geodesics.json`, written by
+//! `scripts/nil-reference.py`).
+//!
+//! Conventions:
+//! - the chart `(x, y, z) ∈ R³` with the metric `ds² = dx² + dy² + (dz − ½(x dy − y dx))²`;
+//! - the group law `(x, y, z)·(x′, y′, z′) = (x + x′, y + y′, z + z′ + ½(x y′ − y x′))`,
+//!   whose left translations are the isometries the lattices act by, affine in the chart;
+//! - velocities in the orthonormal left-invariant frame `E₁ = ∂x − (y/2)∂z`,
+//!   `E₂ = ∂y + (x/2)∂z`, `E₃ = ∂z` (the *body* velocity), which a left translation keeps.
+
+pub mod flow;
+
+pub use flow::{NilRay, flow, group_product};

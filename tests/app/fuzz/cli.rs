@@ -1,0 +1,194 @@
+//! Every numeric command-line option given hostile values.
+
+use super::*;
+
+/// A CPU render of `space` at 16×9 with 4 crossings and `extra` arguments: the cheapest
+/// run of the renderer for a hostile option.
+fn tiny_render<'a>(space: &'a str, extra: &[&'a str]) -> Vec<&'a str> {
+    let mut args = vec![
+        "render",
+        space,
+        "--cpu",
+        "--size",
+        "16x9",
+        "--crossings",
+        "4",
+    ];
+    args.extend_from_slice(extra);
+    args
+}
+
+/// Every numeric option of the command line at 0, negative, NaN, ±inf, 1e308 and 1e-320:
+/// a result or an error message, exit status 0 or 1 — never a panic (101) or a signal.
+#[test]
+fn hostile_numbers_on_the_command_line() {
+    let values = ["0", "-1", "nan", "inf", "-inf", "1e308", "1e-320", "-0"];
+    let mut outcomes = (0, 0);
+    let moving = format!(
+        "{}/assets/scenes/seifert_weber_knot.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    for value in values {
+        let vec3 = format!("{value},0,0");
+        let circle = format!("surface-abABcdCD-circle-{value}");
+        let turned = format!("surface-aA-circle-1-turn-{value}");
+        let cases: Vec<Vec<&str>> = vec![
+            // Every numeric option of the fluence sum.
+            vec!["light", "torus", "--at", &vec3],
+            vec!["light", "torus", "--light", &vec3, "--at", "0.1,0,0"],
+            vec!["light", "torus", "--at", "0.1,0,0", "--fog", value],
+            vec!["light", "torus", "--at", "0.1,0,0", "--reach", value],
+            vec!["light", "torus", "--at", "0.1,0,0", "--radius", value],
+            vec![
+                "light", "torus", "--at", "0.1,0,0", "--reach", "1", "--check", value,
+            ],
+            vec!["light", "poincare", "--at", "0.1,0,0", "--fog", value],
+            // A scene with a moving object at a hostile time.
+            vec![
+                "render",
+                "--scene",
+                &moving,
+                "--cpu",
+                "--size",
+                "16x9",
+                "--crossings",
+                "4",
+                "--time",
+                value,
+            ],
+            tiny_render("torus", &["--fov", value]),
+            tiny_render("torus", &["--time", value]),
+            tiny_render("torus", &["--fog", value]),
+            tiny_render("torus", &["--ipd", value, "--stereo", "anaglyph"]),
+            vec![
+                "render",
+                "torus",
+                "--cpu",
+                "--size",
+                "16x9",
+                "--crossings",
+                value,
+            ],
+            tiny_render("torus", &["--eye", &vec3, "--look-at", "0.1,0.1,0.1"]),
+            // The light's reach and shadow count at hostile numbers, in each geometry.
+            tiny_render("torus", &["--light-reach", value]),
+            tiny_render("seifert-weber", &["--shadows", value]),
+            tiny_render("poincare", &["--light-reach", value, "--shadows", "2"]),
+            // Soft shadows: a hostile lamp radius and ray count, in each geometry.
+            tiny_render("torus", &["--shadows", "2", "--lamp-radius", value]),
+            tiny_render(
+                "seifert-weber",
+                &[
+                    "--shadows",
+                    "1",
+                    "--lamp-radius",
+                    "0.3",
+                    "--soft-samples",
+                    value,
+                ],
+            ),
+            tiny_render(
+                "poincare",
+                &[
+                    "--shadows",
+                    "1",
+                    "--soft-samples",
+                    "3",
+                    "--lamp-radius",
+                    value,
+                ],
+            ),
+            // A product space's lamp is a point: a radius is refused.
+            tiny_render("bitorus-circle", &["--lamp-radius", value]),
+            // A product space's lighting at hostile values.
+            tiny_render(
+                "bitorus-circle",
+                &["--light-reach", value, "--shadows", "2"],
+            ),
+            tiny_render("sphere-circle-turn", &["--shadows", value]),
+            // Walls at a hostile opening and opacity.
+            tiny_render("poincare", &["--walls", value]),
+            tiny_render(
+                "mirrored-cube",
+                &["--walls", "0.5", "--wall-opacity", value],
+            ),
+            vec![
+                "walk",
+                "torus",
+                "--record",
+                "fuzz.toml",
+                "--record-interval",
+                value,
+            ],
+            vec!["trace", "seifert-weber", "--dir", &vec3, "--crossings", "3"],
+            vec![
+                "trace",
+                "seifert-weber",
+                "--from",
+                &vec3,
+                "--dir",
+                "1,0,0",
+                "--crossings",
+                "3",
+            ],
+            vec!["trace", "torus", "--dir", "1,0,0", "--distance", value],
+            vec!["trace", "torus", "--dir", "1,0,0", "--crossings", value],
+            // Product spaces: a hostile length, turn, direction and start.
+            vec!["info", &circle],
+            vec!["info", &turned],
+            vec![
+                "trace",
+                "bitorus-circle",
+                "--dir",
+                &vec3,
+                "--crossings",
+                "3",
+            ],
+            vec![
+                "trace",
+                "sphere-circle",
+                "--from",
+                &vec3,
+                "--dir",
+                "0,1,0.5",
+                "--distance",
+                "2",
+            ],
+            vec![
+                "trace",
+                "projective-plane-circle",
+                "--dir",
+                "1,0,0.2",
+                "--distance",
+                value,
+            ],
+            tiny_render("crosscaps-circle", &["--fog", value]),
+        ];
+        for mut args in cases {
+            let out_dir = crate::common::scratch_dir("fuzz-cli");
+            let png = out_dir.join("fuzz.png");
+            if args[0] == "render" {
+                args.extend(["--out", png.to_str().unwrap()]);
+            }
+            let started = Instant::now();
+            let out = std::process::Command::new(env!("CARGO_BIN_EXE_curved-spaces"))
+                .args(&args)
+                .output()
+                .expect("the binary runs");
+            let err = String::from_utf8_lossy(&out.stderr);
+            match out.status.code() {
+                Some(0) => outcomes.0 += 1,
+                Some(1 | 2) => {
+                    assert!(err.contains("error"), "{args:?}: no message: {err}");
+                    outcomes.1 += 1;
+                }
+                other => panic!("{args:?}: exit {other:?}\n{err}"),
+            }
+            assert!(started.elapsed().as_secs_f64() < 30.0, "{args:?}: slow");
+        }
+    }
+    eprintln!(
+        "command lines: {} ran, {} refused with a message",
+        outcomes.0, outcomes.1
+    );
+}
