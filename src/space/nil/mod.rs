@@ -12,6 +12,8 @@
 //! - velocities in the orthonormal left-invariant frame `E₁ = ∂x − (y/2)∂z`,
 //!   `E₂ = ∂y + (x/2)∂z`, `E₃ = ∂z` (the *body* velocity), which a left translation keeps.
 
+pub mod exit;
 pub mod flow;
 
+pub use exit::{horizontal_exit, vertical_exit};
 pub use flow::{NilRay, flow, group_product};
