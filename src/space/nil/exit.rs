@@ -181,8 +181,8 @@ fn turning_points<R: Real>(ray: &NilRay<R>, before: R) -> Vec<R> {
 const MAX_ROOT_STEPS: usize = 200;
 
 /// The first time `t` in `(0, before]` at which `ray` meets the horizontal plane `z = h`,
-/// or `None` before `before` (`before` may be infinite only where the height changes at a
-/// constant rate or turns round: every geodesic but a horizontal circle that never climbs).
+/// or `None` before `before` (which may be infinite). A ray that starts on the plane is not
+/// said to meet it there: its first crossing ahead is after the height's first turn.
 #[must_use]
 pub fn horizontal_exit<R: Real>(ray: &NilRay<R>, h: R, before: R) -> Option<R> {
     let zero = R::ZERO;
@@ -228,8 +228,11 @@ pub fn horizontal_exit<R: Real>(ray: &NilRay<R>, h: R, before: R) -> Option<R> {
     for hi in points {
         let (f_hi, _) = f(hi);
         let straddles = (f_lo <= zero && f_hi >= zero) || (f_lo >= zero && f_hi <= zero);
-        // A start on the plane (f(0) = 0) is not a crossing ahead unless it moves through.
-        if straddles && !(lo == zero && f_lo == zero && f_hi == zero) {
+        // A start on the plane (f(0) = 0): the height is monotone up to the first turning
+        // point, so the plane is not met again before it (the crossing at the start is no
+        // exit ahead).
+        let from_the_plane = lo == zero && f_lo == zero;
+        if straddles && !from_the_plane {
             let root = bracketed_root(&f, lo, hi, f_lo);
             if root > zero {
                 return Some(root);

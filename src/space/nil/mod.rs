@@ -14,6 +14,8 @@
 
 pub mod exit;
 pub mod flow;
+pub mod walk;
 
 pub use exit::{horizontal_exit, vertical_exit};
 pub use flow::{NilRay, flow, group_product};
+pub use walk::{NIL_FACES, NilExit, NilWalker};
