@@ -164,7 +164,12 @@ impl ActiveSpace {
     /// `surface-abABcdCD-circle-2`) or a path to a space file (`.gen` or JSON). Slow for spaces
     /// from large groups (a census manifold takes a fraction of a second in a release build).
     pub fn named(id: &str) -> Result<Self, String> {
-        Ok(Self::new(id, AnySpace::named(id)?))
+        let space = AnySpace::named(id)?;
+        // The plugin shows only the families it can draw (a Nil space is walked by `trace`).
+        space
+            .supports(crate::space::Feature::Pictures)
+            .map_err(|e| format!("{id}: {e}"))?;
+        Ok(Self::new(id, space))
     }
 
     /// The space's family.
@@ -193,6 +198,8 @@ impl ActiveSpace {
         match &self.space {
             AnySpace::Constant(s) => base.start_frame(self, s),
             AnySpace::Product(p) => BaseProductScene::start_frame(product_base, p),
+            // At the origin, in the standard frame (the plugin draws no Nil space yet).
+            AnySpace::Nil(_) => DMat4::IDENTITY,
         }
     }
 

@@ -230,6 +230,8 @@ pub fn record_flight(
             AnySpace::Product(space) => {
                 crate::trace::product::flight::recorded_product_key(space, frame.0, holonomy)
             }
+            // No flights through Nil yet (its pictures are not drawn).
+            AnySpace::Nil(_) => None,
         }
     });
     if recorder.unwritten && recorder.last_write.is_none_or(|w| now - w >= 1.0) {

@@ -12,6 +12,7 @@
 //! why; the command line, the plugin and the benchmark ask it instead of checking by hand.
 
 use super::dirichlet::DirichletOptions;
+use super::nil::{NilSpace, nil_space};
 use super::product::{ProductOrFlat, ProductSpace, product_space};
 use super::{Space, invariants};
 use crate::geometry::Geometry;
@@ -28,11 +29,14 @@ pub enum Family {
     /// H²×R and S²×R: a surface's polygon times an interval ([`ProductSpace`], walked by
     /// [`super::product::ProductWalker`]).
     Product,
+    /// Nil: the Heisenberg nilmanifolds, a box of the chart whose sides are paired by left
+    /// translations ([`NilSpace`], walked by [`super::nil::NilWalker`]).
+    Nil,
 }
 
 impl Family {
     /// Every family, in the order `curved-spaces list` shows them.
-    pub const ALL: [Family; 2] = [Family::Constant, Family::Product];
+    pub const ALL: [Family; 3] = [Family::Constant, Family::Product, Family::Nil];
 
     /// The family's name, as messages use it.
     #[must_use]
@@ -40,6 +44,7 @@ impl Family {
         match self {
             Family::Constant => "constant curvature (E³, S³, H³)",
             Family::Product => "product (H²×R, S²×R)",
+            Family::Nil => "Nil",
         }
     }
 }
@@ -63,6 +68,8 @@ pub enum Feature {
     SoftShadows,
     /// Lighting by every image of a lamp, with a bound on the images left out.
     EveryImageBound,
+    /// Pictures: `render`, `walk`, `flight`, `light`, `bench` and the plugin.
+    Pictures,
 }
 
 impl Feature {
@@ -78,6 +85,9 @@ impl Feature {
             Feature::Basepoint => "`--basepoint`",
             Feature::SoftShadows => "lamps of a radius (soft shadows)",
             Feature::EveryImageBound => "a bound on the light of the lamp images left out",
+            Feature::Pictures => {
+                "pictures (`render`, `walk`, `flight`, `light`, `bench`, the plugin)"
+            }
         }
     }
 }
@@ -102,8 +112,22 @@ impl Family {
             (Family::Constant, _)
             | (
                 Family::Product,
-                Feature::RecordFlight | Feature::Headset | Feature::MovingObjects,
+                Feature::RecordFlight
+                | Feature::Headset
+                | Feature::MovingObjects
+                | Feature::Pictures,
             ) => return Ok(()),
+            (Family::Nil, Feature::Export) => {
+                "a Nil space is written by its id (`nil-K`), which holds all of it"
+            }
+            (Family::Nil, Feature::Basepoint) => {
+                "a Nil cell is the box about the origin; `--basepoint` moves the Dirichlet \
+                 domains of generator files"
+            }
+            (Family::Nil, _) => {
+                "the Nil family walks its geodesics exactly (`info` and `trace` take it), but its \
+                 tracers and scenes (metric balls, its light) are not written yet"
+            }
             (Family::Product, Feature::SceneParts) => {
                 "a product scene file's `edges` and `centre_ball` choose the parts"
             }
@@ -137,6 +161,14 @@ pub enum AnySpace {
     Constant(Arc<Space>),
     /// H²×R or S²×R.
     Product(Arc<ProductSpace>),
+    /// Nil.
+    Nil(Arc<NilSpace>),
+}
+
+impl From<NilSpace> for AnySpace {
+    fn from(space: NilSpace) -> Self {
+        AnySpace::Nil(Arc::new(space))
+    }
 }
 
 impl From<Space> for AnySpace {
@@ -172,6 +204,9 @@ impl AnySpace {
         if let Some(space) = super::library::seed_or_library(id) {
             return space.map(Self::from);
         }
+        if let Some(space) = nil_space(id) {
+            return space.map(Self::from).map_err(|e| e.to_string());
+        }
         match product_space(id) {
             Some(Ok(ProductOrFlat::Product(p))) => Ok(Self::from(*p)),
             Some(Ok(ProductOrFlat::Flat(s))) => Ok(Self::from(*s)),
@@ -192,6 +227,7 @@ impl AnySpace {
         match self {
             AnySpace::Constant(_) => Family::Constant,
             AnySpace::Product(_) => Family::Product,
+            AnySpace::Nil(_) => Family::Nil,
         }
     }
 
@@ -205,7 +241,7 @@ impl AnySpace {
     pub fn constant(&self) -> Option<&Arc<Space>> {
         match self {
             AnySpace::Constant(s) => Some(s),
-            AnySpace::Product(_) => None,
+            AnySpace::Product(_) | AnySpace::Nil(_) => None,
         }
     }
 
@@ -216,6 +252,7 @@ impl AnySpace {
         match self {
             AnySpace::Constant(s) => &**s,
             AnySpace::Product(p) => &**p,
+            AnySpace::Nil(n) => &**n,
         }
     }
 
@@ -225,6 +262,7 @@ impl AnySpace {
         let shared: &dyn std::any::Any = match self {
             AnySpace::Constant(s) => s,
             AnySpace::Product(p) => p,
+            AnySpace::Nil(n) => n,
         };
         shared.downcast_ref::<Arc<F>>()
     }
@@ -234,7 +272,7 @@ impl AnySpace {
     pub fn product(&self) -> Option<&Arc<ProductSpace>> {
         match self {
             AnySpace::Product(p) => Some(p),
-            AnySpace::Constant(_) => None,
+            AnySpace::Constant(_) | AnySpace::Nil(_) => None,
         }
     }
 
@@ -244,6 +282,7 @@ impl AnySpace {
         match self {
             AnySpace::Constant(s) => s.name(),
             AnySpace::Product(p) => p.name(),
+            AnySpace::Nil(n) => n.name(),
         }
     }
 
@@ -253,25 +292,28 @@ impl AnySpace {
         match self {
             AnySpace::Constant(s) => s.description(),
             AnySpace::Product(p) => p.description(),
+            AnySpace::Nil(n) => n.description(),
         }
     }
 
-    /// Its geometry's name: `E3`, `S3`, `H3`, `H2xR`, `S2xR`.
+    /// Its geometry's name: `E3`, `S3`, `H3`, `H2xR`, `S2xR`, `Nil`.
     #[must_use]
     pub fn geometry_name(&self) -> &'static str {
         match self {
             AnySpace::Constant(s) => s.geometry().name(),
             AnySpace::Product(p) => p.geometry_name(),
+            AnySpace::Nil(_) => "Nil",
         }
     }
 
     /// The geometry of the model its points live in: the space's own for constant
-    /// curvature, the surface's for a product.
+    /// curvature, the surface's for a product, the affine chart (`w = 1`) for Nil.
     #[must_use]
     pub fn model_geometry(&self) -> Geometry {
         match self {
             AnySpace::Constant(s) => s.geometry(),
             AnySpace::Product(p) => p.base(),
+            AnySpace::Nil(_) => Geometry::Euclidean,
         }
     }
 
@@ -281,6 +323,7 @@ impl AnySpace {
         match self {
             AnySpace::Constant(s) => invariants::volume(s),
             AnySpace::Product(p) => p.volume(),
+            AnySpace::Nil(n) => n.volume(),
         }
     }
 
@@ -292,6 +335,7 @@ impl AnySpace {
         match self {
             AnySpace::Constant(s) => invariants::inradius(s),
             AnySpace::Product(p) => p.scale(),
+            AnySpace::Nil(n) => super::FrameSpace::scale(&**n),
         }
     }
 
@@ -301,6 +345,7 @@ impl AnySpace {
         match self {
             AnySpace::Constant(s) => invariants::injectivity_radius(s),
             AnySpace::Product(p) => p.injectivity_radius(PRODUCT_GROUP_LIMIT),
+            AnySpace::Nil(n) => Some(n.injectivity_radius()),
         }
     }
 }
@@ -316,6 +361,11 @@ pub fn resolve_space(id: &str, base: &Path, options: &DirichletOptions) -> Resul
             "{id} is a space of the geometry {} ({}): this takes the constant-curvature \
              geometries only (E³, S³, H³)",
             space.geometry_name(),
+            space.description()
+        )),
+        AnySpace::Nil(space) => Err(format!(
+            "{id} is a space of the geometry Nil ({}): this takes the constant-curvature \
+             geometries only (E³, S³, H³)",
             space.description()
         )),
     }
@@ -361,6 +411,7 @@ impl CentreFrame for AnySpace {
         match self {
             AnySpace::Constant(s) => s.frame_from_centre(offset),
             AnySpace::Product(p) => p.frame_from_centre(offset),
+            AnySpace::Nil(n) => n.frame_from_centre(offset),
         }
     }
 }

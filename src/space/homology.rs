@@ -79,7 +79,7 @@ pub(crate) fn relations_homology(relations: &[Vec<i128>], generators: usize) -> 
 }
 
 /// `H₁` of the group with `generators` generators and these relations (rows of exponents).
-fn from_relations(relations: &[Vec<i128>], generators: usize) -> Homology {
+pub(crate) fn from_relations(relations: &[Vec<i128>], generators: usize) -> Homology {
     let diagonal = smith_diagonal(relations.to_vec(), generators);
     let nonzero = diagonal.iter().filter(|&&d| d != 0).count();
     let mut torsion: Vec<u64> = diagonal

@@ -72,6 +72,10 @@ fn product(id: &str) -> Result<ProductSpace, BenchError> {
         .map_err(|e| BenchError::Product(format!("{id} is not a product space: {e}")))?;
     match space {
         AnySpace::Product(p) => Ok(std::sync::Arc::unwrap_or_clone(p)),
+        AnySpace::Nil(n) => Err(BenchError::Product(format!(
+            "{id} is a Nil space, not a product space: {}",
+            n.description()
+        ))),
         AnySpace::Constant(s) => Err(BenchError::Product(format!(
             "{id} is {}, not a product space: --spaces benches the constant-curvature spaces",
             if s.geometry() == crate::geometry::Geometry::Euclidean {

@@ -5,6 +5,7 @@ use bevy_curved_spaces::space::file::SpaceRecord;
 use bevy_curved_spaces::space::group::write_gen;
 use bevy_curved_spaces::space::invariants::Invariants;
 use bevy_curved_spaces::space::library::{FAMILIES, is_gen_path};
+use bevy_curved_spaces::space::nil::NilSpace;
 use bevy_curved_spaces::space::product::ProductSpace;
 use bevy_curved_spaces::space::{SEED_SPACES, Space};
 use std::path::Path;
@@ -67,6 +68,12 @@ pub(super) fn list() {
             Err(e) => say!("{:<24} invalid: {e}", alias.id),
         }
     }
+    say!("");
+    say!(
+        "Nil spaces: nil-K (K = 1 … {}; heisenberg is nil-1), the Heisenberg group over the \
+         lattice whose centre is 1/K: `info` and `trace` take them (pictures are not drawn yet)",
+        bevy_curved_spaces::space::nil::MAX_NIL_K
+    );
     say!("");
     say!(
         "SPACE may also be a space file: JSON (`curved-spaces export SPACE` writes one) or a \
@@ -224,6 +231,49 @@ pub(super) fn product_info(space: &ProductSpace, as_json: bool) -> Result<(), St
             .map_or("– (too many group elements)".to_string(), |r| number(
                 r, 10
             ))
+    );
+    Ok(())
+}
+
+/// `info` of a Nil space: its lattice and cell, and the invariants computed from them.
+pub(super) fn nil_info(space: &NilSpace, as_json: bool) -> Result<(), String> {
+    use bevy_curved_spaces::space::FrameSpace;
+    let h1 = space.homology().to_string();
+    if as_json {
+        let value = serde_json::json!({
+            "name": space.name(),
+            "geometry": "Nil",
+            "description": space.description(),
+            "k": space.k(),
+            "faces": space.face_count(),
+            "cell": {"x": [-0.5, 0.5], "y": [-0.5, 0.5], "z": [-space.half_height(), space.half_height()]},
+            "volume": space.volume(),
+            "orientable": true,
+            "manifold": true,
+            "homology": h1,
+            "injectivity_radius": space.injectivity_radius(),
+        });
+        say!(
+            "{}",
+            serde_json::to_string_pretty(&value).map_err(|e| e.to_string())?
+        );
+        return Ok(());
+    }
+    say!("{} (Nil)", space.name());
+    say!("  {}", space.description());
+    say!("  K                   {}", space.k());
+    say!(
+        "  faces               {} (x = ±1/2, y = ±1/2, z = ±1/{})",
+        space.face_count(),
+        2 * space.k()
+    );
+    say!("  volume              {}", number(space.volume(), 12));
+    say!("  orientable          true");
+    say!("  manifold            true");
+    say!("  first homology      {h1}");
+    say!(
+        "  injectivity radius  {}",
+        number(space.injectivity_radius(), 10)
     );
     Ok(())
 }

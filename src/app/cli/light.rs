@@ -13,6 +13,12 @@ pub(super) fn light(args: &LightArgs) -> Result<(), String> {
     let space = match super::space_named(&args.space)? {
         AnySpace::Constant(space) => space,
         AnySpace::Product(space) => return light_product(args, &space),
+        nil @ AnySpace::Nil(_) => {
+            return Err(super::spaces::refused(
+                &nil,
+                bevy_curved_spaces::space::Feature::Pictures,
+            ));
+        }
     };
     let g = space.geometry();
     let point = |x: DVec3, what: &str| {

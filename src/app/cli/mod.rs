@@ -734,6 +734,7 @@ pub fn run(cli: Cli) -> Result<(), String> {
         Some(Command::Info { space, json }) => match space_named(&space)? {
             AnySpace::Product(p) => info::product_info(&p, json),
             AnySpace::Constant(s) => info::info(&s, json),
+            AnySpace::Nil(n) => info::nil_info(&n, json),
         },
         Some(Command::Trace(args)) => trace::trace(&args),
         Some(Command::Light(args)) => light::light(&args),

@@ -111,6 +111,12 @@ pub(super) fn choose(
         }));
     }
     Ok(match super::space_named(space_arg)? {
+        nil @ AnySpace::Nil(_) => {
+            return Err(super::spaces::refused(
+                &nil,
+                bevy_curved_spaces::space::Feature::Pictures,
+            ));
+        }
         AnySpace::Product(space) => {
             let space = std::sync::Arc::unwrap_or_clone(space);
             Choice::Product(ProductChoice {

@@ -42,6 +42,15 @@ pub(super) fn constant_for(space: &AnySpace, feature: Feature) -> Result<&Space,
     })
 }
 
+/// Why `space` cannot do `feature`, as the command line says it (its family's reason), for
+/// the arms of a command's match where a family lacks the whole command.
+pub(super) fn refused(space: &AnySpace, feature: Feature) -> String {
+    match space.supports(feature) {
+        Err(e) => format!("{}: {e}", space.name()),
+        Ok(()) => format!("{}: {} is not drawn here", space.name(), feature.name()),
+    }
+}
+
 /// The model point of the chart point `x` (option `what`), which must lie in the cell of
 /// `name`: `to_model` reads the chart, `outside_by` says how far outside the cell a point
 /// is (NaN, a point the model cannot hold, counts as outside).

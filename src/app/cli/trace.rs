@@ -102,6 +102,39 @@ impl TraceFamily for ConstantFamily<'_> {
     }
 }
 
+/// A Nil space: faces by their planes, points in the chart, the end's direction the unit
+/// body velocity in the frame `E₁, E₂, E₃`.
+struct NilFamily;
+
+impl TraceFamily for NilFamily {
+    fn point_heading(&self) -> &'static str {
+        "entry point (chart)"
+    }
+    fn face_json(&self, face: usize) -> (&'static str, Value) {
+        ("face", json!(self.face_text(face)))
+    }
+    fn face_text(&self, face: usize) -> String {
+        [
+            "x = +1/2", "x = -1/2", "y = +1/2", "y = -1/2", "top", "bottom",
+        ]
+        .get(face)
+        .map_or_else(|| face.to_string(), |s| (*s).to_string())
+    }
+    fn point_json(&self, p: DVec4) -> Map<String, Value> {
+        let mut m = Map::new();
+        m.insert("point".into(), json!([p.x, p.y, p.z]));
+        m
+    }
+    fn point_text(&self, p: DVec4) -> String {
+        format!("({:+.15}, {:+.15}, {:+.15})", p.x, p.y, p.z)
+    }
+    fn end_json(&self, end: &Ray<DVec4>) -> Map<String, Value> {
+        let mut m = Map::new();
+        m.insert("direction".into(), json!(end.tangent.truncate().to_array()));
+        m
+    }
+}
+
 /// A product space (H²×R, S²×R): faces by name (`side k`, `top`, `bottom`), points as the
 /// chart point `(x/w, y/w, z)` beside the model point `[x, y, w, z]`.
 struct ProductFamily<'a>(&'a ProductSpace);
@@ -340,5 +373,6 @@ pub(super) fn trace(args: &TraceArgs) -> Result<(), String> {
     match space_named(&args.space)? {
         AnySpace::Constant(space) => trace_in(args, &*space, space.name(), &ConstantFamily(&space)),
         AnySpace::Product(space) => trace_in(args, &*space, space.name(), &ProductFamily(&space)),
+        AnySpace::Nil(space) => trace_in(args, &*space, space.name(), &NilFamily),
     }
 }

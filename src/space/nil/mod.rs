@@ -1,9 +1,12 @@
 //! Nil, the Heisenberg group with its left-invariant metric, the first of the geometries
 //! whose metric varies with the point (Thurston's eight: E³, S³, H³, H²×R, S²×R, Nil,
-//! SL̃(2,R), Sol). This folder holds what is Nil's own; so far its geodesic flow in closed
-//! form ([`flow`]), generic over precision, checked against an independent 40-digit
-//! integration of the geodesic equations (`tests/data/nil_geodesics.json`, written by
-//! `scripts/nil-reference.py`).
+//! SL̃(2,R), Sol). This folder holds what is Nil's own: its geodesic flow in closed form
+//! ([`flow`]), generic over precision, checked against an independent 40-digit integration
+//! of the geodesic equations (`tests/data/nil_geodesics.json`, written by
+//! `scripts/nil-reference.py`); the exits from the box solved to the last bit ([`exit`]);
+//! the walk ([`NilWalker`]); and the spaces `nil-K` with their invariants and the motion of
+//! frames by parallel transport ([`NilSpace`]). `info` and `trace` take them; pictures
+//! (the tracers, the plugin) are not written yet, and the commands that draw say so.
 //!
 //! Conventions:
 //! - the chart `(x, y, z) ∈ R³` with the metric `ds² = dx² + dy² + (dz − ½(x dy − y dx))²`;
@@ -14,8 +17,10 @@
 
 pub mod exit;
 pub mod flow;
+mod space;
 pub mod walk;
 
 pub use exit::{horizontal_exit, vertical_exit};
 pub use flow::{NilRay, flow, group_product};
+pub use space::{MAX_NIL_K, NilError, NilSpace, nil_space, translation_matrix, transport};
 pub use walk::{NIL_FACES, NilExit, NilWalker};

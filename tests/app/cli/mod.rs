@@ -7,6 +7,7 @@ mod bad_input;
 mod bench;
 mod commands;
 mod edges;
+mod nil;
 mod views;
 
 fn run(args: &[&str]) -> Output {

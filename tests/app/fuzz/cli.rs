@@ -32,6 +32,7 @@ fn hostile_numbers_on_the_command_line() {
         let vec3 = format!("{value},0,0");
         let circle = format!("surface-abABcdCD-circle-{value}");
         let turned = format!("surface-aA-circle-1-turn-{value}");
+        let nil = format!("nil-{value}");
         let cases: Vec<Vec<&str>> = vec![
             // Every numeric option of the fluence sum.
             vec!["light", "torus", "--at", &vec3],
@@ -133,6 +134,20 @@ fn hostile_numbers_on_the_command_line() {
             ],
             vec!["trace", "torus", "--dir", "1,0,0", "--distance", value],
             vec!["trace", "torus", "--dir", "1,0,0", "--crossings", value],
+            // Nil: a hostile K, direction, start and distance.
+            vec!["info", &nil],
+            vec!["trace", "nil-3", "--dir", &vec3, "--crossings", "3"],
+            vec![
+                "trace",
+                "nil-50",
+                "--from",
+                &vec3,
+                "--dir",
+                "0.3,0.4,0.5",
+                "--distance",
+                "2",
+            ],
+            vec!["trace", "nil-1", "--dir", "1,0,0.2", "--distance", value],
             // Product spaces: a hostile length, turn, direction and start.
             vec!["info", &circle],
             vec!["info", &turned],
