@@ -18,7 +18,7 @@
 //! Keys lie in the universal cover: between two keys the camera moves along the geodesic
 //! joining their positions while looking at the point moving along the geodesic joining their
 //! targets, and each frame is brought back into the cell through the faces it passed
-//! ([`wrap_into_cell`]), turned by their pairings. So a key beyond a face is reached by
+//! ([`crate::space::wrap_into_cell`]), turned by their pairings. So a key beyond a face is reached by
 //! flying there, and the view arrives turned by the holonomy of the way. In S³ every
 //! position and target must lie within π/2 of the centre.
 

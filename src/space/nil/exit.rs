@@ -3,7 +3,7 @@
 //!
 //! **Vertical planes** `n·(x, y) = r` (`n` a unit vector of the xy-plane). The horizontal
 //! displacement is `D(t) = w S(t) + w⊥ C(t)` (`w = (u₁, u₂)`, `w⊥ = (−u₂, u₁)`, `S` and `C`
-//! of [`super::flow`]), so the plane is met where `α S + β C = d` with `α = n·w`,
+//! of [`mod@super::flow`]), so the plane is met where `α S + β C = d` with `α = n·w`,
 //! `β = n·w⊥`, `d = r − n·p`. With `θ = ct` and `τ = tan(θ/2)` this is the quadratic
 //! `(2β − cd) τ² + 2α τ − cd = 0`: the horizontal shadow is a circle of radius `a/|c|`,
 //! which meets the line twice or never. Its roots are taken in the stable forms

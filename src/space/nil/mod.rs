@@ -1,9 +1,9 @@
 //! Nil, the Heisenberg group with its left-invariant metric, the first of the geometries
 //! whose metric varies with the point (Thurston's eight: E³, S³, H³, H²×R, S²×R, Nil,
 //! SL̃(2,R), Sol). This folder holds what is Nil's own: its geodesic flow in closed form
-//! ([`flow`]), generic over precision, checked against an independent 40-digit integration
+//! ([`mod@flow`]), generic over precision, checked against an independent 40-digit integration
 //! of the geodesic equations (`tests/data/nil_geodesics.json`, written by
-//! `scripts/nil-reference.py`); the exits from the box solved to the last bit ([`exit`]);
+//! `scripts/nil-reference.py`); the exits from the box solved to the last bit ([`mod@exit`]);
 //! the walk ([`NilWalker`]); and the spaces `nil-K` with their invariants and the motion of
 //! frames by parallel transport ([`NilSpace`]). `info` and `trace` take them; pictures
 //! (the tracers, the plugin) are not written yet, and the commands that draw say so.

@@ -4,7 +4,7 @@
 //! A moving ball flies along the product geodesic of its velocity (given in its frame at
 //! the start: the centre's axes carried to its position, `z` the fibre) and comes back
 //! into the cell through the faces it passes ([`crate::space::FrameSpace`]'s
-//! `step_velocity` and `wrap_frame`, in the steps of [`fly`]). A still picture at a time places it there
+//! `step_velocity` and `wrap_frame`, in the steps of [`crate::space::motion::fly`]). A still picture at a time places it there
 //! ([`ProductMover::object_at`]); the plugin flies it as an entity.
 
 use super::{ProductObject, ProductShape};
