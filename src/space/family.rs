@@ -406,6 +406,12 @@ impl CentreFrame for ProductSpace {
     }
 }
 
+impl CentreFrame for NilSpace {
+    fn frame_from_centre(&self, offset: DVec3) -> DMat4 {
+        NilSpace::frame_from_centre(self, offset)
+    }
+}
+
 impl CentreFrame for AnySpace {
     fn frame_from_centre(&self, offset: DVec3) -> DMat4 {
         match self {

@@ -388,9 +388,3 @@ impl FrameSpace for NilSpace {
         (f, crossed)
     }
 }
-
-impl crate::space::family::CentreFrame for NilSpace {
-    fn frame_from_centre(&self, offset: DVec3) -> DMat4 {
-        NilSpace::frame_from_centre(self, offset)
-    }
-}
