@@ -15,11 +15,13 @@
 //! - velocities in the orthonormal left-invariant frame `E₁ = ∂x − (y/2)∂z`,
 //!   `E₂ = ∂y + (x/2)∂z`, `E₃ = ∂z` (the *body* velocity), which a left translation keeps.
 
+pub mod distance;
 pub mod exit;
 pub mod flow;
 mod space;
 pub mod walk;
 
+pub use distance::{distance, shortest};
 pub use exit::{horizontal_exit, vertical_exit};
 pub use flow::{NilRay, flow, group_product};
 pub use space::{MAX_NIL_K, NilError, NilSpace, nil_space, translation_matrix, transport};
