@@ -12,6 +12,7 @@
 
 use bevy_curved_spaces::geometry::{Geometry, Ray, Vector4};
 use bevy_curved_spaces::random::SplitMix64;
+use bevy_curved_spaces::space::nil::{self, NilSpace};
 use bevy_curved_spaces::space::product::motion::camera_frame;
 use bevy_curved_spaces::space::product::{ProductSpace, ProductWalker};
 use bevy_curved_spaces::space::{CellWalk, FamilySpace, FrameMotion, FrameSpace, Limit, Space};
@@ -29,8 +30,10 @@ trait LawFamily: Sized {
     fn space(&self) -> &Self::Space;
     /// The point at distance `t` along the cover geodesic of `start`.
     fn cover_point(&self, start: &Ray<DVec4>, t: f64) -> DVec4;
-    /// A cover point carried through the pairing of `face`, as the walk carries its ray.
-    fn carried(&self, face: usize, p: DVec4) -> DVec4;
+    /// A cover point carried through the pairing of a crossing's face, as the walk carries
+    /// its ray (`entry`: where the crossing entered, for a family whose faces are paired
+    /// piecewise, by where a ray crosses them).
+    fn carried(&self, face: usize, entry: DVec4, p: DVec4) -> DVec4;
     /// How far two points are apart, in the model's entries (the sign of a point of S³
     /// matters: the walk keeps it).
     fn gap(&self, a: DVec4, b: DVec4) -> f64 {
@@ -43,6 +46,13 @@ trait LawFamily: Sized {
     /// The shift along the fibre of a wrap through `face` (a product's top and bottom).
     fn fibre_shift(&self, _face: usize) -> f64 {
         0.0
+    }
+    /// The cover frame carried by the holonomy of the wraps (`held`, the pairings' product,
+    /// and `shift` along a fibre): the matrix applied to the whole frame, by default.
+    fn carry_frame(&self, held: DMat4, shift: f64, cover: DMat4) -> DMat4 {
+        let mut carried = held * cover;
+        carried.w_axis.z += shift;
+        carried
     }
     /// A unit ray from the cell's centre in the chart direction `d`.
     fn ray(&self, d: DVec3) -> Ray<DVec4> {
@@ -85,7 +95,7 @@ impl LawFamily for Constant {
             _ => g.project_point(p),
         }
     }
-    fn carried(&self, face: usize, p: DVec4) -> DVec4 {
+    fn carried(&self, face: usize, _entry: DVec4, p: DVec4) -> DVec4 {
         let q = self.0.faces()[face].pairing * p;
         match self.0.geometry() {
             Geometry::Euclidean => q / q.w,
@@ -134,7 +144,7 @@ impl LawFamily for Product {
         let b = if lambda > 0.0 { pb * c + vb * s } else { pb };
         DVec4::new(b.x, b.y, start.point.z + v.z * t, b.w)
     }
-    fn carried(&self, face: usize, p: DVec4) -> DVec4 {
+    fn carried(&self, face: usize, _entry: DVec4, p: DVec4) -> DVec4 {
         let w = ProductWalker::<DVec4>::new(&self.0);
         let base = DVec4::new(p.x, p.y, 0.0, p.w);
         let (m, dz): (DMat4, f64) = if face == w.top() {
@@ -170,6 +180,70 @@ impl LawFamily for Product {
     }
 }
 
+/// A Nil space: the box of `nil-K`, its sides paired piecewise.
+struct Nil(NilSpace);
+
+impl LawFamily for Nil {
+    type Space = NilSpace;
+    fn cases() -> Vec<(String, Self)> {
+        // (nil-50's box is so thin that the player's random walk of 2 000 small steps
+        // crosses it only a few times; its walks are tested in nil.rs.)
+        [1, 3, 8]
+            .into_iter()
+            .map(|k| (format!("nil-{k}"), Nil(NilSpace::new(k))))
+            .collect()
+    }
+    fn space(&self) -> &NilSpace {
+        &self.0
+    }
+    fn cover_point(&self, start: &Ray<DVec4>, t: f64) -> DVec4 {
+        let end = nil::flow(
+            &nil::NilRay {
+                point: start.point.truncate().to_array(),
+                velocity: start.tangent.truncate().to_array(),
+            },
+            t,
+        );
+        DVec3::from_array(end.point).extend(1.0)
+    }
+    /// The element a crossing applied, found from where it entered (not from the walker's
+    /// own choice): the side's generator `G` and the power of the centre `C^m` with the exit
+    /// point `C^{−m} G⁻¹ · entry` in the box; the top and bottom by `C^{∓1}`.
+    fn carried(&self, face: usize, entry: DVec4, p: DVec4) -> DVec4 {
+        let k = f64::from(self.0.k());
+        let generator = match face {
+            0 => [-1.0, 0.0, 0.0],
+            1 => [1.0, 0.0, 0.0],
+            2 => [0.0, -1.0, 0.0],
+            3 => [0.0, 1.0, 0.0],
+            4 => [0.0, 0.0, -1.0 / k],
+            _ => [0.0, 0.0, 1.0 / k],
+        };
+        let g = if face < 4 {
+            let back = generator.map(|x: f64| -x);
+            let exit = nil::group_product(back, entry.truncate().to_array());
+            let m = (exit[2] * k).round();
+            nil::group_product([0.0, 0.0, m / k], generator)
+        } else {
+            generator
+        };
+        DVec3::from_array(nil::group_product(g, p.truncate().to_array())).extend(1.0)
+    }
+    fn tolerance(&self, d: f64) -> f64 {
+        // Nil's geodesics spread polynomially.
+        1e-12 * (1.0 + d * d)
+    }
+    fn player_start(&self) -> DMat4 {
+        DMat4::IDENTITY
+    }
+    /// A left translation moves the point and keeps the body axes.
+    fn carry_frame(&self, held: DMat4, _shift: f64, cover: DMat4) -> DMat4 {
+        let mut carried = cover;
+        carried.w_axis = held * cover.w_axis;
+        carried
+    }
+}
+
 /// The player's wrap margin (the plugin's default).
 const MARGIN: f64 = 1e-4;
 
@@ -187,13 +261,13 @@ fn walk_ends_on_the_cover_geodesic<F: LawFamily>() {
             let length = 3.0;
             let mut faces = Vec::new();
             let (end, walked) = walker.walk(start, Limit::Distance(length), |c| {
-                faces.push(c.face);
+                faces.push((c.face, c.ray.point));
                 true
             });
             assert_eq!(walked, length, "{name}");
             let mut q = family.cover_point(&start, length);
-            for &f in &faces {
-                q = family.carried(f, q);
+            for &(f, entry) in &faces {
+                q = family.carried(f, entry, q);
             }
             let gap = family.gap(q, end.point);
             assert!(
@@ -306,8 +380,7 @@ fn a_player_wraps_with_its_holonomy<F: LawFamily>() {
             assert!(space.outside_by(wrapped.w_axis) <= 2.0 * MARGIN, "{name}");
             assert!(space.frame_defect(wrapped) < 1e-9, "{name}");
         }
-        let mut carried = held * cover;
-        carried.w_axis.z += shift;
+        let carried = family.carry_frame(held, shift, cover);
         let gap = (0..4)
             .map(|c| family.gap(carried.col(c), wrapped.col(c)))
             .fold(0.0, f64::max);
@@ -358,3 +431,4 @@ macro_rules! family_laws {
 
 family_laws!(constant_curvature, Constant);
 family_laws!(products, Product);
+family_laws!(nil_spaces, Nil);
