@@ -15,12 +15,14 @@
 //! - velocities in the orthonormal left-invariant frame `E₁ = ∂x − (y/2)∂z`,
 //!   `E₂ = ∂y + (x/2)∂z`, `E₃ = ∂z` (the *body* velocity), which a left translation keeps.
 
+pub mod ball;
 pub mod distance;
 pub mod exit;
 pub mod flow;
 mod space;
 pub mod walk;
 
+pub use ball::{ball_hit, normal};
 pub use distance::{distance, shortest};
 pub use exit::{horizontal_exit, vertical_exit};
 pub use flow::{NilRay, flow, group_product};

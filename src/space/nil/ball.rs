@@ -1,0 +1,121 @@
+//! Metric balls of Nil: the points within `r` of a centre by Nil's own distance
+//! ([`super::distance`]), not a chart solid. Where a geodesic ray first meets one, and the
+//! ball's outward normal there.
+//!
+//! Along a unit-speed geodesic `γ`, `f(t) = d(γ(t), c) − r` changes at rate at most 1 (the
+//! distance is 1-Lipschitz), so no root of `f` lies before `t + f(t)`: steps of `f(t)` are
+//! safe, and they approach the first root from outside. Once a Newton step from there lands
+//! inside the ball (`f < 0`), the root is bracketed with no other before it, and bisection
+//! safeguarding Newton's steps finds it to the last bit (the rate `f′` is the cosine between
+//! the ray and the ball's normal, [`normal`]). A ray that only grazes the ball (`f′ → 0`
+//! at a double root) is the one ill-conditioned case: it is a miss where the safe steps
+//! shrink below the precision without entering.
+
+use super::distance::shortest;
+use super::flow::{NilRay, flow};
+use crate::geometry::Real;
+
+/// Most safe steps and refinements a ball hit takes (safe steps shrink linearly towards a
+/// transversal hit, and only near a graze do they take many).
+const MAX_BALL_STEPS: usize = 2000;
+
+/// The ball's outward unit normal at `p` (in the left-invariant frame): the velocity at
+/// `p` of the shortest geodesic from the centre, the gradient of the distance to it.
+#[must_use]
+pub fn normal<R: Real>(centre: [R; 3], p: [R; 3]) -> [R; 3] {
+    let (length, velocity) = shortest(centre, p);
+    flow(
+        &NilRay {
+            point: centre,
+            velocity,
+        },
+        length,
+    )
+    .velocity
+}
+
+/// `f(t) = d(γ(t), c) − r` and its rate `⟨γ′(t), normal⟩`.
+fn gap_and_rate<R: Real>(ray: &NilRay<R>, centre: [R; 3], radius: R, t: R) -> (R, R) {
+    let at = flow(ray, t);
+    let (length, _) = shortest(centre, at.point);
+    let n = normal(centre, at.point);
+    let rate = n[0] * at.velocity[0] + n[1] * at.velocity[1] + n[2] * at.velocity[2];
+    (length - radius, rate)
+}
+
+/// The first time `t` in `[0, t_max]` at which `ray` (a unit body velocity) meets the
+/// metric ball of `radius` about `centre`; `Some(0)` for a start inside it, `None` for a
+/// miss or a graze (see the module).
+#[must_use]
+pub fn ball_hit<R: Real>(ray: &NilRay<R>, centre: [R; 3], radius: R, t_max: R) -> Option<R> {
+    let zero = R::ZERO;
+    let (mut t, mut f) = (zero, gap_and_rate(ray, centre, radius, zero).0);
+    if !(f > zero) {
+        return (f <= zero).then_some(zero);
+    }
+    // The smallest safe step worth taking: below it the ray grazes.
+    let floor = R::from_f64(16.0) * R::EPSILON * (R::ONE + radius + t_max.min(R::from_f64(1e6)));
+    for _ in 0..MAX_BALL_STEPS {
+        // A Newton step: inside the ball, it brackets the first root.
+        let (_, rate) = gap_and_rate(ray, centre, radius, t);
+        if rate < zero {
+            let guess = t - f / rate;
+            if guess <= t_max {
+                let (g, _) = gap_and_rate(ray, centre, radius, guess);
+                if g <= zero {
+                    return Some(refine(ray, centre, radius, (t, f), guess));
+                }
+            }
+        }
+        if f < floor {
+            // At the surface to the precision: a hit where the ray enters across it, a graze
+            // (a miss) where it runs along it.
+            return (rate < -floor.sqrt()).then_some(t);
+        }
+        let before = t;
+        t = t + f;
+        if t > t_max {
+            return None;
+        }
+        f = gap_and_rate(ray, centre, radius, t).0;
+        if f == zero {
+            return Some(t);
+        }
+        if f < zero {
+            // Rounding put the safe step a hair past the root: it lies in (before, t].
+            let f_before = gap_and_rate(ray, centre, radius, before).0;
+            return Some(refine(ray, centre, radius, (before, f_before), t));
+        }
+    }
+    None
+}
+
+/// The root of `f` between `lo` (outside, `f > 0`, no root before it) and `hi` (inside).
+fn refine<R: Real>(ray: &NilRay<R>, centre: [R; 3], radius: R, lo: (R, R), hi: R) -> R {
+    let zero = R::ZERO;
+    let half = R::from_f64(0.5);
+    let (mut lo, mut hi) = (lo.0, hi);
+    let mut t = half * (lo + hi);
+    for _ in 0..MAX_BALL_STEPS {
+        let (value, rate) = gap_and_rate(ray, centre, radius, t);
+        if value == zero {
+            return t;
+        }
+        if value > zero {
+            lo = t;
+        } else {
+            hi = t;
+        }
+        let newton = t - value / rate;
+        let next = if rate != zero && newton > lo && newton < hi {
+            newton
+        } else {
+            half * (lo + hi)
+        };
+        if next == t || !(lo < hi) {
+            break;
+        }
+        t = next;
+    }
+    t
+}
