@@ -1,5 +1,5 @@
 //! Metric balls of Nil: the points within `r` of a centre by Nil's own distance
-//! ([`super::distance`]), not a chart solid. Where a geodesic ray first meets one, and the
+//! ([`mod@super::distance`]), not a chart solid. Where a geodesic ray first meets one, and the
 //! ball's outward normal there.
 //!
 //! Along a unit-speed geodesic `γ`, `f(t) = d(γ(t), c) − r` changes at rate at most 1 (the
