@@ -13,6 +13,7 @@
 
 use super::distance::shortest;
 use super::flow::{NilRay, flow};
+use super::{bracketed_root, half_way};
 use crate::geometry::Real;
 
 /// Most safe steps and refinements a ball hit takes (safe steps shrink linearly towards a
@@ -89,33 +90,8 @@ pub fn ball_hit<R: Real>(ray: &NilRay<R>, centre: [R; 3], radius: R, t_max: R) -
     }
     None
 }
-
 /// The root of `f` between `lo` (outside, `f > 0`, no root before it) and `hi` (inside).
 fn refine<R: Real>(ray: &NilRay<R>, centre: [R; 3], radius: R, lo: (R, R), hi: R) -> R {
-    let zero = R::ZERO;
-    let half = R::from_f64(0.5);
-    let (mut lo, mut hi) = (lo.0, hi);
-    let mut t = half * (lo + hi);
-    for _ in 0..MAX_BALL_STEPS {
-        let (value, rate) = gap_and_rate(ray, centre, radius, t);
-        if value == zero {
-            return t;
-        }
-        if value > zero {
-            lo = t;
-        } else {
-            hi = t;
-        }
-        let newton = t - value / rate;
-        let next = if rate != zero && newton > lo && newton < hi {
-            newton
-        } else {
-            half * (lo + hi)
-        };
-        if next == t || !(lo < hi) {
-            break;
-        }
-        t = next;
-    }
-    t
+    let f = |t: R| gap_and_rate(ray, centre, radius, t);
+    bracketed_root(&f, (lo.0, hi), half_way(lo.0, hi), |value| value > R::ZERO)
 }

@@ -21,6 +21,7 @@
 //! vertical line is shortest up to `|Z| = 2π` and a helix beyond, of length
 //! `2π √(|Z|/π − 1)` (a circle of them: the one starting along `E₁` is taken).
 
+use super::bracketed_root;
 use super::flow::{NilRay, flow_terms, group_product};
 use crate::geometry::Real;
 
@@ -77,41 +78,19 @@ pub fn shortest<R: Real>(p: [R; 3], q: [R; 3]) -> (R, [R; 3]) {
     };
     let complement = h(pi, false).0 < zero;
     // The variable's bracket: h rises with θ, falls with δ.
-    let (mut lo, mut hi) = (zero, pi);
-    let below = |value: R| {
-        if complement {
-            value > zero
-        } else {
-            value < zero
-        }
-    };
-    let mut v = if complement {
+    let start = if complement {
         half * pi
     } else {
         // The small-θ root θ ≈ |Z|/(1 + ρ²/12).
         (height / (one + rho2 / R::from_f64(12.0))).min(pi)
     };
-    for _ in 0..200 {
-        let (value, rate) = h(v, complement);
-        if value == zero {
-            break;
-        }
-        if below(value) {
-            lo = v;
+    let v = bracketed_root(&|v| h(v, complement), (zero, pi), start, |value| {
+        if complement {
+            value > zero
         } else {
-            hi = v;
+            value < zero
         }
-        let newton = v - value / rate;
-        let next = if rate != zero && newton > lo && newton < hi {
-            newton
-        } else {
-            half * (lo + hi)
-        };
-        if next == v || !(lo < hi) {
-            break;
-        }
-        v = next;
-    }
+    });
     let t = if complement { two_pi - v } else { v };
     let (_, sin_half) = (v * half).cos_sin();
     let chord = (rho2 + R::from_f64(4.0) * sin_half * sin_half).sqrt();

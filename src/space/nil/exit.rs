@@ -23,6 +23,7 @@
 //! that is the problem's conditioning, not the method's.
 
 use super::flow::{NilRay, flow_terms};
+use super::{bracketed_root, half_way};
 use crate::geometry::Real;
 
 /// π to the type's precision: the `f64` nearest π and what it leaves out (which double-double
@@ -176,10 +177,6 @@ fn turning_points<R: Real>(ray: &NilRay<R>, before: R) -> Vec<R> {
     out
 }
 
-/// Most bisection-safeguarded Newton steps of a horizontal exit (each at least halves the
-/// bracket once Newton fails, so 200 reach double-double's last bit from any bracket).
-const MAX_ROOT_STEPS: usize = 200;
-
 /// The first time `t` in `(0, before]` at which `ray` meets the horizontal plane `z = h`,
 /// or `None` before `before` (which may be infinite). A ray that starts on the plane is not
 /// said to meet it there: its first crossing ahead is after the height's first turn.
@@ -233,7 +230,8 @@ pub fn horizontal_exit<R: Real>(ray: &NilRay<R>, h: R, before: R) -> Option<R> {
         // exit ahead).
         let from_the_plane = lo == zero && f_lo == zero;
         if straddles && !from_the_plane {
-            let root = bracketed_root(&f, lo, hi, f_lo);
+            let rising = f_lo < zero;
+            let root = bracketed_root(&f, (lo, hi), half_way(lo, hi), |v| (v < zero) == rising);
             if root > zero {
                 return Some(root);
             }
@@ -241,37 +239,4 @@ pub fn horizontal_exit<R: Real>(ray: &NilRay<R>, h: R, before: R) -> Option<R> {
         (lo, f_lo) = (hi, f_hi);
     }
     None
-}
-
-/// The root of `f` in `[lo, hi]`, where `f(lo)` and `f(hi)` have opposite signs (or one is
-/// 0) and `f` is monotone: Newton's steps where they stay inside the bracket, bisection
-/// where they do not, until the bracket stops shrinking.
-fn bracketed_root<R: Real>(f: &impl Fn(R) -> (R, R), lo: R, hi: R, f_lo: R) -> R {
-    let zero = R::ZERO;
-    let half = R::from_f64(0.5);
-    let (mut lo, mut hi) = (lo, hi);
-    let rising = f_lo < zero;
-    let mut t = half * (lo + hi);
-    for _ in 0..MAX_ROOT_STEPS {
-        let (value, rate) = f(t);
-        if value == zero {
-            return t;
-        }
-        if (value < zero) == rising {
-            lo = t;
-        } else {
-            hi = t;
-        }
-        let newton = t - value / rate;
-        let next = if rate != zero && newton > lo && newton < hi {
-            newton
-        } else {
-            half * (lo + hi)
-        };
-        if next == t || !(lo < hi) || next <= lo && next >= hi {
-            break;
-        }
-        t = next;
-    }
-    t
 }

@@ -28,3 +28,52 @@ pub use exit::{horizontal_exit, vertical_exit};
 pub use flow::{NilRay, flow, group_product};
 pub use space::{MAX_NIL_K, NilError, NilSpace, nil_space, translation_matrix, transport};
 pub use walk::{NIL_FACES, NilExit, NilWalker};
+
+use crate::geometry::Real;
+
+/// Half way between `lo` and `hi`.
+fn half_way<R: Real>(lo: R, hi: R) -> R {
+    R::from_f64(0.5) * (lo + hi)
+}
+
+/// Most steps of [`bracketed_root`]: each Newton step that fails is replaced by a bisection,
+/// so 200 reach double-double's last bit from any bracket.
+const MAX_ROOT_STEPS: usize = 200;
+
+/// The root of `f` (its value and rate at a point) in the bracket `(lo, hi)`, where it
+/// changes sign once, from `start`: Newton's steps where they stay inside the bracket,
+/// bisection where they do not, until the bracket stops shrinking. `below(value)` says
+/// whether a value lies on `lo`'s side of the root. Nil's horizontal exits, its distance's
+/// winding angle and its balls' hits all finish with it.
+fn bracketed_root<R: Real>(
+    f: &impl Fn(R) -> (R, R),
+    (lo, hi): (R, R),
+    start: R,
+    below: impl Fn(R) -> bool,
+) -> R {
+    let zero = R::ZERO;
+    let (mut lo, mut hi) = (lo, hi);
+    let mut t = start;
+    for _ in 0..MAX_ROOT_STEPS {
+        let (value, rate) = f(t);
+        if value == zero {
+            return t;
+        }
+        if below(value) {
+            lo = t;
+        } else {
+            hi = t;
+        }
+        let newton = t - value / rate;
+        let next = if rate != zero && newton > lo && newton < hi {
+            newton
+        } else {
+            half_way(lo, hi)
+        };
+        if next == t || !(lo < hi) {
+            break;
+        }
+        t = next;
+    }
+    t
+}
