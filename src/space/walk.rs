@@ -452,12 +452,21 @@ impl<V: Vector4> CellWalker<V> {
         if let Some(f) = skip {
             return Some(self.face_cells[f]);
         }
-        let cells = self.face_cells.iter().max().map_or(0, |c| c + 1);
-        let mut outside = vec![V::Real::from_f64(f64::NEG_INFINITY); cells];
-        for (n, &c) in self.covectors.iter().zip(&self.face_cells) {
-            outside[c] = outside[c].max(n.dot(ray.point));
+        // A cell's faces are a run: one pass, no allocation (this runs at every start).
+        let mut best: Option<(usize, V::Real)> = None;
+        let mut f = 0;
+        while f < self.face_cells.len() {
+            let cell = self.face_cells[f];
+            let mut outside = V::Real::from_f64(f64::NEG_INFINITY);
+            while f < self.face_cells.len() && self.face_cells[f] == cell {
+                outside = outside.max(self.covectors[f].dot(ray.point));
+                f += 1;
+            }
+            if best.is_none_or(|(_, least)| outside < least) {
+                best = Some((cell, outside));
+            }
         }
-        (0..cells).reduce(|a, b| if outside[b] < outside[a] { b } else { a })
+        best.map(|(cell, _)| cell)
     }
 
     /// The cell a walk enters through `exit`'s face (0 in a space of one cell, and the

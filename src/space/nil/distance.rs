@@ -21,8 +21,8 @@
 //! vertical line is shortest up to `|Z| = 2π` and a helix beyond, of length
 //! `2π √(|Z|/π − 1)` (a circle of them: the one starting along `E₁` is taken).
 
-use super::bracketed_root;
 use super::flow::{NilRay, flow_terms, group_product};
+use super::{bracketed_root, pi};
 use crate::geometry::Real;
 
 /// The shortest geodesic from `p` to `q`: its length and its unit start velocity in the
@@ -36,7 +36,7 @@ pub fn shortest<R: Real>(p: [R; 3], q: [R; 3]) -> (R, [R; 3]) {
     let one = R::ONE;
     let two = R::from_f64(2.0);
     let half = R::from_f64(0.5);
-    let pi = R::from_f64(std::f64::consts::PI) + R::from_f64(1.224_646_799_147_353_2e-16);
+    let pi = pi::<R>();
     let rho2 = x * x + y * y;
     let height = z.abs();
     let up = if z < zero { -one } else { one };

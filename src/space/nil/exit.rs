@@ -23,14 +23,8 @@
 //! that is the problem's conditioning, not the method's.
 
 use super::flow::{NilRay, flow_terms};
-use super::{bracketed_root, half_way};
+use super::{bracketed_root, half_way, pi};
 use crate::geometry::Real;
-
-/// π to the type's precision: the `f64` nearest π and what it leaves out (which double-double
-/// keeps and the others round away).
-fn pi<R: Real>() -> R {
-    R::from_f64(std::f64::consts::PI) + R::from_f64(1.224_646_799_147_353_2e-16)
-}
 
 /// The first time `t > 0` at which `ray` meets the vertical plane `n·(x, y) = r` (`n` a
 /// unit vector of the xy-plane; the start on the side `n·p ≤ r`), or `None` if its

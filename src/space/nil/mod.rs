@@ -31,6 +31,12 @@ pub use walk::{NIL_FACES, NilExit, NilWalker};
 
 use crate::geometry::Real;
 
+/// π to the type's precision: the `f64` nearest π and what it leaves out (which
+/// double-double keeps and the others round away).
+fn pi<R: Real>() -> R {
+    R::from_f64(std::f64::consts::PI) + R::from_f64(1.224_646_799_147_353_2e-16)
+}
+
 /// Half way between `lo` and `hi`.
 fn half_way<R: Real>(lo: R, hi: R) -> R {
     R::from_f64(0.5) * (lo + hi)
