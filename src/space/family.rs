@@ -70,6 +70,10 @@ pub enum Feature {
     EveryImageBound,
     /// Pictures: `render`, `walk`, `flight`, `light`, `bench` and the plugin.
     Pictures,
+    /// The cell's walls with windows (`--walls`).
+    Walls,
+    /// The teaching views (`--colour-by`).
+    TeachingViews,
 }
 
 impl Feature {
@@ -86,8 +90,11 @@ impl Feature {
             Feature::SoftShadows => "lamps of a radius (soft shadows)",
             Feature::EveryImageBound => "a bound on the light of the lamp images left out",
             Feature::Pictures => {
-                "pictures (`render`, `walk`, `flight`, `light`, `bench`, the plugin)"
+                "pictures on the GPU (`render` without `--cpu`, `walk`, `flight`, `light`, \
+                 `bench`, the plugin)"
             }
+            Feature::Walls => "walls with windows (`--walls`)",
+            Feature::TeachingViews => "the teaching views (`--colour-by`)",
         }
     }
 }
@@ -115,7 +122,9 @@ impl Family {
                 Feature::RecordFlight
                 | Feature::Headset
                 | Feature::MovingObjects
-                | Feature::Pictures,
+                | Feature::Pictures
+                | Feature::Walls
+                | Feature::TeachingViews,
             ) => return Ok(()),
             (Family::Nil, Feature::Export) => {
                 "a Nil space is written by its id (`nil-K`), which holds all of it"
@@ -124,9 +133,14 @@ impl Family {
                 "a Nil cell is the box about the origin; `--basepoint` moves the Dirichlet \
                  domains of generator files"
             }
+            (Family::Nil, Feature::Pictures) => {
+                "a Nil space is drawn by the f64 CPU reference (`render --cpu`); its GPU tracer, \
+                 and so `walk`, `flight`, `light`, `bench` and the plugin, are not written yet"
+            }
+            (Family::Nil, Feature::SoftShadows) => "a Nil lamp is a point",
             (Family::Nil, _) => {
-                "the Nil family walks its geodesics exactly (`info` and `trace` take it), but its \
-                 tracers and scenes (metric balls, its light) are not written yet"
+                "the Nil family draws its default scene (`render --cpu`); scene files, moving \
+                 objects, walls and the teaching views are not written for it yet"
             }
             (Family::Product, Feature::SceneParts) => {
                 "a product scene file's `edges` and `centre_ball` choose the parts"

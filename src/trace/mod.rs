@@ -3,6 +3,7 @@
 //! automatic crossing budget.
 
 mod budget;
+pub mod nil;
 pub mod product;
 mod render;
 
@@ -13,3 +14,41 @@ pub use render::{
     first_hit_traced, first_hit_walled, path_hash, ray_story, reflected_ray, render, render_view,
     render_with_progress, to_byte, trace_pixel, walls_of,
 };
+
+/// The picture of `layout` with the colour of each camera ray (a frame's fourth column its
+/// point, the ray along `x·right + y·up − back`), rows in parallel; an anaglyph mixes both
+/// eyes' colours. The renderers of the families that walk their own rays share it.
+pub(crate) fn render_layout(
+    layout: &crate::view::ViewLayout,
+    colour_of_ray: impl Fn(crate::geometry::Ray<glam::DVec4>) -> glam::DVec3 + Sync,
+) -> image::RgbImage {
+    use rayon::prelude::*;
+    let (width, height) = (layout.size[0] as u32, layout.size[1] as u32);
+    let colour = |eye: usize, [u, v]: [f64; 2]| {
+        let f = layout.frames[eye];
+        let (x, y) = layout.lens.at(u, v);
+        colour_of_ray(crate::geometry::Ray {
+            point: f.w_axis,
+            tangent: f.x_axis * x + f.y_axis * y - f.z_axis,
+        })
+        .clamp(glam::DVec3::ZERO, glam::DVec3::ONE)
+    };
+    let rows: Vec<Vec<u8>> = (0..height)
+        .into_par_iter()
+        .map(|j| {
+            (0..width)
+                .flat_map(|i| {
+                    let (eye, uv) = layout.eye_at(f64::from(i) + 0.5, f64::from(j) + 0.5);
+                    let c = match layout.kind {
+                        crate::view::ViewKind::Anaglyph => {
+                            layout.mix_anaglyph(colour(0, uv), colour(1, uv))
+                        }
+                        _ => colour(eye, uv),
+                    };
+                    c.to_array().map(to_byte)
+                })
+                .collect()
+        })
+        .collect();
+    image::RgbImage::from_raw(width, height, rows.concat()).expect("width × height pixels")
+}

@@ -44,6 +44,12 @@ pub(super) fn flight(args: &FlightArgs) -> Result<(), String> {
     let chosen: Chosen = match choice {
         Choice::Constant(chosen) => chosen,
         Choice::Product(product) => return flight_product(args, &name, &file, product),
+        Choice::Nil(space) => {
+            return Err(super::spaces::refused(
+                &bevy_curved_spaces::space::AnySpace::Nil(space),
+                bevy_curved_spaces::space::Feature::Pictures,
+            ));
+        }
     };
     let space = &chosen.space;
     let flight = Flight::new(space, &file).map_err(|e| format!("{name}: {e}"))?;

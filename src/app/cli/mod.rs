@@ -7,6 +7,7 @@ mod info;
 mod light;
 mod parse;
 mod render;
+mod render_nil;
 mod spaces;
 mod trace;
 mod walk;

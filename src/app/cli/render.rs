@@ -77,6 +77,8 @@ pub(super) enum Choice {
     Constant(Chosen),
     /// H²×R, S²×R.
     Product(ProductChoice),
+    /// Nil (its default scene; `render --cpu` draws it).
+    Nil(std::sync::Arc<bevy_curved_spaces::space::nil::NilSpace>),
 }
 
 pub(super) fn choose(
@@ -111,12 +113,7 @@ pub(super) fn choose(
         }));
     }
     Ok(match super::space_named(space_arg)? {
-        nil @ AnySpace::Nil(_) => {
-            return Err(super::spaces::refused(
-                &nil,
-                bevy_curved_spaces::space::Feature::Pictures,
-            ));
-        }
+        AnySpace::Nil(space) => Choice::Nil(space),
         AnySpace::Product(space) => {
             let space = std::sync::Arc::unwrap_or_clone(space);
             Choice::Product(ProductChoice {
@@ -293,6 +290,7 @@ fn render_product_command(args: &RenderArgs, chosen: ProductChoice) -> Result<()
 pub(super) fn render_command(args: &RenderArgs) -> Result<(), String> {
     let mut chosen = match choose(&args.space, args.scene.as_deref(), args.fog)? {
         Choice::Product(chosen) => return render_product_command(args, chosen),
+        Choice::Nil(space) => return super::render_nil::render_nil_command(args, &space),
         Choice::Constant(chosen) => chosen.at(args.time)?,
     };
     if args.view.changes_parts() {
@@ -485,7 +483,7 @@ fn render_gpu(args: &RenderArgs, chosen: &Chosen, view: &View) -> Result<RgbImag
 }
 
 /// Writes the picture, creating its folder.
-fn save(image: &RgbImage, out: &Path) -> Result<(), String> {
+pub(super) fn save(image: &RgbImage, out: &Path) -> Result<(), String> {
     if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir)
             .map_err(|e| format!("cannot create folder {}: {e}", dir.display()))?;

@@ -129,6 +129,12 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
     };
     let chosen = match choose(&args.space, args.scene.as_deref(), args.fog)? {
         Choice::Constant(chosen) => chosen,
+        Choice::Nil(space) => {
+            return Err(super::spaces::refused(
+                &bevy_curved_spaces::space::AnySpace::Nil(space),
+                bevy_curved_spaces::space::Feature::Pictures,
+            ));
+        }
         Choice::Product(product) => {
             let flight = match &replay {
                 Some(file) => Some(

@@ -752,33 +752,7 @@ pub fn render_product_view(
     let walls = scene.walls.and_then(|style| {
         walls::ProductWalls::new(space, style, crate::scene::DEFAULT_CUTOFF_WEIGHT)
     });
-    let (width, height) = (layout.size[0] as u32, layout.size[1] as u32);
-    let colour = |eye: usize, [u, v]: [f64; 2]| {
-        let f = layout.frames[eye];
-        let (x, y) = layout.lens.at(u, v);
-        let ray = Ray {
-            point: f.w_axis,
-            tangent: f.x_axis * x + f.y_axis * y - f.z_axis,
-        };
+    super::render_layout(layout, |ray| {
         trace_product_pixel(&walker, walls.as_ref(), scene, ray, max_crossings)
-            .clamp(DVec3::ZERO, DVec3::ONE)
-    };
-    let rows: Vec<Vec<u8>> = (0..height)
-        .into_par_iter()
-        .map(|j| {
-            (0..width)
-                .flat_map(|i| {
-                    let (eye, uv) = layout.eye_at(f64::from(i) + 0.5, f64::from(j) + 0.5);
-                    let c = match layout.kind {
-                        crate::view::ViewKind::Anaglyph => {
-                            layout.mix_anaglyph(colour(0, uv), colour(1, uv))
-                        }
-                        _ => colour(eye, uv),
-                    };
-                    c.to_array().map(super::to_byte)
-                })
-                .collect()
-        })
-        .collect();
-    RgbImage::from_raw(width, height, rows.concat()).expect("width × height pixels")
+    })
 }

@@ -1,5 +1,5 @@
-//! The Nil spaces on the command line: `info` and `trace` take them, bad ids get a clear
-//! error, and the commands that draw say that Nil's pictures are not drawn yet.
+//! The Nil spaces on the command line: `info`, `trace` and `render --cpu` take them, bad
+//! ids get a clear error, and the commands that draw on the GPU say that they do not yet.
 
 use super::*;
 
@@ -83,10 +83,98 @@ fn bad_nil_ids_and_drawing_commands_get_clear_errors() {
         );
     }
     for args in [
-        &["render", "nil-3", "--cpu", "--size", "16x9"][..],
+        &["render", "nil-3", "--size", "16x9"][..],
         &["light", "nil-3", "--at", "0,0,0"][..],
         &["export", "nil-3"][..],
+        &[
+            "render", "nil-3", "--cpu", "--size", "16x9", "--walls", "0.5",
+        ][..],
+        &[
+            "render",
+            "nil-3",
+            "--cpu",
+            "--size",
+            "16x9",
+            "--colour-by",
+            "crossings",
+        ][..],
+        &[
+            "render",
+            "nil-3",
+            "--cpu",
+            "--size",
+            "16x9",
+            "--lamp-radius",
+            "0.5",
+            "--shadows",
+            "1",
+        ][..],
     ] {
         fails_with(args, "not in the Nil spaces");
     }
+    // The GPU's refusal says what draws instead.
+    fails_with(&["render", "nil-3", "--size", "16x9"], "render --cpu");
+    fails_with(
+        &[
+            "render",
+            "nil-3",
+            "--cpu",
+            "--size",
+            "16x9",
+            "--eye",
+            "0,0,0",
+            "--look-at",
+            "0,0,0",
+        ],
+        "looks at its own position",
+    );
+}
+
+#[test]
+fn render_draws_the_default_scene_with_the_cpu_reference() {
+    let dir = temp_dir("nil-render");
+    let out = dir.join("nil-1.png");
+    let path = out.to_str().expect("a UTF-8 path");
+    let output = run(&["render", "nil-1", "--cpu", "--size", "48x27", "--out", path]);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(stdout.contains("wrote"), "{stdout}");
+    let image = image::open(&out).expect("a PNG").to_rgb8();
+    assert_eq!(image.dimensions(), (48, 27));
+    // The picture shows objects (not all fog): many distinct colours.
+    let mut colours: Vec<[u8; 3]> = image.pixels().map(|p| p.0).collect();
+    colours.sort_unstable();
+    colours.dedup();
+    assert!(colours.len() > 100, "only {} colours", colours.len());
+    // Aimed at the centrepiece (a white ball), the middle pixel is grey, not the fog.
+    let aimed = dir.join("aimed.png");
+    let path = aimed.to_str().expect("a UTF-8 path");
+    let output = run(&[
+        "render",
+        "nil-1",
+        "--cpu",
+        "--size",
+        "49x27",
+        "--eye",
+        "0.3,-0.4,0.2",
+        "--look-at",
+        "0,0,0",
+        "--out",
+        path,
+    ]);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let image = image::open(&aimed).expect("a PNG").to_rgb8();
+    let [r, g, b] = image.get_pixel(24, 13).0;
+    assert!(
+        r > 40 && r.abs_diff(b) < 16 && r.abs_diff(g) < 16,
+        "the middle is {r},{g},{b}"
+    );
 }

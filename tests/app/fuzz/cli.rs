@@ -148,6 +148,9 @@ fn hostile_numbers_on_the_command_line() {
                 "2",
             ],
             vec!["trace", "nil-1", "--dir", "1,0,0.2", "--distance", value],
+            tiny_render("nil-3", &["--eye", &vec3, "--look-at", "0.1,0.2,0"]),
+            tiny_render("nil-1", &["--eye", "0.1,0.2,0", "--look-at", &vec3]),
+            tiny_render("nil-50", &["--fog", value]),
             // Product spaces: a hostile length, turn, direction and start.
             vec!["info", &circle],
             vec!["info", &turned],

@@ -11,6 +11,7 @@
 mod balls;
 mod distances;
 mod exits;
+mod pictures;
 mod spaces;
 mod walks;
 

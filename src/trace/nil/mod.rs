@@ -1,0 +1,440 @@
+//! The CPU reference tracer of the Nil spaces: a camera ray per pixel walks the box of
+//! `nil-K` ([`NilWalker`], exits solved to the last bit), and in each segment the objects
+//! are met exactly ([`objects`]: metric balls, fibre tubes, swept discs), each found by
+//! steps that are safe by a Lipschitz bound and refined by bisection; the light comes
+//! along the shortest geodesic to every image of the lamp within reach ([`light`]).
+//!
+//! Objects are kept in the box's chart with every lattice image of theirs that reaches
+//! into the box, so a segment (which stays in the box) meets exactly the scene of the
+//! universal cover.
+
+pub mod light;
+pub mod objects;
+
+pub use light::{NilLamp, area_density, gather};
+pub use objects::{NilObject, NilShape};
+
+use crate::geometry::Ray;
+use crate::scene::lighting::Lighting;
+use crate::space::nil::{NilRay, NilSpace, NilWalker, flow, group_product};
+use glam::{DMat4, DVec3, DVec4};
+use image::RgbImage;
+
+/// A scene of a Nil space: objects (with their images that reach into the box), one point
+/// light, ambient light and fog.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NilScene {
+    /// The objects.
+    pub objects: Vec<NilObject>,
+    /// The light's chart point, in the box.
+    pub light: [f64; 3],
+    /// How the light is gathered; set with [`NilScene::set_lighting`].
+    pub lighting: Lighting,
+    /// The lamp's images within the reach.
+    pub lamp: NilLamp,
+    /// The lamp's power: the light a surface facing it gets from one image at distance 1
+    /// in a flat space (`A = 1`).
+    pub power: f64,
+    /// The distance within which the falloff stops growing (a lamp of that size).
+    pub near_light: f64,
+    /// Ambient share of the light.
+    pub ambient: f64,
+    /// Fog distance scale λ: a surface at distance `d` keeps `e^(−d/λ)` of its colour.
+    pub fog_distance: f64,
+    /// The fog's colour.
+    pub fog_colour: DVec3,
+}
+
+impl NilScene {
+    /// Lights the scene as `lighting` says, the lamp at `light` (a chart point, brought
+    /// into the box): finds the lamp's images again. The message names a setting out of
+    /// range or a lamp that is no point.
+    pub fn set_lighting(
+        &mut self,
+        space: &NilSpace,
+        light: [f64; 3],
+        lighting: Lighting,
+    ) -> Result<(), String> {
+        lighting.check()?;
+        if lighting.lamp_radius_inradii > 0.0 {
+            use crate::space::{Family, Feature};
+            Family::Nil
+                .supports(Feature::SoftShadows)
+                .map_err(|e| format!("{e}; got a radius of {}", lighting.lamp_radius_inradii))?;
+        }
+        if !light.iter().all(|x| x.is_finite()) {
+            return Err(format!("the lamp's position {light:?} is not a point"));
+        }
+        self.light = space.into_box(light);
+        self.lighting = lighting;
+        self.lamp = NilLamp::new(space, self.light, &lighting);
+        Ok(())
+    }
+
+    /// The distance past which a surface keeps under half a colour step of its own colour
+    /// through the fog (`λ ln 510`): rays stop there.
+    #[must_use]
+    pub fn cutoff_distance(&self) -> f64 {
+        self.fog_distance * 510f64.ln()
+    }
+
+    /// Adds `object` and every image `γ·object` (`γ ∈ Γ_K`) that may reach into the box:
+    /// those whose chart bounding box meets the box's.
+    pub fn add_with_images(&mut self, space: &NilSpace, object: NilObject) {
+        let h = space.half_height();
+        let k = f64::from(space.k());
+        for p in -1i32..=1 {
+            for q in -1i32..=1 {
+                let (p, q) = (f64::from(p), f64::from(q));
+                // The heights of the moved bounds, to pick the powers of C.
+                let base = group_product([p, q, 0.5 * p * q], [0.0; 3]);
+                let (lo, hi) = bounds(object, base);
+                // A fibre is its own image by the centre.
+                let (m_lo, m_hi) = if matches!(object.shape, NilShape::Fibre(_)) {
+                    (0, 0)
+                } else {
+                    (
+                        ((-h - hi[2]) * k).floor() as i64,
+                        ((h - lo[2]) * k).ceil() as i64,
+                    )
+                };
+                for m in m_lo..=m_hi {
+                    let g = [p, q, 0.5 * p * q + m as f64 / k];
+                    let (lo, hi) = bounds(object, g);
+                    let inside = lo[0] <= 0.5
+                        && hi[0] >= -0.5
+                        && lo[1] <= 0.5
+                        && hi[1] >= -0.5
+                        && lo[2] <= h
+                        && hi[2] >= -h;
+                    if inside {
+                        self.objects.push(moved(object, g));
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// `object` moved by the lattice element `g`.
+fn moved(object: NilObject, g: [f64; 3]) -> NilObject {
+    let shape = match object.shape {
+        NilShape::Ball(c) => NilShape::Ball(group_product(g, c)),
+        NilShape::Fibre(b) => NilShape::Fibre([b[0] + g[0], b[1] + g[1]]),
+        NilShape::Edge {
+            image,
+            along,
+            offset,
+            height,
+        } => NilShape::Edge {
+            image: group_product(g, image),
+            along,
+            offset,
+            height,
+        },
+    };
+    NilObject { shape, ..object }
+}
+
+/// The chart box `(lowest, highest corner)` holding the box `(lo, hi)` moved by the left
+/// translation by `g` (affine, so its extremes are at the corners).
+fn moved_box(g: [f64; 3], (lo, hi): ([f64; 3], [f64; 3])) -> ([f64; 3], [f64; 3]) {
+    let mut out = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for corner in 0..8 {
+        let p = [0, 1, 2].map(|i| if corner >> i & 1 == 0 { lo[i] } else { hi[i] });
+        let q = group_product(g, p);
+        for i in 0..3 {
+            out.0[i] = out.0[i].min(q[i]);
+            out.1[i] = out.1[i].max(q[i]);
+        }
+    }
+    out
+}
+
+/// A chart box holding `g·object`.
+///
+/// A metric ball of radius `r` about the origin lies in `|x|, |y| ≤ r`, `|z| ≤ r + r²/4`
+/// (the chart's vertical speed is at most `1 + t/2` at time `t`), moved to its centre by a
+/// left translation. A swept disc's points `e(s)·(0, a, b) = (s, y₀ + a, h + b + ½sa)` (and
+/// likewise along `y`) lie in a box about the segment.
+fn bounds(object: NilObject, g: [f64; 3]) -> ([f64; 3], [f64; 3]) {
+    let r = object.radius;
+    match object.shape {
+        NilShape::Ball(c) => {
+            let z = r + r * r / 4.0;
+            let own = moved_box(c, ([-r, -r, -z], [r, r, z]));
+            moved_box(g, own)
+        }
+        // A fibre is every height.
+        NilShape::Fibre(b) => (
+            [b[0] + g[0] - r, b[1] + g[1] - r, f64::NEG_INFINITY],
+            [b[0] + g[0] + r, b[1] + g[1] + r, f64::INFINITY],
+        ),
+        NilShape::Edge {
+            image,
+            along,
+            offset,
+            height,
+        } => {
+            let z = 1.25 * r;
+            let mut lo = [0.0; 3];
+            let mut hi = [0.0; 3];
+            lo[along] = -0.5;
+            hi[along] = 0.5;
+            lo[1 - along] = offset - r;
+            hi[1 - along] = offset + r;
+            lo[2] = height - z;
+            hi[2] = height + z;
+            moved_box(g, moved_box(image, (lo, hi)))
+        }
+    }
+}
+
+/// A camera: its frame (the columns right, up and back as body vectors in the frame
+/// `E₁, E₂, E₃`, the fourth its chart point with `w = 1`) and vertical field of view.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NilCamera {
+    /// Right, up, back and the eye.
+    pub frame: DMat4,
+    /// Vertical field of view in degrees.
+    pub fov_y_degrees: f64,
+}
+
+/// How big the default scene's objects are in the box of half height `h`.
+fn scaled(size: f64, h: f64) -> f64 {
+    size.min(0.6 * h)
+}
+
+/// The default scene of `space`: the box's edges (fibre tubes up its vertical edges, swept
+/// discs along its horizontal ones), a centrepiece ball at the origin and two smaller balls
+/// off the axes, whose copies climb or sink across the cells by the twist; a lamp in the
+/// box, lit along every image within two inradii.
+#[must_use]
+pub fn default_scene(space: &NilSpace) -> NilScene {
+    let h = space.half_height();
+    let mut scene = NilScene {
+        objects: Vec::new(),
+        light: [0.0; 3],
+        lighting: Lighting::default(),
+        lamp: NilLamp::default(),
+        power: 1.0,
+        near_light: 0.05,
+        ambient: 0.3,
+        fog_distance: 1.5,
+        fog_colour: DVec3::new(0.05, 0.06, 0.09),
+    };
+    let edge_colour = DVec3::new(0.85, 0.7, 0.35);
+    let vertical = scaled(0.03, h);
+    for (x, y) in [(0.5, 0.5), (-0.5, 0.5), (0.5, -0.5), (-0.5, -0.5)] {
+        scene.objects.push(NilObject {
+            shape: NilShape::Fibre([x, y]),
+            radius: vertical,
+            colour: edge_colour,
+        });
+    }
+    let horizontal = scaled(0.025, 0.7 * h);
+    for (along, offset) in [(0, 0.5), (0, -0.5), (1, 0.5), (1, -0.5)] {
+        let edge = NilObject {
+            shape: NilShape::Edge {
+                image: [0.0; 3],
+                along,
+                offset,
+                height: h,
+            },
+            radius: horizontal,
+            colour: edge_colour,
+        };
+        scene.add_with_images(space, edge);
+    }
+    let balls = [
+        ([0.0, 0.0, 0.0], scaled(0.17, h), DVec3::new(0.9, 0.9, 0.92)),
+        (
+            [0.3, 0.0, 0.0],
+            scaled(0.07, h),
+            DVec3::new(0.85, 0.2, 0.15),
+        ),
+        ([0.0, 0.3, 0.0], scaled(0.07, h), DVec3::new(0.2, 0.45, 0.9)),
+    ];
+    for (centre, radius, colour) in balls {
+        scene.add_with_images(
+            space,
+            NilObject {
+                shape: NilShape::Ball(centre),
+                radius,
+                colour,
+            },
+        );
+    }
+    let lighting = Lighting::default();
+    scene
+        .set_lighting(space, [-0.25, -0.3, 0.5 * h], lighting)
+        .expect("the default lighting is in range");
+    scene.power = default_power(space, scene.fog_distance);
+    scene
+}
+
+/// The default lamp's power: full (1) at 0.35 from it, but no more than makes the mean
+/// light of all its images (`πλ/vol`, what a small space fills with) ½: in a thin box the
+/// lamp's images crowd together and light it evenly.
+#[must_use]
+pub fn default_power(space: &NilSpace, fog_distance: f64) -> f64 {
+    let mean = std::f64::consts::PI * fog_distance / space.volume();
+    (0.35f64 * 0.35).min(0.5 / mean)
+}
+
+/// The default view: from near the box's `−y` side, a little to the side, looking along
+/// `E₂` at the centrepiece, `E₃` up.
+#[must_use]
+pub fn default_camera(space: &NilSpace) -> NilCamera {
+    let h = space.half_height();
+    NilCamera {
+        frame: DMat4::from_cols(
+            DVec4::X,
+            DVec4::Z,
+            DVec4::new(0.0, -1.0, 0.0, 0.0),
+            DVec4::new(0.12, -0.45, 0.2 * h, 1.0),
+        ),
+        fov_y_degrees: 70.0,
+    }
+}
+
+/// Where a walked ray ended.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum NilRayEnd<'a> {
+    /// It met an object.
+    Hit {
+        /// The geodesic length from the eye.
+        distance: f64,
+        /// Faces crossed before.
+        crossings: usize,
+        /// The ray at the object (chart point, body velocity).
+        at: NilRay<f64>,
+        /// The object.
+        object: &'a NilObject,
+    },
+    /// Nothing before the fog's cut-off.
+    Fog,
+    /// It ran out of crossings.
+    Budget(usize),
+}
+
+/// A walk's ray as the flow's.
+fn nil_ray(ray: &Ray<DVec4>) -> NilRay<f64> {
+    NilRay {
+        point: ray.point.truncate().to_array(),
+        velocity: ray.tangent.truncate().to_array(),
+    }
+}
+
+/// The nearest object `ray` meets within `t_max`.
+fn nearest_in_segment<'a>(
+    scene: &'a NilScene,
+    ray: &NilRay<f64>,
+    t_max: f64,
+) -> Option<(f64, &'a NilObject)> {
+    let mut nearest: Option<(f64, &NilObject)> = None;
+    for object in &scene.objects {
+        let before = nearest.map_or(t_max, |(t, _)| t);
+        if object.clearance(ray.point) > before {
+            continue;
+        }
+        if let Some(t) = object.first_meeting(ray, before)
+            && nearest.is_none_or(|(best, _)| t < best)
+        {
+            nearest = Some((t, object));
+        }
+    }
+    nearest
+}
+
+/// Walks `start` (chart point and body velocity in the box) to its first object within
+/// `length`, through at most `max_crossings` faces.
+#[must_use]
+pub fn first_nil_hit<'a>(
+    walker: &NilWalker<DVec4>,
+    scene: &'a NilScene,
+    start: NilRay<f64>,
+    length: f64,
+    max_crossings: usize,
+) -> NilRayEnd<'a> {
+    use crate::space::walk::CellWalk;
+    let mut ray = walker.on_model(Ray {
+        point: DVec3::from_array(start.point).extend(1.0),
+        tangent: DVec3::from_array(start.velocity).extend(0.0),
+    });
+    let mut distance = 0.0;
+    let mut crossings = 0;
+    while distance < length {
+        let Some(exit) = walker.exit(&ray) else {
+            break;
+        };
+        let here = nil_ray(&ray);
+        let t_max = exit.t.min(length - distance);
+        if let Some((t, object)) = nearest_in_segment(scene, &here, t_max) {
+            return NilRayEnd::Hit {
+                distance: distance + t,
+                crossings,
+                at: flow(&here, t),
+                object,
+            };
+        }
+        if exit.t >= length - distance {
+            break;
+        }
+        ray = walker.through(&ray, &exit);
+        distance += exit.t;
+        crossings += 1;
+        if crossings > max_crossings {
+            return NilRayEnd::Budget(max_crossings);
+        }
+    }
+    NilRayEnd::Fog
+}
+
+/// The colour seen along one ray: its first object shaded by the lamp ([`gather`], shadows
+/// walked through the faces) and the fog; the fog's colour where nothing is met before the
+/// fog's cut-off or within the crossing budget.
+#[must_use]
+pub fn trace_nil_pixel(
+    walker: &NilWalker<DVec4>,
+    scene: &NilScene,
+    start: NilRay<f64>,
+    max_crossings: usize,
+) -> DVec3 {
+    let NilRayEnd::Hit {
+        distance,
+        at,
+        object,
+        ..
+    } = first_nil_hit(walker, scene, start, scene.cutoff_distance(), max_crossings)
+    else {
+        return scene.fog_colour;
+    };
+    let normal = object.normal(at.point);
+    let mut occluded = |ray: NilRay<f64>, length: f64| {
+        matches!(
+            first_nil_hit(walker, scene, ray, length, max_crossings),
+            NilRayEnd::Hit { .. }
+        )
+    };
+    let light = gather(scene, at.point, normal, &mut occluded);
+    let lit = scene.ambient + (1.0 - scene.ambient) * scene.power * light;
+    let surface = (object.colour * lit).min(DVec3::ONE);
+    let w = (-distance / scene.fog_distance).exp();
+    w * surface + (1.0 - w) * scene.fog_colour
+}
+
+/// Renders `layout`'s view of a Nil scene with the CPU reference: the layout's frames are
+/// Nil camera frames ([`NilCamera::frame`]).
+#[must_use]
+pub fn render_nil_view(
+    space: &NilSpace,
+    scene: &NilScene,
+    layout: &crate::view::ViewLayout,
+    max_crossings: usize,
+) -> RgbImage {
+    let walker = NilWalker::<DVec4>::new(space.k());
+    super::render_layout(layout, |ray| {
+        trace_nil_pixel(&walker, scene, nil_ray(&ray), max_crossings)
+    })
+}

@@ -1,0 +1,210 @@
+//! The objects of a Nil scene and where a geodesic segment first meets each.
+//!
+//! Three shapes, each the set where a function of the point is at most zero:
+//! - a **ball**: the metric ball `d(p, c) ≤ r` by Nil's own distance, met by
+//!   [`crate::space::nil::ball_hit`];
+//! - a **fibre tube**: the points within `r` of a vertical line `{(b₁, b₂, z)}` (a fibre of
+//!   the projection to the plane). The projection is a Riemannian submersion onto the
+//!   Euclidean plane, so the distance to a fibre is the plane distance `|(x, y) − b|`: the
+//!   tube is an exact metric tube, a round cylinder in the chart;
+//! - a **swept disc**: a chart solid, named as such. For a horizontal segment
+//!   `e(s) = (s, y₀, h)` of the chart (or `(x₀, s, h)` along `y`), `|s| ≤ ½`, it is the set
+//!   of `e(s)·(0, a, b)` (resp. `e(s)·(a, 0, b)`) with `a² + b² ≤ r²`: a small upright disc
+//!   left-translated along the segment. The box's horizontal edges are such segments but no
+//!   geodesics, so their metric tubes have no closed form; this set is the same for every
+//!   lattice image of the edge (a left translation carries it along) and exact to compute.
+//!
+//! Along a unit-speed geodesic every such function `g` changes at most at a known rate `L`
+//! (1 for balls and fibre tubes; for a swept disc the bound below), so no root lies before
+//! `t + g(t)/L`: such steps are safe, and they approach the first root from outside. Where
+//! one lands inside (`g ≤ 0`), or a Newton step does, the first root is bracketed and
+//! bisection safeguarding Newton's steps finds it to the last bit. A ray that only grazes
+//! is a miss once the safe steps fall below the precision.
+
+use crate::space::nil::{NilRay, ball_hit, flow, group_product, normal as ball_normal};
+use glam::DVec3;
+
+/// What an object of a Nil scene surrounds.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum NilShape {
+    /// A metric ball about a chart point.
+    Ball([f64; 3]),
+    /// The vertical line over a point of the plane (an exact metric tube).
+    Fibre([f64; 2]),
+    /// A swept disc (see the module): about the horizontal chart segment through
+    /// `γ·(…)` of the box's top, `along` 0 (the segment `(s, offset, height)`) or 1
+    /// (`(offset, s, height)`), `|s| ≤ ½`, moved by the lattice element `image`.
+    Edge {
+        /// The lattice element the edge is carried by (a chart point of the group).
+        image: [f64; 3],
+        /// The chart axis the segment runs along: 0 (`x`) or 1 (`y`).
+        along: usize,
+        /// Its other horizontal coordinate.
+        offset: f64,
+        /// Its height.
+        height: f64,
+    },
+}
+
+/// An object: the points within `radius` of its shape (by the shape's measure, above).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NilObject {
+    /// What it surrounds.
+    pub shape: NilShape,
+    /// Its radius.
+    pub radius: f64,
+    /// Its colour, linear RGB.
+    pub colour: DVec3,
+}
+
+/// Most safe steps one meeting takes.
+const MAX_STEPS: usize = 4000;
+
+/// A swept disc's coordinates of a point `p` (already moved back by the edge's image): the
+/// position along the segment, and the disc's two coordinates `(a, b)`.
+fn disc_coordinates(along: usize, offset: f64, height: f64, p: [f64; 3]) -> (f64, [f64; 2]) {
+    let s = p[along];
+    let e = if along == 0 {
+        [s, offset, height]
+    } else {
+        [offset, s, height]
+    };
+    let q = group_product(e.map(|x| -x), p);
+    (s, [q[1 - along], q[2]])
+}
+
+/// The lattice element's inverse (the group's inverse is the negation).
+fn inverse(g: [f64; 3]) -> [f64; 3] {
+    g.map(|x| -x)
+}
+
+impl NilObject {
+    /// The shape's gap at `p` (negative inside), its gradient in the left-invariant frame,
+    /// and the most the gap changes per unit length along a geodesic through the cell.
+    fn gap(&self, p: [f64; 3]) -> (f64, [f64; 3], f64) {
+        match self.shape {
+            NilShape::Ball(c) => {
+                let (d, _) = crate::space::nil::shortest(c, p);
+                (d - self.radius, ball_normal(c, p), 1.0)
+            }
+            NilShape::Fibre(b) => {
+                let (dx, dy) = (p[0] - b[0], p[1] - b[1]);
+                let d = dx.hypot(dy);
+                let n = if d > 0.0 {
+                    [dx / d, dy / d, 0.0]
+                } else {
+                    [1.0, 0.0, 0.0]
+                };
+                (d - self.radius, n, 1.0)
+            }
+            NilShape::Edge {
+                image,
+                along,
+                offset,
+                height,
+            } => {
+                let q = group_product(inverse(image), p);
+                let (s, [a, b]) = disc_coordinates(along, offset, height, q);
+                // Rates along a body velocity v: a changes by the across component, b by
+                // v₃ ∓ v_along·(across − offset/2) (left translations keep the frame).
+                let across = q[1 - along];
+                let twist = across - 0.5 * offset;
+                let (grad_a, grad_b) = if along == 0 {
+                    ([0.0, 1.0, 0.0], [-twist, 0.0, 1.0])
+                } else {
+                    ([1.0, 0.0, 0.0], [0.0, twist, 1.0])
+                };
+                let rho = a.hypot(b);
+                let end = s.abs() - 0.5;
+                // |twist| is at most ½ + the image's shift across + ¼ inside the box.
+                let bound = 0.75 + image[1 - along].abs();
+                let rate = (1.0 + bound * bound).sqrt();
+                if end > rho - self.radius {
+                    let mut n = [0.0; 3];
+                    n[along] = s.signum();
+                    (end, n, rate)
+                } else {
+                    let n = if rho > 0.0 {
+                        [0, 1, 2].map(|i| (a * grad_a[i] + b * grad_b[i]) / rho)
+                    } else {
+                        [0.0, 0.0, 1.0]
+                    };
+                    (rho - self.radius, n, rate)
+                }
+            }
+        }
+    }
+
+    /// The unit outward normal at a point of the surface, in the left-invariant frame.
+    #[must_use]
+    pub fn normal(&self, p: [f64; 3]) -> DVec3 {
+        DVec3::from_array(self.gap(p).1).normalize_or(DVec3::Z)
+    }
+
+    /// A lower bound on the distance from `p` to the object (0 inside).
+    #[must_use]
+    pub fn clearance(&self, p: [f64; 3]) -> f64 {
+        let (g, _, rate) = self.gap(p);
+        (g / rate).max(0.0)
+    }
+
+    /// The first length in `[0, t_max]` at which `ray` (a unit body velocity) meets the
+    /// object; `None` for a miss or a graze.
+    #[must_use]
+    pub fn first_meeting(&self, ray: &NilRay<f64>, t_max: f64) -> Option<f64> {
+        if let NilShape::Ball(c) = self.shape {
+            return ball_hit(ray, c, self.radius, t_max);
+        }
+        let at = |t: f64| {
+            let moved = flow(ray, t);
+            let (g, n, rate) = self.gap(moved.point);
+            let along =
+                n[0] * moved.velocity[0] + n[1] * moved.velocity[1] + n[2] * moved.velocity[2];
+            (g, along, rate)
+        };
+        let (mut t, (mut g, _, _)) = (0.0, at(0.0));
+        if g <= 0.0 {
+            return Some(0.0);
+        }
+        let floor = 64.0 * f64::EPSILON * (1.0 + self.radius + t_max.min(1e6));
+        for _ in 0..MAX_STEPS {
+            let (_, slope, rate) = at(t);
+            if slope < 0.0 {
+                let guess = t - g / slope;
+                if guess <= t_max && at(guess).0 <= 0.0 {
+                    return Some(self.refine(ray, t, guess));
+                }
+            }
+            if g < floor {
+                return (slope < -floor.sqrt()).then_some(t);
+            }
+            let before = t;
+            t += g / rate;
+            if t > t_max {
+                return None;
+            }
+            g = at(t).0;
+            if g <= 0.0 {
+                return Some(self.refine(ray, before, t));
+            }
+        }
+        None
+    }
+
+    /// The root of the gap between `lo` (outside, no root before it) and `hi` (inside).
+    fn refine(&self, ray: &NilRay<f64>, lo: f64, hi: f64) -> f64 {
+        let (mut lo, mut hi) = (lo, hi);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if !(mid > lo && mid < hi) {
+                break;
+            }
+            if self.gap(flow(ray, mid).point).0 > 0.0 {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        hi
+    }
+}
