@@ -142,10 +142,9 @@ fn moved_box(g: [f64; 3], (lo, hi): ([f64; 3], [f64; 3])) -> ([f64; 3], [f64; 3]
     let mut out = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
     for corner in 0..8 {
         let p = [0, 1, 2].map(|i| if corner >> i & 1 == 0 { lo[i] } else { hi[i] });
-        let q = group_product(g, p);
-        for i in 0..3 {
-            out.0[i] = out.0[i].min(q[i]);
-            out.1[i] = out.1[i].max(q[i]);
+        for (i, x) in group_product(g, p).into_iter().enumerate() {
+            out.0[i] = out.0[i].min(x);
+            out.1[i] = out.1[i].max(x);
         }
     }
     out
