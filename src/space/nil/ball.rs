@@ -25,6 +25,12 @@ const MAX_BALL_STEPS: usize = 2000;
 #[must_use]
 pub fn normal<R: Real>(centre: [R; 3], p: [R; 3]) -> [R; 3] {
     let (length, velocity) = shortest(centre, p);
+    normal_along(centre, length, velocity)
+}
+
+/// The normal at the end of the shortest geodesic from `centre` of `length` and start
+/// `velocity` (what [`normal`] follows).
+fn normal_along<R: Real>(centre: [R; 3], length: R, velocity: [R; 3]) -> [R; 3] {
     flow(
         &NilRay {
             point: centre,
@@ -35,11 +41,11 @@ pub fn normal<R: Real>(centre: [R; 3], p: [R; 3]) -> [R; 3] {
     .velocity
 }
 
-/// `f(t) = d(γ(t), c) − r` and its rate `⟨γ′(t), normal⟩`.
+/// `f(t) = d(γ(t), c) − r` and its rate `⟨γ′(t), normal⟩` (one inverse exponential map).
 fn gap_and_rate<R: Real>(ray: &NilRay<R>, centre: [R; 3], radius: R, t: R) -> (R, R) {
     let at = flow(ray, t);
-    let (length, _) = shortest(centre, at.point);
-    let n = normal(centre, at.point);
+    let (length, velocity) = shortest(centre, at.point);
+    let n = normal_along(centre, length, velocity);
     let rate = n[0] * at.velocity[0] + n[1] * at.velocity[1] + n[2] * at.velocity[2];
     (length - radius, rate)
 }

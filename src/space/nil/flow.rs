@@ -73,6 +73,11 @@ pub fn flow_terms<R: Real>(c: R, t: R) -> (R, R, R) {
                 let (a, b) = (n + 2 * k + 1, n + 2 * k + 2);
                 term = term * minus_u2 / R::from_f64(f64::from(a * b));
                 total = total + term;
+                // The terms fall faster than geometrically from here: the rest is below
+                // the precision's last bit.
+                if term.abs() <= R::EPSILON * R::from_f64(1e-3) * total.abs() {
+                    break;
+                }
             }
             total
         };

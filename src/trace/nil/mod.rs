@@ -325,16 +325,63 @@ fn nil_ray(ray: &Ray<DVec4>) -> NilRay<f64> {
     }
 }
 
+/// A chart box holding the geodesic segment of `ray` of length `t_max`: its shadow in the
+/// plane runs at speed `a` (the horizontal part of the velocity) round a circle of radius
+/// `a/|c|`, and its height changes at `c + ½(x ẏ − y ẋ)`, within `|c| ± ½ a max|(x, y)|`.
+fn segment_box(ray: &NilRay<f64>, t_max: f64) -> ([f64; 3], [f64; 3]) {
+    let [x, y, z] = ray.point;
+    let [u, v, c] = ray.velocity;
+    let a = u.hypot(v);
+    let mut reach = [a * t_max; 2];
+    let mut centre = [x, y];
+    if c.abs() * t_max > 1e-9 {
+        // The circle: centred a/c to the left of the horizontal velocity.
+        let radius = a / c.abs();
+        let circle = [x - v / c, y + u / c];
+        for i in 0..2 {
+            let (lo, hi) = (
+                (centre[i] - reach[i]).max(circle[i] - radius),
+                (centre[i] + reach[i]).min(circle[i] + radius),
+            );
+            centre[i] = 0.5 * (lo + hi);
+            reach[i] = 0.5 * (hi - lo);
+        }
+    }
+    let far = (centre[0].abs() + reach[0]).hypot(centre[1].abs() + reach[1]);
+    let slack = 0.5 * a * far;
+    let lo_z = z + (t_max * (c - slack)).min(0.0);
+    let hi_z = z + (t_max * (c + slack)).max(0.0);
+    (
+        [centre[0] - reach[0], centre[1] - reach[1], lo_z],
+        [centre[0] + reach[0], centre[1] + reach[1], hi_z],
+    )
+}
+
+/// A chart box: its lowest and highest corner.
+type ChartBox = ([f64; 3], [f64; 3]);
+
+/// The chart boxes of a scene's objects, in order.
+fn object_boxes(scene: &NilScene) -> Vec<ChartBox> {
+    scene.objects.iter().map(|o| bounds(*o, [0.0; 3])).collect()
+}
+
+/// Whether two chart boxes meet.
+fn boxes_meet(a: &ChartBox, b: &ChartBox) -> bool {
+    (0..3).all(|i| a.0[i] <= b.1[i] && b.0[i] <= a.1[i])
+}
+
 /// The nearest object `ray` meets within `t_max`.
 fn nearest_in_segment<'a>(
     scene: &'a NilScene,
+    boxes: &[ChartBox],
     ray: &NilRay<f64>,
     t_max: f64,
 ) -> Option<(f64, &'a NilObject)> {
     let mut nearest: Option<(f64, &NilObject)> = None;
-    for object in &scene.objects {
+    let segment = segment_box(ray, t_max);
+    for (object, chart_box) in scene.objects.iter().zip(boxes) {
         let before = nearest.map_or(t_max, |(t, _)| t);
-        if object.clearance(ray.point) > before {
+        if !boxes_meet(&segment, chart_box) || object.clearance(ray.point) > before {
             continue;
         }
         if let Some(t) = object.first_meeting(ray, before)
@@ -356,6 +403,25 @@ pub fn first_nil_hit<'a>(
     length: f64,
     max_crossings: usize,
 ) -> NilRayEnd<'a> {
+    walk_to_hit(
+        walker,
+        scene,
+        &object_boxes(scene),
+        start,
+        length,
+        max_crossings,
+    )
+}
+
+/// [`first_nil_hit`] with the objects' chart boxes made once.
+fn walk_to_hit<'a>(
+    walker: &NilWalker<DVec4>,
+    scene: &'a NilScene,
+    boxes: &[ChartBox],
+    start: NilRay<f64>,
+    length: f64,
+    max_crossings: usize,
+) -> NilRayEnd<'a> {
     use crate::space::walk::CellWalk;
     let mut ray = walker.on_model(Ray {
         point: DVec3::from_array(start.point).extend(1.0),
@@ -369,7 +435,7 @@ pub fn first_nil_hit<'a>(
         };
         let here = nil_ray(&ray);
         let t_max = exit.t.min(length - distance);
-        if let Some((t, object)) = nearest_in_segment(scene, &here, t_max) {
+        if let Some((t, object)) = nearest_in_segment(scene, boxes, &here, t_max) {
             return NilRayEnd::Hit {
                 distance: distance + t,
                 crossings,
@@ -400,19 +466,37 @@ pub fn trace_nil_pixel(
     start: NilRay<f64>,
     max_crossings: usize,
 ) -> DVec3 {
+    colour_along(walker, scene, &object_boxes(scene), start, max_crossings)
+}
+
+/// [`trace_nil_pixel`] with the objects' chart boxes made once.
+fn colour_along(
+    walker: &NilWalker<DVec4>,
+    scene: &NilScene,
+    boxes: &[ChartBox],
+    start: NilRay<f64>,
+    max_crossings: usize,
+) -> DVec3 {
     let NilRayEnd::Hit {
         distance,
         at,
         object,
         ..
-    } = first_nil_hit(walker, scene, start, scene.cutoff_distance(), max_crossings)
+    } = walk_to_hit(
+        walker,
+        scene,
+        boxes,
+        start,
+        scene.cutoff_distance(),
+        max_crossings,
+    )
     else {
         return scene.fog_colour;
     };
     let normal = object.normal(at.point);
     let mut occluded = |ray: NilRay<f64>, length: f64| {
         matches!(
-            first_nil_hit(walker, scene, ray, length, max_crossings),
+            walk_to_hit(walker, scene, boxes, ray, length, max_crossings),
             NilRayEnd::Hit { .. }
         )
     };
@@ -433,7 +517,8 @@ pub fn render_nil_view(
     max_crossings: usize,
 ) -> RgbImage {
     let walker = NilWalker::<DVec4>::new(space.k());
+    let boxes = object_boxes(scene);
     super::render_layout(layout, |ray| {
-        trace_nil_pixel(&walker, scene, nil_ray(&ray), max_crossings)
+        colour_along(&walker, scene, &boxes, nil_ray(&ray), max_crossings)
     })
 }

@@ -144,6 +144,10 @@ impl NilObject {
     /// A lower bound on the distance from `p` to the object (0 inside).
     #[must_use]
     pub fn clearance(&self, p: [f64; 3]) -> f64 {
+        if let NilShape::Ball(c) = self.shape {
+            // The distance alone (the normal costs a second inverse exponential map).
+            return (crate::space::nil::distance(c, p) - self.radius).max(0.0);
+        }
         let (g, _, rate) = self.gap(p);
         (g / rate).max(0.0)
     }
