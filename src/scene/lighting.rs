@@ -44,6 +44,22 @@ pub const ANTIPODE: f64 = PI - 1e-3;
 /// each.
 pub const MAX_LAMP_IMAGES: usize = 256;
 
+/// The images `found` (each with its distance from the cell's centre, nearest first) that a
+/// lamp keeps, and the reach they cover from every point of a cell of circumradius `rho`:
+/// all of them and `reach`, or, past [`MAX_LAMP_IMAGES`], every image nearer the centre
+/// than the first one left out and the reach those cover.
+#[must_use]
+pub fn nearest_images<T>(mut found: Vec<(T, f64)>, reach: f64, rho: f64) -> (Vec<T>, f64) {
+    let mut covered = reach;
+    if found.len() > MAX_LAMP_IMAGES {
+        let edge = found[MAX_LAMP_IMAGES].1;
+        found.truncate(MAX_LAMP_IMAGES);
+        found.retain(|(_, d)| *d < edge);
+        covered = covered.min((edge - rho).max(0.0));
+    }
+    (found.into_iter().map(|(q, _)| q).collect(), covered)
+}
+
 /// Which geodesics from a point to a lamp carry its light.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum LightPaths {

@@ -233,15 +233,7 @@ fn render_product_command(args: &RenderArgs, chosen: ProductChoice) -> Result<()
             "GPU tracer"
         },
         scene.fog_distance,
-        if stereo.mode.is_stereo() {
-            format!(
-                ", stereo {}: eyes {:.4} apart",
-                stereo.mode,
-                stereo.ipd_for(space.scale())
-            )
-        } else {
-            String::new()
-        }
+        stereo_words(&stereo, space.scale())
     );
     let started = Instant::now();
     let image = if args.cpu {
@@ -275,16 +267,7 @@ fn render_product_command(args: &RenderArgs, chosen: ProductChoice) -> Result<()
             })
             .map_err(|e| e.to_string())?
     };
-    save(&image, &args.out)?;
-    let shown = std::fs::canonicalize(&args.out).unwrap_or_else(|_| args.out.clone());
-    say!(
-        "wrote {} ({}×{}, {:.2} s)",
-        shown.display(),
-        args.size.0,
-        args.size.1,
-        started.elapsed().as_secs_f64()
-    );
-    Ok(())
+    saved(&image, args, started)
 }
 
 pub(super) fn render_command(args: &RenderArgs) -> Result<(), String> {
@@ -480,6 +463,33 @@ fn render_gpu(args: &RenderArgs, chosen: &Chosen, view: &View) -> Result<RgbImag
         )
     })
     .map_err(|e| e.to_string())
+}
+
+/// `, stereo MODE: eyes B apart` for a stereo view of a space of size `scale`, else nothing.
+pub(super) fn stereo_words(stereo: &StereoSettings, scale: f64) -> String {
+    if stereo.mode.is_stereo() {
+        format!(
+            ", stereo {}: eyes {:.4} apart",
+            stereo.mode,
+            stereo.ipd_for(scale)
+        )
+    } else {
+        String::new()
+    }
+}
+
+/// Writes `render`'s picture and says where, its size and the time since `started`.
+pub(super) fn saved(image: &RgbImage, args: &RenderArgs, started: Instant) -> Result<(), String> {
+    save(image, &args.out)?;
+    let shown = std::fs::canonicalize(&args.out).unwrap_or_else(|_| args.out.clone());
+    say!(
+        "wrote {} ({}×{}, {:.2} s)",
+        shown.display(),
+        args.size.0,
+        args.size.1,
+        started.elapsed().as_secs_f64()
+    );
+    Ok(())
 }
 
 /// Writes the picture, creating its folder.

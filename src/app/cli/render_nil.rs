@@ -2,7 +2,7 @@
 //! a lamp) with the f64 CPU reference, mono or stereo.
 
 use super::RenderArgs;
-use super::render::save;
+use super::render::{saved, stereo_words};
 use bevy_curved_spaces::space::nil::NilSpace;
 use bevy_curved_spaces::space::{Family, Feature, FrameSpace};
 use bevy_curved_spaces::trace::nil::{NilCamera, default_camera, default_scene, render_nil_view};
@@ -97,15 +97,7 @@ pub(super) fn render_nil_command(args: &RenderArgs, space: &NilSpace) -> Result<
         args.size.0,
         args.size.1,
         scene.fog_distance,
-        if stereo.mode.is_stereo() {
-            format!(
-                ", stereo {}: eyes {:.4} apart",
-                stereo.mode,
-                stereo.ipd_for(space.scale())
-            )
-        } else {
-            String::new()
-        }
+        stereo_words(&stereo, space.scale())
     );
     let started = Instant::now();
     let eyes = if stereo.mode.is_stereo() {
@@ -122,14 +114,5 @@ pub(super) fn render_nil_command(args: &RenderArgs, space: &NilSpace) -> Result<
         args.size.1,
     );
     let image = render_nil_view(space, &scene, &layout, budget);
-    save(&image, &args.out)?;
-    let shown = std::fs::canonicalize(&args.out).unwrap_or_else(|_| args.out.clone());
-    say!(
-        "wrote {} ({}×{}, {:.2} s)",
-        shown.display(),
-        args.size.0,
-        args.size.1,
-        started.elapsed().as_secs_f64()
-    );
-    Ok(())
+    saved(&image, args, started)
 }

@@ -22,9 +22,6 @@ use crate::space::nil::{NilRay, NilSpace, distance, flow, shortest};
 use glam::DVec3;
 use std::f64::consts::PI;
 
-/// Most images of a lamp gathered: past it the reach is shortened to what they cover.
-pub const MAX_NIL_LAMP_IMAGES: usize = crate::scene::lighting::MAX_LAMP_IMAGES;
-
 /// Below this `|ct|` the density's `(2(1 − cos s) − s sin s)/s⁴` is summed as a series.
 const DENSITY_SERIES_BELOW: f64 = 0.05;
 
@@ -104,7 +101,7 @@ impl NilLamp {
 
 /// The images `γ·lamp` (`γ ∈ Γ_K`) within `reach + ρ` of the centre ([`box_radius`]),
 /// nearest first, and the reach they cover from every point of the box: shortened to what
-/// the nearest [`MAX_NIL_LAMP_IMAGES`] cover where more lie within it.
+/// the nearest [`crate::scene::lighting::MAX_LAMP_IMAGES`] cover where more lie within it.
 ///
 /// An element is `A^p B^q C^m = (p, q, pq/2 + m/K)`. A point at distance `R` from the
 /// origin has `|x|, |y| ≤ R` and `|z| ≤ R + R²/4` (the chart's vertical speed is at most
@@ -137,14 +134,7 @@ pub fn lamp_images(space: &NilSpace, lamp: [f64; 3], reach: f64) -> (Vec<[f64; 3
         }
     }
     found.sort_by(|a, b| a.1.total_cmp(&b.1));
-    let mut covered = reach;
-    if found.len() > MAX_NIL_LAMP_IMAGES {
-        let edge = found[MAX_NIL_LAMP_IMAGES].1;
-        found.truncate(MAX_NIL_LAMP_IMAGES);
-        found.retain(|(_, d)| *d < edge);
-        covered = covered.min((edge - rho).max(0.0));
-    }
-    (found.into_iter().map(|(q, _)| q).collect(), covered)
+    crate::scene::lighting::nearest_images(found, reach, rho)
 }
 
 /// `A^p B^q · x`: the chart point `x` moved by the lattice's `(p, q, pq/2 + r)`.

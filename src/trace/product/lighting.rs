@@ -106,16 +106,8 @@ fn distance(g: Geometry, p: DVec4, q: DVec4) -> f64 {
 pub fn lamp_images(space: &ProductSpace, lamp: DVec4, reach: f64) -> (Vec<DVec4>, f64) {
     let rho = cell_circumradius(space);
     let fit = |reach: f64| -> Option<(Vec<DVec4>, f64)> {
-        let mut found = images_within(space, lamp, reach + rho)?;
-        let mut covered = reach;
-        if found.len() > MAX_LAMP_IMAGES {
-            // Every image nearer the centre than the first one left out is kept.
-            let edge = found[MAX_LAMP_IMAGES].1;
-            found.truncate(MAX_LAMP_IMAGES);
-            found.retain(|(_, d)| *d < edge);
-            covered = covered.min((edge - rho).max(0.0));
-        }
-        Some((found.into_iter().map(|(q, _)| q).collect(), covered))
+        let found = images_within(space, lamp, reach + rho)?;
+        Some(crate::scene::lighting::nearest_images(found, reach, rho))
     };
     if let Some(found) = fit(reach) {
         return found;
