@@ -37,6 +37,9 @@
 //                                        SPHERICAL): FACE_COUNT sides, FACE_SLOTS = sides + 2
 //                                        pairings (the top's, the bottom's), the product
 //                                        walk and objects (shaders/product.wgsl)
+//   NIL + NIL_OBJECTS, NIL_IMAGES,       a Nil space (with EUCLIDEAN, no faces packed): the
+//   NIL_SHADOWS                          box's walk, its objects, the lamp's images and
+//                                        shadows (shaders/nil.wgsl)
 //
 // Points and tangents are 4-vectors with ⟨u,v⟩ = u.xyz·v.xyz + κ u.w v.w; a ray segment in
 // the cell is X(s) ∝ p + s v, a straight line of the chart, so faces are planes (N·X = 0)
@@ -46,10 +49,14 @@
 #import curved_spaces::hit_id::{hit_id}
 // The one place a family is chosen: each family's tracer module has the camera ray's
 // colour under the same name, `ray_colour`.
+#ifdef NIL
+#import curved_spaces::nil::{ray_colour}
+#else
 #ifdef PRODUCT
 #import curved_spaces::product::{ray_colour}
 #else
 #import curved_spaces::trace::{ray_colour}
+#endif
 #endif
 
 // ---------------------------------------------------------------------------------------

@@ -116,6 +116,22 @@ struct ProductObject {
 }
 #endif
 
+#ifdef NIL
+// An object of a Nil scene (Rust: `trace::nil::NilObject`).
+struct NilObject {
+    // A ball's centre, a fibre tube's foot (xy), a swept disc's lattice image.
+    shape: vec4<f32>,
+    // Kind (0 ball, 1 fibre tube, 2 swept disc), radius, a disc's axis (0 x, 1 y), its other
+    // horizontal coordinate.
+    info: vec4<f32>,
+    // Albedo (rgb), a disc's height.
+    colour: vec4<f32>,
+    // The chart box holding it: its lowest and highest corner.
+    box_lo: vec4<f32>,
+    box_hi: vec4<f32>,
+}
+#endif
+
 struct SpaceUniform {
     view: View,
     shading: Shading,
@@ -149,6 +165,21 @@ struct SpaceUniform {
     product_lighting: vec4<f32>,
     // The lamp's images in the cover, nearest the cell's centre first.
     product_images: array<vec4<f32>, #{PRODUCT_IMAGES}>,
+#endif
+#endif
+#ifdef NIL
+    // Half the box's height, K, the number of objects, the lamp's power (Rust:
+    // `trace::nil::NilScene`; the face arrays above are unused).
+    nil_box: vec4<f32>,
+    // The lamp's chart point, the falloff's floor (the lamp's size squared).
+    nil_light: vec4<f32>,
+    nil_objects: array<NilObject, #{NIL_OBJECTS}>,
+#ifdef NIL_IMAGES
+    // The images summed, the tail's light (¼ of its fluence; 0 without it), the reach, the
+    // images shadowed (Rust: `trace::nil::light::gather`).
+    nil_lighting: vec4<f32>,
+    // The lamp's images in the cover, nearest the box's centre first.
+    nil_images: array<vec4<f32>, #{NIL_IMAGES}>,
 #endif
 #endif
 #ifdef WALLS

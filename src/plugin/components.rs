@@ -165,7 +165,7 @@ impl ActiveSpace {
     /// from large groups (a census manifold takes a fraction of a second in a release build).
     pub fn named(id: &str) -> Result<Self, String> {
         let space = AnySpace::named(id)?;
-        // The plugin shows only the families it can draw (a Nil space is walked by `trace`).
+        // The plugin shows only the families it can draw.
         space
             .supports(crate::space::Feature::Pictures)
             .map_err(|e| format!("{id}: {e}"))?;
@@ -198,8 +198,7 @@ impl ActiveSpace {
         match &self.space {
             AnySpace::Constant(s) => base.start_frame(self, s),
             AnySpace::Product(p) => BaseProductScene::start_frame(product_base, p),
-            // At the origin, in the standard frame (the plugin draws no Nil space yet).
-            AnySpace::Nil(_) => DMat4::IDENTITY,
+            AnySpace::Nil(n) => crate::trace::nil::default_camera(n).frame,
         }
     }
 

@@ -24,6 +24,7 @@ pub mod family;
 #[cfg(feature = "scene-files")]
 pub mod flight;
 pub mod frame_rate;
+pub mod nil;
 pub mod objects;
 pub mod offscreen;
 pub mod player;

@@ -356,6 +356,62 @@ impl OffscreenRenderer {
         result
     }
 
+    /// Renders a Nil space's scene from `camera` on the GPU (mono or stereo), as the plugin
+    /// draws it while the space is shown.
+    pub fn render_nil(
+        &mut self,
+        space: &crate::space::nil::NilSpace,
+        scene: &crate::trace::nil::NilScene,
+        camera: &crate::trace::nil::NilCamera,
+        (w, h): (u32, u32),
+        max_crossings: u32,
+        stereo: StereoSettings,
+    ) -> Result<RgbImage, OffscreenError> {
+        if !(1..=8192).contains(&w) || !(1..=8192).contains(&h) {
+            return Err(OffscreenError::BadSize(w, h));
+        }
+        // A scene the GPU cannot take would only time out below: say why now.
+        crate::plugin::render::gpu::GpuScene::nil(space, scene, max_crossings)
+            .map_err(|e| OffscreenError::Scene(e.to_string()))?;
+        let world = self.app.world_mut();
+        let same_space = world.get_resource::<ActiveSpace>().is_some_and(|a| {
+            a.space
+                .get::<crate::space::nil::NilSpace>()
+                .is_some_and(|n| n.name() == space.name())
+        });
+        if !same_space {
+            world.insert_resource(ActiveSpace::new(space.name(), space.clone()));
+        }
+        world.insert_resource(crate::plugin::nil::BaseNilScene {
+            scene: scene.clone(),
+            start: Some(*camera),
+        });
+        world.insert_resource(stereo);
+        world.insert_resource(TracerSettings {
+            fog_distance: None,
+            max_crossings: Some(max_crossings.max(1)),
+            quality: crate::plugin::components::Quality::High,
+            resolution_scale: 1.0,
+            parts: SceneParts::default(),
+            time: Some(0.0),
+            colour_by: crate::scene::ColourBy::Shading,
+            walls: None,
+            lighting: None,
+        });
+        self.app.update();
+        let (handle, entity) = spawn_camera(
+            self.app.world_mut(),
+            (w, h),
+            camera.fov_y_degrees,
+            camera.frame,
+        );
+        let result = self.capture(&handle);
+        let world = self.app.world_mut();
+        world.despawn(entity);
+        world.resource_mut::<Assets<Image>>().remove(&handle);
+        result
+    }
+
     fn capture(&mut self, handle: &Handle<Image>) -> Result<RgbImage, OffscreenError> {
         let failure = self
             .app

@@ -161,6 +161,7 @@ impl Plugin for CurvedSpacesPlugin {
                     crate::plugin::product::upload_product_scene
                         .after(crate::plugin::objects::product::collect_product_objects)
                         .run_if(ActiveSpace::shows(Family::Product)),
+                    crate::plugin::nil::upload_nil_scene.run_if(ActiveSpace::shows(Family::Nil)),
                     check_stereo_settings,
                 )
                     .in_set(CurvedSpacesSystems::Upload),
@@ -172,6 +173,7 @@ impl Plugin for CurvedSpacesPlugin {
         .add_plugins((
             FamilyPlugin::<crate::space::Space>::default(),
             FamilyPlugin::<crate::space::product::ProductSpace>::default(),
+            FamilyPlugin::<crate::space::nil::NilSpace>::default(),
         ));
         #[cfg(feature = "scene-files")]
         app.add_systems(Last, crate::plugin::flight::finish_recording);

@@ -74,6 +74,10 @@ pub enum Feature {
     Walls,
     /// The teaching views (`--colour-by`).
     TeachingViews,
+    /// `light`: a lamp's light at a point, image by image.
+    LampFluence,
+    /// Flights: `flight` and `walk --replay`.
+    Flights,
 }
 
 impl Feature {
@@ -90,11 +94,12 @@ impl Feature {
             Feature::SoftShadows => "lamps of a radius (soft shadows)",
             Feature::EveryImageBound => "a bound on the light of the lamp images left out",
             Feature::Pictures => {
-                "pictures on the GPU (`render` without `--cpu`, `walk`, `flight`, `light`, \
-                 `bench`, the plugin)"
+                "pictures (`render`, `walk`, `flight`, `light`, `bench`, the plugin)"
             }
             Feature::Walls => "walls with windows (`--walls`)",
             Feature::TeachingViews => "the teaching views (`--colour-by`)",
+            Feature::LampFluence => "`light` (a lamp's light at a point)",
+            Feature::Flights => "flights (`flight`, `walk --replay`)",
         }
     }
 }
@@ -124,8 +129,11 @@ impl Family {
                 | Feature::MovingObjects
                 | Feature::Pictures
                 | Feature::Walls
-                | Feature::TeachingViews,
+                | Feature::TeachingViews
+                | Feature::LampFluence
+                | Feature::Flights,
             ) => return Ok(()),
+            (Family::Nil, Feature::Pictures) => return Ok(()),
             (Family::Nil, Feature::Export) => {
                 "a Nil space is written by its id (`nil-K`), which holds all of it"
             }
@@ -133,14 +141,11 @@ impl Family {
                 "a Nil cell is the box about the origin; `--basepoint` moves the Dirichlet \
                  domains of generator files"
             }
-            (Family::Nil, Feature::Pictures) => {
-                "a Nil space is drawn by the f64 CPU reference (`render --cpu`); its GPU tracer, \
-                 and so `walk`, `flight`, `light`, `bench` and the plugin, are not written yet"
-            }
             (Family::Nil, Feature::SoftShadows) => "a Nil lamp is a point",
             (Family::Nil, _) => {
-                "the Nil family draws its default scene (`render --cpu`); scene files, moving \
-                 objects, walls and the teaching views are not written for it yet"
+                "the Nil family draws and walks its default scene (`render`, `walk`); scene \
+                 files, moving objects, walls, the teaching views, flights, `light`, `bench` \
+                 and the headset are not written for it yet"
             }
             (Family::Product, Feature::SceneParts) => {
                 "a product scene file's `edges` and `centre_ball` choose the parts"

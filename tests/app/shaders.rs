@@ -729,3 +729,47 @@ fn product_variants_validate_and_match_the_packed_layout() {
     assert!(GpuScene::product(&space, &scene, 0).is_err());
     assert!(GpuScene::product(&space, &scene, MAX_GPU_BUDGET + 1).is_err());
 }
+
+/// The Nil variant validates for nil-1, nil-3 and nil-50's default scenes, with the lamp's
+/// images, shadows, the nearest copy only, and no objects, and the packer writes exactly the
+/// layout naga computes.
+#[test]
+fn nil_variants_validate_and_match_the_packed_layout() {
+    use bevy_curved_spaces::scene::lighting::{LightPaths, Lighting};
+    use bevy_curved_spaces::space::nil::NilSpace;
+    use bevy_curved_spaces::trace::nil::default_scene;
+    for k in [1, 3, 50] {
+        let space = NilSpace::new(k);
+        let mut scene = default_scene(&space);
+        let gpu = GpuScene::nil(&space, &scene, 32).expect("packs");
+        assert!(gpu.key.nil && gpu.key.nil_images > 0);
+        let bytes = validate(&gpu.key);
+        assert_eq!(bytes, gpu.key.uniform_bytes(), "nil-{k}");
+        assert_eq!((gpu.words.len() + VIEW_WORDS) * 4, bytes, "nil-{k}");
+        for lighting in [
+            Lighting {
+                shadows: 4,
+                ..Default::default()
+            },
+            Lighting {
+                paths: LightPaths::Nearest,
+                ..Default::default()
+            },
+        ] {
+            let light = scene.light;
+            scene
+                .set_lighting(&space, light, lighting)
+                .expect("lighting");
+            let gpu = GpuScene::nil(&space, &scene, 32).expect("packs");
+            assert_eq!(
+                validate(&gpu.key),
+                (gpu.words.len() + VIEW_WORDS) * 4,
+                "nil-{k}"
+            );
+        }
+        scene.objects.clear();
+        let gpu = GpuScene::nil(&space, &scene, 8).expect("packs");
+        assert_eq!(validate(&gpu.key), (gpu.words.len() + VIEW_WORDS) * 4);
+        assert!(GpuScene::nil(&space, &scene, 0).is_err());
+    }
+}

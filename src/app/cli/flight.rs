@@ -47,7 +47,7 @@ pub(super) fn flight(args: &FlightArgs) -> Result<(), String> {
         Choice::Nil(space) => {
             return Err(super::spaces::refused(
                 &bevy_curved_spaces::space::AnySpace::Nil(space),
-                bevy_curved_spaces::space::Feature::Pictures,
+                bevy_curved_spaces::space::Feature::Flights,
             ));
         }
     };

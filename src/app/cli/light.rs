@@ -16,7 +16,7 @@ pub(super) fn light(args: &LightArgs) -> Result<(), String> {
         nil @ AnySpace::Nil(_) => {
             return Err(super::spaces::refused(
                 &nil,
-                bevy_curved_spaces::space::Feature::Pictures,
+                bevy_curved_spaces::space::Feature::LampFluence,
             ));
         }
     };

@@ -3,6 +3,7 @@
 
 use super::RenderArgs;
 use super::render::{saved, stereo_words};
+use bevy_curved_spaces::plugin::render::gpu::MAX_GPU_BUDGET;
 use bevy_curved_spaces::space::nil::NilSpace;
 use bevy_curved_spaces::space::{Family, Feature, FrameSpace};
 use bevy_curved_spaces::trace::nil::{NilCamera, default_camera, default_scene, render_nil_view};
@@ -51,16 +52,13 @@ fn camera_between(
     })
 }
 
-/// `render nil-K`: the CPU reference only (the GPU tracer refuses with the family's reason).
+/// `render nil-K`: on the GPU, or with the f64 CPU reference (`--cpu`).
 pub(super) fn render_nil_command(args: &RenderArgs, space: &NilSpace) -> Result<(), String> {
     let refuse = |feature| {
         Family::Nil
             .supports(feature)
             .map_err(|e| format!("{}: {e}", space.name()))
     };
-    if !args.cpu {
-        refuse(Feature::Pictures)?;
-    }
     if args.time != 0.0 {
         refuse(Feature::MovingObjects)?;
     }
@@ -89,13 +87,20 @@ pub(super) fn render_nil_command(args: &RenderArgs, space: &NilSpace) -> Result<
     if let Some(fov) = args.fov {
         camera.fov_y_degrees = fov;
     }
-    let budget = args.crossings.unwrap_or(64);
+    let budget = args
+        .crossings
+        .unwrap_or_else(|| bevy_curved_spaces::plugin::nil::default_nil_budget(space) as usize);
     let stereo = args.stereo.settings_for(space.scale())?;
     say!(
-        "rendering {} (Nil) at {}×{} with the f64 CPU reference (fog λ = {:.3}, ≤ {budget} crossings{})…",
+        "rendering {} (Nil) at {}×{} with the {} (fog λ = {:.3}, ≤ {budget} crossings{})…",
         space.name(),
         args.size.0,
         args.size.1,
+        if args.cpu {
+            "f64 CPU reference"
+        } else {
+            "GPU tracer"
+        },
         scene.fog_distance,
         stereo_words(&stereo, space.scale())
     );
@@ -113,6 +118,20 @@ pub(super) fn render_nil_command(args: &RenderArgs, space: &NilSpace) -> Result<
         args.size.0,
         args.size.1,
     );
-    let image = render_nil_view(space, &scene, &layout, budget);
+    let image = if args.cpu {
+        render_nil_view(space, &scene, &layout, budget)
+    } else {
+        let gpu_budget = u32::try_from(budget)
+            .ok()
+            .filter(|&n| (1..=MAX_GPU_BUDGET).contains(&n))
+            .ok_or_else(|| {
+                format!(
+                    "the GPU tracer takes a crossing budget from 1 to {MAX_GPU_BUDGET}, got {budget} (use --cpu for more)"
+                )
+            })?;
+        bevy_curved_spaces::plugin::offscreen::OffscreenRenderer::new()
+            .and_then(|mut r| r.render_nil(space, &scene, &camera, args.size, gpu_budget, stereo))
+            .map_err(|e| e.to_string())?
+    };
     saved(&image, args, started)
 }

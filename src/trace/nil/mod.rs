@@ -204,8 +204,12 @@ fn scaled(size: f64, h: f64) -> f64 {
     size.min(0.6 * h)
 }
 
+/// Below this half height (`nil-K` for K > 10) the default scene leaves out the swept discs
+/// along the box's horizontal edges.
+pub const THIN_BOX: f64 = 0.05;
+
 /// The default scene of `space`: the box's edges (fibre tubes up its vertical edges, swept
-/// discs along its horizontal ones), a centrepiece ball at the origin and two smaller balls
+/// discs along its horizontal ones where the box is not thin, [`THIN_BOX`]), a centrepiece ball at the origin and two smaller balls
 /// off the axes, whose copies climb or sink across the cells by the twist; a lamp in the
 /// box, lit along every image within two inradii.
 #[must_use]
@@ -232,7 +236,14 @@ pub fn default_scene(space: &NilSpace) -> NilScene {
         });
     }
     let horizontal = scaled(0.025, 0.7 * h);
-    for (along, offset) in [(0, 0.5), (0, -0.5), (1, 0.5), (1, -0.5)] {
+    // In a box thinner than a tenth its images crowd into a sieve of tubes finer than the
+    // fibres (and hundreds of objects to test): only the fibres mark its edges there.
+    let sides: &[(usize, f64)] = if h >= THIN_BOX {
+        &[(0, 0.5), (0, -0.5), (1, 0.5), (1, -0.5)]
+    } else {
+        &[]
+    };
+    for &(along, offset) in sides {
         let edge = NilObject {
             shape: NilShape::Edge {
                 image: [0.0; 3],
@@ -358,11 +369,19 @@ fn segment_box(ray: &NilRay<f64>, t_max: f64) -> ([f64; 3], [f64; 3]) {
 }
 
 /// A chart box: its lowest and highest corner.
-type ChartBox = ([f64; 3], [f64; 3]);
+pub type ChartBox = ([f64; 3], [f64; 3]);
+
+impl NilObject {
+    /// A chart box holding the object (a fibre tube's is unbounded in height).
+    #[must_use]
+    pub fn chart_box(&self) -> ChartBox {
+        bounds(*self, [0.0; 3])
+    }
+}
 
 /// The chart boxes of a scene's objects, in order.
 fn object_boxes(scene: &NilScene) -> Vec<ChartBox> {
-    scene.objects.iter().map(|o| bounds(*o, [0.0; 3])).collect()
+    scene.objects.iter().map(NilObject::chart_box).collect()
 }
 
 /// Whether two chart boxes meet.

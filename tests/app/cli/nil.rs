@@ -1,5 +1,5 @@
-//! The Nil spaces on the command line: `info`, `trace` and `render --cpu` take them, bad
-//! ids get a clear error, and the commands that draw on the GPU say that they do not yet.
+//! The Nil spaces on the command line: `info`, `trace` and `render` take them, bad ids get
+//! a clear error, and what is not written for Nil yet says so.
 
 use super::*;
 
@@ -83,7 +83,6 @@ fn bad_nil_ids_and_drawing_commands_get_clear_errors() {
         );
     }
     for args in [
-        &["render", "nil-3", "--size", "16x9"][..],
         &["light", "nil-3", "--at", "0,0,0"][..],
         &["export", "nil-3"][..],
         &[
@@ -112,8 +111,6 @@ fn bad_nil_ids_and_drawing_commands_get_clear_errors() {
     ] {
         fails_with(args, "not in the Nil spaces");
     }
-    // The GPU's refusal says what draws instead.
-    fails_with(&["render", "nil-3", "--size", "16x9"], "render --cpu");
     fails_with(
         &[
             "render",

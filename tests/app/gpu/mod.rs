@@ -19,6 +19,7 @@ use std::path::{Path, PathBuf};
 
 mod laws;
 mod light;
+mod nil;
 mod scenes;
 mod spaces;
 mod stereo;

@@ -77,7 +77,18 @@ pub struct ShaderKey {
     pub product_images: u32,
     /// Whether a product scene walks shadow rays (shader def `PRODUCT_SHADOWS`).
     pub product_shadows: bool,
+    /// A Nil space (shader def `NIL`; `faces` 0, the geometry's formulas unused).
+    pub nil: bool,
+    /// The objects of a Nil scene (shader def `NIL_OBJECTS`).
+    pub nil_objects: u32,
+    /// The lamp's images a Nil scene sums (shader def `NIL_IMAGES`; 0: the nearest copy).
+    pub nil_images: u32,
+    /// Whether a Nil scene walks shadow rays (shader def `NIL_SHADOWS`).
+    pub nil_shadows: bool,
 }
+
+/// The vec4s of one Nil object in the uniform (shape, info, colour, its chart box).
+pub const NIL_OBJECT_VEC4S: usize = 5;
 
 /// The vec4s of one product object in the uniform (shape, info, colour and three more).
 pub const PRODUCT_OBJECT_VEC4S: usize = 6;
@@ -117,6 +128,10 @@ impl ShaderKey {
             product_objects: 0,
             product_images: 0,
             product_shadows: false,
+            nil: false,
+            nil_objects: 0,
+            nil_images: 0,
+            nil_shadows: false,
         }
     }
 
@@ -157,6 +172,19 @@ impl ShaderKey {
                 ));
                 if self.product_shadows {
                     defs.push("PRODUCT_SHADOWS".into());
+                }
+            }
+        }
+        if self.nil {
+            defs.push("NIL".into());
+            defs.push(ShaderDefVal::UInt(
+                "NIL_OBJECTS".into(),
+                self.nil_objects.max(1),
+            ));
+            if self.nil_images > 0 {
+                defs.push(ShaderDefVal::UInt("NIL_IMAGES".into(), self.nil_images));
+                if self.nil_shadows {
+                    defs.push("NIL_SHADOWS".into());
                 }
             }
         }
@@ -301,6 +329,16 @@ impl ShaderKey {
                 (2 + PRODUCT_OBJECT_VEC4S * count(self.product_objects.max(1))) * vec4
                     + if self.product_images > 0 {
                         (1 + count(self.product_images)) * vec4
+                    } else {
+                        0
+                    }
+            } else {
+                0
+            }
+            + if self.nil {
+                (2 + NIL_OBJECT_VEC4S * count(self.nil_objects.max(1))) * vec4
+                    + if self.nil_images > 0 {
+                        (1 + count(self.nil_images)) * vec4
                     } else {
                         0
                     }

@@ -19,6 +19,7 @@ use glam::{DMat4, DVec4, Mat4, Vec4};
 use std::sync::Arc;
 
 mod key;
+mod nil;
 mod pack;
 mod product;
 mod view;
@@ -37,7 +38,7 @@ pub const TRACER_WGSL: &str = include_str!("../../../../shaders/curved_space.wgs
 /// The tracer's WGSL modules (`#define_import_path curved_spaces::…`), each the twin of a
 /// Rust module, in the order they import each other: the plugin registers them all, so a
 /// game that embeds the crate needs no shader files.
-pub const SHADER_MODULES: [(&str, &str); 16] = [
+pub const SHADER_MODULES: [(&str, &str); 17] = [
     (
         "shaders/layout.wgsl",
         include_str!("../../../../shaders/layout.wgsl"),
@@ -101,6 +102,10 @@ pub const SHADER_MODULES: [(&str, &str); 16] = [
     (
         "shaders/product.wgsl",
         include_str!("../../../../shaders/product.wgsl"),
+    ),
+    (
+        "shaders/nil.wgsl",
+        include_str!("../../../../shaders/nil.wgsl"),
     ),
 ];
 
@@ -369,10 +374,7 @@ impl GpuScene {
             mirrors: scene.has_mirrors(),
             general: false,
             straightforward: false,
-            product: false,
-            product_objects: 0,
-            product_images: 0,
-            product_shadows: false,
+            ..ShaderKey::empty(g)
         };
         let bytes = key.uniform_bytes();
         if bytes > MAX_UNIFORM_BYTES {

@@ -1,0 +1,118 @@
+//! Nil spaces in the plugin: while the [`ActiveSpace`] is a Nil space, its scene (the
+//! [`BaseNilScene`] or the default one) is packed for the tracer's `NIL` variant when the
+//! space or the settings change. Players and entities move and wrap by the systems written
+//! once over the geometry contract ([`crate::plugin::family::FamilyPlugin`]): along
+//! geodesics in closed form, their axes carried by parallel transport, wrapped into the box
+//! by the lattice.
+
+use crate::plugin::components::{ActiveSpace, TracerSettings, TracerStatus};
+use crate::plugin::render::PreparedScene;
+use crate::plugin::render::gpu::{GpuScene, MAX_GPU_BUDGET};
+use crate::space::nil::NilSpace;
+use crate::trace::nil::{NilCamera, NilScene, default_camera, default_scene};
+use bevy::prelude::*;
+use std::sync::Arc;
+
+/// The crossing budget of a Nil view where none is set: thin boxes (large K) are crossed
+/// often, so the budget grows with K up to the GPU's limit.
+#[must_use]
+pub fn default_nil_budget(space: &NilSpace) -> u32 {
+    (32 + 2 * space.k()).min(MAX_GPU_BUDGET)
+}
+
+/// The scene shown in a Nil space instead of its default one, and where players start.
+#[derive(Resource, Clone, Debug, PartialEq)]
+pub struct BaseNilScene {
+    /// The scene.
+    pub scene: NilScene,
+    /// The start view (`None`: the space's default camera).
+    pub start: Option<NilCamera>,
+}
+
+impl BaseNilScene {
+    /// Where players start in `space`: the base scene's start view, else the default one.
+    #[must_use]
+    pub fn start_frame(base: Option<&Self>, space: &NilSpace) -> glam::DMat4 {
+        base.and_then(|b| b.start)
+            .unwrap_or_else(|| default_camera(space))
+            .frame
+    }
+}
+
+/// The scene shown: the base scene or the default one, with the fog and the lighting set in
+/// the settings (the lamp stays a point).
+#[must_use]
+pub fn nil_scene(
+    space: &NilSpace,
+    settings: &TracerSettings,
+    base: Option<&BaseNilScene>,
+) -> NilScene {
+    let mut scene = base.map_or_else(|| default_scene(space), |b| b.scene.clone());
+    if let Some(fog) = settings.fog_distance.filter(|f| f.is_finite() && *f > 0.0) {
+        scene.fog_distance = fog;
+    }
+    if let Some(mut lighting) = settings.lighting {
+        lighting.shadows = lighting.shadows.min(settings.quality.max_shadows());
+        lighting.lamp_radius_inradii = 0.0;
+        let light = scene.light;
+        if let Err(e) = scene.set_lighting(space, light, lighting) {
+            bevy::log::warn!("lighting: {e}");
+        }
+    }
+    scene
+}
+
+/// What the packed Nil scene was made from.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct NilKey {
+    space: usize,
+    fog: Option<f64>,
+    max_crossings: Option<u32>,
+    quality: crate::plugin::components::Quality,
+    lighting: Option<crate::scene::lighting::Lighting>,
+}
+
+/// Packs the Nil scene for the GPU when the space, the base scene or the settings changed.
+pub(crate) fn upload_nil_scene(
+    active: Res<ActiveSpace>,
+    settings: Res<TracerSettings>,
+    base: Option<Res<BaseNilScene>>,
+    prepared: Option<Res<PreparedScene>>,
+    mut status: ResMut<TracerStatus>,
+    mut last: Local<Option<NilKey>>,
+    mut commands: Commands,
+) {
+    let Some(space) = active.space.get::<NilSpace>() else {
+        return;
+    };
+    let key = NilKey {
+        space: Arc::as_ptr(space) as usize,
+        fog: settings.fog_distance,
+        max_crossings: settings.max_crossings,
+        quality: settings.quality,
+        lighting: settings.lighting,
+    };
+    let base_changed = base.as_ref().is_some_and(|b| b.is_changed());
+    if prepared.is_some() && !active.is_changed() && !base_changed && last.as_ref() == Some(&key) {
+        return;
+    }
+    let scene = nil_scene(space, &settings, base.as_deref());
+    let budget = settings
+        .max_crossings
+        .map_or_else(|| default_nil_budget(space), |b| b.clamp(1, MAX_GPU_BUDGET));
+    *last = Some(key);
+    match GpuScene::nil(space, &scene, budget) {
+        Ok(gpu) => {
+            commands.insert_resource(PreparedScene(Arc::new(gpu)));
+            status.error = None;
+        }
+        Err(e) => {
+            let message = format!("{}: {e}", active.id);
+            error!("{message}");
+            status.error = Some(message);
+        }
+    }
+    status.budget = budget;
+    status.fog_distance = scene.fog_distance;
+    status.auto_budget = None;
+}
