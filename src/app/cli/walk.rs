@@ -129,12 +129,7 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
     };
     let chosen = match choose(&args.space, args.scene.as_deref(), args.fog)? {
         Choice::Constant(chosen) => chosen,
-        Choice::Nil(space) => {
-            return Err(super::spaces::refused(
-                &bevy_curved_spaces::space::AnySpace::Nil(space),
-                bevy_curved_spaces::space::Feature::Pictures,
-            ));
-        }
+        Choice::Nil(space) => return walk_nil(args, &space, replay.is_some()),
         Choice::Product(product) => {
             let flight = match &replay {
                 Some(file) => Some(
@@ -553,6 +548,79 @@ fn walk_product(
         );
     }
     record_to(&mut app, args)?;
+    if let Some(path) = &args.screenshot {
+        app.insert_resource(ScreenshotThenExit {
+            path: path.clone(),
+            requested: false,
+        })
+        .add_systems(Update, screenshot_then_exit);
+    }
+    exit_result(app.run())
+}
+
+/// `walk` in a Nil space: its default scene, `E₃` up; offscreen to a picture where there is
+/// no display. Flights, the headset, walls and the teaching views are not written for Nil.
+fn walk_nil(
+    args: &WalkArgs,
+    space: &std::sync::Arc<bevy_curved_spaces::space::nil::NilSpace>,
+    replay: bool,
+) -> Result<(), String> {
+    use bevy_curved_spaces::space::{Family, Feature};
+    let refuse = |feature| {
+        Family::Nil
+            .supports(feature)
+            .map_err(|e| format!("{}: {e}", space.name()))
+    };
+    for (asked, feature) in [
+        (replay, Feature::Flights),
+        (args.record.is_some(), Feature::RecordFlight),
+        (args.xr, Feature::Headset),
+        (args.view.walls.walls.is_some(), Feature::Walls),
+        (
+            args.view.colour_by != super::ColourByArg::Shading,
+            Feature::TeachingViews,
+        ),
+        (args.view.changes_parts(), Feature::SceneParts),
+    ] {
+        if asked {
+            refuse(feature)?;
+        }
+    }
+    if !display_available() {
+        say_no_display(args);
+        let mut render = RenderArgs::of(&args.space);
+        render.fog = args.fog;
+        render.crossings = args.crossings.map(|c| c as usize);
+        render.view.light = args.view.light;
+        render.stereo = args.stereo;
+        if !gpu_available() {
+            eprintln!("no GPU adapter found: using the CPU reference renderer");
+            render.cpu = true;
+        }
+        return render_command(&render);
+    }
+    let lighting = if args.view.light.any() {
+        let lighting = args.view.light.lighting(Default::default());
+        lighting.check()?;
+        Some(lighting)
+    } else {
+        None
+    };
+    let active = ActiveSpace::new(&args.space, AnySpace::Nil(space.clone()));
+    let stereo = args.stereo.settings_for(active.inradius)?;
+    eprintln!(
+        "walking in {} (Nil): click to look around, WASD to walk, Space/Shift along E3, Esc releases the mouse, F1 the panel",
+        space.name()
+    );
+    let mut app = App::new();
+    app.add_plugins(DefaultPlugins.set(window_titled(format!("curved spaces: {}", space.name()))));
+    app.insert_resource(active);
+    add_walk_plugins(&mut app, args, stereo, None, lighting).add_systems(
+        Startup,
+        |mut commands: Commands| {
+            commands.spawn((Camera3d::default(), CurvedSpaceCamera::default()));
+        },
+    );
     if let Some(path) = &args.screenshot {
         app.insert_resource(ScreenshotThenExit {
             path: path.clone(),

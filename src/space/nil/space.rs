@@ -330,21 +330,56 @@ impl FrameSpace for NilSpace {
             .fold(0.0_f64, |m, x| m.max(x.abs()))
     }
 
+    /// A step of a player: with `level` (the plugin's default), `E₃` stays up — walking
+    /// forward and sideways is horizontal (the frame's right and back without their `E₃`
+    /// parts), up and down is along `E₃`, the axes keep their body components (a left
+    /// translation, which is what the lattice's gluings do, so a walk round a horizontal
+    /// square comes back higher by its area) and yaw turns about `E₃`. Without it the frame
+    /// moves by parallel transport and turns about its own axes.
     fn step_frame(&self, frame: DMat4, motion: &FrameMotion) -> DMat4 {
         let d = motion.translation;
-        let mut f = if d.length() > 0.0 && d.is_finite() {
-            transport(frame, d / d.length(), d.length())
-        } else {
-            frame
-        };
-        for (axis, angle) in [
-            (DVec3::X, motion.rotation.x),
-            (DVec3::Y, motion.rotation.y),
-            (DVec3::Z, motion.rotation.z),
-        ] {
-            if angle != 0.0 && angle.is_finite() {
-                f *= DMat4::from_axis_angle(axis, angle);
+        let mut f = frame;
+        if d.length() > 0.0 && d.is_finite() {
+            if motion.level {
+                let flat = |v: DVec4| DVec3::new(v.x, v.y, 0.0);
+                let h = flat(f.x_axis) * d.x + flat(f.z_axis) * d.z;
+                let scale = d.x.hypot(d.z);
+                let horizontal = if h.length() > 1e-12 {
+                    h * (scale / h.length())
+                } else {
+                    DVec3::ZERO
+                };
+                let u = horizontal + DVec3::Z * d.y;
+                let length = u.length();
+                if length > 0.0 {
+                    let moved = flow(
+                        &NilRay {
+                            point: f.w_axis.truncate().to_array(),
+                            velocity: (u / length).to_array(),
+                        },
+                        length,
+                    );
+                    f.w_axis = DVec3::from_array(moved.point).extend(1.0);
+                }
+            } else {
+                f = transport(f, d / d.length(), d.length());
             }
+        }
+        let r = motion.rotation;
+        if motion.level && r.y != 0.0 && r.y.is_finite() {
+            let turn = DMat4::from_rotation_z(r.y);
+            let w = f.w_axis;
+            f = turn * f;
+            f.w_axis = w;
+        }
+        for (k, (axis, angle)) in [(DVec3::X, r.x), (DVec3::Y, r.y), (DVec3::Z, r.z)]
+            .into_iter()
+            .enumerate()
+        {
+            if (motion.level && k == 1) || angle == 0.0 || !angle.is_finite() {
+                continue;
+            }
+            f *= DMat4::from_axis_angle(axis, angle);
         }
         orthonormal(f)
     }

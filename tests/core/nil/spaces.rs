@@ -146,3 +146,68 @@ fn the_registry_sends_nil_ids_to_the_nil_family() {
     assert!(NilSpace::new(3).outside_by(ray.point) <= 0.0);
     assert!((ray.point.x - 0.25).abs() < 1e-9);
 }
+
+#[test]
+fn a_level_walk_round_a_square_climbs_by_its_area() {
+    // E₃ up: walking forward `s` and turning a quarter left four times comes back to the
+    // same (x, y) and heading, higher by the enclosed area s² (dz = ½(x dy − y dx)), the
+    // axes unchanged (walking is a left translation); in small steps as a player walks.
+    let space = NilSpace::new(1);
+    let start = DMat4::from_cols(
+        glam::DVec4::X,
+        glam::DVec4::Z,
+        glam::DVec4::new(0.0, -1.0, 0.0, 0.0),
+        glam::DVec4::new(0.0, 0.0, 0.0, 1.0),
+    );
+    let s = 0.3;
+    let steps = 30;
+    let mut f = start;
+    for _ in 0..4 {
+        for _ in 0..steps {
+            let motion = FrameMotion {
+                translation: DVec3::new(0.0, 0.0, -s / f64::from(steps)),
+                rotation: DVec3::ZERO,
+                level: true,
+            };
+            f = space.step_frame(f, &motion);
+            assert!(
+                (f.y_axis.truncate() - DVec3::Z).length() < 1e-12,
+                "up left E₃"
+            );
+        }
+        let turn = FrameMotion {
+            translation: DVec3::ZERO,
+            rotation: DVec3::new(0.0, std::f64::consts::FRAC_PI_2, 0.0),
+            level: true,
+        };
+        f = space.step_frame(f, &turn);
+    }
+    let p = f.w_axis;
+    assert!(p.x.abs() < 1e-12 && p.y.abs() < 1e-12, "back at {p}");
+    assert!(
+        (p.z.abs() - s * s).abs() < 1e-12,
+        "climbed {} for an area {}",
+        p.z,
+        s * s
+    );
+    for (a, b) in [
+        (f.x_axis, start.x_axis),
+        (f.y_axis, start.y_axis),
+        (f.z_axis, start.z_axis),
+    ] {
+        assert!(
+            (a - b).length() < 1e-12,
+            "the heading turned: {a} against {b}"
+        );
+    }
+    // Unlevelled, the same walk moves by parallel transport: up leaves E₃.
+    let tilted = space.step_frame(
+        start,
+        &FrameMotion {
+            translation: DVec3::new(0.0, 0.0, -s),
+            rotation: DVec3::ZERO,
+            level: false,
+        },
+    );
+    assert!((tilted.y_axis.truncate() - DVec3::Z).length() > 0.1);
+}
