@@ -271,3 +271,45 @@ pub(super) fn tracer_controls(
         }
     }
 }
+
+/// The walk's feel and the view, as the panels of the families with a preferred up share
+/// them: speed, keeping `up` (the checkbox's label and hover text), the field of view, the
+/// stereo settings and the frame rate.
+pub(super) fn walk_feel(
+    ui: &mut egui::Ui,
+    player: &mut PlayerSettings,
+    cameras: &mut Query<(&mut CurvedSpaceCamera, &PlayerFrame, &Holonomy)>,
+    stereo: &mut ResMut<StereoSettings>,
+    inradius: f64,
+    diagnostics: &DiagnosticsStore,
+    (up_label, up_hover): (&str, &str),
+) {
+    ui.add(
+        egui::Slider::new(&mut player.speed, 0.01..=20.0)
+            .logarithmic(true)
+            .text("speed (inradii/s)"),
+    );
+    ui.checkbox(&mut player.fibre_up, up_label)
+        .on_hover_text(up_hover);
+    for (mut camera, _, _) in cameras.iter_mut() {
+        let mut fov = camera.fov_y_degrees;
+        if ui
+            .add(egui::Slider::new(&mut fov, 20.0..=120.0).text("field of view (°)"))
+            .changed()
+        {
+            camera.fov_y_degrees = fov;
+        }
+    }
+    ui.separator();
+    stereo_controls(ui, stereo, inradius);
+    ui.separator();
+    let fps = diagnostics
+        .get(&FrameTimeDiagnosticsPlugin::FPS)
+        .and_then(|d| d.smoothed());
+    let ms = diagnostics
+        .get(&FrameTimeDiagnosticsPlugin::FRAME_TIME)
+        .and_then(|d| d.smoothed());
+    if let (Some(fps), Some(ms)) = (fps, ms) {
+        ui.label(format!("{fps:.0} fps, {ms:.1} ms per frame"));
+    }
+}

@@ -19,6 +19,7 @@ use bevy_egui::{EguiContexts, EguiPlugin, EguiPrimaryContextPass, egui};
 mod controls;
 mod minimap;
 mod picker;
+mod nil;
 mod product;
 
 use controls::{
@@ -84,6 +85,7 @@ impl Plugin for CurvedSpacesUiPlugin {
                 (
                     panel.run_if(ActiveSpace::shows(Family::Constant)),
                     product::product_panel.run_if(ActiveSpace::shows(Family::Product)),
+                    nil::nil_panel.run_if(ActiveSpace::shows(Family::Nil)),
                 ),
             );
     }

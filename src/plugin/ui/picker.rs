@@ -10,6 +10,7 @@ pub struct SpacePicker {
     lens_q: u32,
     prism_n: u32,
     census: usize,
+    nil_k: u32,
     path: String,
     pub(super) error: Option<String>,
 }
@@ -21,6 +22,7 @@ impl Default for SpacePicker {
             lens_q: 2,
             prism_n: 3,
             census: 1,
+            nil_k: 3,
             path: String::new(),
             error: None,
         }
@@ -126,6 +128,17 @@ pub(super) fn space_picker(
             );
             if ui.button("go").clicked() {
                 chosen = Some(format!("census-{}", picker.census));
+            }
+        });
+        ui.horizontal(|ui| {
+            ui.label("Nil");
+            ui.add(
+                egui::DragValue::new(&mut picker.nil_k)
+                    .range(1..=crate::space::nil::MAX_NIL_K)
+                    .prefix("K "),
+            );
+            if ui.button("go").clicked() {
+                chosen = Some(format!("nil-{}", picker.nil_k));
             }
         });
         ui.horizontal(|ui| {

@@ -63,37 +63,15 @@ pub(super) fn product_panel(
             {
                 settings.resolution_scale = scale;
             }
-            ui.add(
-                egui::Slider::new(&mut player.speed, 0.01..=20.0)
-                    .logarithmic(true)
-                    .text("speed (inradii/s)"),
+            super::controls::walk_feel(
+                ui,
+                &mut player,
+                &mut cameras,
+                &mut stereo,
+                active.inradius,
+                &diagnostics,
+                ("keep the fibre up", "Walk horizontally and turn about the fibre, with Space and Shift climbing along it; off, fly freely"),
             );
-            ui.checkbox(&mut player.fibre_up, "keep the fibre up")
-                .on_hover_text(
-                    "Walk horizontally and turn about the fibre, with Space and Shift \
-                     climbing along it; off, fly freely",
-                );
-            for (mut camera, _, _) in &mut cameras {
-                let mut fov = camera.fov_y_degrees;
-                if ui
-                    .add(egui::Slider::new(&mut fov, 20.0..=120.0).text("field of view (°)"))
-                    .changed()
-                {
-                    camera.fov_y_degrees = fov;
-                }
-            }
-            ui.separator();
-            stereo_controls(ui, &mut stereo, active.inradius);
-            ui.separator();
-            let fps = diagnostics
-                .get(&FrameTimeDiagnosticsPlugin::FPS)
-                .and_then(|d| d.smoothed());
-            let ms = diagnostics
-                .get(&FrameTimeDiagnosticsPlugin::FRAME_TIME)
-                .and_then(|d| d.smoothed());
-            if let (Some(fps), Some(ms)) = (fps, ms) {
-                ui.label(format!("{fps:.0} fps, {ms:.1} ms per frame"));
-            }
             for (_, frame, holonomy) in &cameras {
                 let p = frame.0.w_axis;
                 ui.label(format!(
