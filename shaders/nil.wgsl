@@ -454,11 +454,18 @@ fn nil_gap(i: u32, p: vec3<f32>) -> NilGap {
     return NilGap(rho - radius, n, rate);
 }
 
+// A lower bound on the distance from the ball's centre c to p that needs no root (Rust:
+// `distance_floor`).
+fn nil_distance_floor(c: vec3<f32>, p: vec3<f32>) -> f32 {
+    let d = nil_product(-c, p);
+    return max(length(d.xy), 2.0 * (sqrt(1.0 + abs(d.z)) - 1.0));
+}
+
 // A lower bound on the distance from p to object i (0 inside).
 fn nil_clearance(i: u32, p: vec3<f32>) -> f32 {
     let o = space.nil_objects[i];
     if u32(o.info.x) == 0u {
-        return max(nil_shortest(o.shape.xyz, p).x - o.info.y, 0.0);
+        return max(nil_distance_floor(o.shape.xyz, p) - o.info.y, 0.0);
     }
     let g = nil_gap(i, p);
     return max(g.gap / g.rate, 0.0);
@@ -496,7 +503,9 @@ fn nil_meeting(i: u32, ray: NilRay, t_max: f32) -> f32 {
     if g.x <= 0.0 {
         return 0.0;
     }
-    let floor = 64.0 * 1.1920929e-7 * (1.0 + space.nil_objects[i].info.y + t_max);
+    let o = space.nil_objects[i];
+    let is_ball = u32(o.info.x) == 0u;
+    let floor = 64.0 * 1.1920929e-7 * (1.0 + o.info.y + t_max);
     for (var k = 0u; k < 4000u; k += 1u) {
         if g.y < 0.0 {
             let guess = t - g.x / g.y;
@@ -507,8 +516,22 @@ fn nil_meeting(i: u32, ray: NilRay, t_max: f32) -> f32 {
         if g.x < floor {
             return select(NIL_NONE, t, (g.y < -sqrt(floor)));
         }
-        let before = t;
+        var before = t;
         t += g.x / g.z;
+        if is_ball {
+            // Root-free safe steps while the floor keeps the ball more than a radius away.
+            for (var j = 0u; j < 64u; j += 1u) {
+                if t > t_max {
+                    break;
+                }
+                let far = nil_distance_floor(o.shape.xyz, nil_flow(ray, t).p) - o.info.y;
+                if !(far > o.info.y) {
+                    break;
+                }
+                before = t;
+                t += far;
+            }
+        }
         if t > t_max {
             return NIL_NONE;
         }

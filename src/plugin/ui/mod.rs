@@ -18,8 +18,8 @@ use bevy_egui::{EguiContexts, EguiPlugin, EguiPrimaryContextPass, egui};
 
 mod controls;
 mod minimap;
-mod picker;
 mod nil;
+mod picker;
 mod product;
 
 use controls::{

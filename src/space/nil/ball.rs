@@ -50,13 +50,27 @@ fn gap_and_rate<R: Real>(ray: &NilRay<R>, centre: [R; 3], radius: R, t: R) -> (R
     (length - radius, rate)
 }
 
+/// A lower bound on the distance from `centre` to `p` that needs no root: with
+/// `(x, y, z) = centre⁻¹·p`, `d ≥ √(x² + y²)` (the projection to the plane is a
+/// Riemannian submersion) and `d ≥ 2(√(1 + |z|) − 1)` (at time `t` a unit-speed geodesic
+/// from the origin has `|z| ≤ t + t²/4`).
+#[must_use]
+pub fn distance_floor<R: Real>(centre: [R; 3], p: [R; 3]) -> R {
+    let [x, y, z] = super::flow::group_product(centre.map(|v| -v), p);
+    let two = R::from_f64(2.0);
+    (x * x + y * y)
+        .sqrt()
+        .max(two * ((R::ONE + z.abs()).sqrt() - R::ONE))
+}
+
 /// The first time `t` in `[0, t_max]` at which `ray` (a unit body velocity) meets the
 /// metric ball of `radius` about `centre`; `Some(0)` for a start inside it, `None` for a
-/// miss or a graze (see the module).
+/// miss or a graze (see the module). Far from the ball the safe steps take the root-free
+/// [`distance_floor`] instead of the distance.
 #[must_use]
 pub fn ball_hit<R: Real>(ray: &NilRay<R>, centre: [R; 3], radius: R, t_max: R) -> Option<R> {
     let zero = R::ZERO;
-    let (mut t, mut f) = (zero, gap_and_rate(ray, centre, radius, zero).0);
+    let (mut t, (mut f, mut rate)) = (zero, gap_and_rate(ray, centre, radius, zero));
     if !(f > zero) {
         return (f <= zero).then_some(zero);
     }
@@ -64,13 +78,12 @@ pub fn ball_hit<R: Real>(ray: &NilRay<R>, centre: [R; 3], radius: R, t_max: R) -
     let floor = R::from_f64(16.0) * R::EPSILON * (R::ONE + radius + t_max.min(R::from_f64(1e6)));
     for _ in 0..MAX_BALL_STEPS {
         // A Newton step: inside the ball, it brackets the first root.
-        let (_, rate) = gap_and_rate(ray, centre, radius, t);
         if rate < zero {
             let guess = t - f / rate;
             if guess <= t_max {
                 let (g, _) = gap_and_rate(ray, centre, radius, guess);
                 if g <= zero {
-                    return Some(refine(ray, centre, radius, (t, f), guess));
+                    return Some(refine(ray, centre, radius, t, guess));
                 }
             }
         }
@@ -79,25 +92,33 @@ pub fn ball_hit<R: Real>(ray: &NilRay<R>, centre: [R; 3], radius: R, t_max: R) -
             // (a miss) where it runs along it.
             return (rate < -floor.sqrt()).then_some(t);
         }
-        let before = t;
+        let mut before = t;
         t = t + f;
-        if t > t_max {
-            return None;
+        // Root-free safe steps while the floor keeps the ball more than a radius away.
+        loop {
+            if t > t_max {
+                return None;
+            }
+            let far = distance_floor(centre, flow(ray, t).point) - radius;
+            if !(far > radius) {
+                break;
+            }
+            before = t;
+            t = t + far;
         }
-        f = gap_and_rate(ray, centre, radius, t).0;
+        (f, rate) = gap_and_rate(ray, centre, radius, t);
         if f == zero {
             return Some(t);
         }
         if f < zero {
             // Rounding put the safe step a hair past the root: it lies in (before, t].
-            let f_before = gap_and_rate(ray, centre, radius, before).0;
-            return Some(refine(ray, centre, radius, (before, f_before), t));
+            return Some(refine(ray, centre, radius, before, t));
         }
     }
     None
 }
 /// The root of `f` between `lo` (outside, `f > 0`, no root before it) and `hi` (inside).
-fn refine<R: Real>(ray: &NilRay<R>, centre: [R; 3], radius: R, lo: (R, R), hi: R) -> R {
+fn refine<R: Real>(ray: &NilRay<R>, centre: [R; 3], radius: R, lo: R, hi: R) -> R {
     let f = |t: R| gap_and_rate(ray, centre, radius, t);
-    bracketed_root(&f, (lo.0, hi), half_way(lo.0, hi), |value| value > R::ZERO)
+    bracketed_root(&f, (lo, hi), half_way(lo, hi), |value| value > R::ZERO)
 }

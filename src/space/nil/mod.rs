@@ -23,7 +23,7 @@ pub mod flow;
 mod space;
 pub mod walk;
 
-pub use ball::{ball_hit, normal};
+pub use ball::{ball_hit, distance_floor, normal};
 pub use distance::{distance, shortest};
 pub use exit::{horizontal_exit, vertical_exit};
 pub use flow::{NilRay, flow, group_product};

@@ -141,12 +141,27 @@ impl NilObject {
         DVec3::from_array(self.gap(p).1).normalize_or(DVec3::Z)
     }
 
-    /// A lower bound on the distance from `p` to the object (0 inside).
+    /// The object's gap at `p`: how far outside by its own measure (a ball's and a fibre
+    /// tube's distance less the radius, a swept disc's disc radius less its radius or how
+    /// far past its end), negative inside.
+    #[must_use]
+    pub fn gap_at(&self, p: [f64; 3]) -> f64 {
+        self.gap(p).0
+    }
+
+    /// Whether `p` lies in the object (its gap at most 0).
+    #[must_use]
+    pub fn contains(&self, p: [f64; 3]) -> bool {
+        self.gap_at(p) <= 0.0
+    }
+
+    /// A lower bound on the distance from `p` to the object (0 inside, and near it: a ball's
+    /// bound is root-free and loose).
     #[must_use]
     pub fn clearance(&self, p: [f64; 3]) -> f64 {
         if let NilShape::Ball(c) = self.shape {
-            // The distance alone (the normal costs a second inverse exponential map).
-            return (crate::space::nil::distance(c, p) - self.radius).max(0.0);
+            // The root-free floor of the distance.
+            return (crate::space::nil::distance_floor(c, p) - self.radius).max(0.0);
         }
         let (g, _, rate) = self.gap(p);
         (g / rate).max(0.0)
