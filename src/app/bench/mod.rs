@@ -13,6 +13,7 @@ pub mod harness;
 mod accuracy;
 mod edge_work;
 mod lighting;
+mod nil;
 mod plot;
 mod products;
 mod report;
@@ -41,6 +42,7 @@ use timing::*;
 
 pub use harness::{BASELINE_WGSL, DeviceInfo, Frame, Harness, HarnessError, Output, Program};
 
+pub use nil::{NilRow, check_nil};
 pub use plot::{Chart, Corner, PlotError, Series, write_chart};
 pub use products::{PRODUCT_REFERENCE_SPACE, ProductRow, check_products};
 pub use rows::{
@@ -49,7 +51,7 @@ pub use rows::{
 };
 #[cfg(feature = "scene-files")]
 pub use runs::run_scene;
-pub use runs::{DEFAULT_FOG_FACTOR, run, run_edges, run_products, run_straightforward};
+pub use runs::{DEFAULT_FOG_FACTOR, run, run_edges, run_nil, run_products, run_straightforward};
 
 /// The crossing budget of the "exact" reference: far more than any ray of the default
 /// scenes needs before the fog cut-off.
@@ -98,6 +100,9 @@ pub struct BenchConfig {
     /// configurations.
     #[serde(default)]
     pub products: Vec<String>,
+    /// Nil spaces by their K ([`NilRow`]); absent from older configurations.
+    #[serde(default)]
+    pub nil: Vec<u32>,
 }
 
 impl BenchConfig {
@@ -134,6 +139,7 @@ impl BenchConfig {
                 .iter()
                 .map(|a| a.id.to_string())
                 .collect(),
+            nil: vec![1, 3, 50],
         }
     }
 
@@ -156,6 +162,7 @@ impl BenchConfig {
             cpu_only: false,
             mesh_triangles: vec![12, 960],
             products: vec!["projective-plane-circle".into()],
+            nil: vec![1],
         }
     }
 }
@@ -195,6 +202,9 @@ pub enum BenchError {
     /// A product space id is wrong (the reason is attached).
     #[error("{0}")]
     Product(String),
+    /// A Nil space's K is wrong (the reason is attached).
+    #[error("{0}")]
+    Nil(String),
     /// A lighting could not be set (the reason is attached).
     #[error("the lighting cannot be used: {0}")]
     Lighting(String),

@@ -289,6 +289,9 @@ pub struct BenchReport {
     /// The product spaces (absent from reports written before they existed).
     #[serde(default)]
     pub products: Vec<super::ProductRow>,
+    /// The Nil spaces (absent from older reports).
+    #[serde(default)]
+    pub nil: Vec<super::NilRow>,
     /// The lightings' frame time against error (absent from reports written before them).
     #[serde(default)]
     pub lighting: Vec<super::LightingRow>,

@@ -174,7 +174,7 @@ pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, 
     };
     let per_space = gpu_steps + 2 + config.fog_factors.len();
     let product_steps = if harness.is_some() {
-        config.products.len()
+        config.products.len() + config.nil.len()
     } else {
         0
     };
@@ -194,6 +194,7 @@ pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, 
     }
     if let Some(harness) = harness.as_mut() {
         report.products = products::product_rows(harness, config, progress)?;
+        report.nil = nil::nil_rows(harness, config, progress)?;
     }
     progress.finish_and_clear();
     Ok(report)
@@ -422,6 +423,22 @@ pub fn run_products(
     progress.set_length(config.products.len() as u64);
     let mut report = BenchReport::empty(Some(&harness));
     report.products = products::product_rows(&mut harness, config, progress)?;
+    progress.finish_and_clear();
+    Ok(report)
+}
+
+/// Only the Nil spaces of `config.nil`: each default view timed against
+/// [`products::PRODUCT_REFERENCE_SPACE`]'s in the same rounds, the GPU against the CPU
+/// reference, the walks against the exact geodesic ([`nil::NilRow`]).
+pub fn run_nil(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, BenchError> {
+    if config.nil.is_empty() || config.sizes.is_empty() {
+        return Err(BenchError::Empty("no Nil spaces or sizes were named"));
+    }
+    nil::check_nil(&config.nil)?;
+    let mut harness = Harness::new()?;
+    progress.set_length(config.nil.len() as u64);
+    let mut report = BenchReport::empty(Some(&harness));
+    report.nil = nil::nil_rows(&mut harness, config, progress)?;
     progress.finish_and_clear();
     Ok(report)
 }

@@ -89,6 +89,35 @@ pub(super) fn bench(args: &BenchArgs) -> Result<(), String> {
     }
     let started = Instant::now();
     let progress = indicatif::ProgressBar::new(0);
+    if let Some(ks) = &args.nil {
+        config.nil.clone_from(ks);
+        eprintln!(
+            "benchmarking Nil spaces {ks:?} at {:?} against {}…",
+            config.sizes,
+            bevy_curved_spaces::bench::PRODUCT_REFERENCE_SPACE
+        );
+        let report =
+            bevy_curved_spaces::bench::run_nil(&config, &progress).map_err(|e| e.to_string())?;
+        for r in &report.nil {
+            say!(
+                "{:<8} {:>8.2} ms, {:.2}× {} ({} objects, budget {}), {:.2} crossings a pixel, {:.2} % of pixels differ from the CPU, walks f64 {:.3} / f32 {:.3} × ε(1 + t²) (median)",
+                r.space,
+                r.tracer_ms,
+                r.ratio,
+                r.reference_space,
+                r.objects,
+                r.budget,
+                r.crossings_per_pixel,
+                100.0 * r.differing_pixels,
+                r.f64_median,
+                r.f32_median
+            );
+        }
+        let written = bevy_curved_spaces::bench::write_edges_report(&report, &config, &args.out)
+            .map_err(|e| e.to_string())?;
+        say_written(&written, &args.out, started);
+        return Ok(());
+    }
     if let Some(products) = &args.products {
         if products.len() == 1 && products[0] == "all" {
             config.products = bevy_curved_spaces::space::product::PRODUCT_ALIASES

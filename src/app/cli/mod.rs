@@ -453,6 +453,12 @@ struct BenchArgs {
     /// every named one); writes products.csv and summary.md. The full run measures them too.
     #[arg(long, value_delimiter = ',', conflicts_with_all = ["cpu_only", "from", "scene", "entities", "edges", "straightforward", "spaces"])]
     products: Option<Vec<String>>,
+    /// Measure only the Nil spaces `nil-K` by their K (comma-separated, 1 to 1000): each
+    /// default view timed against Seifert–Weber's in the same rounds, crossings a pixel,
+    /// the GPU against the CPU reference, the f64 and f32 walks against the exact geodesic;
+    /// writes nil.csv and summary.md. The full run measures nil-1, nil-3 and nil-50.
+    #[arg(long, value_delimiter = ',', value_parser = clap::value_parser!(u32).range(1..=1000), conflicts_with_all = ["cpu_only", "from", "scene", "entities", "edges", "straightforward", "spaces", "products"])]
+    nil: Option<Vec<u32>>,
     /// Time only what the cell's edges cost: the default view with its edges culled,
     /// unculled and absent, in turn, per space (at the first of --budgets, default 32, and
     /// the middle of --sizes); writes edges.csv and summary.md.

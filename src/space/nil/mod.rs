@@ -16,6 +16,7 @@
 //! - velocities in the orthonormal left-invariant frame `E₁ = ∂x − (y/2)∂z`,
 //!   `E₂ = ∂y + (x/2)∂z`, `E₃ = ∂z` (the *body* velocity), which a left translation keeps.
 
+pub mod accuracy;
 pub mod ball;
 pub mod distance;
 pub mod exit;
