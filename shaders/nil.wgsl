@@ -496,11 +496,42 @@ fn nil_refine(i: u32, ray: NilRay, lo_in: f32, hi_in: f32) -> f32 {
     return hi;
 }
 
+// Where the ray first comes into the vertical slab holding swept disc i (Rust:
+// `NilObject::slab_entry`); 0 inside it and for the other shapes, NIL_NONE never.
+fn nil_slab_entry(i: u32, ray: NilRay) -> f32 {
+    let o = space.nil_objects[i];
+    if u32(o.info.x) != 2u {
+        return 0.0;
+    }
+    let across = 1u - u32(o.info.z);
+    let centre = o.shape[across] + o.info.w;
+    let lo = centre - o.info.y;
+    let hi = centre + o.info.y;
+    let x = ray.p[across];
+    var n = vec2<f32>(0.0);
+    if x < lo {
+        n[across] = 1.0;
+        return nil_vertical_exit(ray, n, lo);
+    }
+    if x > hi {
+        n[across] = -1.0;
+        return nil_vertical_exit(ray, n, -hi);
+    }
+    return 0.0;
+}
+
 // The first t in [0, t_max] at which the ray meets object i; NIL_NONE for a miss.
 fn nil_meeting(i: u32, ray: NilRay, t_max: f32) -> f32 {
-    var t = 0.0;
-    var g = nil_gap_along(i, ray, 0.0);
+    let start = nil_slab_entry(i, ray);
+    if start < 0.0 || start > t_max {
+        return NIL_NONE;
+    }
+    var t = start;
+    var g = nil_gap_along(i, ray, start);
     if g.x <= 0.0 {
+        if start > 0.0 {
+            return nil_refine(i, ray, 0.0, start);
+        }
         return 0.0;
     }
     let o = space.nil_objects[i];

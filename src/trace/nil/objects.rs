@@ -181,9 +181,17 @@ impl NilObject {
                 n[0] * moved.velocity[0] + n[1] * moved.velocity[1] + n[2] * moved.velocity[2];
             (g, along, rate)
         };
-        let (mut t, (mut g, _, _)) = (0.0, at(0.0));
+        let start = self.slab_entry(ray)?;
+        if start > t_max {
+            return None;
+        }
+        let (mut t, (mut g, _, _)) = (start, at(start));
         if g <= 0.0 {
-            return Some(0.0);
+            return Some(if start > 0.0 {
+                self.refine(ray, 0.0, start)
+            } else {
+                0.0
+            });
         }
         let floor = 64.0 * f64::EPSILON * (1.0 + self.radius + t_max.min(1e6));
         for _ in 0..MAX_STEPS {
@@ -208,6 +216,37 @@ impl NilObject {
             }
         }
         None
+    }
+
+    /// Where the ray first comes into the vertical slab that holds a swept disc (its points
+    /// are within `r` across the edge's plane: `|y − γ_y − y₀| ≤ r` for an edge along `x`),
+    /// in closed form ([`crate::space::nil::vertical_exit`]): no meeting lies before it.
+    /// 0 for a start in the slab, and for the other shapes; `None` where the ray never
+    /// comes into it.
+    fn slab_entry(&self, ray: &NilRay<f64>) -> Option<f64> {
+        let NilShape::Edge {
+            image,
+            along,
+            offset,
+            ..
+        } = self.shape
+        else {
+            return Some(0.0);
+        };
+        let across = 1 - along;
+        let centre = image[across] + offset;
+        let (lo, hi) = (centre - self.radius, centre + self.radius);
+        let x = ray.point[across];
+        let mut n = [0.0; 2];
+        if x < lo {
+            n[across] = 1.0;
+            crate::space::nil::vertical_exit(ray, n, lo)
+        } else if x > hi {
+            n[across] = -1.0;
+            crate::space::nil::vertical_exit(ray, n, -hi)
+        } else {
+            Some(0.0)
+        }
     }
 
     /// The root of the gap between `lo` (outside, no root before it) and `hi` (inside).
