@@ -164,7 +164,7 @@ pub fn write_edges_report(
     edges_section(&mut md, report);
     straightforward_section(&mut md, report);
     products_section(&mut md, report);
-    super::nil::nil_section(&mut md, report);
+    nil_section(&mut md, report);
     super::lighting::lighting_section(&mut md, report);
     written.push(write_text(dir, "summary.md", &md)?);
     if let Some(chart) = super::lighting::lighting_chart(report) {
@@ -239,7 +239,7 @@ pub fn summary_markdown(report: &BenchReport) -> String {
     edges_section(&mut md, report);
     straightforward_section(&mut md, report);
     products_section(&mut md, report);
-    super::nil::nil_section(&mut md, report);
+    nil_section(&mut md, report);
     specialisation_section(&mut md, report);
     stereo_section(&mut md, report);
     mesh_section(&mut md, report);

@@ -458,3 +458,38 @@ pub(super) fn products_section(md: &mut String, report: &BenchReport) {
         );
     }
 }
+
+/// The Nil spaces: speed against a constant-curvature view, and error.
+pub(super) fn nil_section(md: &mut String, report: &BenchReport) {
+    use std::fmt::Write as _;
+    let Some(first) = report.nil.first() else {
+        return;
+    };
+    let reference = &first.reference_space;
+    let _ = writeln!(
+        *md,
+        "\n### Nil spaces: each default view timed in the same rounds as {reference}'s default view at the same size (Nil at the plugin's default budget, {reference} at its automatic one); objects in the scene; crossings a pixel makes; the GPU picture against the f64 CPU reference (pixels off by more than 10/255); the f64 and f32 walks ({} long) against the exact geodesic in double-double, as error / (ε (1 + t²))\n\n| space | size | budget | objects | ms | {reference} ms | × {reference} | crossings / pixel | pixels differing | mean error /255 | f64 median / worst | f32 median / worst |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+        super::super::nil::WALK_DISTANCE
+    );
+    for r in &report.nil {
+        let _ = writeln!(
+            *md,
+            "| {} | {}×{} | {} | {} | {:.2} | {:.2} | {:.2}× | {:.2} | {} % | {:.2} | {:.3} / {:.3} | {:.3} / {:.3} |",
+            r.space,
+            r.width,
+            r.height,
+            r.budget,
+            r.objects,
+            r.tracer_ms,
+            r.reference_ms,
+            r.ratio,
+            r.crossings_per_pixel,
+            super::pct(r.differing_pixels),
+            r.mean_error,
+            r.f64_median,
+            r.f64_worst,
+            r.f32_median,
+            r.f32_worst
+        );
+    }
+}
