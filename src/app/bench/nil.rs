@@ -10,7 +10,7 @@ use crate::plugin::render::gpu::GpuScene;
 use crate::space::nil::NilSpace;
 use crate::space::nil::accuracy::walk_error;
 use crate::trace::nil::{NilRayEnd, default_camera, default_scene, first_nil_hit, render_nil_view};
-use crate::view::{ViewKind, ViewLayout};
+use crate::view::ViewLayout;
 use glam::DVec4;
 
 /// Walks per space against the exact geodesic, and their length.
@@ -154,7 +154,6 @@ pub(super) fn nil_rows(
     .budget;
     let reference_gpu = reference.pack(&reference_scene, reference_budget)?;
     let reference_layout = reference.camera.layout(w, h);
-    let reference_program = Program::Tracer(reference_gpu.key, ViewKind::Mono, Output::Colour);
     let mut rows = Vec::new();
     for &k in &config.nil {
         let id = format!("nil-{k}");
@@ -180,48 +179,17 @@ pub(super) fn nil_rows(
                 h,
             )
         };
-        let program = Program::Tracer(gpu.key, ViewKind::Mono, Output::Colour);
-        let timed = harness.frame(
-            w,
-            h,
-            Output::Colour,
-            &timing::uniform_words(&layout((w, h)), &gpu),
-            Some(&gpu),
-        );
-        let reference_frame = harness.frame(
-            w,
-            h,
-            Output::Colour,
-            &timing::uniform_words(&reference_layout, &reference_gpu),
-            Some(&reference_gpu),
-        );
-        harness.draw(&program, &timed)?;
-        harness.draw(&reference_program, &reference_frame)?;
-        let times = timing::time_rounds(
+        let (ratio, tracer_ms, reference_ms) = timing::against_reference(
             harness,
-            &[(&program, &timed), (&reference_program, &reference_frame)],
             config,
+            (w, h),
+            (&gpu, &layout((w, h))),
+            (&reference_gpu, &reference_layout),
         )?;
-        let ratio = timing::paired_ratio(&times[0], &times[1]);
-        let stats: Vec<timing::Stats> = times.into_iter().map(timing::Stats::of).collect();
         let (ew, eh) = config.error_size;
-        let compared = harness.frame(
-            ew,
-            eh,
-            Output::Colour,
-            &timing::uniform_words(&layout((ew, eh)), &gpu),
-            Some(&gpu),
-        );
-        harness.draw(&program, &compared)?;
-        let gpu_pixels = harness.read_pixels(&compared)?;
         let cpu = render_nil_view(&space, &scene, &layout((ew, eh)), budget as usize);
-        let (mut differing, mut sum) = (0usize, 0u64);
-        for (g, c) in gpu_pixels.chunks_exact(4).zip(cpu.pixels()) {
-            let worst = (0..3).map(|i| g[i].abs_diff(c.0[i])).max().unwrap_or(0);
-            differing += usize::from(worst > DIFFERING_LEVEL);
-            sum += u64::from(worst);
-        }
-        let n = f64::from(ew * eh);
+        let (differing_pixels, mean_error) =
+            timing::gpu_against_cpu(harness, &gpu, &layout((ew, eh)), &cpu, DIFFERING_LEVEL)?;
         let (f64_median, f64_worst) =
             walk_ratios::<DVec4>(k, config.conditioning_rays, f64::EPSILON);
         let (f32_median, f32_worst) =
@@ -232,13 +200,13 @@ pub(super) fn nil_rows(
             height: h,
             budget,
             objects: scene.objects.len(),
-            tracer_ms: stats[0].median,
+            tracer_ms,
             reference_space: products::PRODUCT_REFERENCE_SPACE.into(),
-            reference_ms: stats[1].median,
+            reference_ms,
             ratio,
             crossings_per_pixel: crossings_per_pixel(&space, &layout((ew, eh)), budget as usize),
-            differing_pixels: differing as f64 / n,
-            mean_error: sum as f64 / n,
+            differing_pixels,
+            mean_error,
             f64_median,
             f64_worst,
             f32_median,

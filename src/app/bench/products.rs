@@ -14,7 +14,7 @@ use crate::trace::product::{
     ProductRayEnd, default_camera, default_scene, first_product_hit, product_auto_budget,
     render_product,
 };
-use crate::view::{ViewKind, ViewLayout};
+use crate::view::ViewLayout;
 use glam::DVec4;
 
 /// The constant-curvature space whose default view each product's is timed against.
@@ -200,50 +200,18 @@ pub(super) fn product_rows(
                 h,
             )
         };
-        let program = Program::Tracer(gpu.key, ViewKind::Mono, Output::Colour);
-        let reference_program = Program::Tracer(reference_gpu.key, ViewKind::Mono, Output::Colour);
-        let timed = harness.frame(
-            w,
-            h,
-            Output::Colour,
-            &timing::uniform_words(&layout((w, h)), &gpu),
-            Some(&gpu),
-        );
-        let reference_frame = harness.frame(
-            w,
-            h,
-            Output::Colour,
-            &timing::uniform_words(&reference_layout, &reference_gpu),
-            Some(&reference_gpu),
-        );
-        harness.draw(&program, &timed)?;
-        harness.draw(&reference_program, &reference_frame)?;
-        let times = timing::time_rounds(
+        let (ratio, tracer_ms, reference_ms) = timing::against_reference(
             harness,
-            &[(&program, &timed), (&reference_program, &reference_frame)],
             config,
+            (w, h),
+            (&gpu, &layout((w, h))),
+            (&reference_gpu, &reference_layout),
         )?;
-        let ratio = timing::paired_ratio(&times[0], &times[1]);
-        let stats: Vec<timing::Stats> = times.into_iter().map(timing::Stats::of).collect();
         // The GPU picture against the CPU reference at the error size.
         let (ew, eh) = config.error_size;
-        let compared = harness.frame(
-            ew,
-            eh,
-            Output::Colour,
-            &timing::uniform_words(&layout((ew, eh)), &gpu),
-            Some(&gpu),
-        );
-        harness.draw(&program, &compared)?;
-        let gpu_pixels = harness.read_pixels(&compared)?;
         let cpu = render_product(&space, &scene, &camera, ew, eh, budget as usize);
-        let (mut differing, mut sum) = (0usize, 0u64);
-        for (g, c) in gpu_pixels.chunks_exact(4).zip(cpu.pixels()) {
-            let worst = (0..3).map(|k| g[k].abs_diff(c.0[k])).max().unwrap_or(0);
-            differing += usize::from(worst > DIFFERING_LEVEL);
-            sum += u64::from(worst);
-        }
-        let n = f64::from(ew * eh);
+        let (differing_pixels, mean_error) =
+            timing::gpu_against_cpu(harness, &gpu, &layout((ew, eh)), &cpu, DIFFERING_LEVEL)?;
         let (f64_median, f64_worst) = walk_ratios::<DVec4>(&space, config.conditioning_rays);
         let (f32_median, f32_worst) = walk_ratios::<glam::Vec4>(&space, config.conditioning_rays);
         rows.push(ProductRow {
@@ -252,10 +220,10 @@ pub(super) fn product_rows(
             width: w,
             height: h,
             budget,
-            tracer_ms: stats[0].median,
+            tracer_ms,
             reference_space: PRODUCT_REFERENCE_SPACE.into(),
             reference_budget,
-            reference_ms: stats[1].median,
+            reference_ms,
             ratio,
             crossings_per_pixel: crossings_per_pixel(
                 &space,
@@ -264,8 +232,8 @@ pub(super) fn product_rows(
                 (ew, eh),
                 budget as usize,
             ),
-            differing_pixels: differing as f64 / n,
-            mean_error: sum as f64 / n,
+            differing_pixels,
+            mean_error,
             f64_median,
             f64_worst,
             f32_median,

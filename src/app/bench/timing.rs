@@ -470,3 +470,60 @@ pub(super) fn mesh_cost(
         ratio: sa.median / sb.median,
     })
 }
+
+/// A view timed in the same rounds as a reference view at `(w, h)`: each a packed scene and
+/// the layout of its view. Returns the median over rounds of the view's time over the
+/// reference's, and the two medians (ms).
+pub(super) fn against_reference(
+    harness: &mut Harness,
+    config: &BenchConfig,
+    (w, h): (u32, u32),
+    (gpu, layout): (&GpuScene, &ViewLayout),
+    (reference_gpu, reference_layout): (&GpuScene, &ViewLayout),
+) -> Result<(f64, f64, f64), BenchError> {
+    let program = Program::Tracer(gpu.key, ViewKind::Mono, Output::Colour);
+    let reference_program = Program::Tracer(reference_gpu.key, ViewKind::Mono, Output::Colour);
+    let timed = harness.frame(w, h, Output::Colour, &uniform_words(layout, gpu), Some(gpu));
+    let reference_frame = harness.frame(
+        w,
+        h,
+        Output::Colour,
+        &uniform_words(reference_layout, reference_gpu),
+        Some(reference_gpu),
+    );
+    harness.draw(&program, &timed)?;
+    harness.draw(&reference_program, &reference_frame)?;
+    let times = time_rounds(
+        harness,
+        &[(&program, &timed), (&reference_program, &reference_frame)],
+        config,
+    )?;
+    let ratio = paired_ratio(&times[0], &times[1]);
+    let stats: Vec<Stats> = times.into_iter().map(Stats::of).collect();
+    Ok((ratio, stats[0].median, stats[1].median))
+}
+
+/// The GPU picture of a packed scene in `layout` against the CPU reference's `cpu` (same
+/// size): the share of pixels whose largest channel difference passes `level` (of 255),
+/// and the mean of that difference.
+pub(super) fn gpu_against_cpu(
+    harness: &mut Harness,
+    gpu: &GpuScene,
+    layout: &ViewLayout,
+    cpu: &image::RgbImage,
+    level: u8,
+) -> Result<(f64, f64), BenchError> {
+    let (w, h) = cpu.dimensions();
+    let program = Program::Tracer(gpu.key, ViewKind::Mono, Output::Colour);
+    let compared = harness.frame(w, h, Output::Colour, &uniform_words(layout, gpu), Some(gpu));
+    harness.draw(&program, &compared)?;
+    let gpu_pixels = harness.read_pixels(&compared)?;
+    let (mut differing, mut sum) = (0usize, 0u64);
+    for (g, c) in gpu_pixels.chunks_exact(4).zip(cpu.pixels()) {
+        let worst = (0..3).map(|k| g[k].abs_diff(c.0[k])).max().unwrap_or(0);
+        differing += usize::from(worst > level);
+        sum += u64::from(worst);
+    }
+    let n = f64::from(w * h);
+    Ok((differing as f64 / n, sum as f64 / n))
+}
