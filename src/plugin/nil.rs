@@ -101,17 +101,8 @@ pub(crate) fn upload_nil_scene(
         .max_crossings
         .map_or_else(|| default_nil_budget(space), |b| b.clamp(1, MAX_GPU_BUDGET));
     *last = Some(key);
-    match GpuScene::nil(space, &scene, budget) {
-        Ok(gpu) => {
-            commands.insert_resource(PreparedScene(Arc::new(gpu)));
-            status.error = None;
-        }
-        Err(e) => {
-            let message = format!("{}: {e}", active.id);
-            error!("{message}");
-            status.error = Some(message);
-        }
-    }
+    let packed = GpuScene::nil(space, &scene, budget);
+    crate::plugin::product::install_scene(packed, &active.id, &mut status, &mut commands);
     status.budget = budget;
     status.fog_distance = scene.fog_distance;
     status.auto_budget = None;

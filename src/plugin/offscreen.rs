@@ -331,8 +331,25 @@ impl OffscreenRenderer {
             world.insert_resource(ActiveSpace::new(space.name(), space.clone()));
         }
         world.insert_resource(BaseProductScene::new(scene.clone()));
+        let frame = crate::space::product::motion::camera_frame(camera.point, camera.frame);
+        self.picture(
+            (w, h),
+            (max_crossings, scene.colour_by, stereo),
+            (camera.fov_y_degrees, frame),
+        )
+    }
+
+    /// The picture of the space and scene now in the world from a camera of `fov` degrees at
+    /// `frame`: every pixel traced, none scaled up (the picture the CPU reference draws),
+    /// with the budget, colouring and stereo mode given.
+    fn picture(
+        &mut self,
+        (w, h): (u32, u32),
+        (max_crossings, colour_by, stereo): (u32, crate::scene::ColourBy, StereoSettings),
+        (fov, frame): (f64, DMat4),
+    ) -> Result<RgbImage, OffscreenError> {
+        let world = self.app.world_mut();
         world.insert_resource(stereo);
-        // Every pixel traced, none scaled up: the picture the CPU reference draws.
         world.insert_resource(TracerSettings {
             fog_distance: None,
             max_crossings: Some(max_crossings.max(1)),
@@ -340,15 +357,13 @@ impl OffscreenRenderer {
             resolution_scale: 1.0,
             parts: SceneParts::default(),
             time: Some(0.0),
-            colour_by: scene.colour_by,
+            colour_by,
             walls: None,
             lighting: None,
         });
         // The switch puts players at the start view in this update, before the camera.
         self.app.update();
-        let frame = crate::space::product::motion::camera_frame(camera.point, camera.frame);
-        let (handle, entity) =
-            spawn_camera(self.app.world_mut(), (w, h), camera.fov_y_degrees, frame);
+        let (handle, entity) = spawn_camera(self.app.world_mut(), (w, h), fov, frame);
         let result = self.capture(&handle);
         let world = self.app.world_mut();
         world.despawn(entity);
@@ -386,30 +401,11 @@ impl OffscreenRenderer {
             scene: scene.clone(),
             start: Some(*camera),
         });
-        world.insert_resource(stereo);
-        world.insert_resource(TracerSettings {
-            fog_distance: None,
-            max_crossings: Some(max_crossings.max(1)),
-            quality: crate::plugin::components::Quality::High,
-            resolution_scale: 1.0,
-            parts: SceneParts::default(),
-            time: Some(0.0),
-            colour_by: crate::scene::ColourBy::Shading,
-            walls: None,
-            lighting: None,
-        });
-        self.app.update();
-        let (handle, entity) = spawn_camera(
-            self.app.world_mut(),
+        self.picture(
             (w, h),
-            camera.fov_y_degrees,
-            camera.frame,
-        );
-        let result = self.capture(&handle);
-        let world = self.app.world_mut();
-        world.despawn(entity);
-        world.resource_mut::<Assets<Image>>().remove(&handle);
-        result
+            (max_crossings, crate::scene::ColourBy::Shading, stereo),
+            (camera.fov_y_degrees, camera.frame),
+        )
     }
 
     fn capture(&mut self, handle: &Handle<Image>) -> Result<RgbImage, OffscreenError> {

@@ -132,18 +132,30 @@ pub(crate) fn upload_product_scene(
     };
     scene.objects.extend(entities.objects.iter().copied());
     *last = Some(now);
-    match GpuScene::product(space, &scene, budget) {
+    let packed = GpuScene::product(space, &scene, budget);
+    install_scene(packed, &active.id, &mut status, &mut commands);
+    status.budget = budget;
+    status.fog_distance = scene.fog_distance;
+    status.auto_budget = choice;
+}
+
+/// Shows a packed scene (the render node takes it up), or says in the status and the log
+/// why the scene of `id` could not be packed.
+pub(crate) fn install_scene(
+    packed: Result<GpuScene, crate::plugin::render::gpu::GpuSceneError>,
+    id: &str,
+    status: &mut TracerStatus,
+    commands: &mut Commands,
+) {
+    match packed {
         Ok(gpu) => {
             commands.insert_resource(PreparedScene(Arc::new(gpu)));
             status.error = None;
         }
         Err(e) => {
-            let message = format!("{}: {e}", active.id);
+            let message = format!("{id}: {e}");
             error!("{message}");
             status.error = Some(message);
         }
     }
-    status.budget = budget;
-    status.fog_distance = scene.fog_distance;
-    status.auto_budget = choice;
 }

@@ -253,14 +253,7 @@ fn render_product_command(args: &RenderArgs, chosen: ProductChoice) -> Result<()
         );
         render_product_view(&space, &scene, &layout, budget)
     } else {
-        let gpu_budget = u32::try_from(budget)
-            .ok()
-            .filter(|&n| (1..=MAX_GPU_BUDGET).contains(&n))
-            .ok_or_else(|| {
-                format!(
-                    "the GPU tracer takes a crossing budget from 1 to {MAX_GPU_BUDGET}, got {budget} (use --cpu for more)"
-                )
-            })?;
+        let gpu_budget = gpu_budget(budget)?;
         bevy_curved_spaces::plugin::offscreen::OffscreenRenderer::new()
             .and_then(|mut r| {
                 r.render_product_stereo(&space, &scene, &camera, args.size, gpu_budget, stereo)
@@ -437,15 +430,7 @@ fn render_gpu(args: &RenderArgs, chosen: &Chosen, view: &View) -> Result<RgbImag
         settings.height,
         settings.max_crossings
     );
-    let max_crossings = u32::try_from(settings.max_crossings)
-        .ok()
-        .filter(|&n| (1..=MAX_GPU_BUDGET).contains(&n))
-        .ok_or_else(|| {
-            format!(
-                "the GPU tracer takes a crossing budget from 1 to {MAX_GPU_BUDGET}, got {} (use --cpu for more)",
-                settings.max_crossings
-            )
-        })?;
+    let max_crossings = gpu_budget(settings.max_crossings)?;
     render_offscreen(&OffscreenRender {
         fog_distance: Some(fog),
         parts: chosen.parts,
@@ -490,6 +475,18 @@ pub(super) fn saved(image: &RgbImage, args: &RenderArgs, started: Instant) -> Re
         started.elapsed().as_secs_f64()
     );
     Ok(())
+}
+
+/// A crossing budget the GPU tracer takes (1 to [`MAX_GPU_BUDGET`]), or why not.
+pub(super) fn gpu_budget(budget: usize) -> Result<u32, String> {
+    u32::try_from(budget)
+        .ok()
+        .filter(|&n| (1..=MAX_GPU_BUDGET).contains(&n))
+        .ok_or_else(|| {
+            format!(
+                "the GPU tracer takes a crossing budget from 1 to {MAX_GPU_BUDGET}, got {budget} (use --cpu for more)"
+            )
+        })
 }
 
 /// Writes the picture, creating its folder.

@@ -3,7 +3,6 @@
 
 use super::RenderArgs;
 use super::render::{saved, stereo_words};
-use bevy_curved_spaces::plugin::render::gpu::MAX_GPU_BUDGET;
 use bevy_curved_spaces::space::nil::NilSpace;
 use bevy_curved_spaces::space::{Family, Feature, FrameSpace};
 use bevy_curved_spaces::trace::nil::{NilCamera, default_camera, default_scene, render_nil_view};
@@ -121,14 +120,7 @@ pub(super) fn render_nil_command(args: &RenderArgs, space: &NilSpace) -> Result<
     let image = if args.cpu {
         render_nil_view(space, &scene, &layout, budget)
     } else {
-        let gpu_budget = u32::try_from(budget)
-            .ok()
-            .filter(|&n| (1..=MAX_GPU_BUDGET).contains(&n))
-            .ok_or_else(|| {
-                format!(
-                    "the GPU tracer takes a crossing budget from 1 to {MAX_GPU_BUDGET}, got {budget} (use --cpu for more)"
-                )
-            })?;
+        let gpu_budget = super::render::gpu_budget(budget)?;
         bevy_curved_spaces::plugin::offscreen::OffscreenRenderer::new()
             .and_then(|mut r| r.render_nil(space, &scene, &camera, args.size, gpu_budget, stereo))
             .map_err(|e| e.to_string())?
