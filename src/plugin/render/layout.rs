@@ -67,6 +67,29 @@ pub struct GpuShading {
     pub exact: Vec4F,
 }
 
+impl GpuShading {
+    /// The shading of a family's own scene: fog colour and ambient share, fog distance λ and
+    /// its cut-off, the crossing budget (no near light).
+    #[must_use]
+    pub fn of_fog(
+        fog_colour: glam::DVec3,
+        ambient: f64,
+        (fog_distance, cutoff): (f64, f64),
+        max_crossings: u32,
+    ) -> Self {
+        Self {
+            fog: colour(fog_colour, ambient),
+            params: vec4(glam::DVec4::new(
+                fog_distance,
+                cutoff,
+                0.0,
+                f64::from(max_crossings),
+            )),
+            exact: vec4(glam::DVec4::X),
+        }
+    }
+}
+
 /// `Ball` (plain balls).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]

@@ -303,6 +303,11 @@ pub(super) fn walk_feel(
     ui.separator();
     stereo_controls(ui, stereo, inradius);
     ui.separator();
+    frame_rate(ui, diagnostics);
+}
+
+/// The frame rate and a frame's time, smoothed, where the diagnostics have them.
+pub(super) fn frame_rate(ui: &mut egui::Ui, diagnostics: &DiagnosticsStore) {
     let fps = diagnostics
         .get(&FrameTimeDiagnosticsPlugin::FPS)
         .and_then(|d| d.smoothed());

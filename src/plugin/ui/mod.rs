@@ -286,15 +286,7 @@ fn panel(
             stereo_controls(ui, &mut stereo, active.inradius);
             colour_by_controls(ui, &mut settings, space.faces.len());
             ui.separator();
-            let fps = diagnostics
-                .get(&FrameTimeDiagnosticsPlugin::FPS)
-                .and_then(|d| d.smoothed());
-            let ms = diagnostics
-                .get(&FrameTimeDiagnosticsPlugin::FRAME_TIME)
-                .and_then(|d| d.smoothed());
-            if let (Some(fps), Some(ms)) = (fps, ms) {
-                ui.label(format!("{fps:.0} fps, {ms:.1} ms per frame"));
-            }
+            controls::frame_rate(ui, &diagnostics);
             for (_, frame, holonomy) in &cameras {
                 let chart = space.geometry.to_chart(frame.0.w_axis);
                 ui.label(format!(

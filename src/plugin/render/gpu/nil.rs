@@ -54,16 +54,12 @@ impl GpuScene {
             });
         }
         let mut out = UniformWriter::with_capacity(bytes);
-        out.push(&GpuShading {
-            fog: colour(scene.fog_colour, scene.ambient),
-            params: vec4(DVec4::new(
-                scene.fog_distance,
-                scene.cutoff_distance(),
-                0.0,
-                f64::from(max_crossings),
-            )),
-            exact: vec4(DVec4::X),
-        });
+        out.push(&GpuShading::of_fog(
+            scene.fog_colour,
+            scene.ambient,
+            (scene.fog_distance, scene.cutoff_distance()),
+            max_crossings,
+        ));
         // No scene data, and one unused face slot: covector, pairing and its rest, partners.
         out.push(&[0u32; 4]);
         out.push(&[0.0f32; 4]);
