@@ -1,7 +1,8 @@
 //! The plugin in a product space (H²×R, S²×R): `CurvedSpacesPlugin { space:
 //! "bitorus-circle" }` shows a product space as its `ActiveSpace`, its players walk with the fibre up, climb
 //! along it through the top (with the turn), and switching to and from a constant-curvature
-//! space at run time puts them at the new start view. Headless: MinimalPlugins, fake keys.
+//! space at run time puts them at the new start view; in a Nil space they walk with E₃ up.
+//! Headless: MinimalPlugins, fake keys.
 
 use bevy::input::InputPlugin;
 use bevy::prelude::*;
@@ -286,4 +287,40 @@ fn entities_fly_through_the_product_cell_and_are_drawn_with_their_images() {
         .world()
         .resource::<bevy_curved_spaces::plugin::render::PreparedScene>();
     assert_eq!(prepared.0.key.product_objects as usize, default + drawn);
+}
+
+/// The plugin in a Nil space: `CurvedSpacesPlugin { space: "nil-3" }` starts at the default
+/// view, the player walks with E₃ up through the box's faces and stays in the box, and the
+/// scene is packed for the GPU's Nil variant.
+#[test]
+fn the_plugin_walks_a_nil_space_with_e3_up() {
+    use bevy_curved_spaces::space::nil::NilSpace;
+    let (mut app, camera) = test_app("nil-3");
+    let active = app.world().resource::<ActiveSpace>();
+    assert_eq!(active.family(), Family::Nil);
+    let space = active.space.get::<NilSpace>().expect("a Nil space").clone();
+    let start = bevy_curved_spaces::trace::nil::default_camera(&space).frame;
+    assert!((frame(&app, camera) - start).abs_diff_eq(DMat4::ZERO, 1e-12));
+    set_step(&mut app, 0.05);
+    // Forward through the box's far side, turning, and up through its top.
+    hold(&mut app, KeyCode::KeyW, 30);
+    hold(&mut app, KeyCode::KeyD, 20);
+    hold(&mut app, KeyCode::Space, 10);
+    let f = frame(&app, camera);
+    let h = space.half_height();
+    let p = f.w_axis;
+    assert!(
+        p.x.abs() <= 0.5 + 1e-9 && p.y.abs() <= 0.5 + 1e-9 && p.z.abs() <= h + 1e-9,
+        "left the box: {p}"
+    );
+    assert!(holonomy(&app, camera).crossings > 2, "crossed no faces");
+    assert!(
+        (f.y_axis.truncate() - glam::DVec3::Z).length() < 1e-9,
+        "up left E₃"
+    );
+    let prepared = app
+        .world()
+        .get_resource::<bevy_curved_spaces::plugin::render::PreparedScene>()
+        .expect("a packed scene");
+    assert!(prepared.0.key.nil);
 }
