@@ -128,6 +128,38 @@ fn bad_nil_ids_and_drawing_commands_get_clear_errors() {
 }
 
 #[test]
+fn files_naming_a_nil_space_get_clear_errors() {
+    let dir = temp_dir("nil-files");
+    let scene = dir.join("scene.toml");
+    std::fs::write(&scene, "space = \"nil-3\"\n").expect("write");
+    fails_with(
+        &[
+            "render",
+            "--scene",
+            scene.to_str().unwrap(),
+            "--cpu",
+            "--size",
+            "16x9",
+        ],
+        "constant-curvature geometries only",
+    );
+    let flight = dir.join("flight.toml");
+    std::fs::write(
+        &flight,
+        "space = \"nil-3\"\n[[key]]\ntime = 0.0\nposition = [0.0, 0.0, 0.0]\nlook_at = [0.1, 0.0, 0.0]\n[[key]]\ntime = 1.0\nposition = [0.2, 0.0, 0.0]\nlook_at = [0.3, 0.0, 0.0]\n",
+    )
+    .expect("write");
+    fails_with(
+        &["flight", flight.to_str().unwrap()],
+        "not in the Nil spaces",
+    );
+    fails_with(
+        &["walk", "--replay", flight.to_str().unwrap()],
+        "not in the Nil spaces",
+    );
+}
+
+#[test]
 fn render_draws_the_default_scene_with_the_cpu_reference() {
     let dir = temp_dir("nil-render");
     let out = dir.join("nil-1.png");
