@@ -432,16 +432,15 @@ fn nil_gap(i: u32, p: vec3<f32>) -> NilGap {
     let twist = across - 0.5 * offset;
     var grad_a = vec3<f32>(1.0, 0.0, 0.0);
     var grad_b = vec3<f32>(0.0, twist, 1.0);
-    var shift = abs(o.shape.x);
     if along == 0u {
         grad_a = vec3<f32>(0.0, 1.0, 0.0);
         grad_b = vec3<f32>(-twist, 0.0, 1.0);
-        shift = abs(o.shape.y);
     }
     let rho = sqrt(a * a + b * b);
     let end = abs(s) - 0.5;
-    let bound = 0.75 + shift;
-    let rate = sqrt(1.0 + bound * bound);
+    // The shear's bound over a step no longer than the gap (Rust: `NilObject::gap`).
+    let reach = abs(twist) + max(max(rho - radius, end), 0.0);
+    let rate = sqrt(1.0 + reach * reach);
     if end > rho - radius {
         var n = vec3<f32>(0.0);
         n[along] = sign(s);

@@ -116,9 +116,11 @@ impl NilObject {
                 };
                 let rho = a.hypot(b);
                 let end = s.abs() - 0.5;
-                // |twist| is at most ½ + the image's shift across + ¼ inside the box.
-                let bound = 0.75 + image[1 - along].abs();
-                let rate = (1.0 + bound * bound).sqrt();
+                // Over a step of length ≤ the gap the twist changes by at most the gap (its
+                // rate is the across speed, at most 1), so |b′| ≤ |v₃| + |v_along|(|twist| +
+                // gap) and the gap's rate is at most √(1 + (|twist| + gap)²) over the step.
+                let reach = twist.abs() + (rho - self.radius).max(end).max(0.0);
+                let rate = (1.0 + reach * reach).sqrt();
                 if end > rho - self.radius {
                     let mut n = [0.0; 3];
                     n[along] = s.signum();

@@ -148,7 +148,7 @@ fn walked_hits_match_the_universal_cover() {
 
 #[test]
 fn swept_disc_normals_are_the_gap_s_gradient() {
-    // The rates of the clearance along E₁, E₂, E₃ (central differences of the flow) point
+    // The rates of the gap along E₁, E₂, E₃ (central differences of the flow) point
     // along the normal.
     let space = NilSpace::new(2);
     let scene = default_scene(&space);
@@ -171,7 +171,7 @@ fn swept_disc_normals_are_the_gap_s_gradient() {
                     point: p,
                     velocity: v,
                 };
-                let gap = |t: f64| object.clearance(flow(&ray, t).point);
+                let gap = |t: f64| object.gap_at(flow(&ray, t).point);
                 (gap(e) - gap(-e)) / (2.0 * e)
             };
             if object.clearance(p) < 1e-3 {
