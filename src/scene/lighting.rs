@@ -277,6 +277,17 @@ pub fn tail_fluence(geometry: Geometry, reach: f64, fog: f64, volume: f64) -> f6
     }
 }
 
+/// [`tail_fluence`] where geodesic spheres never close up (E³, H³, the products, Nil):
+/// `4πλ e^(−R/λ)/vol(M)`, and 0 for a fog that is not a positive finite distance or a
+/// volume that is not positive.
+#[must_use]
+pub fn open_tail_fluence(reach: f64, fog: f64, volume: f64) -> f64 {
+    if !(volume > 0.0 && fog > 0.0 && fog.is_finite()) {
+        return 0.0;
+    }
+    4.0 * PI * fog * (-reach / fog).exp() / volume
+}
+
 /// The volume of the space, for the tail (0 where it cannot be computed: no tail then).
 #[must_use]
 pub fn cell_volume(space: &Space) -> f64 {

@@ -25,13 +25,7 @@ pub(crate) fn render_layout(
     use rayon::prelude::*;
     let (width, height) = (layout.size[0] as u32, layout.size[1] as u32);
     let colour = |eye: usize, [u, v]: [f64; 2]| {
-        let f = layout.frames[eye];
-        let (x, y) = layout.lens.at(u, v);
-        colour_of_ray(crate::geometry::Ray {
-            point: f.w_axis,
-            tangent: f.x_axis * x + f.y_axis * y - f.z_axis,
-        })
-        .clamp(glam::DVec3::ZERO, glam::DVec3::ONE)
+        colour_of_ray(layout.frame_ray(eye, u, v)).clamp(glam::DVec3::ZERO, glam::DVec3::ONE)
     };
     let rows: Vec<Vec<u8>> = (0..height)
         .into_par_iter()

@@ -237,15 +237,26 @@ impl ViewLayout {
         (eye, [x / eye_w, y / eye_h])
     }
 
+    /// The camera ray of eye `eye` through image point `(u, v)` as the frame gives it: from
+    /// the frame's fourth column along `x·right + y·up − back`, not yet a unit tangent
+    /// (each family makes it one in its own model).
+    #[must_use]
+    pub fn frame_ray(&self, eye: usize, u: f64, v: f64) -> Ray<DVec4> {
+        let f = self.frames[eye];
+        let (x, y) = self.lens.at(u, v);
+        Ray {
+            point: f.w_axis,
+            tangent: x * f.x_axis + y * f.y_axis - f.z_axis,
+        }
+    }
+
     /// The unit camera ray of eye `eye` through image point `(u, v)`.
     #[must_use]
     pub fn ray(&self, geometry: Geometry, eye: usize, u: f64, v: f64) -> Ray<DVec4> {
-        let f = self.frames[eye];
-        let (x, y) = self.lens.at(u, v);
-        let point = f.w_axis;
+        let ray = self.frame_ray(eye, u, v);
         Ray {
-            point,
-            tangent: geometry.unit_tangent(point, x * f.x_axis + y * f.y_axis - f.z_axis),
+            point: ray.point,
+            tangent: geometry.unit_tangent(ray.point, ray.tangent),
         }
     }
 

@@ -73,9 +73,14 @@ pub fn check_nil(ks: &[u32]) -> Result<(), BenchError> {
 
 /// The median and the largest error of `rays` walks in the precision `V`, over
 /// `ε (1 + t²)`.
-fn walk_ratios<V: crate::geometry::Vector4>(k: u32, rays: usize, epsilon: f64) -> (f64, f64) {
+fn walk_ratios<V: crate::geometry::Vector4>(
+    space: &NilSpace,
+    rays: usize,
+    epsilon: f64,
+) -> (f64, f64) {
+    let k = space.k();
     let mut random = crate::random::SplitMix64(0x0417_u64.wrapping_add(u64::from(k)));
-    let h = 0.5 / f64::from(k);
+    let h = space.half_height();
     let mut ratios: Vec<f64> = (0..rays.max(1))
         .map(|_| {
             let d = random.direction();
@@ -98,31 +103,32 @@ fn walk_ratios<V: crate::geometry::Vector4>(k: u32, rays: usize, epsilon: f64) -
 }
 
 /// Mean crossings a pixel's ray makes before its object or the fog (or the budget).
-fn crossings_per_pixel(space: &NilSpace, layout: &ViewLayout, budget: usize) -> f64 {
+fn crossings_per_pixel(
+    space: &NilSpace,
+    scene: &crate::trace::nil::NilScene,
+    layout: &ViewLayout,
+    budget: usize,
+) -> f64 {
     use crate::space::walk::CellWalk;
-    let scene = default_scene(space);
     let walker = crate::space::nil::NilWalker::<DVec4>::new(space.k());
     let (w, h) = (layout.size[0] as u32, layout.size[1] as u32);
     let mut total = 0usize;
     for j in 0..h {
         for i in 0..w {
             let (_, [u, v]) = layout.eye_at(f64::from(i) + 0.5, f64::from(j) + 0.5);
-            let f = layout.frames[0];
-            let (x, y) = layout.lens.at(u, v);
-            let t = (f.x_axis * x + f.y_axis * y - f.z_axis)
-                .truncate()
-                .normalize();
+            let ray = layout.frame_ray(0, u, v);
+            let t = ray.tangent.truncate().normalize();
             let start = crate::space::nil::NilRay {
-                point: f.w_axis.truncate().to_array(),
+                point: ray.point.truncate().to_array(),
                 velocity: t.to_array(),
             };
-            total += match first_nil_hit(&walker, &scene, start, scene.cutoff_distance(), budget) {
+            total += match first_nil_hit(&walker, scene, start, scene.cutoff_distance(), budget) {
                 NilRayEnd::Hit { crossings, .. } => crossings,
                 NilRayEnd::Budget(c) => c,
                 NilRayEnd::Fog => walker
                     .trace(
                         crate::geometry::Ray {
-                            point: f.w_axis,
+                            point: ray.point,
                             tangent: t.extend(0.0),
                         },
                         crate::space::Limit::Distance(scene.cutoff_distance()),
@@ -191,9 +197,9 @@ pub(super) fn nil_rows(
         let (differing_pixels, mean_error) =
             timing::gpu_against_cpu(harness, &gpu, &layout((ew, eh)), &cpu, DIFFERING_LEVEL)?;
         let (f64_median, f64_worst) =
-            walk_ratios::<DVec4>(k, config.conditioning_rays, f64::EPSILON);
+            walk_ratios::<DVec4>(&space, config.conditioning_rays, f64::EPSILON);
         let (f32_median, f32_worst) =
-            walk_ratios::<glam::Vec4>(k, config.conditioning_rays, F32_EPSILON);
+            walk_ratios::<glam::Vec4>(&space, config.conditioning_rays, F32_EPSILON);
         rows.push(NilRow {
             space: id,
             width: w,
@@ -204,7 +210,12 @@ pub(super) fn nil_rows(
             reference_space: products::PRODUCT_REFERENCE_SPACE.into(),
             reference_ms,
             ratio,
-            crossings_per_pixel: crossings_per_pixel(&space, &layout((ew, eh)), budget as usize),
+            crossings_per_pixel: crossings_per_pixel(
+                &space,
+                &scene,
+                &layout((ew, eh)),
+                budget as usize,
+            ),
             differing_pixels,
             mean_error,
             f64_median,

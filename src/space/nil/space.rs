@@ -107,6 +107,13 @@ impl NilSpace {
         &self.description
     }
 
+    /// The lattice element `A^p B^q C^m = (p, q, pq/2 + m/K)` as a chart point of the
+    /// group (it acts by left multiplication).
+    #[must_use]
+    pub fn element(&self, p: f64, q: f64, m: i64) -> [f64; 3] {
+        [p, q, 0.5 * p * q + m as f64 / f64::from(self.k)]
+    }
+
     /// Half the box's height, `1/2K`.
     #[must_use]
     pub fn half_height(&self) -> f64 {

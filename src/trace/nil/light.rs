@@ -17,10 +17,9 @@
 //! the falloff, so each shell adds the same, as in the other families).
 
 use super::NilScene;
-use crate::scene::lighting::{LightPaths, Lighting, SHADOW_OFFSET};
-use crate::space::nil::{NilRay, NilSpace, distance, flow, shortest};
+use crate::scene::lighting::{LightPaths, Lighting, SHADOW_OFFSET, open_tail_fluence};
+use crate::space::nil::{NilRay, NilSpace, distance, flow, group_product, shortest};
 use glam::DVec3;
-use std::f64::consts::PI;
 
 /// Below this `|ct|` the density's `(2(1 − cos s) − s sin s)/s⁴` is summed as a series.
 const DENSITY_SERIES_BELOW: f64 = 0.05;
@@ -116,7 +115,7 @@ pub fn lamp_images(space: &NilSpace, lamp: [f64; 3], reach: f64) -> (Vec<[f64; 3
     for p in -horizontal..=horizontal {
         for q in -horizontal..=horizontal {
             let (pf, qf) = (p as f64, q as f64);
-            let moved = group_product_of(pf, qf, 0.0, lamp);
+            let moved = group_product(space.element(pf, qf, 0), lamp);
             if moved[0].hypot(moved[1]) > within {
                 continue;
             }
@@ -135,21 +134,6 @@ pub fn lamp_images(space: &NilSpace, lamp: [f64; 3], reach: f64) -> (Vec<[f64; 3
     }
     found.sort_by(|a, b| a.1.total_cmp(&b.1));
     crate::scene::lighting::nearest_images(found, reach, rho)
-}
-
-/// `A^p B^q · x`: the chart point `x` moved by the lattice's `(p, q, pq/2 + r)`.
-fn group_product_of(p: f64, q: f64, r: f64, x: [f64; 3]) -> [f64; 3] {
-    crate::space::nil::group_product([p, q, 0.5 * p * q + r], x)
-}
-
-/// The mean light of the images beyond `reach`, over every direction, for fog `λ` and a
-/// space of volume `volume`.
-#[must_use]
-pub fn tail_fluence(reach: f64, fog: f64, volume: f64) -> f64 {
-    if !(volume > 0.0 && fog > 0.0 && fog.is_finite()) {
-        return 0.0;
-    }
-    4.0 * PI * fog * (-reach / fog).exp() / volume
 }
 
 /// The light reaching the point `x` of a surface with outward normal `normal` (both in the
@@ -199,7 +183,7 @@ pub fn gather(
         }
     }
     if lighting.tail {
-        sum += 0.25 * tail_fluence(lamp.reach, fog, lamp.volume);
+        sum += 0.25 * open_tail_fluence(lamp.reach, fog, lamp.volume);
     }
     sum
 }

@@ -87,8 +87,7 @@ impl NilScene {
             for q in -1i32..=1 {
                 let (p, q) = (f64::from(p), f64::from(q));
                 // The heights of the moved bounds, to pick the powers of C.
-                let base = group_product([p, q, 0.5 * p * q], [0.0; 3]);
-                let (lo, hi) = bounds(object, base);
+                let (lo, hi) = bounds(object, space.element(p, q, 0));
                 // A fibre is its own image by the centre.
                 let (m_lo, m_hi) = if matches!(object.shape, NilShape::Fibre(_)) {
                     (0, 0)
@@ -99,7 +98,7 @@ impl NilScene {
                     )
                 };
                 for m in m_lo..=m_hi {
-                    let g = [p, q, 0.5 * p * q + m as f64 / k];
+                    let g = space.element(p, q, m);
                     let (lo, hi) = bounds(object, g);
                     let inside = lo[0] <= 0.5
                         && hi[0] >= -0.5

@@ -185,10 +185,7 @@ fn images_within(space: &ProductSpace, lamp: DVec4, within: f64) -> Option<Vec<(
 /// `4πλ e^(−R/λ)/vol(M)` ([the module's description](self)).
 #[must_use]
 pub fn product_tail_fluence(reach: f64, fog: f64, volume: f64) -> f64 {
-    if !(volume > 0.0 && fog > 0.0 && fog.is_finite()) {
-        return 0.0;
-    }
-    4.0 * PI * fog * (-reach / fog).exp() / volume
+    crate::scene::lighting::open_tail_fluence(reach, fog, volume)
 }
 
 /// One geodesic from a point to an image: its unit tangent at the point and its length,

@@ -9,8 +9,8 @@ use super::{DataSources, GpuScene, GpuSceneError, MAX_UNIFORM_BYTES, ShaderKey};
 use crate::geometry::Geometry;
 use crate::plugin::render::layout::{GpuShading, UniformWriter, colour, vec4};
 use crate::scene::lighting::LightPaths;
+use crate::scene::lighting::open_tail_fluence;
 use crate::space::nil::NilSpace;
-use crate::trace::nil::light::tail_fluence;
 use crate::trace::nil::{NilScene, NilShape};
 use glam::DVec4;
 use std::sync::Arc;
@@ -112,7 +112,7 @@ impl GpuScene {
         }
         if !images.is_empty() {
             let tail = if scene.lighting.tail {
-                0.25 * tail_fluence(scene.lamp.reach, scene.fog_distance, scene.lamp.volume)
+                0.25 * open_tail_fluence(scene.lamp.reach, scene.fog_distance, scene.lamp.volume)
             } else {
                 0.0
             };
