@@ -151,6 +151,7 @@ fn hostile_numbers_on_the_command_line() {
             tiny_render("nil-3", &["--eye", &vec3, "--look-at", "0.1,0.2,0"]),
             tiny_render("nil-1", &["--eye", "0.1,0.2,0", "--look-at", &vec3]),
             tiny_render("nil-50", &["--fog", value]),
+            vec!["bench", "--quick", "--nil", value],
             // Product spaces: a hostile length, turn, direction and start.
             vec!["info", &circle],
             vec!["info", &turned],
