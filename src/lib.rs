@@ -106,9 +106,10 @@ pub mod bench;
 
 pub use plugin::CurvedSpacesPlugin;
 pub use plugin::components::{
-    ActiveSpace, BaseProductScene, BaseScene, CurvedSpaceCamera, CurvedSpaceEye,
+    ActiveSpace, BaseProductScene, BaseScene, BaseScenes, CurvedSpaceCamera, CurvedSpaceEye,
     CurvedSpacesSystems, Quality, SceneObjects, TracerSettings, TracerStatus,
 };
+pub use plugin::nil::BaseNilScene;
 
 /// The types most programs need.
 pub mod prelude {
@@ -119,6 +120,7 @@ pub mod prelude {
         CurvedSpacesSystems, KeyBindings, PlayerFrame, PlayerSettings, Quality, SceneObjects,
         StereoSettings, TracerSettings, TracerStatus,
     };
+    pub use crate::plugin::nil::BaseNilScene;
     pub use crate::plugin::objects::{
         ActiveSightlines, CurvedObject, CurvedShape, CurvedTransform, CurvedVelocity,
         ObjectCrossedFace,

@@ -191,21 +191,65 @@ impl ActiveSpace {
     }
 
     /// Where players start in this space: the base scene's start view where it was made for
-    /// this space ([`BaseScene::start_frame`], [`BaseProductScene::start_frame`]), else the
-    /// space's default view.
+    /// this space ([`BaseScenes::start_frame`]), else the space's default view.
     #[must_use]
-    pub fn start_frame(&self, base: &BaseScene, product_base: Option<&BaseProductScene>) -> DMat4 {
-        match &self.space {
-            AnySpace::Constant(s) => base.start_frame(self, s),
-            AnySpace::Product(p) => BaseProductScene::start_frame(product_base, p),
-            AnySpace::Nil(n) => crate::trace::nil::default_camera(n).frame,
-        }
+    pub fn start_frame(&self, bases: &BaseScenes) -> DMat4 {
+        bases.start_frame(self)
     }
 
     /// A run condition: whether the active space is of `family` (the plugin's systems of a
     /// family run under it).
     pub fn shows(family: Family) -> impl Fn(Option<Res<ActiveSpace>>) -> bool + Clone {
         move |active: Option<Res<ActiveSpace>>| active.is_some_and(|a| a.family() == family)
+    }
+}
+
+/// The base scenes of every family, as one system parameter: where players start and with
+/// which field of view, for whichever family the active space is of.
+#[derive(bevy::ecs::system::SystemParam)]
+pub struct BaseScenes<'w> {
+    /// The constant-curvature base scene.
+    pub constant: Res<'w, BaseScene>,
+    /// The product spaces' base scene, where a game set one.
+    pub product: Option<Res<'w, BaseProductScene>>,
+    /// The Nil spaces' base scene, where a game set one.
+    pub nil: Option<Res<'w, crate::plugin::nil::BaseNilScene>>,
+}
+
+impl BaseScenes<'_> {
+    /// Where players start in `active`: the base scene's start view where it was made for
+    /// this family ([`BaseScene::start_frame`], [`BaseProductScene::start_frame`],
+    /// [`crate::plugin::nil::BaseNilScene::start_frame`]), else the space's default view.
+    #[must_use]
+    pub fn start_frame(&self, active: &ActiveSpace) -> DMat4 {
+        match &active.space {
+            AnySpace::Constant(s) => self.constant.start_frame(active, s),
+            AnySpace::Product(p) => BaseProductScene::start_frame(self.product.as_deref(), p),
+            AnySpace::Nil(n) => {
+                crate::plugin::nil::BaseNilScene::start_frame(self.nil.as_deref(), n)
+            }
+        }
+    }
+
+    /// The start view's field of view, where the base scene of the active family sets one.
+    #[must_use]
+    pub fn start_fov(&self, active: &ActiveSpace) -> Option<f64> {
+        match &active.space {
+            AnySpace::Constant(_) => self
+                .constant
+                .fov
+                .filter(|_| active.id == self.constant.space_id),
+            AnySpace::Product(_) => self
+                .product
+                .as_ref()
+                .and_then(|b| b.start)
+                .map(|c| c.fov_y_degrees),
+            AnySpace::Nil(_) => self
+                .nil
+                .as_ref()
+                .and_then(|b| b.start)
+                .map(|c| c.fov_y_degrees),
+        }
     }
 }
 

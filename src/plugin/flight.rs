@@ -29,6 +29,9 @@ pub struct FlightReplay<F: CoverFlight = Flight> {
 /// A product flight's replay (H²×R, S²×R).
 pub type ProductFlightReplay = FlightReplay<crate::trace::product::flight::ProductFlight>;
 
+/// A replay of a Nil flight.
+pub type NilFlightReplay = FlightReplay<crate::trace::nil::flight::NilFlight>;
+
 impl<F: CoverFlight> FlightReplay<F> {
     /// A replay of `flight` from the next frame on.
     #[must_use]
@@ -161,7 +164,8 @@ impl FlightRecorder {
 
     /// Adds a key at clock time `now`, if one is due: `key` gives the camera's position,
     /// look-at and up points in the flight file's coordinates of the space's family
-    /// ([`recorded_key`], [`crate::trace::product::flight::recorded_product_key`]), or
+    /// ([`recorded_key`], [`crate::trace::product::flight::recorded_product_key`],
+    /// [`crate::trace::nil::flight::recorded_nil_key`]), or
     /// `None` where the file cannot hold them.
     pub fn record_key(
         &mut self,
@@ -197,7 +201,7 @@ impl FlightRecorder {
                 self.unwritten = true;
             }
             None => self.stop(format!(
-                "at {t:.2} s the walk left what a flight file can hold (in S³ the hemisphere about the centre; a cell centred off the origin; π round S² or a million circles up a product's fibre); the keys so far are kept"
+                "at {t:.2} s the walk left what a flight file can hold (in S³ the hemisphere about the centre; a cell centred off the origin; π round S² or a million circles up a product's fibre; a thousand crossings from a Nil box); the keys so far are kept"
             )),
         }
     }
@@ -230,8 +234,9 @@ pub fn record_flight(
             AnySpace::Product(space) => {
                 crate::trace::product::flight::recorded_product_key(space, frame.0, holonomy)
             }
-            // No flights through Nil yet (its pictures are not drawn).
-            AnySpace::Nil(_) => None,
+            AnySpace::Nil(space) => {
+                crate::trace::nil::flight::recorded_nil_key(space, frame.0, holonomy)
+            }
         }
     });
     if recorder.unwritten && recorder.last_write.is_none_or(|w| now - w >= 1.0) {

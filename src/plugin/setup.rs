@@ -15,7 +15,7 @@
 //! ```
 
 use crate::plugin::components::{
-    ActiveSpace, BaseProductScene, BaseScene, CurvedSpaceCamera, CurvedSpacesSystems, KeyBindings,
+    ActiveSpace, BaseScene, BaseScenes, CurvedSpaceCamera, CurvedSpacesSystems, KeyBindings,
     MouseLook, PlayerFrame, PlayerSettings, Quality, SceneObjects, StereoSettings, TracerSettings,
     TracerStatus,
 };
@@ -148,6 +148,7 @@ impl Plugin for CurvedSpacesPlugin {
                         crate::plugin::flight::replay_flight::<
                             crate::trace::product::flight::ProductFlight,
                         >,
+                        crate::plugin::flight::replay_flight::<crate::trace::nil::flight::NilFlight>,
                     ),
                     crate::plugin::flight::record_flight,
                 )
@@ -208,16 +209,12 @@ impl Plugin for CurvedSpacesPlugin {
 fn start_camera(
     add: On<Add, CurvedSpaceCamera>,
     active: Option<Res<ActiveSpace>>,
-    base: Res<BaseScene>,
-    product_base: Option<Res<BaseProductScene>>,
+    bases: BaseScenes,
     mut commands: Commands,
     frames: Query<&PlayerFrame>,
 ) {
     let mut entity = commands.entity(add.entity);
-    let start = active
-        .as_ref()
-        .map(|a| a.start_frame(&base, product_base.as_deref()));
-    let product = active.as_ref().and_then(|a| a.product());
+    let start = active.as_ref().map(|a| a.start_frame(&bases));
     if let Some(start) = start
         && frames
             .get(add.entity)
@@ -226,15 +223,7 @@ fn start_camera(
         entity.insert(PlayerFrame(start));
     }
     // The scene's start view includes its field of view.
-    let product_fov = product_base
-        .as_ref()
-        .and_then(|b| b.start)
-        .filter(|_| product.is_some())
-        .map(|c| c.fov_y_degrees);
-    if let Some(fov) = product_fov.or(base
-        .fov
-        .filter(|_| product.is_none() && active.as_ref().is_some_and(|a| a.id == base.space_id)))
-    {
+    if let Some(fov) = active.as_ref().and_then(|a| bases.start_fov(a)) {
         entity.insert(CurvedSpaceCamera { fov_y_degrees: fov });
     }
     // The tracer writes final colours: no anti-aliasing, tonemapping or dithering on top.

@@ -36,9 +36,7 @@
 
 use crate::plugin::components::CurvedSpaceEye;
 use crate::plugin::components::StereoSettings;
-use crate::plugin::components::{
-    ActiveSpace, BaseProductScene, BaseScene, CurvedSpaceCamera, CurvedSpacesSystems,
-};
+use crate::plugin::components::{ActiveSpace, BaseScenes, CurvedSpaceCamera, CurvedSpacesSystems};
 use crate::plugin::components::{PlayerFrame, PlayerSettings};
 use crate::plugin::frame_rate::FrameRateTarget;
 use crate::space::FamilySpace;
@@ -347,17 +345,12 @@ fn suggest_bindings(
 }
 
 /// A new space starts the head at its default view.
-fn reset_head_on_switch(
-    active: Res<ActiveSpace>,
-    base: Res<BaseScene>,
-    product_base: Option<Res<BaseProductScene>>,
-    head: Option<ResMut<XrHead>>,
-) {
+fn reset_head_on_switch(active: Res<ActiveSpace>, bases: BaseScenes, head: Option<ResMut<XrHead>>) {
     if let Some(mut head) = head
         && active.is_changed()
         && !active.is_added()
     {
-        head.0.frame = active.start_frame(&base, product_base.as_deref());
+        head.0.frame = active.start_frame(&bases);
         head.0.holonomy = default();
     }
 }
@@ -494,8 +487,7 @@ fn room_pose(pose: &openxr::Posef) -> RoomPose {
 fn drive_eyes<F: FamilySpace>(
     views: Res<OxrViews>,
     active: Res<ActiveSpace>,
-    base: Res<BaseScene>,
-    product_base: Option<Res<BaseProductScene>>,
+    bases: BaseScenes,
     stereo: Res<StereoSettings>,
     player: Res<PlayerSettings>,
     mut existing: Option<ResMut<XrHead>>,
@@ -519,7 +511,7 @@ fn drive_eyes<F: FamilySpace>(
         None => {
             &mut created
                 .insert(XrHead(HeadTracker::new(
-                    active.start_frame(&base, product_base.as_deref()),
+                    active.start_frame(&bases),
                     scale,
                     player.wrap_margin,
                 )))

@@ -291,6 +291,12 @@ fn every_example_scene_file_loads() {
                 n += 1;
                 continue;
             }
+            use bevy_curved_spaces::trace::nil::file::load_nil_scene_file;
+            if let Some(nil) = load_nil_scene_file(&path).unwrap_or_else(|e| panic!("{e}")) {
+                assert!(!nil.scene.objects.is_empty() && nil.start.is_some());
+                n += 1;
+                continue;
+            }
             let file = load_scene_file(&path).unwrap_or_else(|e| panic!("{e}"));
             assert!(
                 !file.base.objects.is_empty() && !file.base.lights.is_empty(),

@@ -44,12 +44,7 @@ pub(super) fn flight(args: &FlightArgs) -> Result<(), String> {
     let chosen: Chosen = match choice {
         Choice::Constant(chosen) => chosen,
         Choice::Product(product) => return flight_product(args, &name, &file, product),
-        Choice::Nil(space) => {
-            return Err(super::spaces::refused(
-                &bevy_curved_spaces::space::AnySpace::Nil(space),
-                bevy_curved_spaces::space::Feature::Flights,
-            ));
-        }
+        Choice::Nil(chosen) => return flight_nil(args, &name, &file, chosen),
     };
     let space = &chosen.space;
     let flight = Flight::new(space, &file).map_err(|e| format!("{name}: {e}"))?;
@@ -289,6 +284,87 @@ fn flight_product(
             None => render_product(space, &scene, &camera, args.size.0, args.size.1, budget),
             Some(r) => r
                 .render_product(space, &scene, &camera, args.size, budget as u32)
+                .map_err(|e| format!("frame {n}: {e}"))?,
+        };
+        let path = frame_path(&args.out, n);
+        bevy_curved_spaces::files::write_png(&path, &image)
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        progress.inc(1);
+    }
+    progress.finish_and_clear();
+    finish_frames(args, todo.len(), started, (first, last, total));
+    Ok(())
+}
+
+/// `flight` in a Nil space: its default scene or its scene file's along the flight, with
+/// the f64 CPU reference (`--cpu`) or on the GPU.
+fn flight_nil(
+    args: &FlightArgs,
+    name: &str,
+    file: &bevy_curved_spaces::scene::flight::FlightFile,
+    chosen: super::render::NilChoice,
+) -> Result<(), String> {
+    use bevy_curved_spaces::space::{Family, Feature};
+    use bevy_curved_spaces::trace::nil::flight::NilFlight;
+    use bevy_curved_spaces::trace::nil::render_nil_view;
+    use bevy_curved_spaces::view::ViewLayout;
+    let space = &*chosen.space;
+    let refuse = |feature| super::spaces::require(Family::Nil, space.name(), feature);
+    if args.walls.walls.is_some() {
+        refuse(Feature::Walls)?;
+    }
+    if args.colour_by != super::ColourByArg::Shading {
+        refuse(Feature::TeachingViews)?;
+    }
+    let flight = NilFlight::new(space, file).map_err(|e| format!("{name}: {e}"))?;
+    let total = flight.frame_count(args.fps);
+    let (first, last, todo) = frames_to_do(args, total)?;
+    let mut scene = chosen.scene;
+    if args.light.any() {
+        let lighting = args.light.lighting(scene.lighting);
+        let light = scene.light;
+        scene.set_lighting(space, light, lighting)?;
+    }
+    let budget = args
+        .crossings
+        .unwrap_or_else(|| bevy_curved_spaces::plugin::nil::default_nil_budget(space) as usize);
+    let gpu_budget = if args.cpu {
+        0
+    } else {
+        super::render::gpu_budget(budget)?
+    };
+    let (mut renderer, progress) = start_frames(
+        args,
+        &format!("flight {name}: {} (Nil)", space.name()),
+        (total, flight.duration()),
+        (first, last, todo.len()),
+        budget,
+    )?;
+    let started = Instant::now();
+    for &n in &todo {
+        let t = (n - 1) as f64 / args.fps;
+        let camera = flight.camera(space, t);
+        let image = match renderer.as_mut() {
+            None => {
+                let layout = ViewLayout::new(
+                    Default::default(),
+                    false,
+                    [camera.frame; 2],
+                    camera.fov_y_degrees,
+                    args.size.0,
+                    args.size.1,
+                );
+                render_nil_view(space, &scene, &layout, budget)
+            }
+            Some(r) => r
+                .render_nil(
+                    space,
+                    &scene,
+                    &camera,
+                    args.size,
+                    gpu_budget,
+                    Default::default(),
+                )
                 .map_err(|e| format!("frame {n}: {e}"))?,
         };
         let path = frame_path(&args.out, n);

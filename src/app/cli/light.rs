@@ -4,6 +4,7 @@
 use super::*;
 use bevy_curved_spaces::scene::Shading;
 use bevy_curved_spaces::scene::light_images::{fluence, fluence_within};
+use bevy_curved_spaces::space::Family;
 use serde_json::json;
 
 /// The stated bound the default reach aims for, as a fraction of the total.
@@ -13,12 +14,7 @@ pub(super) fn light(args: &LightArgs) -> Result<(), String> {
     let space = match super::space_named(&args.space)? {
         AnySpace::Constant(space) => space,
         AnySpace::Product(space) => return light_product(args, &space),
-        nil @ AnySpace::Nil(_) => {
-            return Err(super::spaces::refused(
-                &nil,
-                bevy_curved_spaces::space::Feature::LampFluence,
-            ));
-        }
+        AnySpace::Nil(space) => return light_nil(args, &space),
     };
     let g = space.geometry();
     let point = |x: DVec3, what: &str| {
@@ -151,12 +147,7 @@ fn light_product(
 ) -> Result<(), String> {
     use bevy_curved_spaces::scene::Lighting;
     use bevy_curved_spaces::trace::product::lighting::{product_fluence, reach};
-    if args.radius.is_some() {
-        use bevy_curved_spaces::space::{Family, Feature};
-        Family::Product
-            .supports(Feature::SoftShadows)
-            .map_err(|e| format!("{}: --radius: {e}", space.name()))?;
-    }
+    refuse_radius(args, Family::Product, space.name())?;
     let g = space.base();
     let point = |x: DVec3, what: &str| {
         point_in_cell(
@@ -172,24 +163,101 @@ fn light_product(
     let fog = args
         .fog
         .unwrap_or_else(|| bevy_curved_spaces::trace::product::default_scene(space).fog_distance);
+    let wanted = args
+        .reach
+        .unwrap_or_else(|| reach(space, &Lighting::default()));
+    open_light(
+        args,
+        (space.name(), space.geometry_name()),
+        fog,
+        wanted,
+        |r| {
+            let (paths, exact, tail, covered) = product_fluence(space, lamp, at, fog, r);
+            (covered, paths, exact, tail)
+        },
+        "the product geometries have no error bound for the rest yet: --check R measures the \
+         shortcut's real error",
+    )
+}
+
+/// `light` in a Nil space: the sum over the lamp's images along the shortest geodesic to
+/// each (as the tracer lights), each with Nil's falloff (the geodesic sphere's area), and
+/// the rest by its mean. Points are chart points, brought into the box by the lattice; the
+/// lamp is a point.
+fn light_nil(
+    args: &LightArgs,
+    space: &bevy_curved_spaces::space::nil::NilSpace,
+) -> Result<(), String> {
+    use bevy_curved_spaces::scene::Lighting;
+    use bevy_curved_spaces::trace::nil::light::{nil_fluence, reach};
+    refuse_radius(args, Family::Nil, space.name())?;
+    let point = |x: DVec3, what: &str| -> Result<[f64; 3], String> {
+        if !x.is_finite() || x.abs().max_element() > 1e6 {
+            return Err(format!(
+                "{what} {:?} is not a chart point of Nil within 10⁶",
+                x.to_array()
+            ));
+        }
+        Ok(space.into_box(x.to_array()))
+    };
+    let lamp = point(args.light, "--light")?;
+    let at = point(args.at, "--at")?;
+    let fog = args
+        .fog
+        .unwrap_or_else(|| bevy_curved_spaces::trace::nil::default_scene(space).fog_distance);
+    let wanted = args
+        .reach
+        .unwrap_or_else(|| reach(space, &Lighting::default()));
+    open_light(
+        args,
+        (space.name(), "Nil"),
+        fog,
+        wanted,
+        |r| {
+            let (paths, exact, tail, covered) = nil_fluence(space, lamp, at, fog, r);
+            (covered, paths, exact, tail)
+        },
+        "the sum follows the shortest geodesic to each image (as the tracer does), and Nil has \
+         no error bound for the rest yet: --check R measures the shortcut's real error",
+    )
+}
+
+/// `--radius`, refused where the family's lamp is a point.
+fn refuse_radius(args: &LightArgs, family: Family, name: &str) -> Result<(), String> {
+    if args.radius.is_some() {
+        super::spaces::require(
+            family,
+            name,
+            bevy_curved_spaces::space::Feature::SoftShadows,
+        )
+        .map_err(|e| format!("--radius: {e}"))?;
+    }
+    Ok(())
+}
+
+/// The fluence's report where geodesic spheres never close (the products, Nil): `sum(R)`
+/// gives the reach covered, the paths summed, the exact sum and the tail for the reach `R`;
+/// without `--reach` the reach grows until the tail is at most 1 % of the total. `no_bound`
+/// says why no error bound is stated.
+fn open_light(
+    args: &LightArgs,
+    (name, geometry): (&str, &str),
+    fog: f64,
+    wanted: f64,
+    sum: impl Fn(f64) -> (f64, usize, f64, f64),
+    no_bound: &str,
+) -> Result<(), String> {
     if !(fog > 0.0 && fog.is_finite()) {
         return Err(format!(
             "the fog distance must be a positive, finite number, got {fog} (without fog the sum \
              over the images diverges)"
         ));
     }
-    let wanted = args
-        .reach
-        .unwrap_or_else(|| reach(space, &Lighting::default()));
     if !(wanted > 0.0 && wanted.is_finite()) {
         return Err(format!(
             "the reach must be a positive, finite number, got {wanted}"
         ));
     }
-    let sum = |r: f64| {
-        let (paths, exact, tail, covered) = product_fluence(space, lamp, at, fog, r);
-        (covered, paths, exact, tail)
-    };
     let (mut covered, mut paths, mut exact, mut tail) = sum(wanted);
     // Without --reach: with no bound to aim for, the reach grows until the mean of the rest
     // is at most 1 % of the total, or the images the walk can gather stop it.
@@ -229,15 +297,24 @@ fn light_product(
                 "--check {r} must be longer than the reach {covered}: it sums the images out to there"
             ));
         }
-        Some(r) => Some(sum(r)),
+        Some(r) => {
+            let longer = sum(r);
+            if !(longer.0 > covered) {
+                return Err(format!(
+                    "--check {r}: the images within it are more than the {} the sum gathers (the \
+                     tracer's limit), so it covers no more than the reach {covered:.4}: nothing \
+                     to check against",
+                    bevy_curved_spaces::scene::lighting::MAX_LAMP_IMAGES
+                ));
+            }
+            Some(longer)
+        }
         None => None,
     };
-    const NO_BOUND: &str = "the product geometries have no error bound for the rest yet: \
-                            --check R measures the shortcut's real error";
     if args.json {
         let mut out = json!({
-            "space": space.name(),
-            "geometry": space.geometry_name(),
+            "space": name,
+            "geometry": geometry,
             "light": args.light.to_array(),
             "at": args.at.to_array(),
             "fog": fog,
@@ -246,7 +323,7 @@ fn light_product(
             "exact": exact,
             "tail": tail,
             "total": total,
-            "bound_note": NO_BOUND,
+            "bound_note": no_bound,
         });
         if let Some(note) = &tail_note {
             out["tail_note"] = json!(note);
@@ -265,13 +342,13 @@ fn light_product(
             "fluence at {:?} from a unit lamp at {:?} in {} ({}), fog λ = {fog:.4}",
             args.at.to_array(),
             args.light.to_array(),
-            space.name(),
-            space.geometry_name()
+            name,
+            geometry
         );
         println!("  {paths} paths to the images within {covered:.4} summed exactly: {exact:.9e}");
         println!("  the rest by its mean 4πλ e^(−R/λ)/vol: {tail:.9e}");
         println!("  total {total:.9e}");
-        println!("  note: {NO_BOUND}");
+        println!("  note: {no_bound}");
         if let Some(note) = &tail_note {
             println!("  note: {note}");
         }

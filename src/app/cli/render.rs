@@ -77,8 +77,8 @@ pub(super) enum Choice {
     Constant(Chosen),
     /// H²×R, S²×R.
     Product(ProductChoice),
-    /// Nil (its default scene; `render --cpu` draws it).
-    Nil(std::sync::Arc<bevy_curved_spaces::space::nil::NilSpace>),
+    /// Nil.
+    Nil(NilChoice),
 }
 
 pub(super) fn choose(
@@ -100,6 +100,16 @@ pub(super) fn choose(
                 space: file.space,
             }));
         }
+        if let Some(file) = bevy_curved_spaces::trace::nil::file::load_nil_scene_file(path)
+            .map_err(|e| e.to_string())?
+        {
+            let base = bevy_curved_spaces::plugin::nil::BaseNilScene {
+                scene: file.scene,
+                start: file.start,
+            };
+            let space = std::sync::Arc::new(file.space);
+            return Ok(Choice::Nil(NilChoice::new(space, Some(base))));
+        }
         let mut file = load_scene_file(path).map_err(|e| e.to_string())?;
         if let Some(fog) = fog {
             file.base.shading.fog_distance = fog;
@@ -113,7 +123,7 @@ pub(super) fn choose(
         }));
     }
     Ok(match super::space_named(space_arg)? {
-        AnySpace::Nil(space) => Choice::Nil(space),
+        AnySpace::Nil(space) => Choice::Nil(NilChoice::new(space, None)),
         AnySpace::Product(space) => {
             let space = std::sync::Arc::unwrap_or_clone(space);
             Choice::Product(ProductChoice {
@@ -154,6 +164,37 @@ pub(super) struct ProductChoice {
     pub(super) camera: bevy_curved_spaces::trace::product::ProductCamera,
     /// A scene file's start view and scene, for the plugin.
     pub(super) base: Option<bevy_curved_spaces::BaseProductScene>,
+}
+
+/// A Nil space with its scene and start view: a scene file's or the default ones.
+pub(super) struct NilChoice {
+    pub(super) space: std::sync::Arc<bevy_curved_spaces::space::nil::NilSpace>,
+    pub(super) scene: bevy_curved_spaces::trace::nil::NilScene,
+    pub(super) camera: bevy_curved_spaces::trace::nil::NilCamera,
+    /// A scene file's scene and start view, for the plugin.
+    pub(super) base: Option<bevy_curved_spaces::plugin::nil::BaseNilScene>,
+}
+
+impl NilChoice {
+    fn new(
+        space: std::sync::Arc<bevy_curved_spaces::space::nil::NilSpace>,
+        base: Option<bevy_curved_spaces::plugin::nil::BaseNilScene>,
+    ) -> Self {
+        use bevy_curved_spaces::trace::nil::{default_camera, default_scene};
+        let scene = base
+            .as_ref()
+            .map_or_else(|| default_scene(&space), |b| b.scene.clone());
+        let camera = base
+            .as_ref()
+            .and_then(|b| b.start)
+            .unwrap_or_else(|| default_camera(&space));
+        Self {
+            space,
+            scene,
+            camera,
+            base,
+        }
+    }
 }
 
 /// `render` of a product space (H²×R, S²×R): its default scene and view or a scene file's,
@@ -266,7 +307,7 @@ fn render_product_command(args: &RenderArgs, chosen: ProductChoice) -> Result<()
 pub(super) fn render_command(args: &RenderArgs) -> Result<(), String> {
     let mut chosen = match choose(&args.space, args.scene.as_deref(), args.fog)? {
         Choice::Product(chosen) => return render_product_command(args, chosen),
-        Choice::Nil(space) => return super::render_nil::render_nil_command(args, &space),
+        Choice::Nil(chosen) => return super::render_nil::render_nil_command(args, chosen),
         Choice::Constant(chosen) => chosen.at(args.time)?,
     };
     if args.view.changes_parts() {

@@ -1,63 +1,23 @@
 //! `render` of a Nil space: its default scene (the box's edges, the centrepiece, two balls,
-//! a lamp) with the f64 CPU reference, mono or stereo.
+//! a lamp) or a scene file's, on the GPU or with the f64 CPU reference, mono or stereo.
 
 use super::RenderArgs;
-use super::render::{saved, stereo_words};
-use bevy_curved_spaces::space::nil::NilSpace;
+use super::render::{NilChoice, saved, stereo_words};
 use bevy_curved_spaces::space::{Family, Feature, FrameSpace};
-use bevy_curved_spaces::trace::nil::{NilCamera, default_camera, default_scene, render_nil_view};
+use bevy_curved_spaces::trace::nil::{NilCamera, render_nil_view};
 use bevy_curved_spaces::view::ViewLayout;
-use glam::{DMat4, DVec3};
 use std::time::Instant;
 
-/// The camera at the chart point `eye` (brought into the box by the lattice) looking along
-/// the shortest geodesic to `target`, `E₃` up as far as the view allows.
-fn camera_between(
-    space: &NilSpace,
-    eye: DVec3,
-    target: DVec3,
-    fov: f64,
-) -> Result<NilCamera, String> {
-    for (what, p) in [("camera position", eye), ("point looked at", target)] {
-        if !p.is_finite() || p.abs().max_element() > 1e6 {
-            return Err(format!(
-                "{what} {:?} is not a chart point of Nil within 10⁶",
-                p.to_array()
-            ));
-        }
-    }
-    let (length, forward) =
-        bevy_curved_spaces::space::nil::shortest(eye.to_array(), target.to_array());
-    if !(length > 0.0) {
-        return Err("the camera looks at its own position".into());
-    }
-    let forward = DVec3::from_array(forward);
-    let right = forward.cross(DVec3::Z);
-    let right = if right.length() > 1e-9 {
-        right.normalize()
-    } else {
-        DVec3::X
-    };
-    let up = right.cross(forward);
-    let at = space.into_box(eye.to_array());
-    Ok(NilCamera {
-        frame: DMat4::from_cols(
-            right.extend(0.0),
-            up.extend(0.0),
-            (-forward).extend(0.0),
-            DVec3::from_array(at).extend(1.0),
-        ),
-        fov_y_degrees: fov,
-    })
-}
-
 /// `render nil-K`: on the GPU, or with the f64 CPU reference (`--cpu`).
-pub(super) fn render_nil_command(args: &RenderArgs, space: &NilSpace) -> Result<(), String> {
-    let refuse = |feature| {
-        Family::Nil
-            .supports(feature)
-            .map_err(|e| format!("{}: {e}", space.name()))
-    };
+pub(super) fn render_nil_command(args: &RenderArgs, chosen: NilChoice) -> Result<(), String> {
+    let NilChoice {
+        space,
+        mut scene,
+        mut camera,
+        ..
+    } = chosen;
+    let space = &*space;
+    let refuse = |feature| super::spaces::require(Family::Nil, space.name(), feature);
     if args.time != 0.0 {
         refuse(Feature::MovingObjects)?;
     }
@@ -70,10 +30,8 @@ pub(super) fn render_nil_command(args: &RenderArgs, space: &NilSpace) -> Result<
     if args.view.colour_by != super::ColourByArg::Shading {
         refuse(Feature::TeachingViews)?;
     }
-    let mut scene = default_scene(space);
-    let mut camera = default_camera(space);
     if let (Some(eye), Some(target)) = (args.eye, args.look_at) {
-        camera = camera_between(space, eye, target, camera.fov_y_degrees)?;
+        camera = NilCamera::looking_at(space, eye, target, camera.fov_y_degrees)?;
     }
     if args.view.light.any() {
         let lighting = args.view.light.lighting(scene.lighting);

@@ -42,13 +42,14 @@ pub(super) fn constant_for(space: &AnySpace, feature: Feature) -> Result<&Space,
     })
 }
 
-/// Why `space` cannot do `feature`, as the command line says it (its family's reason), for
-/// the arms of a command's match where a family lacks the whole command.
-pub(super) fn refused(space: &AnySpace, feature: Feature) -> String {
-    match space.supports(feature) {
-        Err(e) => format!("{}: {e}", space.name()),
-        Ok(()) => format!("{}: {} is not drawn here", space.name(), feature.name()),
-    }
+/// `Ok(())` where the family does `feature`, else its reason as the command line says it,
+/// naming the space.
+pub(super) fn require(
+    family: bevy_curved_spaces::space::Family,
+    name: &str,
+    feature: Feature,
+) -> Result<(), String> {
+    family.supports(feature).map_err(|e| format!("{name}: {e}"))
 }
 
 /// The model point of the chart point `x` (option `what`), which must lie in the cell of

@@ -129,7 +129,16 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
     };
     let chosen = match choose(&args.space, args.scene.as_deref(), args.fog)? {
         Choice::Constant(chosen) => chosen,
-        Choice::Nil(space) => return walk_nil(args, &space, replay.is_some()),
+        Choice::Nil(chosen) => {
+            let flight = match &replay {
+                Some(file) => Some(bevy_curved_spaces::trace::nil::flight::NilFlight::new(
+                    &chosen.space,
+                    file,
+                )?),
+                None => None,
+            };
+            return walk_nil(args, chosen, flight);
+        }
         Choice::Product(product) => {
             let flight = match &replay {
                 Some(file) => Some(
@@ -558,22 +567,18 @@ fn walk_product(
     exit_result(app.run())
 }
 
-/// `walk` in a Nil space: its default scene, `E₃` up; offscreen to a picture where there is
-/// no display. Flights, the headset, walls and the teaching views are not written for Nil.
+/// `walk` in a Nil space: its default scene or a scene file's, `E₃` up, a flight replayed or
+/// the walk recorded; offscreen to a picture where there is no display. The headset, walls
+/// and the teaching views are not written for Nil.
 fn walk_nil(
     args: &WalkArgs,
-    space: &std::sync::Arc<bevy_curved_spaces::space::nil::NilSpace>,
-    replay: bool,
+    chosen: super::render::NilChoice,
+    flight: Option<bevy_curved_spaces::trace::nil::flight::NilFlight>,
 ) -> Result<(), String> {
+    let space = &chosen.space;
     use bevy_curved_spaces::space::{Family, Feature};
-    let refuse = |feature| {
-        Family::Nil
-            .supports(feature)
-            .map_err(|e| format!("{}: {e}", space.name()))
-    };
+    let refuse = |feature| super::spaces::require(Family::Nil, space.name(), feature);
     for (asked, feature) in [
-        (replay, Feature::Flights),
-        (args.record.is_some(), Feature::RecordFlight),
         (args.xr, Feature::Headset),
         (args.view.walls.walls.is_some(), Feature::Walls),
         (
@@ -592,6 +597,7 @@ fn walk_nil(
         render.fog = args.fog;
         render.crossings = args.crossings.map(|c| c as usize);
         render.view.light = args.view.light;
+        render.scene = args.scene.clone();
         render.stereo = args.stereo;
         if !gpu_available() {
             eprintln!("no GPU adapter found: using the CPU reference renderer");
@@ -615,12 +621,22 @@ fn walk_nil(
     let mut app = App::new();
     app.add_plugins(DefaultPlugins.set(window_titled(format!("curved spaces: {}", space.name()))));
     app.insert_resource(active);
+    if let Some(base) = chosen.base.clone() {
+        app.insert_resource(base);
+    }
     add_walk_plugins(&mut app, args, stereo, None, lighting).add_systems(
         Startup,
         |mut commands: Commands| {
             commands.spawn((Camera3d::default(), CurvedSpaceCamera::default()));
         },
     );
+    if let Some(flight) = flight {
+        eprintln!("replaying the flight ({:.1} s, looping)", flight.duration());
+        app.insert_resource(bevy_curved_spaces::plugin::flight::NilFlightReplay::new(
+            flight, true,
+        ));
+    }
+    record_to(&mut app, args)?;
     if let Some(path) = &args.screenshot {
         app.insert_resource(ScreenshotThenExit {
             path: path.clone(),

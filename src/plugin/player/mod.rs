@@ -7,8 +7,7 @@
 //! as they would have without the wrap.
 
 use crate::plugin::components::{
-    ActiveSpace, BaseProductScene, BaseScene, KeyBindings, MouseLook, PlayerFrame, PlayerMotion,
-    PlayerSettings,
+    ActiveSpace, BaseScenes, KeyBindings, MouseLook, PlayerFrame, PlayerMotion, PlayerSettings,
 };
 
 use crate::geometry::Geometry;
@@ -160,8 +159,7 @@ pub(crate) fn grab_cursor(
 /// kind, either way); not on the first frame, which keeps frames set before it.
 pub(crate) fn reset_players_on_switch(
     active: Option<Res<ActiveSpace>>,
-    base: Res<BaseScene>,
-    product_base: Option<Res<BaseProductScene>>,
+    bases: BaseScenes,
     mut started: Local<bool>,
     mut players: Query<(&mut PlayerFrame, &mut Holonomy)>,
 ) {
@@ -172,7 +170,7 @@ pub(crate) fn reset_players_on_switch(
     let Some(active) = active.filter(|a| a.is_changed()) else {
         return;
     };
-    let start = active.start_frame(&base, product_base.as_deref());
+    let start = active.start_frame(&bases);
     for (mut frame, mut holonomy) in &mut players {
         frame.0 = start;
         *holonomy = Holonomy::default();

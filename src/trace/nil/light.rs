@@ -98,9 +98,13 @@ impl NilLamp {
     }
 }
 
+/// The most lattice points [`lamp_images`] looks at.
+const MAX_CANDIDATES: f64 = 2e6;
+
 /// The images `γ·lamp` (`γ ∈ Γ_K`) within `reach + ρ` of the centre ([`box_radius`]),
 /// nearest first, and the reach they cover from every point of the box: shortened to what
-/// the nearest [`crate::scene::lighting::MAX_LAMP_IMAGES`] cover where more lie within it.
+/// the nearest [`crate::scene::lighting::MAX_LAMP_IMAGES`] cover where more lie within it,
+/// and where the reach asks to look at more than two million lattice points.
 ///
 /// An element is `A^p B^q C^m = (p, q, pq/2 + m/K)`. A point at distance `R` from the
 /// origin has `|x|, |y| ≤ R` and `|z| ≤ R + R²/4` (the chart's vertical speed is at most
@@ -108,9 +112,22 @@ impl NilLamp {
 #[must_use]
 pub fn lamp_images(space: &NilSpace, lamp: [f64; 3], reach: f64) -> (Vec<[f64; 3]>, f64) {
     let rho = box_radius(space);
-    let within = reach + rho;
     let k = f64::from(space.k());
-    let horizontal = (within + 0.5 + lamp[0].abs().max(lamp[1].abs())).ceil() as i64;
+    let offset = 0.5 + lamp[0].abs().max(lamp[1].abs());
+    // The lattice points a reach makes us look at: the horizontal square times the heights.
+    let candidates = |reach: f64| {
+        let within = reach + rho;
+        let side = 2.0 * (within + offset).ceil() + 1.0;
+        side * side * (2.0 * (within + within * within / 4.0) * k + 3.0)
+    };
+    // A reach whose candidates are too many to look at is shortened (the reach returned
+    // says what is covered): a long reach of a thin box would otherwise take ages.
+    let mut reach = if reach.is_finite() { reach.max(0.0) } else { 0.0 };
+    while reach > 0.0 && candidates(reach) > MAX_CANDIDATES {
+        reach *= 0.8;
+    }
+    let within = reach + rho;
+    let horizontal = (within + offset).ceil() as i64;
     let mut found: Vec<([f64; 3], f64)> = Vec::new();
     for p in -horizontal..=horizontal {
         for q in -horizontal..=horizontal {
@@ -186,4 +203,37 @@ pub fn gather(
         sum += 0.25 * open_tail_fluence(lamp.reach, fog, lamp.volume);
     }
     sum
+}
+
+/// The fluence at the point `x` of the box from a unit lamp at `lamp` (a point of the box),
+/// as `light` reports it: `e^(−r/λ) / max(A(r, c), ε²)` along the shortest geodesic to every
+/// image within `reach` of `x` (`ε` the default lamp's size [`super::NEAR_LIGHT`], as the tracer holds it),
+/// and the images beyond by their mean `4πλ e^(−R/λ)/vol`. Returns the images summed, the
+/// exact sum, the tail and the reach they cover (shortened where more images lie within it
+/// than the tracer gathers).
+#[must_use]
+pub fn nil_fluence(
+    space: &NilSpace,
+    lamp: [f64; 3],
+    x: [f64; 3],
+    fog: f64,
+    reach: f64,
+) -> (usize, f64, f64, f64) {
+    let floor = super::NEAR_LIGHT * super::NEAR_LIGHT;
+    let (images, covered) = lamp_images(space, lamp, reach);
+    let mut exact = 0.0;
+    let mut paths = 0;
+    for q in &images {
+        let (r, l) = shortest(x, *q);
+        if r <= covered {
+            paths += 1;
+            exact += (-r / fog).exp() / area_density(r, l[2]).max(floor);
+        }
+    }
+    (
+        paths,
+        exact,
+        open_tail_fluence(covered, fog, space.volume()),
+        covered,
+    )
 }

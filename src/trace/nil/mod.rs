@@ -8,6 +8,10 @@
 //! into the box, so a segment (which stays in the box) meets exactly the scene of the
 //! universal cover.
 
+#[cfg(feature = "scene-files")]
+pub mod file;
+#[cfg(feature = "scene-files")]
+pub mod flight;
 pub mod light;
 pub mod objects;
 
@@ -198,65 +202,105 @@ pub struct NilCamera {
     pub fov_y_degrees: f64,
 }
 
+impl NilCamera {
+    /// The camera at the chart point `eye` (brought into the box by the lattice) looking
+    /// along the shortest geodesic to `target`, `E₃` up as far as the view allows, with a
+    /// vertical field of view of `fov` degrees. Refused where a point is no chart point
+    /// within 10⁶, the two are one point, or `fov` is no angle between 0 and 180 degrees.
+    pub fn looking_at(
+        space: &NilSpace,
+        eye: DVec3,
+        target: DVec3,
+        fov: f64,
+    ) -> Result<Self, String> {
+        for (what, p) in [
+            ("the camera's position", eye),
+            ("the point looked at", target),
+        ] {
+            if !p.is_finite() || p.abs().max_element() > 1e6 {
+                return Err(format!(
+                    "{what} {:?} is not a chart point of Nil within 10⁶",
+                    p.to_array()
+                ));
+            }
+        }
+        if !(fov > 0.0 && fov < 180.0) {
+            return Err(format!(
+                "fov must be an angle between 0 and 180 degrees, got {fov}"
+            ));
+        }
+        let mut frame = look_frame(eye, target)
+            .ok_or("the camera looks at its own position: nothing to look towards")?;
+        frame.w_axis = DVec3::from_array(space.into_box(eye.to_array())).extend(1.0);
+        Ok(NilCamera {
+            frame,
+            fov_y_degrees: fov,
+        })
+    }
+}
+
+/// The frame at the chart point `eye` (not moved into the box) looking along the shortest
+/// geodesic to `target`, `E₃` up as far as the view allows; `None` where the two are one
+/// point.
+#[must_use]
+pub fn look_frame(eye: DVec3, target: DVec3) -> Option<DMat4> {
+    let (length, forward) = crate::space::nil::shortest(eye.to_array(), target.to_array());
+    if !(length > 1e-9) {
+        return None;
+    }
+    let forward = DVec3::from_array(forward);
+    let right = forward.cross(DVec3::Z);
+    let right = if right.length() > 1e-9 {
+        right.normalize()
+    } else {
+        DVec3::X
+    };
+    let up = right.cross(forward);
+    Some(DMat4::from_cols(
+        right.extend(0.0),
+        up.extend(0.0),
+        (-forward).extend(0.0),
+        eye.extend(1.0),
+    ))
+}
+
 /// How big the default scene's objects are in the box of half height `h`.
 fn scaled(size: f64, h: f64) -> f64 {
     size.min(0.6 * h)
 }
 
+/// The default lamp's size: the falloff is held at its value there.
+pub const NEAR_LIGHT: f64 = 0.05;
+
 /// Below this half height (`nil-K` for K > 10) the default scene leaves out the swept discs
 /// along the box's horizontal edges.
 pub const THIN_BOX: f64 = 0.05;
 
+/// Which parts of the default scene a scene is built on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct NilParts {
+    /// The box's edges: fibre tubes up its vertical edges, swept discs along its
+    /// horizontal ones where the box is not thin ([`THIN_BOX`]).
+    pub edges: bool,
+    /// The centrepiece: a ball at the origin.
+    pub centre_ball: bool,
+}
+
 /// The default scene of `space`: the box's edges (fibre tubes up its vertical edges, swept
-/// discs along its horizontal ones where the box is not thin, [`THIN_BOX`]), a centrepiece ball at the origin and two smaller balls
-/// off the axes, whose copies climb or sink across the cells by the twist; a lamp in the
-/// box, lit along every image within two inradii.
+/// discs along its horizontal ones where the box is not thin, [`THIN_BOX`]), a centrepiece
+/// ball at the origin and two smaller balls off the axes, whose copies climb or sink across
+/// the cells by the twist; a lamp in the box, lit along every image within two inradii.
 #[must_use]
 pub fn default_scene(space: &NilSpace) -> NilScene {
     let h = space.half_height();
-    let mut scene = NilScene {
-        objects: Vec::new(),
-        light: [0.0; 3],
-        lighting: Lighting::default(),
-        lamp: NilLamp::default(),
-        power: 1.0,
-        near_light: 0.05,
-        ambient: 0.3,
-        fog_distance: 1.5,
-        fog_colour: DVec3::new(0.05, 0.06, 0.09),
-    };
-    let edge_colour = DVec3::new(0.85, 0.7, 0.35);
-    let vertical = scaled(0.03, h);
-    for (x, y) in [(0.5, 0.5), (-0.5, 0.5), (0.5, -0.5), (-0.5, -0.5)] {
-        scene.objects.push(NilObject {
-            shape: NilShape::Fibre([x, y]),
-            radius: vertical,
-            colour: edge_colour,
-        });
-    }
-    let horizontal = scaled(0.025, 0.7 * h);
-    // In a box thinner than a tenth its images crowd into a sieve of tubes finer than the
-    // fibres (and hundreds of objects to test): only the fibres mark its edges there.
-    let sides: &[(usize, f64)] = if h >= THIN_BOX {
-        &[(0, 0.5), (0, -0.5), (1, 0.5), (1, -0.5)]
-    } else {
-        &[]
-    };
-    for &(along, offset) in sides {
-        let edge = NilObject {
-            shape: NilShape::Edge {
-                image: [0.0; 3],
-                along,
-                offset,
-                height: h,
-            },
-            radius: horizontal,
-            colour: edge_colour,
-        };
-        scene.add_with_images(space, edge);
-    }
+    let mut scene = scene_with_parts(
+        space,
+        NilParts {
+            edges: true,
+            centre_ball: true,
+        },
+    );
     let balls = [
-        ([0.0, 0.0, 0.0], scaled(0.17, h), DVec3::new(0.9, 0.9, 0.92)),
         (
             [0.3, 0.0, 0.0],
             scaled(0.07, h),
@@ -271,6 +315,67 @@ pub fn default_scene(space: &NilSpace) -> NilScene {
                 shape: NilShape::Ball(centre),
                 radius,
                 colour,
+            },
+        );
+    }
+    scene
+}
+
+/// The default scene's lamp, fog and lighting with the parts `parts` asks for (a scene
+/// file's start).
+#[must_use]
+pub fn scene_with_parts(space: &NilSpace, parts: NilParts) -> NilScene {
+    let h = space.half_height();
+    let mut scene = NilScene {
+        objects: Vec::new(),
+        light: [0.0; 3],
+        lighting: Lighting::default(),
+        lamp: NilLamp::default(),
+        power: 1.0,
+        near_light: NEAR_LIGHT,
+        ambient: 0.3,
+        fog_distance: 1.5,
+        fog_colour: DVec3::new(0.05, 0.06, 0.09),
+    };
+    let edge_colour = DVec3::new(0.85, 0.7, 0.35);
+    let vertical = scaled(0.03, h);
+    // In a box thinner than a tenth its images crowd into a sieve of tubes finer than the
+    // fibres (and hundreds of objects to test): only the fibres mark its edges there.
+    let sides: &[(usize, f64)] = if parts.edges && h >= THIN_BOX {
+        &[(0, 0.5), (0, -0.5), (1, 0.5), (1, -0.5)]
+    } else {
+        &[]
+    };
+    if parts.edges {
+        for (x, y) in [(0.5, 0.5), (-0.5, 0.5), (0.5, -0.5), (-0.5, -0.5)] {
+            scene.objects.push(NilObject {
+                shape: NilShape::Fibre([x, y]),
+                radius: vertical,
+                colour: edge_colour,
+            });
+        }
+    }
+    let horizontal = scaled(0.025, 0.7 * h);
+    for &(along, offset) in sides {
+        let edge = NilObject {
+            shape: NilShape::Edge {
+                image: [0.0; 3],
+                along,
+                offset,
+                height: h,
+            },
+            radius: horizontal,
+            colour: edge_colour,
+        };
+        scene.add_with_images(space, edge);
+    }
+    if parts.centre_ball {
+        scene.add_with_images(
+            space,
+            NilObject {
+                shape: NilShape::Ball([0.0; 3]),
+                radius: scaled(0.17, h),
+                colour: DVec3::new(0.9, 0.9, 0.92),
             },
         );
     }

@@ -1,5 +1,6 @@
-//! The Nil spaces on the command line: `info`, `trace` and `render` take them, bad ids get
-//! a clear error, and what is not written for Nil yet says so.
+//! The Nil spaces on the command line: `info`, `trace`, `render`, scene files, `flight` and
+//! `light` take them, bad ids and bad files get a clear error, and what is not written for
+//! Nil yet says so.
 
 use super::*;
 
@@ -83,7 +84,7 @@ fn bad_nil_ids_and_drawing_commands_get_clear_errors() {
         );
     }
     for args in [
-        &["light", "nil-3", "--at", "0,0,0"][..],
+        &["light", "nil-3", "--at", "0,0,0", "--radius", "0.1"][..],
         &["export", "nil-3"][..],
         &[
             "render", "nil-3", "--cpu", "--size", "16x9", "--walls", "0.5",
@@ -127,35 +128,232 @@ fn bad_nil_ids_and_drawing_commands_get_clear_errors() {
     );
 }
 
+/// A CPU picture of `args` (a `render` or `flight` command line without its output) as
+/// RGB, written under `dir` as `name`.
+fn cpu_picture(dir: &std::path::Path, name: &str, args: &[&str]) -> image::RgbImage {
+    let out = dir.join(name);
+    let mut all = args.to_vec();
+    all.extend(["--cpu", "--size", "40x24", "--out", out.to_str().unwrap()]);
+    let output = run(&all);
+    assert!(
+        output.status.success(),
+        "{all:?}: {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let png = if args[0] == "flight" {
+        out.join("frame-00001.png")
+    } else {
+        out
+    };
+    image::open(&png).expect("a PNG").to_rgb8()
+}
+
+/// A scene file of a Nil space draws its own objects from its start view: the view aimed at
+/// its ball sees the ball's colour in the middle, and `--eye --look-at` from the same place
+/// draws the same picture as the file's `[start]`.
 #[test]
-fn files_naming_a_nil_space_get_clear_errors() {
-    let dir = temp_dir("nil-files");
+fn render_draws_a_nil_scene_file() {
+    let dir = temp_dir("nil-scene");
     let scene = dir.join("scene.toml");
-    std::fs::write(&scene, "space = \"nil-3\"\n").expect("write");
-    fails_with(
+    std::fs::write(
+        &scene,
+        "space = \"nil-3\"\nedges = false\nfog = 2.0\n[start]\nposition = [0.0, -0.4, 0.02]\n\
+         look_at = [1.0, 0.1, 0.0]\nfov = 60\n[[object]]\ntype = \"ball\"\n\
+         position = [1.0, 0.1, 0.0]\nradius = 0.12\ncolour = [0.9, 0.1, 0.1]\n",
+    )
+    .expect("write");
+    let path = scene.to_str().unwrap();
+    let file = cpu_picture(&dir, "file.png", &["render", "--scene", path]);
+    let [r, g, b] = file.get_pixel(20, 12).0;
+    assert!(r > 2 * g.max(b) && r > 30, "the middle is {r},{g},{b}");
+    let aimed = cpu_picture(
+        &dir,
+        "aimed.png",
         &[
             "render",
             "--scene",
-            scene.to_str().unwrap(),
-            "--cpu",
-            "--size",
-            "16x9",
+            path,
+            "--eye",
+            "0,-0.4,0.02",
+            "--look-at",
+            "1,0.1,0",
+            "--fov",
+            "60",
         ],
-        "constant-curvature geometries only",
     );
+    assert_eq!(file, aimed, "the file's start view is --eye --look-at's");
+    // The example scene loads and draws.
+    let example = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/scenes/heisenberg_twist.toml"
+    );
+    let picture = cpu_picture(&dir, "example.png", &["render", "--scene", example]);
+    let mut colours: Vec<[u8; 3]> = picture.pixels().map(|p| p.0).collect();
+    colours.sort_unstable();
+    colours.dedup();
+    assert!(colours.len() > 100, "only {} colours", colours.len());
+}
+
+#[test]
+fn bad_nil_scene_files_get_errors_that_name_the_line() {
+    let dir = temp_dir("nil-bad-scenes");
+    let cases = [
+        ("space = \"nil-0\"\n", ":1: ", "the K of nil-K"),
+        (
+            "space = \"nil-2\"\n[[object]]\ntype = \"ball\"\nposition = [0, 0, 0]\nradius = 0.7\n",
+            ":2: ",
+            "at most 0.5",
+        ),
+        (
+            "space = \"nil-2\"\n[[object]]\ntype = \"ball\"\nposition = [0, 0, 0]\nradius = 0.1\nvelocity = [1, 0, 0]\n",
+            ":2: ",
+            "not in the Nil spaces: moving objects",
+        ),
+        (
+            "space = \"nil-2\"\n[[object]]\ntype = \"fibre\"\nposition = [0, 0]\nradios = 0.1\n",
+            "",
+            "radius",
+        ),
+        (
+            "space = \"nil-2\"\n[[light]]\nposition = [0, 0, 0]\n[[light]]\nposition = [0.1, 0, 0]\n",
+            ":4: ",
+            "one light",
+        ),
+        (
+            "space = \"nil-2\"\n[start]\nposition = [0, 0, 0]\nlook_at = [0, 0, 0]\n",
+            ":2: ",
+            "looks at its own position",
+        ),
+        (
+            "space = \"nil-2\"\n[[object]]\ntype = \"ball\"\nposition = [0, 0, 1e300]\nradius = 0.1\n",
+            ":2: ",
+            "within 10⁶",
+        ),
+        (
+            "space = \"nil-1000\"\n[[object]]\ntype = \"ball\"\nposition = [0, 0, 0]\nradius = 0.5\n",
+            ":2: ",
+            "more than 400 objects",
+        ),
+        (
+            "space = \"nil-2\"\nfog = -1\n",
+            ":2: ",
+            "fog distance must be a positive",
+        ),
+    ];
+    for (i, (text, line, needle)) in cases.iter().enumerate() {
+        let scene = dir.join(format!("bad-{i}.toml"));
+        std::fs::write(&scene, text).expect("write");
+        let path = scene.to_str().unwrap();
+        fails_with(
+            &["render", "--scene", path, "--cpu", "--size", "16x9"],
+            &format!("{path}{line}"),
+        );
+        fails_with(
+            &["render", "--scene", path, "--cpu", "--size", "16x9"],
+            needle,
+        );
+    }
+}
+
+/// A Nil flight's first frame is the view from its first key (the same picture as
+/// `render --eye --look-at`), and a key beyond the box is reached by flying there; keys
+/// too far, a replayed flight and a recorded one name what is wrong.
+#[test]
+fn flights_fly_through_nil() {
+    let dir = temp_dir("nil-flight");
     let flight = dir.join("flight.toml");
     std::fs::write(
         &flight,
-        "space = \"nil-3\"\n[[key]]\ntime = 0.0\nposition = [0.0, 0.0, 0.0]\nlook_at = [0.1, 0.0, 0.0]\n[[key]]\ntime = 1.0\nposition = [0.2, 0.0, 0.0]\nlook_at = [0.3, 0.0, 0.0]\n",
+        "space = \"nil-3\"\nfov = 60\n[[key]]\ntime = 0.0\nposition = [0.1, -0.4, 0.05]\n\
+         look_at = [0.0, 0.0, 0.0]\n[[key]]\ntime = 1.0\nposition = [1.2, 0.3, 0.1]\n\
+         look_at = [2.0, 0.5, 0.0]\n",
+    )
+    .expect("write");
+    let flown = cpu_picture(
+        &dir,
+        "frames",
+        &["flight", flight.to_str().unwrap(), "--fps", "2"],
+    );
+    let rendered = cpu_picture(
+        &dir,
+        "key.png",
+        &[
+            "render",
+            "nil-3",
+            "--eye",
+            "0.1,-0.4,0.05",
+            "--look-at",
+            "0,0,0",
+            "--fov",
+            "60",
+        ],
+    );
+    assert_eq!(flown, rendered);
+    assert!(dir.join("frames/frame-00002.png").exists());
+    let far = dir.join("far.toml");
+    std::fs::write(
+        &far,
+        "space = \"nil-50\"\n[[key]]\ntime = 0.0\nposition = [0.0, 0.0, 40.0]\nlook_at = [0.1, 0.0, 0.0]\n",
     )
     .expect("write");
     fails_with(
-        &["flight", flight.to_str().unwrap()],
-        "not in the Nil spaces",
+        &["flight", far.to_str().unwrap()],
+        "more than 1000 face crossings",
     );
     fails_with(
-        &["walk", "--replay", flight.to_str().unwrap()],
-        "not in the Nil spaces",
+        &["walk", "--replay", far.to_str().unwrap()],
+        "more than 1000 face crossings",
+    );
+}
+
+/// `light` sums the lamp's images along the shortest geodesics with Nil's falloff, the rest
+/// by its mean: the mean stands in for the images between two reaches to within 2 %.
+#[test]
+fn light_sums_a_nil_lamps_images() {
+    let at = |reach: &str, check: &str| {
+        json(&[
+            "light",
+            "nil-1",
+            "--light",
+            "0,0,0.1",
+            "--at",
+            "0.3,0.2,0",
+            "--reach",
+            reach,
+            "--check",
+            check,
+            "--json",
+        ])
+    };
+    let v = at("1", "2");
+    assert_eq!(v["geometry"], "Nil");
+    let (exact, tail, total) = (
+        v["exact"].as_f64().unwrap(),
+        v["tail"].as_f64().unwrap(),
+        v["total"].as_f64().unwrap(),
+    );
+    assert!(exact > 0.0 && tail > 0.0 && (exact + tail - total).abs() < 1e-12 * total);
+    assert!(v["images"].as_u64().unwrap() >= 1);
+    let longer = &v["check"];
+    assert!(longer["images"].as_u64().unwrap() > v["images"].as_u64().unwrap());
+    let off = longer["difference"].as_f64().unwrap() / total;
+    assert!(off.abs() < 0.02, "the tail's mean is off by {off}");
+    // A start outside the box is brought in by the lattice: the same light.
+    let moved = json(&[
+        "light",
+        "nil-1",
+        "--light",
+        "1,0,0.1",
+        "--at",
+        "0.3,1.2,-0.15",
+        "--reach",
+        "1",
+        "--json",
+    ]);
+    assert!((moved["total"].as_f64().unwrap() - total).abs() < 1e-9 * total);
+    fails_with(
+        &["light", "nil-1", "--light", "0,0,0", "--at", "0,0,2e6"],
+        "not a chart point",
     );
 }
 

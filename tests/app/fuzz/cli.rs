@@ -28,6 +28,10 @@ fn hostile_numbers_on_the_command_line() {
         "{}/assets/scenes/seifert_weber_knot.toml",
         env!("CARGO_MANIFEST_DIR")
     );
+    let nil_scene = format!(
+        "{}/assets/scenes/heisenberg_twist.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
     for value in values {
         let vec3 = format!("{value},0,0");
         let circle = format!("surface-abABcdCD-circle-{value}");
@@ -152,6 +156,17 @@ fn hostile_numbers_on_the_command_line() {
             tiny_render("nil-1", &["--eye", "0.1,0.2,0", "--look-at", &vec3]),
             tiny_render("nil-50", &["--fog", value]),
             vec!["bench", "--quick", "--nil", value],
+            // Nil's fluence sum: a hostile lamp, point, fog, reach and check.
+            vec!["light", "nil-3", "--light", &vec3, "--at", "0.1,0,0"],
+            vec!["light", "nil-1", "--at", &vec3],
+            vec!["light", "nil-1", "--at", "0.1,0,0", "--fog", value],
+            vec!["light", "nil-1", "--at", "0.1,0,0", "--reach", value],
+            vec![
+                "light", "nil-1", "--at", "0.1,0,0", "--reach", "1", "--check", value,
+            ],
+            // Nil's scene file under a hostile fov and fog.
+            tiny_render("heisenberg", &["--scene", &nil_scene, "--fov", value]),
+            tiny_render("heisenberg", &["--scene", &nil_scene, "--fog", value]),
             // Product spaces: a hostile length, turn, direction and start.
             vec!["info", &circle],
             vec!["info", &turned],

@@ -1,4 +1,4 @@
-//! Scene files (constant-curvature and product): every number made hostile, lines cut and
+//! Scene files (constant-curvature, product and Nil): every number made hostile, lines cut and
 //! scrambled, tables nested past the parser's depth.
 
 use super::*;
@@ -40,6 +40,9 @@ fn outcome(text: &str, base: &Path) -> bool {
     use bevy_curved_spaces::trace::product::file::names_product_space;
     if names_product_space(text) {
         return product_outcome(text);
+    }
+    if bevy_curved_spaces::trace::nil::file::names_nil_space(text) {
+        return nil_outcome(text);
     }
     let started = Instant::now();
     let result = parse_scene(text, base, "fuzz.toml");
@@ -114,6 +117,52 @@ fn product_outcome(text: &str) -> bool {
             assert!(
                 started.elapsed().as_secs_f64() < 10.0,
                 "slow product scene:\n{text}"
+            );
+            true
+        }
+        Err(e) => {
+            assert!(e.to_string().starts_with("fuzz.toml"), "{e}");
+            false
+        }
+    }
+}
+
+/// A mutated Nil scene file: a finite scene that draws, or an error naming the file.
+fn nil_outcome(text: &str) -> bool {
+    use bevy_curved_spaces::trace::nil::file::parse_nil_scene;
+    use bevy_curved_spaces::trace::nil::{NilShape, default_camera, render_nil_view};
+    let started = Instant::now();
+    match parse_nil_scene(text, "fuzz.toml") {
+        Ok(file) => {
+            let s = &file.scene;
+            assert!(
+                s.objects.iter().all(|o| {
+                    let shape = match o.shape {
+                        NilShape::Ball(c) => c.iter().all(|x| x.is_finite()),
+                        NilShape::Fibre(b) => b.iter().all(|x| x.is_finite()),
+                        NilShape::Edge { image, .. } => image.iter().all(|x| x.is_finite()),
+                    };
+                    shape && o.radius.is_finite() && o.colour.is_finite()
+                }) && s.light.iter().all(|x| x.is_finite())
+                    && s.fog_distance.is_finite()
+                    && s.power.is_finite(),
+                "a non-finite Nil scene from:\n{text}"
+            );
+            let camera = file.start.unwrap_or_else(|| default_camera(&file.space));
+            assert!(camera.frame.is_finite());
+            let layout = bevy_curved_spaces::view::ViewLayout::new(
+                Default::default(),
+                false,
+                [camera.frame; 2],
+                camera.fov_y_degrees,
+                8,
+                4,
+            );
+            let image = render_nil_view(&file.space, s, &layout, 16);
+            assert_eq!(image.dimensions(), (8, 4));
+            assert!(
+                started.elapsed().as_secs_f64() < 10.0,
+                "slow Nil scene:\n{text}"
             );
             true
         }

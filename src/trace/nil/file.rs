@@ -1,0 +1,358 @@
+//! Scene files of the Nil spaces: the same TOML shape as the other families' scene files
+//! ([`crate::scene::file`], [`crate::trace::product::file`]), with Nil's own objects.
+//! `render --scene FILE` and `walk --scene FILE` read every kind: the file's `space` says
+//! which.
+//!
+//! Positions are chart points `(x, y, z)` of the Heisenberg group (the box of `nil-K` is
+//! `|x|, |y| ≤ ½`, `|z| ≤ 1/2K`); a position outside the box is brought into it by the
+//! lattice, and every object is drawn with each of its lattice images that reaches into the
+//! box, so an object may straddle the box's faces. Radii are Nil distances.
+//!
+//! ```toml
+//! space = "nil-3"
+//! edges = true            # the box's edges (default true)
+//! centre_ball = false     # the default scene's centrepiece ball (default false)
+//! fog = 1.5               # fog distance
+//! ambient = 0.3
+//!
+//! [start]
+//! position = [0.1, -0.45, 0.05]
+//! look_at = [0.0, 0.0, 0.0]
+//! fov = 70
+//!
+//! [[object]]
+//! type = "ball"           # a metric ball: position [x, y, z]
+//! position = [0.25, 0.1, 0.0]
+//! radius = 0.1
+//! colour = [0.9, 0.5, 0.2]
+//!
+//! [[object]]
+//! type = "fibre"          # a vertical tube (the points within radius of a fibre): [x, y]
+//! position = [0.2, -0.3]
+//! radius = 0.04
+//!
+//! [[light]]               # one light at most (the default scene's where there is none)
+//! position = [-0.25, -0.3, 0.05]
+//!
+//! [lighting]              # as in the other files; a Nil lamp is a point
+//! paths = "images"
+//! reach = 2.0
+//! shadows = 8
+//! ```
+//!
+//! An error names the file and the line.
+
+use super::{NilCamera, NilObject, NilParts, NilScene, NilShape, default_camera, scene_with_parts};
+use crate::scene::file::SceneFileError;
+use crate::scene::file_support::{
+    LightingSpec, ambient_of, colour, failing, lighting_of, parse_toml, read_scene_text,
+};
+use crate::space::nil::{NilSpace, nil_space};
+use crate::space::{Family, Feature};
+use glam::DVec3;
+use serde::Deserialize;
+use std::path::Path;
+use toml::Spanned;
+
+/// The largest radius of a Nil scene's object: half the box's side, so that the images of
+/// an object in the box that reach into it are its neighbours'.
+pub const MAX_NIL_RADIUS: f64 = 0.5;
+
+/// The most objects (with their lattice images) a Nil scene file may make: each is tested
+/// by every ray segment.
+pub const MAX_NIL_OBJECTS: usize = 400;
+
+/// A loaded Nil scene file: the space, its scene and the start view.
+#[derive(Clone, Debug)]
+pub struct NilSceneFile {
+    /// The space's id, as written.
+    pub space_id: String,
+    /// The space.
+    pub space: NilSpace,
+    /// The whole scene: the file's objects with their images and the default parts it asks
+    /// for.
+    pub scene: NilScene,
+    /// The start view (`None`: the space's default camera).
+    pub start: Option<NilCamera>,
+}
+
+/// The keys a Nil scene file knows (for "did you mean").
+const KEYS: &[&str] = &[
+    "space",
+    "fog",
+    "edges",
+    "centre_ball",
+    "ambient",
+    "fog_colour",
+    "start",
+    "object",
+    "light",
+    "position",
+    "look_at",
+    "fov",
+    "type",
+    "radius",
+    "colour",
+    "lighting",
+    "paths",
+    "reach",
+    "tail",
+    "shadows",
+    "lamp_radius",
+    "soft_samples",
+    "velocity",
+];
+
+fn default_true() -> bool {
+    true
+}
+
+fn white() -> [f64; 3] {
+    [1.0; 3]
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileSpec {
+    space: Spanned<String>,
+    fog: Option<Spanned<f64>>,
+    #[serde(default = "default_true")]
+    edges: bool,
+    #[serde(default)]
+    centre_ball: bool,
+    ambient: Option<Spanned<f64>>,
+    fog_colour: Option<Spanned<[f64; 3]>>,
+    start: Option<Spanned<StartSpec>>,
+    #[serde(default, rename = "object")]
+    objects: Vec<Spanned<ObjectSpec>>,
+    #[serde(default, rename = "light")]
+    lights: Vec<Spanned<LightSpec>>,
+    lighting: Option<Spanned<LightingSpec>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct StartSpec {
+    position: [f64; 3],
+    look_at: Option<[f64; 3]>,
+    fov: Option<f64>,
+}
+
+#[derive(Deserialize)]
+#[serde(tag = "type", rename_all = "kebab-case", deny_unknown_fields)]
+enum ObjectSpec {
+    Ball {
+        position: [f64; 3],
+        radius: f64,
+        #[serde(default = "white")]
+        colour: [f64; 3],
+        velocity: Option<[f64; 3]>,
+    },
+    Fibre {
+        position: [f64; 2],
+        radius: f64,
+        #[serde(default = "white")]
+        colour: [f64; 3],
+    },
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LightSpec {
+    position: [f64; 3],
+}
+
+/// Only the `space` key, to tell the kinds of scene file apart.
+#[derive(Deserialize)]
+struct SpaceOnly {
+    space: String,
+}
+
+/// Whether a scene file's text names a Nil space in its `space` key (or a Nil id that is
+/// wrong, such as `nil-0`: its loader says what is wrong with it); `false` where the key
+/// cannot be read.
+#[must_use]
+pub fn names_nil_space(text: &str) -> bool {
+    toml::from_str::<SpaceOnly>(text).is_ok_and(|peek| nil_space(&peek.space).is_some())
+}
+
+/// Reads a scene file if its space is a Nil space; `Ok(None)` for any other file (another
+/// family's, or one whose `space` cannot be read: the constant-curvature loader says what
+/// is wrong with it).
+pub fn load_nil_scene_file(path: &Path) -> Result<Option<NilSceneFile>, SceneFileError> {
+    let (name, text) = read_scene_text(path)?;
+    if names_nil_space(&text) {
+        parse_nil_scene(&text, &name).map(Some)
+    } else {
+        Ok(None)
+    }
+}
+
+/// Parses a Nil scene file's text; errors name `file` and the line.
+pub fn parse_nil_scene(text: &str, file: &str) -> Result<NilSceneFile, SceneFileError> {
+    let fail = failing(text, file);
+    let spec: FileSpec = parse_toml(text, file, KEYS)?;
+    let space_id = spec.space.get_ref().clone();
+    let space = match nil_space(&space_id) {
+        Some(Ok(space)) => space,
+        Some(Err(e)) => return Err(fail(Some(spec.space.span()), e.to_string())),
+        None => {
+            return Err(fail(
+                Some(spec.space.span()),
+                format!("{space_id} is not a Nil space (`nil-K`, `heisenberg`)"),
+            ));
+        }
+    };
+    let mut scene = scene_with_parts(
+        &space,
+        NilParts {
+            edges: spec.edges,
+            centre_ball: spec.centre_ball,
+        },
+    );
+    if let Some(f) = &spec.fog {
+        let f = *f.get_ref();
+        if !(f > 0.0 && f.is_finite()) {
+            return Err(fail(
+                spec.fog.as_ref().map(Spanned::span),
+                format!("the fog distance must be a positive number, got {f}"),
+            ));
+        }
+        scene.fog_distance = f;
+        scene.power = super::default_power(&space, f);
+    }
+    if let Some(a) = &spec.ambient {
+        scene.ambient = ambient_of(a).map_err(|(s, m)| fail(Some(s), m))?;
+    }
+    if let Some(c) = &spec.fog_colour {
+        scene.fog_colour = colour(*c.get_ref())
+            .map_err(|m| fail(Some(c.span()), format!("fog_colour: {m}")))?
+            .min(DVec3::ONE);
+    }
+    match spec.lights.as_slice() {
+        [] => {}
+        [light] => {
+            scene.light = chart_point(light.get_ref().position, "the light")
+                .map_err(|m| fail(Some(light.span()), m))?;
+        }
+        [_, second, ..] => {
+            return Err(fail(
+                Some(second.span()),
+                format!(
+                    "a Nil scene has one light, this file has {}",
+                    spec.lights.len()
+                ),
+            ));
+        }
+    }
+    for object in &spec.objects {
+        let at = |m: String| fail(Some(object.span()), m);
+        let made = build_object(&space, object.get_ref()).map_err(at)?;
+        scene.add_with_images(&space, made);
+        if scene.objects.len() > MAX_NIL_OBJECTS {
+            return Err(at(format!(
+                "the scene has more than {MAX_NIL_OBJECTS} objects with the lattice images \
+                 that reach into the box ({} so far; the box of {space_id} is {:.3} high, so a \
+                 ball is seen about {} times over): make the objects fewer or smaller",
+                scene.objects.len(),
+                2.0 * space.half_height(),
+                ((2.0 * made.radius + 2.0 * space.half_height()) * f64::from(space.k())).ceil()
+            )));
+        }
+    }
+    let lighting = match &spec.lighting {
+        Some(l) => lighting_of(l).map_err(|(s, m)| fail(Some(s), m))?,
+        None => scene.lighting,
+    };
+    let light = scene.light;
+    scene
+        .set_lighting(&space, light, lighting)
+        .map_err(|m| fail(spec.lighting.as_ref().map(Spanned::span), m))?;
+    let start = match &spec.start {
+        Some(s) => Some(start_camera(&space, s.get_ref()).map_err(|m| fail(Some(s.span()), m))?),
+        None => None,
+    };
+    Ok(NilSceneFile {
+        space_id,
+        space,
+        scene,
+        start,
+    })
+}
+
+/// A chart point within 10⁶ (the lattice brings it into the box).
+fn chart_point(p: [f64; 3], what: &str) -> Result<[f64; 3], String> {
+    if p.iter().all(|x| x.is_finite() && x.abs() <= 1e6) {
+        Ok(p)
+    } else {
+        Err(format!(
+            "{what} at {p:?} is not a chart point of Nil within 10⁶"
+        ))
+    }
+}
+
+/// A radius: positive, at most [`MAX_NIL_RADIUS`].
+fn radius_of(r: f64) -> Result<f64, String> {
+    if r > 0.0 && r <= MAX_NIL_RADIUS {
+        Ok(r)
+    } else {
+        Err(format!(
+            "radius must be a positive distance of at most {MAX_NIL_RADIUS} (half the box's \
+             side), got {r}"
+        ))
+    }
+}
+
+/// An object of the file, brought into the box (its images are added by the scene).
+fn build_object(space: &NilSpace, spec: &ObjectSpec) -> Result<NilObject, String> {
+    let (shape, radius, c) = match spec {
+        ObjectSpec::Ball {
+            velocity: Some(_), ..
+        } => {
+            return Err(Family::Nil
+                .supports(Feature::MovingObjects)
+                .err()
+                .map_or_else(|| "a moving ball".to_string(), |e| e.to_string()));
+        }
+        ObjectSpec::Ball {
+            position,
+            radius,
+            colour,
+            velocity: None,
+        } => (
+            NilShape::Ball(space.into_box(chart_point(*position, "the ball")?)),
+            radius_of(*radius)?,
+            colour,
+        ),
+        ObjectSpec::Fibre {
+            position,
+            radius,
+            colour,
+        } => {
+            let [x, y, _] = chart_point([position[0], position[1], 0.0], "the fibre")?;
+            // Its foot in the box's square (a fibre is its own image by the centre).
+            (
+                NilShape::Fibre([x - x.round(), y - y.round()]),
+                radius_of(*radius)?,
+                colour,
+            )
+        }
+    };
+    Ok(NilObject {
+        shape,
+        radius,
+        colour: colour(*c)?.min(DVec3::ONE),
+    })
+}
+
+fn start_camera(space: &NilSpace, start: &StartSpec) -> Result<NilCamera, String> {
+    let eye = DVec3::from_array(chart_point(start.position, "the start position")?);
+    let fov = start
+        .fov
+        .unwrap_or_else(|| default_camera(space).fov_y_degrees);
+    let target = match start.look_at {
+        Some(t) => DVec3::from_array(chart_point(t, "look_at")?),
+        None => DVec3::ZERO,
+    };
+    NilCamera::looking_at(space, eye, target, fov)
+}
