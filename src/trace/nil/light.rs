@@ -122,7 +122,11 @@ pub fn lamp_images(space: &NilSpace, lamp: [f64; 3], reach: f64) -> (Vec<[f64; 3
     };
     // A reach whose candidates are too many to look at is shortened (the reach returned
     // says what is covered): a long reach of a thin box would otherwise take ages.
-    let mut reach = if reach.is_finite() { reach.max(0.0) } else { 0.0 };
+    let mut reach = if reach.is_finite() {
+        reach.max(0.0)
+    } else {
+        0.0
+    };
     while reach > 0.0 && candidates(reach) > MAX_CANDIDATES {
         reach *= 0.8;
     }

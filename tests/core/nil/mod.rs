@@ -11,6 +11,8 @@
 mod balls;
 mod distances;
 mod exits;
+#[cfg(feature = "scene-files")]
+mod files;
 mod pictures;
 mod spaces;
 mod walks;
