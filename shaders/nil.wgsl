@@ -519,19 +519,100 @@ fn nil_slab_entry(i: u32, ray: NilRay) -> f32 {
     return 0.0;
 }
 
-// The first t in [0, t_max] at which the ray meets object i; NIL_NONE for a miss.
-fn nil_meeting(i: u32, ray: NilRay, t_max: f32) -> f32 {
+// asin(z)/z for 0 <= z <= 1.
+fn nil_asin_over(z: f32) -> f32 {
+    if z < 1.0e-2 {
+        return 1.0 + z * z / 6.0;
+    }
+    return asin(min(z, 1.0)) / z;
+}
+
+// When the ray's shadow in the plane is within r of the point b (Rust:
+// `space::nil::shadow_within`): (t_in, t_out, period) for its first visit, t_in NIL_NONE
+// where it never is, t_out and the period NIL_FAR where it never leaves or never comes back.
+fn nil_shadow_within(ray: NilRay, b: vec2<f32>, r: f32) -> vec3<f32> {
+    let never = vec3<f32>(NIL_NONE, 0.0, 0.0);
+    let q = b - ray.p.xy;
+    let big_a = dot(q, q) - r * r;
+    let a = length(ray.v.xy);
+    if !(a > 1.0e-30) {
+        return select(never, vec3<f32>(0.0, NIL_FAR, NIL_FAR), (big_a <= 0.0));
+    }
+    let h = ray.v.xy / a;
+    let x = dot(q, h);
+    var y = q.y * h.x - q.x * h.y;
+    var k = ray.v.z / a;
+    if k < 0.0 {
+        k = -k;
+        y = -y;
+    }
+    let p = 1.0 - k * y;
+    let big_r = length(vec2<f32>(k * x, p));
+    var e = x * x / (big_r + p) - 0.5 * big_a;
+    if !(p > 0.0) {
+        e = (big_r - p) / (k * k) - 0.5 * big_a;
+    }
+    if !(e >= 0.0) {
+        return never;
+    }
+    let w = sqrt(e / (2.0 * big_r));
+    var period = NIL_FAR;
+    if k > 0.0 {
+        period = 2.0 * NIL_PI / abs(ray.v.z);
+    }
+    if k * w >= 1.0 {
+        return vec3<f32>(0.0, NIL_FAR, period);
+    }
+    let half = 2.0 * w * nil_asin_over(k * w);
+    var middle = atan2(k * x, p) / max(k, 1.0e-30);
+    if p > 0.0 {
+        middle = (x / p) * nil_atan_over(k * x / p);
+    }
+    var t_in = (middle - half) / a;
+    var t_out = (middle + half) / a;
+    if t_in < 0.0 {
+        if t_out >= 0.0 || big_a <= 0.0 {
+            t_in = 0.0;
+            t_out = max(t_out, 0.0);
+        } else if k > 0.0 {
+            t_in += period;
+            t_out += period;
+        } else {
+            return never;
+        }
+    }
+    return vec3<f32>(t_in, t_out, period);
+}
+
+// The first t in [0, t_max] at which the ray meets object i; NIL_NONE for a miss. Where not
+// `exact` (a shadow ray), any t found in the object.
+fn nil_meeting(i: u32, ray: NilRay, t_max: f32, exact: bool) -> f32 {
+    let kind = u32(space.nil_objects[i].info.x);
+    if kind == 1u {
+        // A fibre tube: exactly where the shadow first comes within its radius.
+        let o = space.nil_objects[i];
+        let t = nil_shadow_within(ray, o.shape.xy, o.info.y).x;
+        return select(NIL_NONE, t, (t >= 0.0) && (t <= t_max));
+    }
+    // A ball is stepped from the start: on lavapipe the shadow's visits (as the CPU takes
+    // them) cost more than they save.
     let start = nil_slab_entry(i, ray);
     if start < 0.0 || start > t_max {
         return NIL_NONE;
     }
-    var t = start;
-    var g = nil_gap_along(i, ray, start);
+    return nil_step_meeting(i, ray, start, t_max, exact);
+}
+
+// The first t in [first, to] at which the ray meets object i, by safe steps from `first`
+// (no meeting lies before it); NIL_NONE for a miss.
+fn nil_step_meeting(i: u32, ray: NilRay, first: f32, t_max: f32, exact: bool) -> f32 {
+    var t = first;
+    var g = nil_gap_along(i, ray, first);
     if g.x <= 0.0 {
-        if start > 0.0 {
-            return nil_refine(i, ray, 0.0, start);
+        if first > 0.0 && exact {
+            return nil_refine(i, ray, 0.0, first);
         }
-        return 0.0;
+        return first;
     }
     let o = space.nil_objects[i];
     let is_ball = u32(o.info.x) == 0u;
@@ -540,6 +621,9 @@ fn nil_meeting(i: u32, ray: NilRay, t_max: f32) -> f32 {
         if g.y < 0.0 {
             let guess = t - g.x / g.y;
             if guess <= t_max && nil_gap_along(i, ray, guess).x <= 0.0 {
+                if !exact {
+                    return guess;
+                }
                 return nil_refine(i, ray, t, guess);
             }
         }
@@ -567,6 +651,9 @@ fn nil_meeting(i: u32, ray: NilRay, t_max: f32) -> f32 {
         }
         g = nil_gap_along(i, ray, t);
         if g.x <= 0.0 {
+            if !exact {
+                return t;
+            }
             return nil_refine(i, ray, before, t);
         }
     }
@@ -595,18 +682,22 @@ fn nil_segment_meets(i: u32, ray: NilRay, t_max: f32) -> bool {
     return all((lo <= o.box_hi.xyz)) && all((o.box_lo.xyz <= hi));
 }
 
-// The nearest object met within t_max: (index, t); index NIL_OBJECTS for none.
-fn nil_nearest(ray: NilRay, t_max: f32) -> vec2<f32> {
+// The nearest object met within t_max: (index, t); index NIL_OBJECTS for none. Where not
+// `exact` (a shadow ray), the first found.
+fn nil_nearest(ray: NilRay, t_max: f32, exact: bool) -> vec2<f32> {
     var best = t_max;
     var index = #{NIL_OBJECTS}u;
     for (var i = 0u; i < u32(space.nil_box.z); i += 1u) {
         if !nil_segment_meets(i, ray, best) || nil_clearance(i, ray.p) > best {
             continue;
         }
-        let t = nil_meeting(i, ray, best);
+        let t = nil_meeting(i, ray, best, exact);
         if (t >= 0.0) && ((index == #{NIL_OBJECTS}u) || (t < best)) {
             best = t;
             index = i;
+            if !exact {
+                break;
+            }
         }
     }
     return vec2<f32>(f32(index), best);
@@ -619,8 +710,9 @@ struct NilEnd {
     at: NilRay,
 }
 
-// Walks the ray to its first object within `length`, through at most `budget` faces.
-fn nil_walk(start: NilRay, length: f32, budget: u32) -> NilEnd {
+// Walks the ray to its first object within `length`, through at most `budget` faces; where
+// not `exact` (a shadow ray), only whether it meets one is sure.
+fn nil_walk(start: NilRay, length: f32, budget: u32, exact: bool) -> NilEnd {
     var ray = start;
     var distance = 0.0;
     var crossings = 0u;
@@ -634,7 +726,7 @@ fn nil_walk(start: NilRay, length: f32, budget: u32) -> NilEnd {
             break;
         }
         let t_max = min(exit.y, length - distance);
-        let hit = nil_nearest(ray, t_max);
+        let hit = nil_nearest(ray, t_max, exact);
         if u32(hit.x) < #{NIL_OBJECTS}u {
             return NilEnd(u32(hit.x), distance + hit.y, nil_flow(ray, hit.y));
         }
@@ -679,7 +771,7 @@ fn nil_light_along(x: vec3<f32>, normal: vec3<f32>, path: vec4<f32>, shadowed: b
 #ifdef NIL_SHADOWS
     if shadowed && path.x > 1.0e-3 {
         let start = nil_flow(NilRay(x, path.yzw), 1.0e-3);
-        if nil_walk(start, path.x - 1.0e-3, u32(space.shading.params.w)).index < #{NIL_OBJECTS}u {
+        if nil_walk(start, path.x - 1.0e-3, u32(space.shading.params.w), false).index < #{NIL_OBJECTS}u {
             return 0.0;
         }
     }
@@ -709,7 +801,7 @@ fn nil_gather(x: vec3<f32>, normal: vec3<f32>) -> f32 {
 fn ray_colour(point: vec4<f32>, tangent: vec4<f32>) -> vec3<f32> {
     let start = NilRay(point.xyz, normalize(tangent.xyz));
     let shading = space.shading;
-    let end = nil_walk(start, shading.params.y, u32(shading.params.w));
+    let end = nil_walk(start, shading.params.y, u32(shading.params.w), true);
     if end.index >= #{NIL_OBJECTS}u {
         return shading.fog.rgb;
     }

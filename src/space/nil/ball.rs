@@ -69,10 +69,50 @@ pub fn distance_floor<R: Real>(centre: [R; 3], p: [R; 3]) -> R {
 /// [`distance_floor`] instead of the distance.
 #[must_use]
 pub fn ball_hit<R: Real>(ray: &NilRay<R>, centre: [R; 3], radius: R, t_max: R) -> Option<R> {
+    ball_hit_between(ray, centre, radius, R::ZERO, t_max)
+}
+
+/// [`ball_hit`] over the times `[from, to]` only, where the caller knows the ray does not
+/// meet the ball before `from` (such as where its shadow comes within the radius of the
+/// centre's, [`super::shadow::shadow_within`]): `Some(from)` where it is in the ball there.
+#[must_use]
+pub fn ball_hit_between<R: Real>(
+    ray: &NilRay<R>,
+    centre: [R; 3],
+    radius: R,
+    from: R,
+    to: R,
+) -> Option<R> {
+    meeting(ray, centre, radius, (from, to), true)
+}
+
+/// Whether `ray` meets the ball within `[from, to]` (as [`ball_hit_between`] says), found
+/// without refining the hit: a shadow ray needs only to know.
+#[must_use]
+pub fn ball_meets_between<R: Real>(
+    ray: &NilRay<R>,
+    centre: [R; 3],
+    radius: R,
+    from: R,
+    to: R,
+) -> bool {
+    meeting(ray, centre, radius, (from, to), false).is_some()
+}
+
+/// The first meeting within `[from, to]`: refined to the last bit where `precise`, else any
+/// time found inside the ball.
+fn meeting<R: Real>(
+    ray: &NilRay<R>,
+    centre: [R; 3],
+    radius: R,
+    (from, to): (R, R),
+    precise: bool,
+) -> Option<R> {
     let zero = R::ZERO;
-    let (mut t, (mut f, mut rate)) = (zero, gap_and_rate(ray, centre, radius, zero));
+    let t_max = to;
+    let (mut t, (mut f, mut rate)) = (from, gap_and_rate(ray, centre, radius, from));
     if !(f > zero) {
-        return (f <= zero).then_some(zero);
+        return (f <= zero).then_some(from);
     }
     // The smallest safe step worth taking: below it the ray grazes.
     let floor = R::from_f64(16.0) * R::EPSILON * (R::ONE + radius + t_max.min(R::from_f64(1e6)));
@@ -83,7 +123,11 @@ pub fn ball_hit<R: Real>(ray: &NilRay<R>, centre: [R; 3], radius: R, t_max: R) -
             if guess <= t_max {
                 let (g, _) = gap_and_rate(ray, centre, radius, guess);
                 if g <= zero {
-                    return Some(refine(ray, centre, radius, t, guess));
+                    return Some(if precise {
+                        refine(ray, centre, radius, t, guess)
+                    } else {
+                        guess
+                    });
                 }
             }
         }
@@ -112,7 +156,11 @@ pub fn ball_hit<R: Real>(ray: &NilRay<R>, centre: [R; 3], radius: R, t_max: R) -
         }
         if f < zero {
             // Rounding put the safe step a hair past the root: it lies in (before, t].
-            return Some(refine(ray, centre, radius, before, t));
+            return Some(if precise {
+                refine(ray, centre, radius, before, t)
+            } else {
+                t
+            });
         }
     }
     None

@@ -60,6 +60,9 @@ const SERIES_TERMS: usize = 22;
 #[must_use]
 pub fn flow_terms<R: Real>(c: R, t: R) -> (R, R, R) {
     let u = c * t;
+    if R::EPSILON.to_f64() >= f64::EPSILON {
+        return flow_terms_short(c, t, u);
+    }
     if u.abs() < R::from_f64(SERIES_BELOW) {
         // Σ (−u²)ᵏ/(n+2k)! for n = 1, 2, 3, by the exact recurrence of the terms.
         let minus_u2 = -(u * u);
@@ -92,6 +95,47 @@ pub fn flow_terms<R: Real>(c: R, t: R) -> (R, R, R) {
             (u - sin_u) / (c * c),
         )
     }
+}
+
+/// `1/(2k+3)!` with the sign of `(−1)ᵏ`, `k = 0 … 10`: the series of `(u − sin u)/u³`, whose
+/// eleventh term is below `f64`'s last bit at `|u| < 2`.
+const Z_SERIES: [f64; 11] = [
+    1.0 / 6.0,
+    -1.0 / 120.0,
+    1.0 / 5040.0,
+    -1.0 / 362_880.0,
+    1.0 / 39_916_800.0,
+    -1.0 / 6_227_020_800.0,
+    1.0 / 1_307_674_368_000.0,
+    -1.0 / 355_687_428_096_000.0,
+    1.0 / 121_645_100_408_832_000.0,
+    -1.0 / 51_090_942_171_709_440_000.0,
+    1.0 / 25_852_016_738_884_976_640_000.0,
+];
+
+/// [`flow_terms`] where `f64`'s coefficients are precise enough (`f64`, `f32`): `S` and `C`
+/// in closed form, which cancel nowhere (`sin u/c`, `2 sin²(u/2)/c`), and `Z` — whose
+/// `u − sin u` cancels at small `u` — by its series in Horner's form below `|u| = 2`: no
+/// loop that stops early and no division.
+fn flow_terms_short<R: Real>(c: R, t: R, u: R) -> (R, R, R) {
+    if u == R::ZERO {
+        return (t, R::ZERO, R::ZERO);
+    }
+    let (_, sin_u) = u.cos_sin();
+    let (_, sin_half) = (u * R::from_f64(0.5)).cos_sin();
+    let s = sin_u / c;
+    let one_minus_cos = R::from_f64(2.0) * sin_half * sin_half / c;
+    let z = if u.abs() < R::from_f64(SERIES_BELOW) {
+        let u2 = u * u;
+        let mut sum = R::from_f64(Z_SERIES[10]);
+        for coefficient in Z_SERIES[..10].iter().rev() {
+            sum = sum * u2 + R::from_f64(*coefficient);
+        }
+        t * t * u * sum
+    } else {
+        (u - sin_u) / (c * c)
+    };
+    (s, one_minus_cos, z)
 }
 
 /// The ray moved by `t` along its geodesic: the chart point and the body velocity there.

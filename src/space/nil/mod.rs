@@ -21,13 +21,15 @@ pub mod ball;
 pub mod distance;
 pub mod exit;
 pub mod flow;
+pub mod shadow;
 mod space;
 pub mod walk;
 
-pub use ball::{ball_hit, distance_floor, normal};
+pub use ball::{ball_hit, ball_hit_between, ball_meets_between, distance_floor, normal};
 pub use distance::{distance, shortest};
 pub use exit::{horizontal_exit, vertical_exit};
 pub use flow::{NilRay, flow, group_product};
+pub use shadow::shadow_within;
 pub use space::{MAX_NIL_K, NilError, NilSpace, nil_space, translation_matrix, transport};
 pub use walk::{NIL_FACES, NilExit, NilWalker};
 

@@ -493,18 +493,34 @@ fn boxes_meet(a: &ChartBox, b: &ChartBox) -> bool {
     (0..3).all(|i| a.0[i] <= b.1[i] && b.0[i] <= a.1[i])
 }
 
-/// The nearest object `ray` meets within `t_max`.
+/// What a walk looks for.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Seek {
+    /// The nearest object, where it is met to the last bit.
+    Nearest,
+    /// Whether any object is met (a shadow ray): the first found, where only roughly.
+    Any,
+}
+
+/// The nearest object `ray` meets within `t_max` (with [`Seek::Any`], the first found).
 fn nearest_in_segment<'a>(
     scene: &'a NilScene,
     boxes: &[ChartBox],
     ray: &NilRay<f64>,
     t_max: f64,
+    seek: Seek,
 ) -> Option<(f64, &'a NilObject)> {
     let mut nearest: Option<(f64, &NilObject)> = None;
     let segment = segment_box(ray, t_max);
     for (object, chart_box) in scene.objects.iter().zip(boxes) {
         let before = nearest.map_or(t_max, |(t, _)| t);
         if !boxes_meet(&segment, chart_box) || object.clearance(ray.point) > before {
+            continue;
+        }
+        if seek == Seek::Any {
+            if object.meets(ray, before) {
+                return Some((before, object));
+            }
             continue;
         }
         if let Some(t) = object.first_meeting(ray, before)
@@ -530,20 +546,21 @@ pub fn first_nil_hit<'a>(
         walker,
         scene,
         &object_boxes(scene),
-        start,
-        length,
+        (start, length),
         max_crossings,
+        Seek::Nearest,
     )
 }
 
 /// [`first_nil_hit`] with the objects' chart boxes made once.
+/// With [`Seek::Any`] the hit's distance and point are only where the object was found.
 fn walk_to_hit<'a>(
     walker: &NilWalker<DVec4>,
     scene: &'a NilScene,
     boxes: &[ChartBox],
-    start: NilRay<f64>,
-    length: f64,
+    (start, length): (NilRay<f64>, f64),
     max_crossings: usize,
+    seek: Seek,
 ) -> NilRayEnd<'a> {
     use crate::space::walk::CellWalk;
     let mut ray = walker.on_model(Ray {
@@ -558,7 +575,7 @@ fn walk_to_hit<'a>(
         };
         let here = nil_ray(&ray);
         let t_max = exit.t.min(length - distance);
-        if let Some((t, object)) = nearest_in_segment(scene, boxes, &here, t_max) {
+        if let Some((t, object)) = nearest_in_segment(scene, boxes, &here, t_max, seek) {
             return NilRayEnd::Hit {
                 distance: distance + t,
                 crossings,
@@ -609,9 +626,9 @@ fn colour_along(
         walker,
         scene,
         boxes,
-        start,
-        scene.cutoff_distance(),
+        (start, scene.cutoff_distance()),
         max_crossings,
+        Seek::Nearest,
     )
     else {
         return scene.fog_colour;
@@ -619,7 +636,14 @@ fn colour_along(
     let normal = object.normal(at.point);
     let mut occluded = |ray: NilRay<f64>, length: f64| {
         matches!(
-            walk_to_hit(walker, scene, boxes, ray, length, max_crossings),
+            walk_to_hit(
+                walker,
+                scene,
+                boxes,
+                (ray, length),
+                max_crossings,
+                Seek::Any
+            ),
             NilRayEnd::Hit { .. }
         )
     };

@@ -21,7 +21,10 @@
 //! bisection safeguarding Newton's steps finds it to the last bit. A ray that only grazes
 //! is a miss once the safe steps fall below the precision.
 
-use crate::space::nil::{NilRay, ball_hit, flow, group_product, normal as ball_normal};
+use crate::space::nil::{
+    NilRay, ball_hit_between, ball_meets_between, flow, group_product, horizontal_exit,
+    normal as ball_normal, shadow_within,
+};
 use glam::DVec3;
 
 /// What an object of a Nil scene surrounds.
@@ -71,6 +74,30 @@ fn disc_coordinates(along: usize, offset: f64, height: f64, p: [f64; 3]) -> (f64
     };
     let q = group_product(e.map(|x| -x), p);
     (s, [q[1 - along], q[2]])
+}
+
+/// The first time in `[from, to]` at which `ray` is within the heights of the ball of
+/// `radius` about `centre` (`|z| ≤ r + r²/4` seen from the centre: a unit-speed geodesic
+/// from it climbs at most `1 + t/2`), in closed form ([`horizontal_exit`]); `None` where it
+/// never is. No point of the ball lies outside them.
+fn ball_slab_entry(
+    ray: &NilRay<f64>,
+    centre: [f64; 3],
+    radius: f64,
+    from: f64,
+    to: f64,
+) -> Option<f64> {
+    let reach = radius + 0.25 * radius * radius;
+    let at = flow(ray, from);
+    let seen = NilRay {
+        point: group_product(inverse(centre), at.point),
+        velocity: at.velocity,
+    };
+    let z = seen.point[2];
+    if z.abs() <= reach {
+        return Some(from);
+    }
+    horizontal_exit(&seen, reach.copysign(z), to - from).map(|dt| from + dt)
 }
 
 /// The lattice element's inverse (the group's inverse is the negation).
@@ -173,8 +200,48 @@ impl NilObject {
     /// object; `None` for a miss or a graze.
     #[must_use]
     pub fn first_meeting(&self, ray: &NilRay<f64>, t_max: f64) -> Option<f64> {
-        if let NilShape::Ball(c) = self.shape {
-            return ball_hit(ray, c, self.radius, t_max);
+        self.meeting(ray, t_max, true)
+    }
+
+    /// Whether `ray` meets the object within `t_max` (as [`NilObject::first_meeting`]
+    /// says), without refining where: what a shadow ray needs.
+    #[must_use]
+    pub fn meets(&self, ray: &NilRay<f64>, t_max: f64) -> bool {
+        self.meeting(ray, t_max, false).is_some()
+    }
+
+    /// The first meeting within `t_max`, refined to the last bit where `precise`; else any
+    /// time found in the object.
+    fn meeting(&self, ray: &NilRay<f64>, t_max: f64, precise: bool) -> Option<f64> {
+        match self.shape {
+            // Exact: where the shadow first comes within the radius of the fibre's foot.
+            NilShape::Fibre(b) => {
+                let (t_in, _, _) = shadow_within(ray, b, self.radius)?;
+                return (t_in <= t_max).then_some(t_in);
+            }
+            // Only while the shadow is within the radius of the centre's: visit by visit.
+            NilShape::Ball(c) => {
+                let (mut t_in, mut t_out, period) = shadow_within(ray, [c[0], c[1]], self.radius)?;
+                while t_in <= t_max {
+                    let end = t_out.min(t_max);
+                    if let Some(from) = ball_slab_entry(ray, c, self.radius, t_in, end) {
+                        if !precise {
+                            if ball_meets_between(ray, c, self.radius, from, end) {
+                                return Some(from);
+                            }
+                        } else if let Some(t) = ball_hit_between(ray, c, self.radius, from, end) {
+                            return Some(t);
+                        }
+                    }
+                    if !period.is_finite() || t_out >= t_max {
+                        return None;
+                    }
+                    t_in += period;
+                    t_out += period;
+                }
+                return None;
+            }
+            NilShape::Edge { .. } => {}
         }
         let at = |t: f64| {
             let moved = flow(ray, t);
@@ -187,21 +254,24 @@ impl NilObject {
         if start > t_max {
             return None;
         }
-        let (mut t, (mut g, _, _)) = (start, at(start));
+        let (mut t, (mut g, mut slope, mut rate)) = (start, at(start));
         if g <= 0.0 {
-            return Some(if start > 0.0 {
+            return Some(if start > 0.0 && precise {
                 self.refine(ray, 0.0, start)
             } else {
-                0.0
+                start
             });
         }
         let floor = 64.0 * f64::EPSILON * (1.0 + self.radius + t_max.min(1e6));
         for _ in 0..MAX_STEPS {
-            let (_, slope, rate) = at(t);
             if slope < 0.0 {
                 let guess = t - g / slope;
                 if guess <= t_max && at(guess).0 <= 0.0 {
-                    return Some(self.refine(ray, t, guess));
+                    return Some(if precise {
+                        self.refine(ray, t, guess)
+                    } else {
+                        guess
+                    });
                 }
             }
             if g < floor {
@@ -212,9 +282,13 @@ impl NilObject {
             if t > t_max {
                 return None;
             }
-            g = at(t).0;
+            (g, slope, rate) = at(t);
             if g <= 0.0 {
-                return Some(self.refine(ray, before, t));
+                return Some(if precise {
+                    self.refine(ray, before, t)
+                } else {
+                    t
+                });
             }
         }
         None

@@ -14,6 +14,7 @@ mod exits;
 #[cfg(feature = "scene-files")]
 mod files;
 mod pictures;
+mod shadows;
 mod spaces;
 mod walks;
 
