@@ -240,6 +240,7 @@ impl Plugin for CurvedSpacesXrPlugin {
         // The head's systems, written once over the geometry contract, per family.
         add_head_systems::<crate::space::Space>(app);
         add_head_systems::<crate::space::product::ProductSpace>(app);
+        add_head_systems::<crate::space::nil::NilSpace>(app);
         app.add_systems(
             Update,
             follow_display_rate

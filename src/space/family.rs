@@ -135,7 +135,11 @@ impl Family {
             ) => return Ok(()),
             (
                 Family::Nil,
-                Feature::Pictures | Feature::Flights | Feature::RecordFlight | Feature::LampFluence,
+                Feature::Pictures
+                | Feature::Flights
+                | Feature::RecordFlight
+                | Feature::LampFluence
+                | Feature::Headset,
             ) => {
                 return Ok(());
             }
@@ -155,7 +159,8 @@ impl Family {
             }
             (Family::Nil, _) => {
                 "not written for the Nil family yet (it draws, walks and flies its default \
-                 scene and scene files: `render`, `walk`, `flight`, `bench`)"
+                 scene and scene files: `render`, `walk`, `walk --xr`, `flight`, `light`, \
+                 `bench`)"
             }
             (Family::Product, Feature::SceneParts) => {
                 "a product scene file's `edges` and `centre_ball` choose the parts"

@@ -568,8 +568,8 @@ fn walk_product(
 }
 
 /// `walk` in a Nil space: its default scene or a scene file's, `E₃` up, a flight replayed or
-/// the walk recorded; offscreen to a picture where there is no display. The headset, walls
-/// and the teaching views are not written for Nil.
+/// the walk recorded, in a window or the headset (`--xr`); offscreen to a picture where there
+/// is no display. Walls and the teaching views are not written for Nil.
 fn walk_nil(
     args: &WalkArgs,
     chosen: super::render::NilChoice,
@@ -579,7 +579,6 @@ fn walk_nil(
     use bevy_curved_spaces::space::{Family, Feature};
     let refuse = |feature| super::spaces::require(Family::Nil, space.name(), feature);
     for (asked, feature) in [
-        (args.xr, Feature::Headset),
         (args.view.walls.walls.is_some(), Feature::Walls),
         (
             args.view.colour_by != super::ColourByArg::Shading,
@@ -590,6 +589,28 @@ fn walk_nil(
         if asked {
             refuse(feature)?;
         }
+    }
+    let lighting = if args.view.light.any() {
+        let lighting = args.view.light.lighting(Default::default());
+        lighting.check()?;
+        Some(lighting)
+    } else {
+        None
+    };
+    let mut stereo_args = args.stereo;
+    if args.xr
+        && let Some(done) = headset_or_desktop(&mut stereo_args, || {
+            let active = ActiveSpace::new(&args.space, AnySpace::Nil(space.clone()));
+            let stereo = args.stereo.settings_for(active.inradius)?;
+            let base = chosen.base.clone();
+            run_xr(args, active, (stereo, None, lighting), move |app| {
+                if let Some(base) = base {
+                    app.insert_resource(base);
+                }
+            })
+        })
+    {
+        return done;
     }
     if !display_available() {
         say_no_display(args);
@@ -605,15 +626,8 @@ fn walk_nil(
         }
         return render_command(&render);
     }
-    let lighting = if args.view.light.any() {
-        let lighting = args.view.light.lighting(Default::default());
-        lighting.check()?;
-        Some(lighting)
-    } else {
-        None
-    };
     let active = ActiveSpace::new(&args.space, AnySpace::Nil(space.clone()));
-    let stereo = args.stereo.settings_for(active.inradius)?;
+    let stereo = stereo_args.settings_for(active.inradius)?;
     eprintln!(
         "walking in {} (Nil): click to look around, WASD to walk, Space/Shift along E3, Esc releases the mouse, F1 the panel",
         space.name()
