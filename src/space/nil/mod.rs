@@ -5,9 +5,10 @@
 //! of the geodesic equations (`tests/data/nil_geodesics.json`, written by
 //! `scripts/nil-reference.py`); the exits from the box solved to the last bit ([`mod@exit`]);
 //! the walk ([`NilWalker`]); and the spaces `nil-K` with their invariants and the motion of
-//! frames by parallel transport ([`NilSpace`]). `info` and `trace` take them, and the CPU
-//! reference tracer draws them ([`crate::trace::nil`]); the GPU tracer and the plugin are
-//! not written yet, and the commands that need them say so.
+//! frames by parallel transport ([`NilSpace`]); distances and metric balls
+//! ([`mod@distance`], [`mod@ball`]) and the shadow of a geodesic on the plane
+//! ([`mod@shadow`]). The tracers ([`crate::trace::nil`], `shaders/nil.wgsl`), the plugin and
+//! every command build on them.
 //!
 //! Conventions:
 //! - the chart `(x, y, z) ∈ R³` with the metric `ds² = dx² + dy² + (dz − ½(x dy − y dx))²`;
