@@ -42,6 +42,13 @@ pub struct NilRow {
     pub ratio: f64,
     /// Mean face crossings a pixel's ray makes (CPU, at the error size).
     pub crossings_per_pixel: f64,
+    /// Mean iterations of the root finder a pixel takes in the f64 CPU tracer (exits, the
+    /// distance's winding, refinements; shadow rays included), at the error size.
+    #[serde(default)]
+    pub root_iterations_per_pixel: f64,
+    /// Mean safe steps towards objects a pixel takes, likewise.
+    #[serde(default)]
+    pub safe_steps_per_pixel: f64,
     /// Share of pixels off by more than 10/255 in a channel, GPU against the f64 CPU
     /// reference at the error size.
     pub differing_pixels: f64,
@@ -193,7 +200,20 @@ pub(super) fn nil_rows(
             (&reference_gpu, &reference_layout),
         )?;
         let (ew, eh) = config.error_size;
-        let cpu = render_nil_view(&space, &scene, &layout((ew, eh)), budget as usize);
+        // The CPU reference on one thread, so that its root finding is counted there.
+        let one_thread = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .map_err(|e| BenchError::Nil(format!("a thread for the CPU reference: {e}")))?;
+        let (cpu, (iterations, steps)) = one_thread.install(|| {
+            let before = crate::space::nil::work();
+            let cpu = render_nil_view(&space, &scene, &layout((ew, eh)), budget as usize);
+            let after = crate::space::nil::work();
+            (cpu, (after.0 - before.0, after.1 - before.1))
+        });
+        let pixels = f64::from(ew * eh);
+        let root_iterations_per_pixel = iterations as f64 / pixels;
+        let safe_steps_per_pixel = steps as f64 / pixels;
         let (differing_pixels, mean_error) =
             timing::gpu_against_cpu(harness, &gpu, &layout((ew, eh)), &cpu, DIFFERING_LEVEL)?;
         let (f64_median, f64_worst) =
@@ -216,6 +236,8 @@ pub(super) fn nil_rows(
                 &layout((ew, eh)),
                 budget as usize,
             ),
+            root_iterations_per_pixel,
+            safe_steps_per_pixel,
             differing_pixels,
             mean_error,
             f64_median,

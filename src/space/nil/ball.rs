@@ -117,6 +117,7 @@ fn meeting<R: Real>(
     // The smallest safe step worth taking: below it the ray grazes.
     let floor = R::from_f64(16.0) * R::EPSILON * (R::ONE + radius + t_max.min(R::from_f64(1e6)));
     for _ in 0..MAX_BALL_STEPS {
+        super::count_safe_step();
         // A Newton step: inside the ball, it brackets the first root.
         if rate < zero {
             let guess = t - f / rate;
@@ -140,6 +141,7 @@ fn meeting<R: Real>(
         t = t + f;
         // Root-free safe steps while the floor keeps the ball more than a radius away.
         loop {
+            super::count_safe_step();
             if t > t_max {
                 return None;
             }

@@ -47,6 +47,32 @@ fn half_way<R: Real>(lo: R, hi: R) -> R {
     R::from_f64(0.5) * (lo + hi)
 }
 
+thread_local! {
+    /// Iterations of the safeguarded root finder on this thread (see [`work`]).
+    static ROOT_ITERATIONS: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+    /// Safe (Lipschitz) steps towards objects on this thread.
+    static SAFE_STEPS: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+}
+
+/// The work Nil's root finding has done on this thread so far: the iterations of the
+/// safeguarded root finder (the horizontal exits, the distance's winding, the balls' and
+/// the tracer's refinements) and the safe steps towards objects. The bench reads them
+/// before and after a picture to report them per pixel.
+#[must_use]
+pub fn work() -> (u64, u64) {
+    (ROOT_ITERATIONS.get(), SAFE_STEPS.get())
+}
+
+/// Counts one safe step towards an object (for [`work`]).
+pub(crate) fn count_safe_step() {
+    SAFE_STEPS.set(SAFE_STEPS.get() + 1);
+}
+
+/// Counts one iteration of a root finder (for [`work`]).
+pub(crate) fn count_root_iteration() {
+    ROOT_ITERATIONS.set(ROOT_ITERATIONS.get() + 1);
+}
+
 /// Most steps of [`bracketed_root`]: each Newton step that fails is replaced by a bisection,
 /// so 200 reach double-double's last bit from any bracket.
 const MAX_ROOT_STEPS: usize = 200;
@@ -66,6 +92,7 @@ fn bracketed_root<R: Real>(
     let (mut lo, mut hi) = (lo, hi);
     let mut t = start;
     for _ in 0..MAX_ROOT_STEPS {
+        count_root_iteration();
         let (value, rate) = f(t);
         if value == zero {
             return t;

@@ -264,6 +264,7 @@ impl NilObject {
         }
         let floor = 64.0 * f64::EPSILON * (1.0 + self.radius + t_max.min(1e6));
         for _ in 0..MAX_STEPS {
+            crate::space::nil::count_safe_step();
             if slope < 0.0 {
                 let guess = t - g / slope;
                 if guess <= t_max && at(guess).0 <= 0.0 {
@@ -329,6 +330,7 @@ impl NilObject {
     fn refine(&self, ray: &NilRay<f64>, lo: f64, hi: f64) -> f64 {
         let (mut lo, mut hi) = (lo, hi);
         for _ in 0..200 {
+            crate::space::nil::count_root_iteration();
             let mid = 0.5 * (lo + hi);
             if !(mid > lo && mid < hi) {
                 break;

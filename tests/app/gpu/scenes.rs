@@ -203,6 +203,42 @@ fn the_example_scene_files_render_alike_on_gpu_and_cpu() {
         {
             continue;
         }
+        // A Nil scene file: its start view on the GPU against the f64 CPU reference.
+        if let Some(nil) = bevy_curved_spaces::trace::nil::file::load_nil_scene_file(path)
+            .unwrap_or_else(|e| panic!("{e}"))
+        {
+            let camera = nil.start.expect("a start view");
+            let budget = bevy_curved_spaces::plugin::nil::default_nil_budget(&nil.space);
+            let size = (64, 36);
+            let layout = bevy_curved_spaces::view::ViewLayout::new(
+                Default::default(),
+                false,
+                [camera.frame; 2],
+                camera.fov_y_degrees,
+                size.0,
+                size.1,
+            );
+            let cpu = bevy_curved_spaces::trace::nil::render_nil_view(
+                &nil.space,
+                &nil.scene,
+                &layout,
+                budget as usize,
+            );
+            let gpu = renderer
+                .render_nil(
+                    &nil.space,
+                    &nil.scene,
+                    &camera,
+                    size,
+                    budget,
+                    Default::default(),
+                )
+                .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            let name = path.file_stem().expect("name").to_string_lossy();
+            let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("gpu-vs-cpu");
+            super::judge(&name, &gpu, &cpu, &out, &mut failures);
+            continue;
+        }
         let file = load_scene_file(path).unwrap_or_else(|e| panic!("{e}"));
         let frame = file
             .start

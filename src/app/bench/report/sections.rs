@@ -434,7 +434,7 @@ pub(super) fn products_section(md: &mut String, report: &BenchReport) {
     let reference = &report.products[0].reference_space;
     let _ = writeln!(
         *md,
-        "\n### Product spaces (H²×R, S²×R): each default view timed in the same rounds as {reference}'s default view at the same size (both at their automatic budgets, quality High); crossings a pixel makes; the GPU picture against the f64 CPU reference (pixels off by more than 10/255); the f64 and f32 walks against double-double over 100 crossings, as error / conditioning limit\n\n| space | geometry | size | budget | ms | {reference} ms | × {reference} | crossings / pixel | pixels differing | mean error /255 | f64 median / worst | f32 median / worst |\n|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+        "\n### Product spaces (H²×R, S²×R): each default view timed in the same rounds as {reference}'s default view at the same size (both at their automatic budgets, quality High); crossings a pixel makes; the GPU picture against the f64 CPU reference (pixels off by more than 10/255); the f64 and f32 walks against double-double over 100 crossings, as error / conditioning limit\n\n| space | geometry | size | budget | ms | {reference} ms | × {reference} | crossings / pixel | root iterations / pixel | safe steps / pixel | pixels differing | mean error /255 | f64 median / worst | f32 median / worst |\n|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
     );
     for r in &report.products {
         let _ = writeln!(
@@ -468,13 +468,13 @@ pub(super) fn nil_section(md: &mut String, report: &BenchReport) {
     let reference = &first.reference_space;
     let _ = writeln!(
         *md,
-        "\n### Nil spaces: each default view timed in the same rounds as {reference}'s default view at the same size (Nil at the plugin's default budget, {reference} at its automatic one); objects in the scene; crossings a pixel makes; the GPU picture against the f64 CPU reference (pixels off by more than 10/255); the f64 and f32 walks ({} long) against the exact geodesic in double-double, as error / (ε (1 + t²))\n\n| space | size | budget | objects | ms | {reference} ms | × {reference} | crossings / pixel | pixels differing | mean error /255 | f64 median / worst | f32 median / worst |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+        "\n### Nil spaces: each default view timed in the same rounds as {reference}'s default view at the same size (Nil at the plugin's default budget, {reference} at its automatic one); objects in the scene; crossings a pixel makes, and the root finder's iterations and the safe steps towards objects a pixel takes (the f64 CPU tracer, shadow rays included); the GPU picture against the f64 CPU reference (pixels off by more than 10/255); the f64 and f32 walks ({} long) against the exact geodesic in double-double, as error / (ε (1 + t²))\n\n| space | size | budget | objects | ms | {reference} ms | × {reference} | crossings / pixel | root iterations / pixel | safe steps / pixel | pixels differing | mean error /255 | f64 median / worst | f32 median / worst |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
         super::super::nil::WALK_DISTANCE
     );
     for r in &report.nil {
         let _ = writeln!(
             *md,
-            "| {} | {}×{} | {} | {} | {:.2} | {:.2} | {:.2}× | {:.2} | {} % | {:.2} | {:.3} / {:.3} | {:.3} / {:.3} |",
+            "| {} | {}×{} | {} | {} | {:.2} | {:.2} | {:.2}× | {:.2} | {:.1} | {:.1} | {} % | {:.2} | {:.3} / {:.3} | {:.3} / {:.3} |",
             r.space,
             r.width,
             r.height,
@@ -484,6 +484,8 @@ pub(super) fn nil_section(md: &mut String, report: &BenchReport) {
             r.reference_ms,
             r.ratio,
             r.crossings_per_pixel,
+            r.root_iterations_per_pixel,
+            r.safe_steps_per_pixel,
             super::pct(r.differing_pixels),
             r.mean_error,
             r.f64_median,
