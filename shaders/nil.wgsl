@@ -703,6 +703,57 @@ fn nil_nearest(ray: NilRay, t_max: f32, exact: bool) -> vec2<f32> {
     return vec2<f32>(f32(index), best);
 }
 
+#ifdef WALLS
+// What the walls crossed so far added and let through (Rust: `scene::walls::Veil`).
+var<private> nil_veil_colour: vec3<f32>;
+var<private> nil_veil_through: f32;
+
+// Whether the point p of the pair's face at -1/2 (or the bottom) is on the panel of face's
+// pair rather than in its window (Rust: `trace::nil::walls::NilWalls::on_panel`).
+fn nil_on_panel(face: u32, p: vec3<f32>) -> bool {
+    let margin = space.wall_colours[face].w;
+    let pair = face / 2u;
+    if pair == 0u {
+        return min(0.5 - abs(p.y), nil_h() - abs(p.z)) < margin;
+    }
+    if pair == 1u {
+        return min(0.5 - abs(p.x), nil_h() - abs(p.z)) < margin;
+    }
+    return min(0.5 - abs(p.x), 0.5 - abs(p.y)) < margin;
+}
+
+// The wall a ray meets crossing `face`, judged at `on_face` and lit where it left (`left`),
+// at distance d from the eye, added to the veil (Rust: `NilWalls::cross`).
+fn nil_wall(face: u32, on_face: vec3<f32>, left: NilRay, d: f32) {
+    if !nil_on_panel(face, on_face) {
+        return;
+    }
+    let pair = face / 2u;
+    var normal = normalize(vec3<f32>(-0.5 * left.p.y, 0.5 * left.p.x, 1.0));
+    if pair == 0u {
+        normal = vec3<f32>(1.0, 0.0, 0.0);
+    } else if pair == 1u {
+        normal = vec3<f32>(0.0, 1.0, 0.0);
+    }
+    let facing = min(abs(dot(normal, left.v)), 1.0);
+    let lit = min(space.wall_colours[face].rgb * (0.55 + 0.45 * facing), vec3<f32>(1.0));
+    let w = exp(-d / space.shading.params.x);
+    let seen = w * lit + (1.0 - w) * space.shading.fog.rgb;
+    let opacity = space.wall_looks[face].x;
+    nil_veil_colour += nil_veil_through * opacity * seen;
+    nil_veil_through *= 1.0 - opacity;
+}
+#endif
+
+// What lies behind the walls, seen through them.
+fn nil_behind_walls(c: vec3<f32>) -> vec3<f32> {
+#ifdef WALLS
+    return nil_veil_colour + nil_veil_through * c;
+#else
+    return c;
+#endif
+}
+
 struct NilEnd {
     // The object met (NIL_OBJECTS: none), the crossings, the distance.
     index: u32,
@@ -733,9 +784,25 @@ fn nil_walk(start: NilRay, length: f32, budget: u32, exact: bool) -> NilEnd {
         if exit.y >= length - distance {
             break;
         }
+        let here = ray;
         ray = nil_through(ray, face, exit.y);
         distance += exit.y;
         crossings += 1u;
+#ifdef WALLS
+        if exact {
+            // The panel is judged on the pair's face at -1/2 (or the bottom): where the ray
+            // leaves through it, or where it comes in after leaving through its partner.
+            let left = nil_flow(here, exit.y);
+            var on_face = ray.p;
+            if (face & 1u) == 1u {
+                on_face = left.p;
+            }
+            nil_wall(face, on_face, left, distance);
+            if nil_veil_through < space.wall_style.x {
+                break;
+            }
+        }
+#endif
         if crossings > budget {
             break;
         }
@@ -801,9 +868,13 @@ fn nil_gather(x: vec3<f32>, normal: vec3<f32>) -> f32 {
 fn ray_colour(point: vec4<f32>, tangent: vec4<f32>) -> vec3<f32> {
     let start = NilRay(point.xyz, normalize(tangent.xyz));
     let shading = space.shading;
+#ifdef WALLS
+    nil_veil_colour = vec3<f32>(0.0);
+    nil_veil_through = 1.0;
+#endif
     let end = nil_walk(start, shading.params.y, u32(shading.params.w), true);
     if end.index >= #{NIL_OBJECTS}u {
-        return shading.fog.rgb;
+        return nil_behind_walls(shading.fog.rgb);
     }
     let o = space.nil_objects[end.index];
     let normal = nil_gap(end.index, end.at.p).normal;
@@ -812,5 +883,5 @@ fn ray_colour(point: vec4<f32>, tangent: vec4<f32>) -> vec3<f32> {
     let lit = ambient + (1.0 - ambient) * space.nil_box.w * light;
     let surface = min(o.colour.rgb * lit, vec3<f32>(1.0));
     let w = exp(-end.distance / shading.params.x);
-    return w * surface + (1.0 - w) * shading.fog.rgb;
+    return nil_behind_walls(w * surface + (1.0 - w) * shading.fog.rgb);
 }

@@ -51,6 +51,8 @@ pub fn nil_scene(
     if let Some(fog) = settings.fog_distance.filter(|f| f.is_finite() && *f > 0.0) {
         scene.fog_distance = fog;
     }
+    // The walls set here, else the base scene's own; an opening of 1 turns them off.
+    scene.walls = settings.walls.or(scene.walls).filter(|w| w.opening < 1.0);
     if let Some(mut lighting) = settings.lighting {
         lighting.shadows = lighting.shadows.min(settings.quality.max_shadows());
         lighting.lamp_radius_inradii = 0.0;
@@ -70,6 +72,7 @@ pub(crate) struct NilKey {
     max_crossings: Option<u32>,
     quality: crate::plugin::components::Quality,
     lighting: Option<crate::scene::lighting::Lighting>,
+    walls: Option<crate::scene::WallStyle>,
 }
 
 /// Packs the Nil scene for the GPU when the space, the base scene or the settings changed.
@@ -91,6 +94,7 @@ pub(crate) fn upload_nil_scene(
         max_crossings: settings.max_crossings,
         quality: settings.quality,
         lighting: settings.lighting,
+        walls: settings.walls,
     };
     let base_changed = base.as_ref().is_some_and(|b| b.is_changed());
     if prepared.is_some() && !active.is_changed() && !base_changed && last.as_ref() == Some(&key) {

@@ -139,7 +139,8 @@ impl Family {
                 | Feature::Flights
                 | Feature::RecordFlight
                 | Feature::LampFluence
-                | Feature::Headset,
+                | Feature::Headset
+                | Feature::Walls,
             ) => {
                 return Ok(());
             }
@@ -159,8 +160,8 @@ impl Family {
             }
             (Family::Nil, _) => {
                 "not written for the Nil family yet (it draws, walks and flies its default \
-                 scene and scene files: `render`, `walk`, `walk --xr`, `flight`, `light`, \
-                 `bench`)"
+                 scene and scene files with walls: `render`, `walk`, `walk --xr`, `flight`, \
+                 `light`, `bench`)"
             }
             (Family::Product, Feature::SceneParts) => {
                 "a product scene file's `edges` and `centre_ball` choose the parts"

@@ -767,6 +767,16 @@ fn nil_variants_validate_and_match_the_packed_layout() {
                 "nil-{k}"
             );
         }
+        // Walls: six face slots for their colours and margins.
+        scene.walls = Some(bevy_curved_spaces::scene::WallStyle::new(0.5).expect("an opening"));
+        let gpu = GpuScene::nil(&space, &scene, 32).expect("packs");
+        assert!(gpu.key.walls && gpu.key.faces == 6);
+        assert_eq!(
+            validate(&gpu.key),
+            (gpu.words.len() + VIEW_WORDS) * 4,
+            "nil-{k} with walls"
+        );
+        scene.walls = None;
         scene.objects.clear();
         let gpu = GpuScene::nil(&space, &scene, 8).expect("packs");
         assert_eq!(validate(&gpu.key), (gpu.words.len() + VIEW_WORDS) * 4);

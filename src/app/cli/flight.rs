@@ -310,9 +310,6 @@ fn flight_nil(
     use bevy_curved_spaces::view::ViewLayout;
     let space = &*chosen.space;
     let refuse = |feature| super::spaces::require(Family::Nil, space.name(), feature);
-    if args.walls.walls.is_some() {
-        refuse(Feature::Walls)?;
-    }
     if args.colour_by != super::ColourByArg::Shading {
         refuse(Feature::TeachingViews)?;
     }
@@ -320,6 +317,7 @@ fn flight_nil(
     let total = flight.frame_count(args.fps);
     let (first, last, todo) = frames_to_do(args, total)?;
     let mut scene = chosen.scene;
+    scene.walls = args.walls.style(scene.walls)?.filter(|w| w.opening < 1.0);
     if args.light.any() {
         let lighting = args.light.lighting(scene.lighting);
         let light = scene.light;

@@ -24,9 +24,6 @@ pub(super) fn render_nil_command(args: &RenderArgs, chosen: NilChoice) -> Result
     if args.view.changes_parts() {
         refuse(Feature::SceneParts)?;
     }
-    if args.view.walls.walls.is_some() {
-        refuse(Feature::Walls)?;
-    }
     if args.view.colour_by != super::ColourByArg::Shading {
         refuse(Feature::TeachingViews)?;
     }
@@ -41,6 +38,11 @@ pub(super) fn render_nil_command(args: &RenderArgs, chosen: NilChoice) -> Result
     if let Some(fog) = args.fog {
         scene.fog_distance = fog;
     }
+    scene.walls = args
+        .view
+        .walls
+        .style(scene.walls)?
+        .filter(|w| w.opening < 1.0);
     if let Some(fov) = args.fov {
         camera.fov_y_degrees = fov;
     }

@@ -568,8 +568,8 @@ fn walk_product(
 }
 
 /// `walk` in a Nil space: its default scene or a scene file's, `E₃` up, a flight replayed or
-/// the walk recorded, in a window or the headset (`--xr`); offscreen to a picture where there
-/// is no display. Walls and the teaching views are not written for Nil.
+/// the walk recorded, with walls, in a window or the headset (`--xr`); offscreen to a picture
+/// where there is no display. The teaching views are not written for Nil.
 fn walk_nil(
     args: &WalkArgs,
     chosen: super::render::NilChoice,
@@ -579,7 +579,6 @@ fn walk_nil(
     use bevy_curved_spaces::space::{Family, Feature};
     let refuse = |feature| super::spaces::require(Family::Nil, space.name(), feature);
     for (asked, feature) in [
-        (args.view.walls.walls.is_some(), Feature::Walls),
         (
             args.view.colour_by != super::ColourByArg::Shading,
             Feature::TeachingViews,
@@ -603,7 +602,8 @@ fn walk_nil(
             let active = ActiveSpace::new(&args.space, AnySpace::Nil(space.clone()));
             let stereo = args.stereo.settings_for(active.inradius)?;
             let base = chosen.base.clone();
-            run_xr(args, active, (stereo, None, lighting), move |app| {
+            let walls = args.view.walls.style(chosen.scene.walls)?;
+            run_xr(args, active, (stereo, walls, lighting), move |app| {
                 if let Some(base) = base {
                     app.insert_resource(base);
                 }
@@ -618,6 +618,7 @@ fn walk_nil(
         render.fog = args.fog;
         render.crossings = args.crossings.map(|c| c as usize);
         render.view.light = args.view.light;
+        render.view.walls = args.view.walls;
         render.scene = args.scene.clone();
         render.stereo = args.stereo;
         if !gpu_available() {
@@ -628,6 +629,7 @@ fn walk_nil(
     }
     let active = ActiveSpace::new(&args.space, AnySpace::Nil(space.clone()));
     let stereo = stereo_args.settings_for(active.inradius)?;
+    let walls = args.view.walls.style(chosen.scene.walls)?;
     eprintln!(
         "walking in {} (Nil): click to look around, WASD to walk, Space/Shift along E3, Esc releases the mouse, F1 the panel",
         space.name()
@@ -638,7 +640,7 @@ fn walk_nil(
     if let Some(base) = chosen.base.clone() {
         app.insert_resource(base);
     }
-    add_walk_plugins(&mut app, args, stereo, None, lighting).add_systems(
+    add_walk_plugins(&mut app, args, stereo, walls, lighting).add_systems(
         Startup,
         |mut commands: Commands| {
             commands.spawn((Camera3d::default(), CurvedSpaceCamera::default()));

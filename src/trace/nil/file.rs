@@ -14,6 +14,7 @@
 //! centre_ball = false     # the default scene's centrepiece ball (default false)
 //! fog = 1.5               # fog distance
 //! ambient = 0.3
+//! walls = 0.6             # the box's walls with windows: how far open (0 solid, 1 none)
 //!
 //! [start]
 //! position = [0.1, -0.45, 0.05]
@@ -45,7 +46,7 @@
 use super::{NilCamera, NilObject, NilParts, NilScene, NilShape, default_camera, scene_with_parts};
 use crate::scene::file::SceneFileError;
 use crate::scene::file_support::{
-    LightingSpec, ambient_of, colour, failing, lighting_of, parse_toml, read_scene_text,
+    LightingSpec, ambient_of, colour, failing, lighting_of, parse_toml, read_scene_text, walls_of,
 };
 use crate::space::nil::{NilSpace, nil_space};
 use crate::space::{Family, Feature};
@@ -84,6 +85,8 @@ const KEYS: &[&str] = &[
     "centre_ball",
     "ambient",
     "fog_colour",
+    "walls",
+    "wall_opacity",
     "start",
     "object",
     "light",
@@ -122,6 +125,8 @@ struct FileSpec {
     centre_ball: bool,
     ambient: Option<Spanned<f64>>,
     fog_colour: Option<Spanned<[f64; 3]>>,
+    walls: Option<Spanned<f64>>,
+    wall_opacity: Option<Spanned<f64>>,
     start: Option<Spanned<StartSpec>>,
     #[serde(default, rename = "object")]
     objects: Vec<Spanned<ObjectSpec>>,
@@ -229,6 +234,9 @@ pub fn parse_nil_scene(text: &str, file: &str) -> Result<NilSceneFile, SceneFile
             .map_err(|m| fail(Some(c.span()), format!("fog_colour: {m}")))?
             .min(DVec3::ONE);
     }
+    scene.walls = walls_of(spec.walls.as_ref(), spec.wall_opacity.as_ref())
+        .map_err(|(s, m)| fail(Some(s), m))?
+        .filter(|w| w.opening < 1.0);
     match spec.lights.as_slice() {
         [] => {}
         [light] => {

@@ -14,6 +14,7 @@ pub mod file;
 pub mod flight;
 pub mod light;
 pub mod objects;
+pub mod walls;
 
 pub use light::{NilLamp, area_density, gather};
 pub use objects::{NilObject, NilShape};
@@ -47,6 +48,8 @@ pub struct NilScene {
     pub fog_distance: f64,
     /// The fog's colour.
     pub fog_colour: DVec3,
+    /// The box's walls with windows ([`walls`]), if drawn.
+    pub walls: Option<crate::scene::walls::WallStyle>,
 }
 
 impl NilScene {
@@ -336,6 +339,7 @@ pub fn scene_with_parts(space: &NilSpace, parts: NilParts) -> NilScene {
         ambient: 0.3,
         fog_distance: 1.5,
         fog_colour: DVec3::new(0.05, 0.06, 0.09),
+        walls: None,
     };
     let edge_colour = DVec3::new(0.85, 0.7, 0.35);
     let vertical = scaled(0.03, h);
@@ -549,11 +553,15 @@ pub fn first_nil_hit<'a>(
         (start, length),
         max_crossings,
         Seek::Nearest,
+        None,
     )
 }
 
 /// [`first_nil_hit`] with the objects' chart boxes made once.
 /// With [`Seek::Any`] the hit's distance and point are only where the object was found.
+///
+/// With `walls`, every panel crossed is added to the veil, and the walk ends in the fog
+/// once the veil lets too little light through.
 fn walk_to_hit<'a>(
     walker: &NilWalker<DVec4>,
     scene: &'a NilScene,
@@ -561,6 +569,7 @@ fn walk_to_hit<'a>(
     (start, length): (NilRay<f64>, f64),
     max_crossings: usize,
     seek: Seek,
+    mut walls: Option<(&walls::NilWalls, &mut crate::scene::walls::Veil)>,
 ) -> NilRayEnd<'a> {
     use crate::space::walk::CellWalk;
     let mut ray = walker.on_model(Ray {
@@ -589,6 +598,20 @@ fn walk_to_hit<'a>(
         ray = walker.through(&ray, &exit);
         distance += exit.t;
         crossings += 1;
+        if let Some((walls, veil)) = walls.as_mut() {
+            // The panel is judged on the pair's face at −½ (or the bottom): where the ray
+            // leaves through it, or where it comes in after leaving through its partner.
+            let left = flow(&here, exit.t);
+            let on_face = if exit.face & 1 == 1 {
+                left.point
+            } else {
+                nil_ray(&ray).point
+            };
+            let through = (on_face, left.point, left.velocity);
+            if !walls.cross(veil, scene, exit.face, through, distance) {
+                return NilRayEnd::Fog;
+            }
+        }
         if crossings > max_crossings {
             return NilRayEnd::Budget(max_crossings);
         }
@@ -597,26 +620,43 @@ fn walk_to_hit<'a>(
 }
 
 /// The colour seen along one ray: its first object shaded by the lamp ([`gather`], shadows
-/// walked through the faces) and the fog; the fog's colour where nothing is met before the
-/// fog's cut-off or within the crossing budget.
+/// walked through the faces) and the fog, seen through the walls crossed on the way; the
+/// fog's colour where nothing is met before the fog's cut-off or within the crossing budget.
 #[must_use]
 pub fn trace_nil_pixel(
-    walker: &NilWalker<DVec4>,
+    space: &NilSpace,
     scene: &NilScene,
     start: NilRay<f64>,
     max_crossings: usize,
 ) -> DVec3 {
-    colour_along(walker, scene, &object_boxes(scene), start, max_crossings)
+    let walker = NilWalker::<DVec4>::new(space.k());
+    let walls = scene_walls(space, scene);
+    colour_along(
+        (&walker, walls.as_ref()),
+        scene,
+        &object_boxes(scene),
+        start,
+        max_crossings,
+    )
+}
+
+/// The scene's walls, built once; rays stop behind walls that let less light through than
+/// the fog's cut-off weight.
+fn scene_walls(space: &NilSpace, scene: &NilScene) -> Option<walls::NilWalls> {
+    scene
+        .walls
+        .and_then(|style| walls::NilWalls::new(space, style, crate::scene::DEFAULT_CUTOFF_WEIGHT))
 }
 
 /// [`trace_nil_pixel`] with the objects' chart boxes made once.
 fn colour_along(
-    walker: &NilWalker<DVec4>,
+    (walker, walls): (&NilWalker<DVec4>, Option<&walls::NilWalls>),
     scene: &NilScene,
     boxes: &[ChartBox],
     start: NilRay<f64>,
     max_crossings: usize,
 ) -> DVec3 {
+    let mut veil = crate::scene::walls::Veil::CLEAR;
     let NilRayEnd::Hit {
         distance,
         at,
@@ -629,9 +669,10 @@ fn colour_along(
         (start, scene.cutoff_distance()),
         max_crossings,
         Seek::Nearest,
+        walls.map(|w| (w, &mut veil)),
     )
     else {
-        return scene.fog_colour;
+        return veil.over(scene.fog_colour);
     };
     let normal = object.normal(at.point);
     let mut occluded = |ray: NilRay<f64>, length: f64| {
@@ -642,7 +683,8 @@ fn colour_along(
                 boxes,
                 (ray, length),
                 max_crossings,
-                Seek::Any
+                Seek::Any,
+                None,
             ),
             NilRayEnd::Hit { .. }
         )
@@ -651,7 +693,7 @@ fn colour_along(
     let lit = scene.ambient + (1.0 - scene.ambient) * scene.power * light;
     let surface = (object.colour * lit).min(DVec3::ONE);
     let w = (-distance / scene.fog_distance).exp();
-    w * surface + (1.0 - w) * scene.fog_colour
+    veil.over(w * surface + (1.0 - w) * scene.fog_colour)
 }
 
 /// Renders `layout`'s view of a Nil scene with the CPU reference: the layout's frames are
@@ -664,8 +706,15 @@ pub fn render_nil_view(
     max_crossings: usize,
 ) -> RgbImage {
     let walker = NilWalker::<DVec4>::new(space.k());
+    let walls = scene_walls(space, scene);
     let boxes = object_boxes(scene);
     super::render_layout(layout, |ray| {
-        colour_along(&walker, scene, &boxes, nil_ray(&ray), max_crossings)
+        colour_along(
+            (&walker, walls.as_ref()),
+            scene,
+            &boxes,
+            nil_ray(&ray),
+            max_crossings,
+        )
     })
 }

@@ -87,9 +87,6 @@ fn bad_nil_ids_and_drawing_commands_get_clear_errors() {
         &["light", "nil-3", "--at", "0,0,0", "--radius", "0.1"][..],
         &["export", "nil-3"][..],
         &[
-            "render", "nil-3", "--cpu", "--size", "16x9", "--walls", "0.5",
-        ][..],
-        &[
             "render",
             "nil-3",
             "--cpu",

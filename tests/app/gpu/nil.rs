@@ -1,6 +1,7 @@
 //! Nil on the GPU against the f64 CPU reference: the default scenes of nil-1, nil-3 and
 //! nil-50 (a box 1/50 high, crossed often), nil-1's with every lamp image shadowed and
-//! with the nearest copy only, from the default view and from one aimed straight up the fibre.
+//! with the nearest copy only, from the default view and from one aimed straight up the fibre,
+//! and with walls.
 
 use super::{judge, *};
 use bevy_curved_spaces::plugin::components::StereoSettings;
@@ -122,6 +123,34 @@ fn nil_spaces_render_on_the_gpu_like_the_cpu_reference() {
                 );
             }
         }
+        // Walls with windows: the sides' shear makes the panels a pair's own.
+        let mut walled = scene.clone();
+        walled.walls = Some(bevy_curved_spaces::scene::WallStyle::new(0.55).expect("an opening"));
+        let reference = cpu(&space, &walled, &camera, size, budget);
+        let plain = cpu(&space, &scene, &camera, size, budget);
+        let changed = reference
+            .pixels()
+            .zip(plain.pixels())
+            .filter(|(p, q)| p != q)
+            .count();
+        assert!(changed > 100, "nil-{k}: the walls change {changed} pixels");
+        let gpu = renderer
+            .render_nil(
+                &space,
+                &walled,
+                &camera,
+                size,
+                budget,
+                StereoSettings::default(),
+            )
+            .unwrap_or_else(|e| panic!("nil-{k} with walls: {e}"));
+        judge(
+            &format!("nil-{k}-walls"),
+            &gpu,
+            &reference,
+            &out,
+            &mut failures,
+        );
     }
     assert!(
         failures.is_empty(),

@@ -234,3 +234,78 @@ fn the_area_density_is_the_exponential_map_s_jacobian() {
     assert!((area_density(2.0, 0.0) - (4.0 + 16.0 / 12.0)).abs() < 1e-12);
     eprintln!("area density against central differences: worst relative {worst:.2e}");
 }
+
+/// A pair of glued faces is one wall: a ray crossing it and the ray coming back the other
+/// way through the same point find the same panel or window (the panel is judged on the
+/// pair's face at −½ on both ways), and a crossing's decision follows the window's chart
+/// rule there.
+#[test]
+fn walls_are_one_panel_seen_from_either_side() {
+    use bevy_curved_spaces::scene::WallStyle;
+    use bevy_curved_spaces::space::nil::{NilRay, flow};
+    use bevy_curved_spaces::space::walk::CellWalk;
+    use bevy_curved_spaces::trace::nil::walls::{NilWalls, panel_face};
+    for k in [1, 3] {
+        let space = NilSpace::new(k);
+        let walls =
+            NilWalls::new(&space, WallStyle::new(0.5).expect("an opening"), 0.01).expect("walls");
+        let walker = NilWalker::<DVec4>::new(k);
+        let mut panels = 0;
+        let mut windows = 0;
+        for i in 0..400 {
+            let f = |m: u32| ((i * m) % 101) as f64 / 101.0 - 0.5;
+            let start = walker.on_model(bevy_curved_spaces::geometry::Ray {
+                point: DVec4::new(
+                    0.8 * f(7),
+                    0.8 * f(13),
+                    0.8 * space.half_height() * f(29),
+                    1.0,
+                ),
+                tangent: DVec3::new(f(31), f(37), f(41)).normalize().extend(0.0),
+            });
+            let Some(exit) = walker.exit(&start) else {
+                continue;
+            };
+            let here = NilRay {
+                point: start.point.truncate().to_array(),
+                velocity: start.tangent.truncate().to_array(),
+            };
+            let left = flow(&here, exit.t);
+            let entered = walker.through(&start, &exit);
+            let entered_point = entered.point.truncate().to_array();
+            // Forward: judged where the panel's face is met.
+            let forward = if exit.face & 1 == 1 {
+                left.point
+            } else {
+                entered_point
+            };
+            // Backward from the entered point: leaves through the partner face there.
+            let back_face = exit.face ^ 1;
+            let backward = if back_face & 1 == 1 {
+                entered_point
+            } else {
+                left.point
+            };
+            assert_eq!(panel_face(exit.face), panel_face(back_face));
+            let a = walls.on_panel(exit.face, forward);
+            let b = walls.on_panel(back_face, backward);
+            assert_eq!(a, b, "nil-{k}, ray {i}: face {} at {left:?}", exit.face);
+            // The chart rule on the panel's face.
+            let [x, y, z] = forward;
+            let h = space.half_height();
+            let room = match exit.face / 2 {
+                0 => (0.5 - y.abs()).min(h - z.abs()),
+                1 => (0.5 - x.abs()).min(h - z.abs()),
+                _ => (0.5 - x.abs()).min(0.5 - y.abs()),
+            };
+            let margin = 0.5 * if exit.face < 4 { h.min(0.5) } else { 0.5 };
+            assert_eq!(a, room < margin);
+            if a {
+                panels += 1;
+            } else {
+                windows += 1;
+            }
+        }
+        assert!(panels > 20 && windows > 20, "nil-{k}: {panels} / {windows}");
+    }
+}

@@ -10,7 +10,9 @@ use crate::geometry::Geometry;
 use crate::plugin::render::layout::{GpuShading, UniformWriter, colour, vec4};
 use crate::scene::lighting::LightPaths;
 use crate::scene::lighting::open_tail_fluence;
+use crate::space::nil::NIL_FACES;
 use crate::space::nil::NilSpace;
+use crate::trace::nil::walls::NilWalls;
 use crate::trace::nil::{NilScene, NilShape};
 use glam::DVec4;
 use std::sync::Arc;
@@ -36,8 +38,15 @@ impl GpuScene {
             LightPaths::Nearest => &[],
         };
         let shadows = (scene.lighting.shadows as usize).min(images.len());
+        let walls = scene
+            .walls
+            .and_then(|style| NilWalls::new(space, style, crate::scene::DEFAULT_CUTOFF_WEIGHT));
+        // Walls need a slot per face for their colours (the face arrays stay unused).
+        let faces = if walls.is_some() { NIL_FACES } else { 0 };
         let key = ShaderKey {
             nil: true,
+            walls: walls.is_some(),
+            faces: faces as u32,
             nil_objects: scene.objects.len() as u32,
             nil_images: images.len() as u32,
             nil_shadows: shadows > 0,
@@ -60,12 +69,19 @@ impl GpuScene {
             (scene.fog_distance, scene.cutoff_distance()),
             max_crossings,
         ));
-        // No scene data, and one unused face slot: covector, pairing and its rest, partners.
+        // No scene data, and the unused face slots (one, or a face's with walls): covectors,
+        // pairings and their rests, partners.
         out.push(&[0u32; 4]);
-        out.push(&[0.0f32; 4]);
-        out.push(&[[0.0f32; 4]; 4]);
-        out.push(&[[0.0f32; 4]; 4]);
-        out.push(&[0u32; 4]);
+        let slots = faces.max(1);
+        for _ in 0..slots {
+            out.push(&[0.0f32; 4]);
+        }
+        for _ in 0..2 * slots {
+            out.push(&[[0.0f32; 4]; 4]);
+        }
+        for _ in 0..slots.div_ceil(4) {
+            out.push(&[0u32; 4]);
+        }
         out.push(&vec4(DVec4::new(
             space.half_height(),
             f64::from(space.k()),
@@ -125,6 +141,21 @@ impl GpuScene {
             for q in images {
                 out.push(&vec4(DVec4::new(q[0], q[1], q[2], 0.0)));
             }
+        }
+        // The walls: per face an unused slot, the colour and margin (a huge number for a
+        // solid wall), the opacity; then the share of light below which a ray stops.
+        if let Some(walls) = &walls {
+            for _ in 0..NIL_FACES {
+                out.push(&[0.0f32; 4]);
+            }
+            for face in 0..NIL_FACES {
+                let margin = walls.margins[usize::from(face >= 4)];
+                out.push(&colour(walls.colours[face], margin.min(1e30)));
+            }
+            for _ in 0..NIL_FACES {
+                out.push(&vec4(DVec4::new(walls.opacity, 0.0, 0.0, 0.0)));
+            }
+            out.push(&vec4(DVec4::new(walls.stop_below, 0.0, 0.0, 0.0)));
         }
         let words = out.words;
         debug_assert_eq!(words.len() * 4 + VIEW_WORDS * 4, bytes);
