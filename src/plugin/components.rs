@@ -213,21 +213,19 @@ pub struct BaseScenes<'w> {
     /// The product spaces' base scene, where a game set one.
     pub product: Option<Res<'w, BaseProductScene>>,
     /// The Nil spaces' base scene, where a game set one.
-    pub nil: Option<Res<'w, crate::plugin::nil::BaseNilScene>>,
+    pub nil: Option<Res<'w, BaseNilScene>>,
 }
 
 impl BaseScenes<'_> {
     /// Where players start in `active`: the base scene's start view where it was made for
     /// this family ([`BaseScene::start_frame`], [`BaseProductScene::start_frame`],
-    /// [`crate::plugin::nil::BaseNilScene::start_frame`]), else the space's default view.
+    /// [`BaseNilScene::start_frame`]), else the space's default view.
     #[must_use]
     pub fn start_frame(&self, active: &ActiveSpace) -> DMat4 {
         match &active.space {
             AnySpace::Constant(s) => self.constant.start_frame(active, s),
             AnySpace::Product(p) => BaseProductScene::start_frame(self.product.as_deref(), p),
-            AnySpace::Nil(n) => {
-                crate::plugin::nil::BaseNilScene::start_frame(self.nil.as_deref(), n)
-            }
+            AnySpace::Nil(n) => BaseNilScene::start_frame(self.nil.as_deref(), n),
         }
     }
 
@@ -250,6 +248,25 @@ impl BaseScenes<'_> {
                 .and_then(|b| b.start)
                 .map(|c| c.fov_y_degrees),
         }
+    }
+}
+
+/// The scene shown in a Nil space instead of its default one, and where players start.
+#[derive(Resource, Clone, Debug, PartialEq)]
+pub struct BaseNilScene {
+    /// The scene.
+    pub scene: crate::trace::nil::NilScene,
+    /// The start view (`None`: the space's default camera).
+    pub start: Option<crate::trace::nil::NilCamera>,
+}
+
+impl BaseNilScene {
+    /// Where players start in `space`: the base scene's start view, else the default one.
+    #[must_use]
+    pub fn start_frame(base: Option<&Self>, space: &crate::space::nil::NilSpace) -> DMat4 {
+        base.and_then(|b| b.start)
+            .unwrap_or_else(|| crate::trace::nil::default_camera(space))
+            .frame
     }
 }
 

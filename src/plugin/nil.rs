@@ -5,11 +5,12 @@
 //! geodesics in closed form, their axes carried by parallel transport, wrapped into the box
 //! by the lattice.
 
+pub use crate::plugin::components::BaseNilScene;
 use crate::plugin::components::{ActiveSpace, TracerSettings, TracerStatus};
 use crate::plugin::render::PreparedScene;
 use crate::plugin::render::gpu::{GpuScene, MAX_GPU_BUDGET};
 use crate::space::nil::NilSpace;
-use crate::trace::nil::{NilCamera, NilScene, default_camera, default_scene};
+use crate::trace::nil::{NilScene, default_scene};
 use bevy::prelude::*;
 use std::sync::Arc;
 
@@ -18,25 +19,6 @@ use std::sync::Arc;
 #[must_use]
 pub fn default_nil_budget(space: &NilSpace) -> u32 {
     (32 + 2 * space.k()).min(MAX_GPU_BUDGET)
-}
-
-/// The scene shown in a Nil space instead of its default one, and where players start.
-#[derive(Resource, Clone, Debug, PartialEq)]
-pub struct BaseNilScene {
-    /// The scene.
-    pub scene: NilScene,
-    /// The start view (`None`: the space's default camera).
-    pub start: Option<NilCamera>,
-}
-
-impl BaseNilScene {
-    /// Where players start in `space`: the base scene's start view, else the default one.
-    #[must_use]
-    pub fn start_frame(base: Option<&Self>, space: &NilSpace) -> glam::DMat4 {
-        base.and_then(|b| b.start)
-            .unwrap_or_else(|| default_camera(space))
-            .frame
-    }
 }
 
 /// The scene shown: the base scene or the default one, with the fog and the lighting set in
@@ -53,6 +35,7 @@ pub fn nil_scene(
     }
     // The walls set here, else the base scene's own; an opening of 1 turns them off.
     scene.walls = settings.walls.or(scene.walls).filter(|w| w.opening < 1.0);
+    scene.colour_by = settings.colour_by;
     if let Some(mut lighting) = settings.lighting {
         lighting.shadows = lighting.shadows.min(settings.quality.max_shadows());
         lighting.lamp_radius_inradii = 0.0;
@@ -73,6 +56,7 @@ pub(crate) struct NilKey {
     quality: crate::plugin::components::Quality,
     lighting: Option<crate::scene::lighting::Lighting>,
     walls: Option<crate::scene::WallStyle>,
+    colour_by: crate::scene::ColourBy,
 }
 
 /// Packs the Nil scene for the GPU when the space, the base scene or the settings changed.
@@ -95,6 +79,7 @@ pub(crate) fn upload_nil_scene(
         quality: settings.quality,
         lighting: settings.lighting,
         walls: settings.walls,
+        colour_by: settings.colour_by,
     };
     let base_changed = base.as_ref().is_some_and(|b| b.is_changed());
     if prepared.is_some() && !active.is_changed() && !base_changed && last.as_ref() == Some(&key) {

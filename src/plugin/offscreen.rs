@@ -403,7 +403,7 @@ impl OffscreenRenderer {
         });
         self.picture(
             (w, h),
-            (max_crossings, crate::scene::ColourBy::Shading, stereo),
+            (max_crossings, scene.colour_by, stereo),
             (camera.fov_y_degrees, camera.frame),
         )
     }

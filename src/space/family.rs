@@ -78,6 +78,8 @@ pub enum Feature {
     LampFluence,
     /// Flights: `flight` and `walk --replay`.
     Flights,
+    /// The holonomy teaching view (`--colour-by holonomy`): the rotation of each copy.
+    HolonomyView,
 }
 
 impl Feature {
@@ -100,6 +102,7 @@ impl Feature {
             Feature::TeachingViews => "the teaching views (`--colour-by`)",
             Feature::LampFluence => "`light` (a lamp's light at a point)",
             Feature::Flights => "flights (`flight`, `walk --replay`)",
+            Feature::HolonomyView => "the holonomy view (`--colour-by holonomy`)",
         }
     }
 }
@@ -130,6 +133,7 @@ impl Family {
                 | Feature::Pictures
                 | Feature::Walls
                 | Feature::TeachingViews
+                | Feature::HolonomyView
                 | Feature::LampFluence
                 | Feature::Flights,
             ) => return Ok(()),
@@ -140,7 +144,8 @@ impl Family {
                 | Feature::RecordFlight
                 | Feature::LampFluence
                 | Feature::Headset
-                | Feature::Walls,
+                | Feature::Walls
+                | Feature::TeachingViews,
             ) => {
                 return Ok(());
             }
@@ -152,6 +157,10 @@ impl Family {
                  domains of generator files"
             }
             (Family::Nil, Feature::SoftShadows) => "a Nil lamp is a point",
+            (Family::Nil, Feature::HolonomyView) => {
+                "Nil's copies of the box are left translations, which turn no direction: every \
+                 copy would show white; `--colour-by crossings` or `face` tell the copies apart"
+            }
             (Family::Nil, Feature::MovingObjects) => {
                 "a Nil scene's objects stand still (their lattice images are made once)"
             }
@@ -160,8 +169,8 @@ impl Family {
             }
             (Family::Nil, _) => {
                 "not written for the Nil family yet (it draws, walks and flies its default \
-                 scene and scene files with walls: `render`, `walk`, `walk --xr`, `flight`, \
-                 `light`, `bench`)"
+                 scene and scene files with walls and the teaching views: `render`, `walk`, \
+                 `walk --xr`, `flight`, `light`, `bench`)"
             }
             (Family::Product, Feature::SceneParts) => {
                 "a product scene file's `edges` and `centre_ball` choose the parts"

@@ -310,14 +310,15 @@ fn flight_nil(
     use bevy_curved_spaces::view::ViewLayout;
     let space = &*chosen.space;
     let refuse = |feature| super::spaces::require(Family::Nil, space.name(), feature);
-    if args.colour_by != super::ColourByArg::Shading {
-        refuse(Feature::TeachingViews)?;
+    if args.colour_by == super::ColourByArg::Holonomy {
+        refuse(Feature::HolonomyView)?;
     }
     let flight = NilFlight::new(space, file).map_err(|e| format!("{name}: {e}"))?;
     let total = flight.frame_count(args.fps);
     let (first, last, todo) = frames_to_do(args, total)?;
     let mut scene = chosen.scene;
     scene.walls = args.walls.style(scene.walls)?.filter(|w| w.opening < 1.0);
+    scene.colour_by = args.colour_by.into();
     if args.light.any() {
         let lighting = args.light.lighting(scene.lighting);
         let light = scene.light;

@@ -24,8 +24,8 @@ pub(super) fn render_nil_command(args: &RenderArgs, chosen: NilChoice) -> Result
     if args.view.changes_parts() {
         refuse(Feature::SceneParts)?;
     }
-    if args.view.colour_by != super::ColourByArg::Shading {
-        refuse(Feature::TeachingViews)?;
+    if args.view.colour_by == super::ColourByArg::Holonomy {
+        refuse(Feature::HolonomyView)?;
     }
     if let (Some(eye), Some(target)) = (args.eye, args.look_at) {
         camera = NilCamera::looking_at(space, eye, target, camera.fov_y_degrees)?;
@@ -38,6 +38,7 @@ pub(super) fn render_nil_command(args: &RenderArgs, chosen: NilChoice) -> Result
     if let Some(fog) = args.fog {
         scene.fog_distance = fog;
     }
+    scene.colour_by = args.view.colour_by.into();
     scene.walls = args
         .view
         .walls

@@ -569,7 +569,7 @@ fn walk_product(
 
 /// `walk` in a Nil space: its default scene or a scene file's, `E₃` up, a flight replayed or
 /// the walk recorded, with walls, in a window or the headset (`--xr`); offscreen to a picture
-/// where there is no display. The teaching views are not written for Nil.
+/// where there is no display; the teaching views but the holonomy's.
 fn walk_nil(
     args: &WalkArgs,
     chosen: super::render::NilChoice,
@@ -580,8 +580,8 @@ fn walk_nil(
     let refuse = |feature| super::spaces::require(Family::Nil, space.name(), feature);
     for (asked, feature) in [
         (
-            args.view.colour_by != super::ColourByArg::Shading,
-            Feature::TeachingViews,
+            args.view.colour_by == super::ColourByArg::Holonomy,
+            Feature::HolonomyView,
         ),
         (args.view.changes_parts(), Feature::SceneParts),
     ] {
@@ -619,6 +619,7 @@ fn walk_nil(
         render.crossings = args.crossings.map(|c| c as usize);
         render.view.light = args.view.light;
         render.view.walls = args.view.walls;
+        render.view.colour_by = args.view.colour_by;
         render.scene = args.scene.clone();
         render.stereo = args.stereo;
         if !gpu_available() {

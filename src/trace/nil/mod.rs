@@ -50,6 +50,10 @@ pub struct NilScene {
     pub fog_colour: DVec3,
     /// The box's walls with windows ([`walls`]), if drawn.
     pub walls: Option<crate::scene::walls::WallStyle>,
+    /// The teaching view: surfaces tinted by the crossings or the last face crossed
+    /// ([`crate::scene::ColourBy`]; the holonomy view is white: every copy is a left
+    /// translation, which turns nothing).
+    pub colour_by: crate::scene::ColourBy,
 }
 
 impl NilScene {
@@ -340,6 +344,7 @@ pub fn scene_with_parts(space: &NilSpace, parts: NilParts) -> NilScene {
         fog_distance: 1.5,
         fog_colour: DVec3::new(0.05, 0.06, 0.09),
         walls: None,
+        colour_by: crate::scene::ColourBy::Shading,
     };
     let edge_colour = DVec3::new(0.85, 0.7, 0.35);
     let vertical = scaled(0.03, h);
@@ -425,6 +430,8 @@ pub enum NilRayEnd<'a> {
         distance: f64,
         /// Faces crossed before.
         crossings: usize,
+        /// The face crossed last, if any.
+        last_face: Option<usize>,
         /// The ray at the object (chart point, body velocity).
         at: NilRay<f64>,
         /// The object.
@@ -578,6 +585,7 @@ fn walk_to_hit<'a>(
     });
     let mut distance = 0.0;
     let mut crossings = 0;
+    let mut last_face = None;
     while distance < length {
         let Some(exit) = walker.exit(&ray) else {
             break;
@@ -588,6 +596,7 @@ fn walk_to_hit<'a>(
             return NilRayEnd::Hit {
                 distance: distance + t,
                 crossings,
+                last_face,
                 at: flow(&here, t),
                 object,
             };
@@ -598,6 +607,7 @@ fn walk_to_hit<'a>(
         ray = walker.through(&ray, &exit);
         distance += exit.t;
         crossings += 1;
+        last_face = Some(exit.face);
         if let Some((walls, veil)) = walls.as_mut() {
             // The panel is judged on the pair's face at −½ (or the bottom): where the ray
             // leaves through it, or where it comes in after leaving through its partner.
@@ -659,9 +669,10 @@ fn colour_along(
     let mut veil = crate::scene::walls::Veil::CLEAR;
     let NilRayEnd::Hit {
         distance,
+        crossings,
+        last_face,
         at,
         object,
-        ..
     } = walk_to_hit(
         walker,
         scene,
@@ -691,9 +702,30 @@ fn colour_along(
     };
     let light = gather(scene, at.point, normal, &mut occluded);
     let lit = scene.ambient + (1.0 - scene.ambient) * scene.power * light;
-    let surface = (object.colour * lit).min(DVec3::ONE);
+    let mut surface = (object.colour * lit).min(DVec3::ONE);
+    if let Some(tint) = nil_tint(scene.colour_by, crossings, last_face) {
+        surface = crate::scene::ColourBy::recolour(tint, surface);
+    }
     let w = (-distance / scene.fog_distance).exp();
     veil.over(w * surface + (1.0 - w) * scene.fog_colour)
+}
+
+/// The teaching view's tint of a surface seen after `crossings` crossings, the last through
+/// `last_face` (`None` for the plain picture): as [`crate::scene::ColourBy::tint`] with the
+/// copy's rotation always none (a left translation turns nothing).
+fn nil_tint(
+    colour_by: crate::scene::ColourBy,
+    crossings: usize,
+    last_face: Option<usize>,
+) -> Option<DVec3> {
+    (colour_by != crate::scene::ColourBy::Shading).then(|| {
+        colour_by.tint(
+            crate::geometry::Geometry::Euclidean,
+            crossings,
+            last_face,
+            DMat4::IDENTITY,
+        )
+    })
 }
 
 /// Renders `layout`'s view of a Nil scene with the CPU reference: the layout's frames are

@@ -93,7 +93,7 @@ fn bad_nil_ids_and_drawing_commands_get_clear_errors() {
             "--size",
             "16x9",
             "--colour-by",
-            "crossings",
+            "holonomy",
         ][..],
         &[
             "render",

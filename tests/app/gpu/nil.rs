@@ -1,7 +1,7 @@
 //! Nil on the GPU against the f64 CPU reference: the default scenes of nil-1, nil-3 and
 //! nil-50 (a box 1/50 high, crossed often), nil-1's with every lamp image shadowed and
 //! with the nearest copy only, from the default view and from one aimed straight up the fibre,
-//! and with walls.
+//! with walls and in the teaching views.
 
 use super::{judge, *};
 use bevy_curved_spaces::plugin::components::StereoSettings;
@@ -122,6 +122,42 @@ fn nil_spaces_render_on_the_gpu_like_the_cpu_reference() {
                     &mut failures,
                 );
             }
+        }
+        // The teaching views: the surfaces tinted by the crossings and by the last face.
+        for colour_by in [
+            bevy_curved_spaces::scene::ColourBy::Crossings,
+            bevy_curved_spaces::scene::ColourBy::Face,
+        ] {
+            let mut tinted = scene.clone();
+            tinted.colour_by = colour_by;
+            let reference = cpu(&space, &tinted, &camera, size, budget);
+            let plain = cpu(&space, &scene, &camera, size, budget);
+            let changed = reference
+                .pixels()
+                .zip(plain.pixels())
+                .filter(|(p, q)| p != q)
+                .count();
+            assert!(
+                changed > 100,
+                "nil-{k}: {colour_by:?} changes {changed} pixels"
+            );
+            let gpu = renderer
+                .render_nil(
+                    &space,
+                    &tinted,
+                    &camera,
+                    size,
+                    budget,
+                    StereoSettings::default(),
+                )
+                .unwrap_or_else(|e| panic!("nil-{k} by {colour_by:?}: {e}"));
+            judge(
+                &format!("nil-{k}-{}", colour_by.name()),
+                &gpu,
+                &reference,
+                &out,
+                &mut failures,
+            );
         }
         // Walls with windows: the sides' shear makes the panels a pair's own.
         let mut walled = scene.clone();

@@ -38,7 +38,7 @@ pub const TRACER_WGSL: &str = include_str!("../../../../shaders/curved_space.wgs
 /// The tracer's WGSL modules (`#define_import_path curved_spaces::…`), each the twin of a
 /// Rust module, in the order they import each other: the plugin registers them all, so a
 /// game that embeds the crate needs no shader files.
-pub const SHADER_MODULES: [(&str, &str); 17] = [
+pub const SHADER_MODULES: [(&str, &str); 18] = [
     (
         "shaders/layout.wgsl",
         include_str!("../../../../shaders/layout.wgsl"),
@@ -102,6 +102,10 @@ pub const SHADER_MODULES: [(&str, &str); 17] = [
     (
         "shaders/product.wgsl",
         include_str!("../../../../shaders/product.wgsl"),
+    ),
+    (
+        "shaders/nil_geometry.wgsl",
+        include_str!("../../../../shaders/nil_geometry.wgsl"),
     ),
     (
         "shaders/nil.wgsl",

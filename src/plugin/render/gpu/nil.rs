@@ -47,6 +47,7 @@ impl GpuScene {
             nil: true,
             walls: walls.is_some(),
             faces: faces as u32,
+            colour_by: scene.colour_by.index(),
             nil_objects: scene.objects.len() as u32,
             nil_images: images.len() as u32,
             nil_shadows: shadows > 0,
