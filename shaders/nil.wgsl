@@ -480,6 +480,10 @@ fn nil_gather(x: vec3<f32>, normal: vec3<f32>) -> f32 {
     var sum = 0.0;
     let lighting = space.nil_lighting;
     for (var k = 0u; k < u32(lighting.x); k += 1u) {
+        // Past the reach by the root-free floor of the distance: no root to find.
+        if nil_distance_floor(space.nil_images[k].xyz, x) > lighting.z {
+            continue;
+        }
         let path = nil_shortest(x, space.nil_images[k].xyz);
         if path.x <= lighting.z {
             sum += nil_light_along(x, normal, path, f32(k) < lighting.w);

@@ -152,10 +152,10 @@ fn nil_height(ray: NilRay, t: f32, h: f32) -> vec2<f32> {
 
 // The root of the height less h in (lo, hi), where it changes sign once (Newton's steps
 // inside the bracket, bisection otherwise).
-fn nil_height_root(ray: NilRay, h: f32, lo_in: f32, hi_in: f32, rising: bool) -> f32 {
+fn nil_height_root(ray: NilRay, h: f32, lo_in: f32, hi_in: f32, rising: bool, start: f32) -> f32 {
     var lo = lo_in;
     var hi = hi_in;
-    var t = 0.5 * (lo + hi);
+    var t = start;
     for (var i = 0u; i < 80u; i += 1u) {
         let f = nil_height(ray, t, h);
         if f.x == 0.0 {
@@ -194,6 +194,15 @@ fn nil_horizontal_exit(ray: NilRay, h: f32, before: f32) -> f32 {
         let t = -f0.x / c;
         return select(NIL_NONE, t, (t > 0.0) && (t <= before));
     }
+    // Out of reach before `before` (Rust: `horizontal_exit`): the height moves at most
+    // |c| T + a r0 T / 2 + a^2 T^2 / 4 by the time T.
+    if before < NIL_FAR {
+        let a = length(ray.v.xy);
+        let reach = (abs(c) + 0.5 * a * (length(ray.p.xy) + 0.5 * a * before)) * before;
+        if abs(f0.x) > reach * (1.0 + 1.0e-5) + 1.0e-7 * abs(h) {
+            return NIL_NONE;
+        }
+    }
     let a2 = ray.v.x * ray.v.x + ray.v.y * ray.v.y;
     let k0 = c + 0.5 * a2 / c;
     let k1 = -0.5 * a2 / c + 0.5 * (ray.p.x * ray.v.y - ray.p.y * ray.v.x);
@@ -223,6 +232,7 @@ fn nil_horizontal_exit(ray: NilRay, h: f32, before: f32) -> f32 {
     }
     var lo = 0.0;
     var f_lo = f0.x;
+    var rate_lo = f0.y;
     for (var i = 0u; i < 130u; i += 1u) {
         var hi = end;
         var which = 2u;
@@ -233,11 +243,18 @@ fn nil_horizontal_exit(ray: NilRay, h: f32, before: f32) -> f32 {
             hi = next.y;
             which = 1u;
         }
-        let f_hi = nil_height(ray, hi, h).x;
+        let at_hi = nil_height(ray, hi, h);
+        let f_hi = at_hi.x;
         let straddles = (f_lo <= 0.0 && f_hi >= 0.0) || (f_lo >= 0.0 && f_hi <= 0.0);
         let from_the_plane = lo == 0.0 && f_lo == 0.0;
         if straddles && !from_the_plane {
-            let root = nil_height_root(ray, h, lo, hi, f_lo < 0.0);
+            // Newton's step from the bracket's start, else the middle.
+            let newton = lo - f_lo / rate_lo;
+            var start = 0.5 * (lo + hi);
+            if rate_lo != 0.0 && newton > lo && newton < hi {
+                start = newton;
+            }
+            let root = nil_height_root(ray, h, lo, hi, f_lo < 0.0, start);
             if root > 0.0 {
                 return root;
             }
@@ -248,6 +265,7 @@ fn nil_horizontal_exit(ray: NilRay, h: f32, before: f32) -> f32 {
         next[which] += period;
         lo = hi;
         f_lo = f_hi;
+        rate_lo = at_hi.y;
     }
     return NIL_NONE;
 }

@@ -196,6 +196,20 @@ pub fn horizontal_exit<R: Real>(ray: &NilRay<R>, h: R, before: R) -> Option<R> {
         let t = -f0 / c;
         return (t > zero && t <= before).then_some(t);
     }
+    // Out of reach before `before`: the height's rate `c + ½(x ẏ − y ẋ)` is at most
+    // `|c| + ½ a (r₀ + a t)` (the shadow moves at speed `a` from `r₀` off the axis), so the
+    // height moves at most `|c| T + ½ a r₀ T + ¼ a² T²` by the time `T` (widened by a hair
+    // for rounding).
+    if before.is_finite() {
+        let [px, py, _] = ray.point;
+        let a = (u1 * u1 + u2 * u2).sqrt();
+        let r0 = (px * px + py * py).sqrt();
+        let half = R::from_f64(0.5);
+        let reach = (c.abs() + half * a * (r0 + half * a * before)) * before;
+        if f0.abs() > reach * R::from_f64(1.0 + 1e-9) + R::EPSILON * h.abs() {
+            return None;
+        }
+    }
     // The height is monotone between turning points: the first interval whose ends
     // straddle h holds the first crossing.
     let end = if before.is_finite() {
@@ -215,9 +229,9 @@ pub fn horizontal_exit<R: Real>(ray: &NilRay<R>, h: R, before: R) -> Option<R> {
     };
     let mut points = turning_points(ray, end);
     points.push(end);
-    let (mut lo, mut f_lo) = (zero, f0);
+    let (mut lo, mut f_lo, mut rate_lo) = (zero, f0, rate0);
     for hi in points {
-        let (f_hi, _) = f(hi);
+        let (f_hi, rate_hi) = f(hi);
         let straddles = (f_lo <= zero && f_hi >= zero) || (f_lo >= zero && f_hi <= zero);
         // A start on the plane (f(0) = 0): the height is monotone up to the first turning
         // point, so the plane is not met again before it (the crossing at the start is no
@@ -225,12 +239,20 @@ pub fn horizontal_exit<R: Real>(ray: &NilRay<R>, h: R, before: R) -> Option<R> {
         let from_the_plane = lo == zero && f_lo == zero;
         if straddles && !from_the_plane {
             let rising = f_lo < zero;
-            let root = bracketed_root(&f, (lo, hi), half_way(lo, hi), |v| (v < zero) == rising);
+            // Newton's step from the bracket's start (short crossings of thin boxes are
+            // nearly straight), else the middle.
+            let newton = lo - f_lo / rate_lo;
+            let start = if rate_lo != zero && newton > lo && newton < hi {
+                newton
+            } else {
+                half_way(lo, hi)
+            };
+            let root = bracketed_root(&f, (lo, hi), start, |v| (v < zero) == rising);
             if root > zero {
                 return Some(root);
             }
         }
-        (lo, f_lo) = (hi, f_hi);
+        (lo, f_lo, rate_lo) = (hi, f_hi, rate_hi);
     }
     None
 }

@@ -198,6 +198,10 @@ pub fn gather(
     let shadows = lighting.shadows as usize;
     let mut sum = 0.0;
     for (k, q) in lamp.images.iter().enumerate() {
+        // Past the reach by the root-free floor of the distance: no root to find.
+        if crate::space::nil::distance_floor(*q, x) > lamp.reach {
+            continue;
+        }
         let path = shortest(x, *q);
         if path.0 <= lamp.reach {
             sum += light_along(path, k < shadows);
