@@ -131,6 +131,7 @@ pub mod prelude {
         Ball, CurvedScene, Disc, Light, MeshInstance, Object, SceneParts, Shading, SurfaceMaterial,
         Tube,
     };
+    pub use crate::space::motion::CoverFlight;
     pub use crate::space::{
         AnySpace, CellWalk, CellWalker, Family, Holonomy, Limit, SEED_SPACES, Space, SpaceError,
         seed_space,

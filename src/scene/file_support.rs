@@ -225,3 +225,39 @@ pub(crate) fn lighting_of(
     lighting.check().map_err(|m| (span, m))?;
     Ok(lighting)
 }
+
+/// A `[start]` table of the files whose positions are points of one chart (the product and
+/// Nil spaces): the eye, what it looks at, the vertical field of view.
+#[derive(serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct PointStartSpec {
+    pub(crate) position: [f64; 3],
+    pub(crate) look_at: Option<[f64; 3]>,
+    pub(crate) fov: Option<f64>,
+}
+
+/// A `[[light]]` of those files: a point lamp.
+#[derive(serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct PointLightSpec {
+    pub(crate) position: [f64; 3],
+}
+
+/// A point written in a file, and where.
+pub(crate) type SpannedPoint = ([f64; 3], std::ops::Range<usize>);
+
+/// The one light those files may have: `None` for none, else its position (with its
+/// span), or the error at the second one (`family` names the scene: "a product scene").
+pub(crate) fn one_light(
+    lights: &[Spanned<PointLightSpec>],
+    family: &str,
+) -> Result<Option<SpannedPoint>, SpanError> {
+    match lights {
+        [] => Ok(None),
+        [light] => Ok(Some((light.get_ref().position, light.span()))),
+        [_, second, ..] => Err((
+            second.span(),
+            format!("{family} has one light, this file has {}", lights.len()),
+        )),
+    }
+}

@@ -289,6 +289,13 @@ pub trait CoverFlight: Clone + std::fmt::Debug + Send + Sync + 'static {
     #[must_use]
     fn cover_frame(&self, t: f64) -> DMat4;
 
+    /// How many frames the flight has at `fps`: one every `1/fps` seconds from 0, up to but
+    /// not including the end (one at least).
+    #[must_use]
+    fn frame_count(&self, fps: f64) -> usize {
+        ((self.duration() * fps).round() as usize).max(1)
+    }
+
     /// The camera frame at time `t` in the cell, with the crossings of the way there from
     /// the first key's cell, in order (the camera's holonomy).
     #[must_use]
@@ -305,6 +312,22 @@ pub trait CoverFlight: Clone + std::fmt::Debug + Send + Sync + 'static {
             crossings.extend(crossed);
         }
         (frame, crossings)
+    }
+}
+
+/// The position and target at time `t` of a flight's keys (time, position, target, in
+/// order of time): the first key's before it, the last's after it, and between two keys each
+/// moved the share of the way `between(from, to, share)` says.
+pub fn keyed<P: Copy>(keys: &[(f64, P, P)], t: f64, between: impl Fn(P, P, f64) -> P) -> (P, P) {
+    let i = keys.partition_point(|k| k.0 <= t);
+    if i == 0 {
+        (keys[0].1, keys[0].2)
+    } else if i == keys.len() {
+        (keys[i - 1].1, keys[i - 1].2)
+    } else {
+        let (a, b) = (keys[i - 1], keys[i]);
+        let s = (t - a.0) / (b.0 - a.0);
+        (between(a.1, b.1, s), between(a.2, b.2, s))
     }
 }
 

@@ -2,6 +2,7 @@
 
 use bevy_curved_spaces::geometry::Geometry;
 use bevy_curved_spaces::scene::flight::{Flight, FlightFile, load_flight_file, parse_flight};
+use bevy_curved_spaces::space::motion::CoverFlight as _;
 use bevy_curved_spaces::space::seed_space;
 use glam::DMat4;
 

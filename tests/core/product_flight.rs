@@ -10,6 +10,7 @@ use glam::{DMat4, DVec4};
 use std::path::Path;
 
 use crate::common::product;
+use bevy_curved_spaces::space::motion::CoverFlight as _;
 
 fn asset(name: &str) -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))

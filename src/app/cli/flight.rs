@@ -8,6 +8,7 @@ use bevy_curved_spaces::plugin::components::{AUTO_BUDGET_SAMPLES, ActiveSpace, Q
 use bevy_curved_spaces::plugin::offscreen::{OffscreenRender, OffscreenRenderer};
 use bevy_curved_spaces::plugin::render::gpu::MAX_GPU_BUDGET;
 use bevy_curved_spaces::scene::flight::{Flight, load_flight_file};
+use bevy_curved_spaces::space::motion::CoverFlight;
 use bevy_curved_spaces::trace::{RenderSettings, auto_budget, render_view};
 use bevy_curved_spaces::view::{TraceCamera, ViewLayout};
 use std::path::{Path, PathBuf};

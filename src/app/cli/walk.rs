@@ -11,6 +11,7 @@ use bevy_curved_spaces::plugin::flight::FlightReplay;
 use bevy_curved_spaces::plugin::offscreen::gpu_available;
 use bevy_curved_spaces::plugin::render::FramesTraced;
 use bevy_curved_spaces::scene::flight::{Flight, load_flight_file};
+use bevy_curved_spaces::space::motion::CoverFlight;
 use bevy_curved_spaces::view::StereoMode;
 use bevy_curved_spaces::{ActiveSpace, CurvedSpaceCamera, CurvedSpacesPlugin};
 use std::path::{Path, PathBuf};

@@ -46,7 +46,8 @@
 use super::{NilCamera, NilObject, NilParts, NilScene, NilShape, default_camera, scene_with_parts};
 use crate::scene::file::SceneFileError;
 use crate::scene::file_support::{
-    LightingSpec, ambient_of, colour, failing, lighting_of, parse_toml, read_scene_text, walls_of,
+    LightingSpec, PointLightSpec, PointStartSpec, ambient_of, colour, failing, lighting_of,
+    one_light, parse_toml, read_scene_text, walls_of,
 };
 use crate::space::nil::{NilSpace, nil_space};
 use crate::space::{Family, Feature};
@@ -127,20 +128,12 @@ struct FileSpec {
     fog_colour: Option<Spanned<[f64; 3]>>,
     walls: Option<Spanned<f64>>,
     wall_opacity: Option<Spanned<f64>>,
-    start: Option<Spanned<StartSpec>>,
+    start: Option<Spanned<PointStartSpec>>,
     #[serde(default, rename = "object")]
     objects: Vec<Spanned<ObjectSpec>>,
     #[serde(default, rename = "light")]
-    lights: Vec<Spanned<LightSpec>>,
+    lights: Vec<Spanned<PointLightSpec>>,
     lighting: Option<Spanned<LightingSpec>>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct StartSpec {
-    position: [f64; 3],
-    look_at: Option<[f64; 3]>,
-    fov: Option<f64>,
 }
 
 #[derive(Deserialize)]
@@ -159,12 +152,6 @@ enum ObjectSpec {
         #[serde(default = "white")]
         colour: [f64; 3],
     },
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct LightSpec {
-    position: [f64; 3],
 }
 
 /// Only the `space` key, to tell the kinds of scene file apart.
@@ -237,21 +224,10 @@ pub fn parse_nil_scene(text: &str, file: &str) -> Result<NilSceneFile, SceneFile
     scene.walls = walls_of(spec.walls.as_ref(), spec.wall_opacity.as_ref())
         .map_err(|(s, m)| fail(Some(s), m))?
         .filter(|w| w.opening < 1.0);
-    match spec.lights.as_slice() {
-        [] => {}
-        [light] => {
-            scene.light = chart_point(light.get_ref().position, "the light")
-                .map_err(|m| fail(Some(light.span()), m))?;
-        }
-        [_, second, ..] => {
-            return Err(fail(
-                Some(second.span()),
-                format!(
-                    "a Nil scene has one light, this file has {}",
-                    spec.lights.len()
-                ),
-            ));
-        }
+    if let Some((position, span)) =
+        one_light(&spec.lights, "a Nil scene").map_err(|(s, m)| fail(Some(s), m))?
+    {
+        scene.light = chart_point(position, "the light").map_err(|m| fail(Some(span), m))?;
     }
     for object in &spec.objects {
         let at = |m: String| fail(Some(object.span()), m);
@@ -353,7 +329,7 @@ fn build_object(space: &NilSpace, spec: &ObjectSpec) -> Result<NilObject, String
     })
 }
 
-fn start_camera(space: &NilSpace, start: &StartSpec) -> Result<NilCamera, String> {
+fn start_camera(space: &NilSpace, start: &PointStartSpec) -> Result<NilCamera, String> {
     let eye = DVec3::from_array(chart_point(start.position, "the start position")?);
     let fov = start
         .fov

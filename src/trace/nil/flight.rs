@@ -12,7 +12,7 @@
 use super::look_frame;
 use crate::scene::flight::FlightFile;
 use crate::space::FrameSpace;
-use crate::space::motion::CoverFlight;
+use crate::space::motion::{CoverFlight, keyed};
 use crate::space::nil::{NilRay, NilSpace, flow, shortest};
 use glam::{DMat4, DVec3, DVec4};
 
@@ -98,31 +98,10 @@ impl NilFlight {
         })
     }
 
-    /// The time of the last key.
-    #[must_use]
-    pub fn duration(&self) -> f64 {
-        self.keys.last().map_or(0.0, |k| k.0)
-    }
-
-    /// How many frames the flight has at `fps` (one at least).
-    #[must_use]
-    pub fn frame_count(&self, fps: f64) -> usize {
-        ((self.duration() * fps).round() as usize).max(1)
-    }
-
     /// The camera frame at time `t` in the universal cover (before wrapping).
     #[must_use]
     pub fn cover_frame(&self, t: f64) -> DMat4 {
-        let i = self.keys.partition_point(|k| k.0 <= t);
-        let (p, target) = if i == 0 {
-            (self.keys[0].1, self.keys[0].2)
-        } else if i == self.keys.len() {
-            (self.keys[i - 1].1, self.keys[i - 1].2)
-        } else {
-            let (a, b) = (self.keys[i - 1], self.keys[i]);
-            let s = (t - a.0) / (b.0 - a.0);
-            (between(a.1, b.1, s), between(a.2, b.2, s))
-        };
+        let (p, target) = keyed(&self.keys, t, between);
         // Between two keys the target may pass through the eye: look along E₂ there.
         look_frame(p, target)
             .unwrap_or_else(|| DMat4::from_cols(DVec4::X, DVec4::Z, -DVec4::Y, p.extend(1.0)))
@@ -142,7 +121,7 @@ impl CoverFlight for NilFlight {
     type Space = NilSpace;
 
     fn duration(&self) -> f64 {
-        NilFlight::duration(self)
+        self.keys.last().map_or(0.0, |k| k.0)
     }
 
     fn cover_frame(&self, t: f64) -> DMat4 {

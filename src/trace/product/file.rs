@@ -49,7 +49,8 @@ use super::{
 use crate::geometry::Geometry;
 use crate::scene::file::SceneFileError;
 use crate::scene::file_support::{
-    LightingSpec, ambient_of, colour, failing, lighting_of, parse_toml, read_scene_text, walls_of,
+    LightingSpec, PointLightSpec, PointStartSpec, ambient_of, colour, failing, lighting_of,
+    one_light, parse_toml, read_scene_text, walls_of,
 };
 use crate::space::product::motion::camera_frame;
 use crate::space::product::{ProductOrFlat, ProductSpace, product_space};
@@ -151,20 +152,12 @@ struct FileSpec {
     wall_opacity: Option<Spanned<f64>>,
     ambient: Option<Spanned<f64>>,
     fog_colour: Option<Spanned<[f64; 3]>>,
-    start: Option<Spanned<StartSpec>>,
+    start: Option<Spanned<PointStartSpec>>,
     #[serde(default, rename = "object")]
     objects: Vec<Spanned<ObjectSpec>>,
     #[serde(default, rename = "light")]
-    lights: Vec<Spanned<LightSpec>>,
+    lights: Vec<Spanned<PointLightSpec>>,
     lighting: Option<Spanned<LightingSpec>>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct StartSpec {
-    position: [f64; 3],
-    look_at: Option<[f64; 3]>,
-    fov: Option<f64>,
 }
 
 #[derive(Deserialize)]
@@ -216,12 +209,6 @@ enum ObjectSpec {
 
 /// The most triangles a product scene file may hold (each is one object of the tracer).
 pub const MAX_PRODUCT_TRIANGLES: usize = 512;
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct LightSpec {
-    position: [f64; 3],
-}
 
 /// Only the `space` key, to tell the two kinds of scene file apart.
 #[derive(Deserialize)]
@@ -306,22 +293,11 @@ pub fn parse_product_scene(text: &str, file: &str) -> Result<ProductSceneFile, S
     scene.walls = walls_of(spec.walls.as_ref(), spec.wall_opacity.as_ref())
         .map_err(|(s, m)| fail(Some(s), m))?
         .filter(|w| w.opening < 1.0);
-    match spec.lights.as_slice() {
-        [] => {}
-        [light] => {
-            let p = inside(&space, light.get_ref().position, 0.0, "the light")
-                .map_err(|m| fail(Some(light.span()), m))?;
-            scene.light = p;
-        }
-        [_, second, ..] => {
-            return Err(fail(
-                Some(second.span()),
-                format!(
-                    "a product scene has one light, this file has {}",
-                    spec.lights.len()
-                ),
-            ));
-        }
+    if let Some((position, span)) =
+        one_light(&spec.lights, "a product scene").map_err(|(s, m)| fail(Some(s), m))?
+    {
+        scene.light =
+            inside(&space, position, 0.0, "the light").map_err(|m| fail(Some(span), m))?;
     }
     let mut triangles = 0;
     let mut moving = Vec::new();
@@ -715,7 +691,7 @@ fn build_object(space: &ProductSpace, spec: &ObjectSpec) -> Result<Vec<ProductOb
     }])
 }
 
-fn start_camera(space: &ProductSpace, start: &StartSpec) -> Result<ProductCamera, String> {
+fn start_camera(space: &ProductSpace, start: &PointStartSpec) -> Result<ProductCamera, String> {
     let eye = inside(space, start.position, 0.0, "the start position")?;
     let target = match start.look_at {
         Some(t) => surface_point(space, DVec2::new(t[0], t[1]), t[2], "look_at")?,

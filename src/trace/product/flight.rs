@@ -11,7 +11,7 @@ use super::{ProductCamera, along, tangent_towards};
 use crate::geometry::{Geometry, Ray};
 use crate::scene::flight::FlightFile;
 use crate::space::Holonomy;
-use crate::space::motion::CoverFlight;
+use crate::space::motion::{CoverFlight, keyed};
 use crate::space::product::ProductSpace;
 use crate::space::product::motion::{camera_frame, transport};
 use glam::{DMat4, DVec3, DVec4};
@@ -169,32 +169,11 @@ impl ProductFlight {
         })
     }
 
-    /// The time of the last key.
-    #[must_use]
-    pub fn duration(&self) -> f64 {
-        self.keys.last().map_or(0.0, |k| k.0)
-    }
-
-    /// How many frames the flight has at `fps` (one at least).
-    #[must_use]
-    pub fn frame_count(&self, fps: f64) -> usize {
-        ((self.duration() * fps).round() as usize).max(1)
-    }
-
     /// The camera at time `t` in the universal cover (before wrapping).
     #[must_use]
     pub fn cover_camera(&self, t: f64) -> ProductCamera {
         let g = self.geometry;
-        let i = self.keys.partition_point(|k| k.0 <= t);
-        let (p, target) = if i == 0 {
-            (self.keys[0].1, self.keys[0].2)
-        } else if i == self.keys.len() {
-            (self.keys[i - 1].1, self.keys[i - 1].2)
-        } else {
-            let (a, b) = (self.keys[i - 1], self.keys[i]);
-            let s = (t - a.0) / (b.0 - a.0);
-            (between(g, a.1, b.1, s), between(g, a.2, b.2, s))
-        };
+        let (p, target) = keyed(&self.keys, t, |a, b, s| between(g, a, b, s));
         ProductCamera::looking_at(g, p, target, self.fov)
     }
 
@@ -221,7 +200,7 @@ impl CoverFlight for ProductFlight {
     type Space = ProductSpace;
 
     fn duration(&self) -> f64 {
-        ProductFlight::duration(self)
+        self.keys.last().map_or(0.0, |k| k.0)
     }
 
     fn cover_frame(&self, t: f64) -> DMat4 {

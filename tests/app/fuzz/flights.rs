@@ -1,6 +1,7 @@
 //! Flight files: hostile numbers, cut and scrambled texts.
 
 use super::*;
+use bevy_curved_spaces::space::motion::CoverFlight as _;
 
 /// The shipped flight file, and a recorded-style one with `up`, as texts.
 fn flight_texts() -> Vec<String> {
