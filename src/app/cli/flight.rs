@@ -68,70 +68,62 @@ pub(super) fn flight(args: &FlightArgs) -> Result<(), String> {
             "the GPU tracer takes a crossing budget from 1 to {MAX_GPU_BUDGET}, got {budget} (use --cpu for more)"
         ));
     }
-    let (mut renderer, progress) = start_frames(
-        args,
-        &format!("flight {name}: {} ({})", chosen.id, space.geometry().name()),
-        (total, flight.duration()),
-        (first, last, todo.len()),
-        budget,
-    )?;
     // One active space for every frame: its invariants are computed once.
     let active = ActiveSpace::new(&chosen.id, space.clone());
     let walls = args.walls.style(chosen.scene.shading.walls)?;
-    let started = Instant::now();
-    for &n in &todo {
-        let t = (n - 1) as f64 / args.fps;
-        let frame = flight.frame(space, t);
-        let camera = TraceCamera {
-            frame,
-            fov_y_degrees: flight.fov,
-        };
-        // Moving objects where they are at the frame's time.
-        let at = chosen.at(t).map_err(|e| format!("frame {n}: {e}"))?;
-        let mut scene = at.scene.clone();
-        scene.time = t;
-        scene.shading.colour_by = args.colour_by.into();
-        scene.shading.walls = walls;
-        scene.set_lighting(space, args.light.lighting(scene.shading.lighting))?;
-        scene.set_avatar_frame(space, frame);
-        let image = match renderer.as_mut() {
-            None => {
-                let settings = RenderSettings {
-                    width: args.size.0,
-                    height: args.size.1,
-                    max_crossings: budget,
-                };
-                let layout = ViewLayout::new(
-                    Default::default(),
-                    false,
-                    [frame; 2],
-                    flight.fov,
-                    settings.width,
-                    settings.height,
-                );
-                render_view(space, &scene, &layout, &settings, |_, _| {})
-            }
-            Some(r) => r
-                .render(&OffscreenRender {
-                    fog_distance: Some(chosen.scene.shading.fog_distance),
-                    parts: chosen.parts,
-                    base: at.base.clone(),
-                    time: t,
-                    colour_by: args.colour_by.into(),
-                    walls,
-                    lighting: Some(scene.shading.lighting),
-                    ..OffscreenRender::new(active.clone(), camera, args.size, budget as u32)
-                })
-                .map_err(|e| format!("frame {n}: {e}"))?,
-        };
-        let path = frame_path(&args.out, n);
-        bevy_curved_spaces::files::write_png(&path, &image)
-            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-        progress.inc(1);
-    }
-    progress.finish_and_clear();
-    finish_frames(args, todo.len(), started, (first, last, total));
-    Ok(())
+    render_frames(
+        args,
+        &format!("flight {name}: {} ({})", chosen.id, space.geometry().name()),
+        (total, flight.duration()),
+        (first, last, &todo),
+        budget,
+        |n, t, renderer| {
+            let frame = flight.frame(space, t);
+            let camera = TraceCamera {
+                frame,
+                fov_y_degrees: flight.fov,
+            };
+            // Moving objects where they are at the frame's time.
+            let at = chosen.at(t).map_err(|e| format!("frame {n}: {e}"))?;
+            let mut scene = at.scene.clone();
+            scene.time = t;
+            scene.shading.colour_by = args.colour_by.into();
+            scene.shading.walls = walls;
+            scene.set_lighting(space, args.light.lighting(scene.shading.lighting))?;
+            scene.set_avatar_frame(space, frame);
+            let image = match renderer {
+                None => {
+                    let settings = RenderSettings {
+                        width: args.size.0,
+                        height: args.size.1,
+                        max_crossings: budget,
+                    };
+                    let layout = ViewLayout::new(
+                        Default::default(),
+                        false,
+                        [frame; 2],
+                        flight.fov,
+                        settings.width,
+                        settings.height,
+                    );
+                    render_view(space, &scene, &layout, &settings, |_, _| {})
+                }
+                Some(r) => r
+                    .render(&OffscreenRender {
+                        fog_distance: Some(chosen.scene.shading.fog_distance),
+                        parts: chosen.parts,
+                        base: at.base.clone(),
+                        time: t,
+                        colour_by: args.colour_by.into(),
+                        walls,
+                        lighting: Some(scene.shading.lighting),
+                        ..OffscreenRender::new(active.clone(), camera, args.size, budget as u32)
+                    })
+                    .map_err(|e| format!("frame {n}: {e}"))?,
+            };
+            Ok(image)
+        },
+    )
 }
 
 /// The frames to render: `--frames` within the flight's `total`, less those on disk.
@@ -184,6 +176,39 @@ fn start_frames(
         Some(OffscreenRenderer::new().map_err(|e| e.to_string())?)
     };
     Ok((renderer, frame_progress(todo)?))
+}
+
+/// Renders the frames `todo` of a flight: says what (`what` names the file and the space),
+/// starts the GPU renderer unless `--cpu`, draws each frame by `frame(n, t, renderer)` (its
+/// number and time; the renderer where the GPU draws), writes it, and finishes with the
+/// summary and the video.
+fn render_frames(
+    args: &FlightArgs,
+    what: &str,
+    (total, duration): (usize, f64),
+    (first, last, todo): (usize, usize, &[usize]),
+    budget: usize,
+    mut frame: impl FnMut(usize, f64, Option<&mut OffscreenRenderer>) -> Result<image::RgbImage, String>,
+) -> Result<(), String> {
+    let (mut renderer, progress) = start_frames(
+        args,
+        what,
+        (total, duration),
+        (first, last, todo.len()),
+        budget,
+    )?;
+    let started = Instant::now();
+    for &n in todo {
+        let t = (n - 1) as f64 / args.fps;
+        let image = frame(n, t, renderer.as_mut())?;
+        let path = frame_path(&args.out, n);
+        bevy_curved_spaces::files::write_png(&path, &image)
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        progress.inc(1);
+    }
+    progress.finish_and_clear();
+    finish_frames(args, todo.len(), started, (first, last, total));
+    Ok(())
 }
 
 /// A progress bar over `n` frames.
@@ -265,7 +290,7 @@ fn flight_product(
             "the GPU tracer takes a crossing budget from 1 to {MAX_GPU_BUDGET}, got {budget} (use --cpu for more)"
         ));
     }
-    let (mut renderer, progress) = start_frames(
+    render_frames(
         args,
         &format!(
             "flight {name}: {} ({})",
@@ -273,28 +298,20 @@ fn flight_product(
             space.geometry_name()
         ),
         (total, flight.duration()),
-        (first, last, todo.len()),
+        (first, last, &todo),
         budget,
-    )?;
-    let started = Instant::now();
-    for &n in &todo {
-        let t = (n - 1) as f64 / args.fps;
-        let camera = flight.camera(space, t);
-        let scene = scene_at(t).map_err(|e| format!("frame {n}: {e}"))?;
-        let image = match renderer.as_mut() {
-            None => render_product(space, &scene, &camera, args.size.0, args.size.1, budget),
-            Some(r) => r
-                .render_product(space, &scene, &camera, args.size, budget as u32)
-                .map_err(|e| format!("frame {n}: {e}"))?,
-        };
-        let path = frame_path(&args.out, n);
-        bevy_curved_spaces::files::write_png(&path, &image)
-            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-        progress.inc(1);
-    }
-    progress.finish_and_clear();
-    finish_frames(args, todo.len(), started, (first, last, total));
-    Ok(())
+        |n, t, renderer| {
+            let camera = flight.camera(space, t);
+            let scene = scene_at(t).map_err(|e| format!("frame {n}: {e}"))?;
+            let image = match renderer {
+                None => render_product(space, &scene, &camera, args.size.0, args.size.1, budget),
+                Some(r) => r
+                    .render_product(space, &scene, &camera, args.size, budget as u32)
+                    .map_err(|e| format!("frame {n}: {e}"))?,
+            };
+            Ok(image)
+        },
+    )
 }
 
 /// `flight` in a Nil space: its default scene or its scene file's along the flight, with
@@ -333,48 +350,40 @@ fn flight_nil(
     } else {
         super::render::gpu_budget(budget)?
     };
-    let (mut renderer, progress) = start_frames(
+    render_frames(
         args,
         &format!("flight {name}: {} (Nil)", space.name()),
         (total, flight.duration()),
-        (first, last, todo.len()),
+        (first, last, &todo),
         budget,
-    )?;
-    let started = Instant::now();
-    for &n in &todo {
-        let t = (n - 1) as f64 / args.fps;
-        let camera = flight.camera(space, t);
-        let image = match renderer.as_mut() {
-            None => {
-                let layout = ViewLayout::new(
-                    Default::default(),
-                    false,
-                    [camera.frame; 2],
-                    camera.fov_y_degrees,
-                    args.size.0,
-                    args.size.1,
-                );
-                render_nil_view(space, &scene, &layout, budget)
-            }
-            Some(r) => r
-                .render_nil(
-                    space,
-                    &scene,
-                    &camera,
-                    args.size,
-                    gpu_budget,
-                    Default::default(),
-                )
-                .map_err(|e| format!("frame {n}: {e}"))?,
-        };
-        let path = frame_path(&args.out, n);
-        bevy_curved_spaces::files::write_png(&path, &image)
-            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-        progress.inc(1);
-    }
-    progress.finish_and_clear();
-    finish_frames(args, todo.len(), started, (first, last, total));
-    Ok(())
+        |n, t, renderer| {
+            let camera = flight.camera(space, t);
+            let image = match renderer {
+                None => {
+                    let layout = ViewLayout::new(
+                        Default::default(),
+                        false,
+                        [camera.frame; 2],
+                        camera.fov_y_degrees,
+                        args.size.0,
+                        args.size.1,
+                    );
+                    render_nil_view(space, &scene, &layout, budget)
+                }
+                Some(r) => r
+                    .render_nil(
+                        space,
+                        &scene,
+                        &camera,
+                        args.size,
+                        gpu_budget,
+                        Default::default(),
+                    )
+                    .map_err(|e| format!("frame {n}: {e}"))?,
+            };
+            Ok(image)
+        },
+    )
 }
 
 /// `DIR/flight.mp4` from the frames, where ffmpeg is installed (else a note how).
