@@ -123,70 +123,47 @@ fn nil_spaces_render_on_the_gpu_like_the_cpu_reference() {
                 );
             }
         }
-        // The teaching views: the surfaces tinted by the crossings and by the last face.
+        // The teaching views (the surfaces tinted by the crossings and by the last face) and
+        // walls with windows (the sides' shear makes the panels a pair's own).
+        let plain = cpu(&space, &scene, &camera, size, budget);
+        let mut variants = Vec::new();
         for colour_by in [
             bevy_curved_spaces::scene::ColourBy::Crossings,
             bevy_curved_spaces::scene::ColourBy::Face,
         ] {
             let mut tinted = scene.clone();
             tinted.colour_by = colour_by;
-            let reference = cpu(&space, &tinted, &camera, size, budget);
-            let plain = cpu(&space, &scene, &camera, size, budget);
+            variants.push((colour_by.name(), tinted));
+        }
+        let mut walled = scene.clone();
+        walled.walls = Some(bevy_curved_spaces::scene::WallStyle::new(0.55).expect("an opening"));
+        variants.push(("walls", walled));
+        for (name, variant) in variants {
+            let reference = cpu(&space, &variant, &camera, size, budget);
             let changed = reference
                 .pixels()
                 .zip(plain.pixels())
                 .filter(|(p, q)| p != q)
                 .count();
-            assert!(
-                changed > 100,
-                "nil-{k}: {colour_by:?} changes {changed} pixels"
-            );
+            assert!(changed > 100, "nil-{k}: {name} changes {changed} pixels");
             let gpu = renderer
                 .render_nil(
                     &space,
-                    &tinted,
+                    &variant,
                     &camera,
                     size,
                     budget,
                     StereoSettings::default(),
                 )
-                .unwrap_or_else(|e| panic!("nil-{k} by {colour_by:?}: {e}"));
+                .unwrap_or_else(|e| panic!("nil-{k} with {name}: {e}"));
             judge(
-                &format!("nil-{k}-{}", colour_by.name()),
+                &format!("nil-{k}-{name}"),
                 &gpu,
                 &reference,
                 &out,
                 &mut failures,
             );
         }
-        // Walls with windows: the sides' shear makes the panels a pair's own.
-        let mut walled = scene.clone();
-        walled.walls = Some(bevy_curved_spaces::scene::WallStyle::new(0.55).expect("an opening"));
-        let reference = cpu(&space, &walled, &camera, size, budget);
-        let plain = cpu(&space, &scene, &camera, size, budget);
-        let changed = reference
-            .pixels()
-            .zip(plain.pixels())
-            .filter(|(p, q)| p != q)
-            .count();
-        assert!(changed > 100, "nil-{k}: the walls change {changed} pixels");
-        let gpu = renderer
-            .render_nil(
-                &space,
-                &walled,
-                &camera,
-                size,
-                budget,
-                StereoSettings::default(),
-            )
-            .unwrap_or_else(|e| panic!("nil-{k} with walls: {e}"));
-        judge(
-            &format!("nil-{k}-walls"),
-            &gpu,
-            &reference,
-            &out,
-            &mut failures,
-        );
     }
     assert!(
         failures.is_empty(),
