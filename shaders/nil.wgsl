@@ -283,8 +283,14 @@ fn nil_step_meeting(i: u32, ray: NilRay, first: f32, t_max: f32, exact: bool) ->
     return NIL_NONE;
 }
 
-// Whether the chart box of the segment (Rust: `segment_box`) meets object i's.
-fn nil_segment_meets(i: u32, ray: NilRay, t_max: f32) -> bool {
+// The chart box of the segment of length t_max (Rust: `segment_box`): its lowest and
+// highest corner, widened by a hair for f32's rounding.
+struct NilBox {
+    lo: vec3<f32>,
+    hi: vec3<f32>,
+}
+
+fn nil_segment_box(ray: NilRay, t_max: f32) -> NilBox {
     let a = length(ray.v.xy);
     var centre = ray.p.xy;
     var reach = vec2<f32>(a * t_max);
@@ -301,8 +307,13 @@ fn nil_segment_meets(i: u32, ray: NilRay, t_max: f32) -> bool {
     let slack = 0.5 * a * far;
     let lo = vec3<f32>(centre - reach, ray.p.z + min(t_max * (c - slack), 0.0)) - vec3<f32>(1.0e-5);
     let hi = vec3<f32>(centre + reach, ray.p.z + max(t_max * (c + slack), 0.0)) + vec3<f32>(1.0e-5);
+    return NilBox(lo, hi);
+}
+
+// Whether the segment's chart box meets object i's.
+fn nil_box_meets(i: u32, segment: NilBox) -> bool {
     let o = space.nil_objects[i];
-    return all((lo <= o.box_hi.xyz)) && all((o.box_lo.xyz <= hi));
+    return all((segment.lo <= o.box_hi.xyz)) && all((o.box_lo.xyz <= segment.hi));
 }
 
 // The nearest object met within t_max: (index, t); index NIL_OBJECTS for none. Where not
@@ -310,8 +321,10 @@ fn nil_segment_meets(i: u32, ray: NilRay, t_max: f32) -> bool {
 fn nil_nearest(ray: NilRay, t_max: f32, exact: bool) -> vec2<f32> {
     var best = t_max;
     var index = #{NIL_OBJECTS}u;
+    // The segment's chart box, made once and again only where a hit shortens the segment.
+    var segment = nil_segment_box(ray, best);
     for (var i = 0u; i < u32(space.nil_box.z); i += 1u) {
-        if !nil_segment_meets(i, ray, best) || nil_clearance(i, ray.p) > best {
+        if !nil_box_meets(i, segment) || nil_clearance(i, ray.p) > best {
             continue;
         }
         let t = nil_meeting(i, ray, best, exact);
@@ -321,6 +334,7 @@ fn nil_nearest(ray: NilRay, t_max: f32, exact: bool) -> vec2<f32> {
             if !exact {
                 break;
             }
+            segment = nil_segment_box(ray, best);
         }
     }
     return vec2<f32>(f32(index), best);
