@@ -2,9 +2,10 @@
 //!
 //! Walk inside closed 3-manifolds and orbifolds — the 3-torus and the other flat spaces, the
 //! Seifert–Weber space, the Poincaré dodecahedral space, lens spaces, SnapPy's census,
-//! mirrored cubes and dodecahedra, surfaces times a circle (H²×R, S²×R) — and see what light
-//! does there: every frame is ray traced on the GPU through the fundamental cell and its
-//! face pairings, so you see the universal cover tiled with copies of the scene.
+//! mirrored cubes and dodecahedra, surfaces times a circle (H²×R, S²×R), the Heisenberg
+//! nilmanifolds (Nil) — and see what light does there: every frame is ray traced on the GPU
+//! through the fundamental cell and its face pairings, so you see the universal cover tiled
+//! with copies of the scene.
 //!
 //! ## The plugin
 //!
