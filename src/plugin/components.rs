@@ -258,9 +258,22 @@ pub struct BaseNilScene {
     pub scene: crate::trace::nil::NilScene,
     /// The start view (`None`: the space's default camera).
     pub start: Option<crate::trace::nil::NilCamera>,
+    /// Balls that move (placed at the app's clock each frame, with their lattice images).
+    pub moving: Vec<crate::trace::nil::moving::NilMover>,
 }
 
 impl BaseNilScene {
+    /// A Nil scene file's scene, start view and moving balls.
+    #[cfg(feature = "scene-files")]
+    #[must_use]
+    pub fn from_file(file: &crate::trace::nil::file::NilSceneFile) -> Self {
+        Self {
+            scene: file.scene.clone(),
+            start: file.start,
+            moving: file.moving.clone(),
+        }
+    }
+
     /// Where players start in `space`: the base scene's start view, else the default one.
     #[must_use]
     pub fn start_frame(base: Option<&Self>, space: &crate::space::nil::NilSpace) -> DMat4 {

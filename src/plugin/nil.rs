@@ -21,15 +21,22 @@ pub fn default_nil_budget(space: &NilSpace) -> u32 {
     (32 + 2 * space.k()).min(MAX_GPU_BUDGET)
 }
 
-/// The scene shown: the base scene or the default one, with the fog and the lighting set in
-/// the settings (the lamp stays a point).
+/// The scene shown: the base scene or the default one, its moving balls where they are at
+/// `time` seconds, with the fog and the lighting set in the settings (the lamp stays a point).
 #[must_use]
 pub fn nil_scene(
     space: &NilSpace,
     settings: &TracerSettings,
     base: Option<&BaseNilScene>,
+    time: f64,
 ) -> NilScene {
     let mut scene = base.map_or_else(|| default_scene(space), |b| b.scene.clone());
+    if let Some(b) = base.filter(|b| !b.moving.is_empty()) {
+        match crate::trace::nil::moving::scene_at(space, &scene, &b.moving, time) {
+            Ok(at) => scene = at,
+            Err(e) => bevy::log::warn!("moving balls left out: {e}"),
+        }
+    }
     if let Some(fog) = settings.fog_distance.filter(|f| f.is_finite() && *f > 0.0) {
         scene.fog_distance = fog;
     }
@@ -59,8 +66,11 @@ pub(crate) struct NilKey {
     colour_by: crate::scene::ColourBy,
 }
 
-/// Packs the Nil scene for the GPU when the space, the base scene or the settings changed.
+/// Packs the Nil scene for the GPU when the space, the base scene or the settings changed,
+/// and every frame while balls move.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn upload_nil_scene(
+    time: Res<Time>,
     active: Res<ActiveSpace>,
     settings: Res<TracerSettings>,
     base: Option<Res<BaseNilScene>>,
@@ -81,11 +91,14 @@ pub(crate) fn upload_nil_scene(
         walls: settings.walls,
         colour_by: settings.colour_by,
     };
-    let base_changed = base.as_ref().is_some_and(|b| b.is_changed());
+    // Moving balls: packed again every frame.
+    let base_changed = base
+        .as_ref()
+        .is_some_and(|b| b.is_changed() || !b.moving.is_empty());
     if prepared.is_some() && !active.is_changed() && !base_changed && last.as_ref() == Some(&key) {
         return;
     }
-    let scene = nil_scene(space, &settings, base.as_deref());
+    let scene = nil_scene(space, &settings, base.as_deref(), time.elapsed_secs_f64());
     let budget = settings
         .max_crossings
         .map_or_else(|| default_nil_budget(space), |b| b.clamp(1, MAX_GPU_BUDGET));

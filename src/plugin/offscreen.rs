@@ -400,6 +400,7 @@ impl OffscreenRenderer {
         world.insert_resource(crate::plugin::nil::BaseNilScene {
             scene: scene.clone(),
             start: Some(*camera),
+            moving: Vec::new(),
         });
         self.picture(
             (w, h),

@@ -145,7 +145,8 @@ impl Family {
                 | Feature::LampFluence
                 | Feature::Headset
                 | Feature::Walls
-                | Feature::TeachingViews,
+                | Feature::TeachingViews
+                | Feature::MovingObjects,
             ) => {
                 return Ok(());
             }
@@ -160,9 +161,6 @@ impl Family {
             (Family::Nil, Feature::HolonomyView) => {
                 "Nil's copies of the box are left translations, which turn no direction: every \
                  copy would show white; `--colour-by crossings` or `face` tell the copies apart"
-            }
-            (Family::Nil, Feature::MovingObjects) => {
-                "a Nil scene's objects stand still (their lattice images are made once)"
             }
             (Family::Nil, Feature::SceneParts) => {
                 "a Nil scene file's `edges` and `centre_ball` choose the parts"

@@ -334,14 +334,22 @@ fn flight_nil(
     let flight = NilFlight::new(space, file).map_err(|e| format!("{name}: {e}"))?;
     let total = flight.frame_count(args.fps);
     let (first, last, todo) = frames_to_do(args, total)?;
-    let mut scene = chosen.scene;
-    scene.walls = args.walls.style(scene.walls)?.filter(|w| w.opening < 1.0);
-    scene.colour_by = args.colour_by.into();
-    if args.light.any() {
-        let lighting = args.light.lighting(scene.lighting);
-        let light = scene.light;
-        scene.set_lighting(space, light, lighting)?;
-    }
+    // The scene at a frame's time: its moving balls where they are, the flight's options.
+    let walls = args
+        .walls
+        .style(chosen.scene.walls)?
+        .filter(|w| w.opening < 1.0);
+    let scene_at = |t: f64| -> Result<_, String> {
+        let mut scene = chosen.scene_at(t)?;
+        scene.walls = walls;
+        scene.colour_by = args.colour_by.into();
+        if args.light.any() {
+            let lighting = args.light.lighting(scene.lighting);
+            let light = scene.light;
+            scene.set_lighting(space, light, lighting)?;
+        }
+        Ok(scene)
+    };
     let budget = args
         .crossings
         .unwrap_or_else(|| bevy_curved_spaces::plugin::nil::default_nil_budget(space) as usize);
@@ -358,6 +366,7 @@ fn flight_nil(
         budget,
         |n, t, renderer| {
             let camera = flight.camera(space, t);
+            let scene = scene_at(t).map_err(|e| format!("frame {n}: {e}"))?;
             let image = match renderer {
                 None => {
                     let layout = ViewLayout::new(

@@ -103,10 +103,7 @@ pub(super) fn choose(
         if let Some(file) = bevy_curved_spaces::trace::nil::file::load_nil_scene_file(path)
             .map_err(|e| e.to_string())?
         {
-            let base = bevy_curved_spaces::plugin::nil::BaseNilScene {
-                scene: file.scene,
-                start: file.start,
-            };
+            let base = bevy_curved_spaces::plugin::nil::BaseNilScene::from_file(&file);
             let space = std::sync::Arc::new(file.space);
             return Ok(Choice::Nil(NilChoice::new(space, Some(base))));
         }
@@ -176,6 +173,25 @@ pub(super) struct NilChoice {
 }
 
 impl NilChoice {
+    /// The scene with the base scene's moving balls where they are at `time` seconds.
+    pub(super) fn scene_at(
+        &self,
+        time: f64,
+    ) -> Result<bevy_curved_spaces::trace::nil::NilScene, String> {
+        match &self.base {
+            Some(base) if !base.moving.is_empty() => {
+                bevy_curved_spaces::trace::nil::moving::scene_at(
+                    &self.space,
+                    &self.scene,
+                    &base.moving,
+                    time,
+                )
+                .map_err(|e| format!("at {time} s: {e}"))
+            }
+            _ => Ok(self.scene.clone()),
+        }
+    }
+
     fn new(
         space: std::sync::Arc<bevy_curved_spaces::space::nil::NilSpace>,
         base: Option<bevy_curved_spaces::plugin::nil::BaseNilScene>,

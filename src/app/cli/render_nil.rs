@@ -10,17 +10,10 @@ use std::time::Instant;
 
 /// `render nil-K`: on the GPU, or with the f64 CPU reference (`--cpu`).
 pub(super) fn render_nil_command(args: &RenderArgs, chosen: NilChoice) -> Result<(), String> {
-    let NilChoice {
-        space,
-        mut scene,
-        mut camera,
-        ..
-    } = chosen;
-    let space = &*space;
+    let mut scene = chosen.scene_at(args.time)?;
+    let mut camera = chosen.camera;
+    let space = &*chosen.space;
     let refuse = |feature| super::spaces::require(Family::Nil, space.name(), feature);
-    if args.time != 0.0 {
-        refuse(Feature::MovingObjects)?;
-    }
     if args.view.changes_parts() {
         refuse(Feature::SceneParts)?;
     }

@@ -26,6 +26,7 @@
 //! position = [0.25, 0.1, 0.0]
 //! radius = 0.1
 //! colour = [0.9, 0.5, 0.2]
+//! velocity = [0.2, 0, 0]  # a ball may move: chart units a second along E₁, E₂, E₃
 //!
 //! [[object]]
 //! type = "fibre"          # a vertical tube (the points within radius of a fibre): [x, y]
@@ -50,7 +51,6 @@ use crate::scene::file_support::{
     one_light, parse_toml, read_scene_text, walls_of,
 };
 use crate::space::nil::{NilSpace, nil_space};
-use crate::space::{Family, Feature};
 use glam::DVec3;
 use serde::Deserialize;
 use std::path::Path;
@@ -76,6 +76,16 @@ pub struct NilSceneFile {
     pub scene: NilScene,
     /// The start view (`None`: the space's default camera).
     pub start: Option<NilCamera>,
+    /// The balls with a `velocity`, as they start (not in `scene`).
+    pub moving: Vec<super::moving::NilMover>,
+}
+
+impl NilSceneFile {
+    /// The scene with its moving balls where they are at `time` seconds (with their lattice
+    /// images); an error says why a time cannot be flown.
+    pub fn scene_at(&self, time: f64) -> Result<NilScene, crate::space::motion::MotionError> {
+        super::moving::scene_at(&self.space, &self.scene, &self.moving, time)
+    }
 }
 
 /// The keys a Nil scene file knows (for "did you mean").
@@ -229,9 +239,29 @@ pub fn parse_nil_scene(text: &str, file: &str) -> Result<NilSceneFile, SceneFile
     {
         scene.light = chart_point(position, "the light").map_err(|m| fail(Some(span), m))?;
     }
+    let mut moving = Vec::new();
     for object in &spec.objects {
         let at = |m: String| fail(Some(object.span()), m);
         let made = build_object(&space, object.get_ref()).map_err(at)?;
+        if let ObjectSpec::Ball {
+            velocity: Some(v), ..
+        } = object.get_ref()
+        {
+            moving.push(mover(made, *v).map_err(at)?);
+            // Counted with its images where it starts.
+            let mut start = NilScene {
+                objects: Vec::new(),
+                ..scene.clone()
+            };
+            start.add_with_images(&space, made);
+            if scene.objects.len() + start.objects.len() > MAX_NIL_OBJECTS {
+                return Err(at(format!(
+                    "the scene has more than {MAX_NIL_OBJECTS} objects with the lattice \
+                     images that reach into the box: make the objects fewer or smaller"
+                )));
+            }
+            continue;
+        }
         scene.add_with_images(&space, made);
         if scene.objects.len() > MAX_NIL_OBJECTS {
             return Err(at(format!(
@@ -261,6 +291,31 @@ pub fn parse_nil_scene(text: &str, file: &str) -> Result<NilSceneFile, SceneFile
         space,
         scene,
         start,
+        moving,
+    })
+}
+
+/// A ball flying with `velocity` (chart units a second in the frame `E₁, E₂, E₃` at its
+/// centre): its frame those axes at its centre in the box.
+fn mover(ball: NilObject, velocity: [f64; 3]) -> Result<super::moving::NilMover, String> {
+    let v = DVec3::from_array(velocity);
+    if !v.is_finite() {
+        return Err(format!(
+            "velocity must be finite (chart units a second), got {velocity:?}"
+        ));
+    }
+    let NilShape::Ball(centre) = ball.shape else {
+        return Err("only a ball moves".into());
+    };
+    let mut frame = glam::DMat4::IDENTITY;
+    frame.w_axis = DVec3::from_array(centre).extend(1.0);
+    Ok(super::moving::NilMover {
+        object: ball,
+        frame,
+        velocity: crate::space::motion::Velocity {
+            linear: v,
+            angular: DVec3::ZERO,
+        },
     })
 }
 
@@ -291,18 +346,10 @@ fn radius_of(r: f64) -> Result<f64, String> {
 fn build_object(space: &NilSpace, spec: &ObjectSpec) -> Result<NilObject, String> {
     let (shape, radius, c) = match spec {
         ObjectSpec::Ball {
-            velocity: Some(_), ..
-        } => {
-            return Err(Family::Nil
-                .supports(Feature::MovingObjects)
-                .err()
-                .map_or_else(|| "a moving ball".to_string(), |e| e.to_string()));
-        }
-        ObjectSpec::Ball {
             position,
             radius,
             colour,
-            velocity: None,
+            ..
         } => (
             NilShape::Ball(space.into_box(chart_point(*position, "the ball")?)),
             radius_of(*radius)?,

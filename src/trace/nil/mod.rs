@@ -13,6 +13,7 @@ pub mod file;
 #[cfg(feature = "scene-files")]
 pub mod flight;
 pub mod light;
+pub mod moving;
 pub mod objects;
 pub mod walls;
 

@@ -202,9 +202,9 @@ fn bad_nil_scene_files_get_errors_that_name_the_line() {
             "at most 0.5",
         ),
         (
-            "space = \"nil-2\"\n[[object]]\ntype = \"ball\"\nposition = [0, 0, 0]\nradius = 0.1\nvelocity = [1, 0, 0]\n",
+            "space = \"nil-2\"\n[[object]]\ntype = \"ball\"\nposition = [0, 0, 0]\nradius = 0.1\nvelocity = [inf, 0, 0]\n",
             ":2: ",
-            "not in the Nil spaces: moving objects",
+            "velocity must be finite",
         ),
         (
             "space = \"nil-2\"\n[[object]]\ntype = \"fibre\"\nposition = [0, 0]\nradios = 0.1\n",
@@ -250,6 +250,59 @@ fn bad_nil_scene_files_get_errors_that_name_the_line() {
             needle,
         );
     }
+}
+
+/// A scene file's moving ball is drawn where it has flown: `render --time` moves it, a
+/// flight's frames show it moving, and a ball too fast to follow is refused by name.
+#[test]
+fn moving_balls_fly_through_nil() {
+    let dir = temp_dir("nil-moving");
+    let scene = dir.join("moving.toml");
+    std::fs::write(
+        &scene,
+        "space = \"nil-1\"\nedges = false\n[start]\nposition = [0.0, -0.4, 0.0]\n\
+         look_at = [0.0, 0.0, 0.0]\n[[object]]\ntype = \"ball\"\nposition = [0.0, 0.0, 0.0]\n\
+         radius = 0.1\ncolour = [0.9, 0.2, 0.2]\nvelocity = [0.25, 0.0, 0.0]\n",
+    )
+    .expect("write");
+    let path = scene.to_str().unwrap();
+    let at =
+        |t: &str, name: &str| cpu_picture(&dir, name, &["render", "--scene", path, "--time", t]);
+    let start = at("0", "t0.png");
+    let later = at("1", "t1.png");
+    // At 0 the ball is dead ahead; a second later it has moved off the middle to the right.
+    let middle = |image: &image::RgbImage| image.get_pixel(20, 12).0;
+    let [r, g, b] = middle(&start);
+    assert!(r > 2 * g.max(b) && r > 30, "at 0 the middle is {r},{g},{b}");
+    assert_ne!(middle(&start), middle(&later), "the ball did not move");
+    let right = |image: &image::RgbImage| {
+        image
+            .enumerate_pixels()
+            .filter(|(x, _, p)| *x > 20 && p.0[0] > 2 * p.0[1].max(p.0[2]) && p.0[0] > 30)
+            .count()
+    };
+    assert!(right(&later) > right(&start), "the ball did not move right");
+    let fast = dir.join("fast.toml");
+    std::fs::write(
+        &fast,
+        std::fs::read_to_string(&scene)
+            .unwrap()
+            .replace("velocity = [0.25, 0.0, 0.0]", "velocity = [1e9, 0.0, 0.0]"),
+    )
+    .expect("write");
+    fails_with(
+        &[
+            "render",
+            "--scene",
+            fast.to_str().unwrap(),
+            "--time",
+            "1",
+            "--cpu",
+            "--size",
+            "16x9",
+        ],
+        "at 1 s",
+    );
 }
 
 /// A Nil flight's first frame is the view from its first key (the same picture as

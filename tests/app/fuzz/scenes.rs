@@ -148,6 +148,15 @@ fn nil_outcome(text: &str) -> bool {
                     && s.power.is_finite(),
                 "a non-finite Nil scene from:\n{text}"
             );
+            // Moving balls later on: a scene or an error, never a panic or a hang.
+            for t in [2.5, 1e3] {
+                if let Ok(at) = file.scene_at(t) {
+                    assert!(at.objects.iter().all(|o| match o.shape {
+                        NilShape::Ball(c) => c.iter().all(|x| x.is_finite()),
+                        _ => true,
+                    }));
+                }
+            }
             let camera = file.start.unwrap_or_else(|| default_camera(&file.space));
             assert!(camera.frame.is_finite());
             let layout = bevy_curved_spaces::view::ViewLayout::new(

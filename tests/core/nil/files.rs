@@ -68,6 +68,42 @@ fn a_scene_files_ball_comes_with_its_lattice_images() {
     assert!(inside > 10, "only {inside} samples in the ball");
 }
 
+/// A moving ball is where the Nil geodesic of its velocity has taken it, brought into the
+/// box by the lattice, and drawn there with its images.
+#[test]
+fn a_moving_ball_flies_its_geodesic() {
+    use bevy_curved_spaces::space::nil::{NilRay, flow};
+    let text = "space = \"nil-3\"\nedges = false\n[[object]]\ntype = \"ball\"\n\
+                position = [0.1, 0.2, 0.05]\nradius = 0.05\nvelocity = [0.3, -0.4, 0.5]\n";
+    let file = parse_nil_scene(text, "t.toml").expect("a scene");
+    let space = NilSpace::new(3);
+    assert_eq!(file.moving.len(), 1);
+    assert!(
+        file.scene.objects.is_empty(),
+        "the mover is not in the still scene"
+    );
+    let speed = (0.3f64 * 0.3 + 0.4 * 0.4 + 0.5 * 0.5).sqrt();
+    for t in [0.0, 0.5, 3.0] {
+        let ball = file.moving[0].object_at(&space, t).expect("a time");
+        let NilShape::Ball(at) = ball.shape else {
+            panic!("a ball");
+        };
+        let cover = flow(
+            &NilRay {
+                point: [0.1, 0.2, 0.05],
+                velocity: [0.3 / speed, -0.4 / speed, 0.5 / speed],
+            },
+            speed * t,
+        )
+        .point;
+        let want = space.into_box(cover);
+        let gap = (0..3).map(|i| (at[i] - want[i]).abs()).fold(0.0, f64::max);
+        assert!(gap < 1e-9, "at {t} s the ball is {gap:e} off its geodesic");
+        let scene = file.scene_at(t).expect("a scene");
+        assert!(scene.objects.iter().any(|o| o.shape == NilShape::Ball(at)));
+    }
+}
+
 /// The plugin's players start at a Nil scene file's `[start]` (the base scene), with its
 /// field of view.
 #[test]
@@ -80,10 +116,7 @@ fn the_plugin_starts_at_a_nil_scene_files_view() {
     let start = file.start.expect("a start view");
     let mut app = App::new();
     app.add_plugins((MinimalPlugins, bevy::input::InputPlugin))
-        .insert_resource(BaseNilScene {
-            scene: file.scene.clone(),
-            start: file.start,
-        })
+        .insert_resource(BaseNilScene::from_file(&file))
         .add_plugins(CurvedSpacesPlugin {
             space: "nil-3".into(),
             ..default()
@@ -217,4 +250,45 @@ fn a_headset_walks_nil_geodesics_through_the_faces() {
         assert!(space.outside_by(head.frame.w_axis) <= 1e-4 + 1e-12);
         assert!(space.frame_defect(head.frame) < 1e-9);
     }
+}
+
+/// In the plugin a Nil scene's moving ball flies with the app's clock: the packed scene
+/// changes from frame to frame while it moves, and a still scene is packed once.
+#[test]
+fn the_plugin_flies_a_nil_scenes_moving_balls() {
+    use bevy::prelude::*;
+    use bevy::time::TimeUpdateStrategy;
+    use bevy_curved_spaces::plugin::render::PreparedScene;
+    use bevy_curved_spaces::prelude::*;
+    let moving = "space = \"nil-3\"\nedges = false\n[[object]]\ntype = \"ball\"\n\
+                  position = [0.0, 0.0, 0.0]\nradius = 0.05\nvelocity = [0.3, 0.0, 0.0]\n";
+    let still = moving.replace("velocity = [0.3, 0.0, 0.0]\n", "");
+    let packs = |text: &str| {
+        let file = parse_nil_scene(text, "t.toml").expect("a scene");
+        let mut app = App::new();
+        app.add_plugins((MinimalPlugins, bevy::input::InputPlugin))
+            .insert_resource(TimeUpdateStrategy::ManualDuration(
+                std::time::Duration::from_secs_f64(0.1),
+            ))
+            .insert_resource(BaseNilScene::from_file(&file))
+            .add_plugins(CurvedSpacesPlugin {
+                space: "nil-3".into(),
+                ..default()
+            });
+        app.world_mut().spawn(CurvedSpaceCamera::default());
+        let mut seen: Vec<Vec<u32>> = Vec::new();
+        for _ in 0..4 {
+            app.update();
+            let words = app.world().resource::<PreparedScene>().0.words.clone();
+            if seen.last() != Some(&words) {
+                seen.push(words);
+            }
+        }
+        seen.len()
+    };
+    assert!(
+        packs(moving) >= 3,
+        "the moving ball's scene is packed again as it flies"
+    );
+    assert_eq!(packs(&still), 1, "a still scene is packed once");
 }
