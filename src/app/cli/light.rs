@@ -192,13 +192,7 @@ fn light_nil(
     use bevy_curved_spaces::trace::nil::light::{nil_fluence, reach};
     refuse_radius(args, Family::Nil, space.name())?;
     let point = |x: DVec3, what: &str| -> Result<[f64; 3], String> {
-        if !x.is_finite() || x.abs().max_element() > 1e6 {
-            return Err(format!(
-                "{what} {:?} is not a chart point of Nil within 10⁶",
-                x.to_array()
-            ));
-        }
-        Ok(space.into_box(x.to_array()))
+        bevy_curved_spaces::trace::nil::chart_point(x.to_array(), what).map(|p| space.into_box(p))
     };
     let lamp = point(args.light, "--light")?;
     let at = point(args.at, "--at")?;

@@ -44,7 +44,10 @@
 //!
 //! An error names the file and the line.
 
-use super::{NilCamera, NilObject, NilParts, NilScene, NilShape, default_camera, scene_with_parts};
+use super::{
+    NilCamera, NilObject, NilParts, NilScene, NilShape, chart_point, default_camera,
+    scene_with_parts,
+};
 use crate::scene::file::SceneFileError;
 use crate::scene::file_support::{
     LightingSpec, PointLightSpec, PointStartSpec, ambient_of, colour, failing, lighting_of,
@@ -317,17 +320,6 @@ fn mover(ball: NilObject, velocity: [f64; 3]) -> Result<super::moving::NilMover,
             angular: DVec3::ZERO,
         },
     })
-}
-
-/// A chart point within 10⁶ (the lattice brings it into the box).
-fn chart_point(p: [f64; 3], what: &str) -> Result<[f64; 3], String> {
-    if p.iter().all(|x| x.is_finite() && x.abs() <= 1e6) {
-        Ok(p)
-    } else {
-        Err(format!(
-            "{what} at {p:?} is not a chart point of Nil within 10⁶"
-        ))
-    }
 }
 
 /// A radius: positive, at most [`MAX_NIL_RADIUS`].

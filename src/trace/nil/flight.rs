@@ -49,12 +49,7 @@ fn crossings_to_box(space: &NilSpace, p: DVec3) -> usize {
 /// A key's chart point, refused where it is not finite or more than
 /// [`MAX_KEY_CROSSINGS`] crossings from the box.
 fn key_point(space: &NilSpace, p: DVec3, what: &str) -> Result<DVec3, String> {
-    if !p.is_finite() || p.abs().max_element() > 1e6 {
-        return Err(format!(
-            "{what} {:?} is not a chart point of Nil within 10⁶",
-            p.to_array()
-        ));
-    }
+    super::chart_point(p.to_array(), what)?;
     let n = crossings_to_box(space, p);
     if n > MAX_KEY_CROSSINGS {
         return Err(format!(

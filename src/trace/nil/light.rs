@@ -197,20 +197,29 @@ pub fn gather(
     let lamp = &scene.lamp;
     let shadows = lighting.shadows as usize;
     let mut sum = 0.0;
-    for (k, q) in lamp.images.iter().enumerate() {
-        // Past the reach by the root-free floor of the distance: no root to find.
-        if crate::space::nil::distance_floor(*q, x) > lamp.reach {
-            continue;
-        }
-        let path = shortest(x, *q);
-        if path.0 <= lamp.reach {
-            sum += light_along(path, k < shadows);
-        }
+    for (k, path) in paths_within(&lamp.images, x, lamp.reach) {
+        sum += light_along(path, k < shadows);
     }
     if lighting.tail {
         sum += 0.25 * open_tail_fluence(lamp.reach, fog, lamp.volume);
     }
     sum
+}
+
+/// The shortest geodesics from `x` to the `images` within `reach` (their index, length and
+/// start velocity): the images past it by the root-free floor of the distance are skipped
+/// without a root to find ([`crate::space::nil::distance_floor`]).
+fn paths_within<'a>(
+    images: &'a [[f64; 3]],
+    x: [f64; 3],
+    reach: f64,
+) -> impl Iterator<Item = (usize, (f64, [f64; 3]))> + 'a {
+    images
+        .iter()
+        .enumerate()
+        .filter(move |(_, q)| crate::space::nil::distance_floor(**q, x) <= reach)
+        .map(move |(k, q)| (k, shortest(x, *q)))
+        .filter(move |(_, path)| path.0 <= reach)
 }
 
 /// The fluence at the point `x` of the box from a unit lamp at `lamp` (a point of the box),
@@ -231,12 +240,9 @@ pub fn nil_fluence(
     let (images, covered) = lamp_images(space, lamp, reach);
     let mut exact = 0.0;
     let mut paths = 0;
-    for q in &images {
-        let (r, l) = shortest(x, *q);
-        if r <= covered {
-            paths += 1;
-            exact += (-r / fog).exp() / area_density(r, l[2]).max(floor);
-        }
+    for (_, (r, l)) in paths_within(&images, x, covered) {
+        paths += 1;
+        exact += (-r / fog).exp() / area_density(r, l[2]).max(floor);
     }
     (
         paths,

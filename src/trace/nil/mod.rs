@@ -221,17 +221,8 @@ impl NilCamera {
         target: DVec3,
         fov: f64,
     ) -> Result<Self, String> {
-        for (what, p) in [
-            ("the camera's position", eye),
-            ("the point looked at", target),
-        ] {
-            if !p.is_finite() || p.abs().max_element() > 1e6 {
-                return Err(format!(
-                    "{what} {:?} is not a chart point of Nil within 10⁶",
-                    p.to_array()
-                ));
-            }
-        }
+        chart_point(eye.to_array(), "the camera's position")?;
+        chart_point(target.to_array(), "the point looked at")?;
         if !(fov > 0.0 && fov < 180.0) {
             return Err(format!(
                 "fov must be an angle between 0 and 180 degrees, got {fov}"
@@ -244,6 +235,24 @@ impl NilCamera {
             frame,
             fov_y_degrees: fov,
         })
+    }
+}
+
+/// The farthest a chart point given by a user (a scene file, a flight, the command line)
+/// may lie from the origin in each coordinate: the lattice brings it into the box in f64.
+pub const MAX_CHART_COORDINATE: f64 = 1e6;
+
+/// `p` where it is a chart point within [`MAX_CHART_COORDINATE`], else an error naming it
+/// as `what`.
+pub fn chart_point(p: [f64; 3], what: &str) -> Result<[f64; 3], String> {
+    if p.iter()
+        .all(|x| x.is_finite() && x.abs() <= MAX_CHART_COORDINATE)
+    {
+        Ok(p)
+    } else {
+        Err(format!(
+            "{what} {p:?} is not a chart point of Nil within 10⁶"
+        ))
     }
 }
 
