@@ -600,7 +600,7 @@ fn walk_nil(
     let mut stereo_args = args.stereo;
     if args.xr
         && let Some(done) = headset_or_desktop(&mut stereo_args, || {
-            let active = ActiveSpace::new(&args.space, AnySpace::Nil(space.clone()));
+            let active = ActiveSpace::new(space.name(), AnySpace::Nil(space.clone()));
             let stereo = args.stereo.settings_for(active.inradius)?;
             let base = chosen.base.clone();
             let walls = args.view.walls.style(chosen.scene.walls)?;
@@ -629,7 +629,7 @@ fn walk_nil(
         }
         return render_command(&render);
     }
-    let active = ActiveSpace::new(&args.space, AnySpace::Nil(space.clone()));
+    let active = ActiveSpace::new(space.name(), AnySpace::Nil(space.clone()));
     let stereo = stereo_args.settings_for(active.inradius)?;
     let walls = args.view.walls.style(chosen.scene.walls)?;
     eprintln!(
