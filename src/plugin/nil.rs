@@ -3,7 +3,8 @@
 //! space or the settings change. Players and entities move and wrap by the systems written
 //! once over the geometry contract ([`crate::plugin::family::FamilyPlugin`]): along
 //! geodesics in closed form, their axes carried by parallel transport, wrapped into the box
-//! by the lattice.
+//! by the lattice. A game's entities' balls are drawn as metric balls
+//! ([`crate::plugin::objects::nil`]).
 
 pub use crate::plugin::components::BaseNilScene;
 use crate::plugin::components::{ActiveSpace, TracerSettings, TracerStatus};
@@ -66,17 +67,19 @@ pub(crate) struct NilKey {
     colour_by: crate::scene::ColourBy,
 }
 
-/// Packs the Nil scene for the GPU when the space, the base scene or the settings changed,
-/// and every frame while balls move.
+/// Packs the Nil scene for the GPU, with a game's entities' balls
+/// ([`crate::plugin::objects::nil::NilEntityObjects`]), when the space, the base scene, the
+/// settings or the entities changed, and every frame while the scene's balls move.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn upload_nil_scene(
     time: Res<Time>,
     active: Res<ActiveSpace>,
     settings: Res<TracerSettings>,
     base: Option<Res<BaseNilScene>>,
+    entities: Res<crate::plugin::objects::nil::NilEntityObjects>,
     prepared: Option<Res<PreparedScene>>,
     mut status: ResMut<TracerStatus>,
-    mut last: Local<Option<NilKey>>,
+    mut last: Local<Option<(NilKey, u64)>>,
     mut commands: Commands,
 ) {
     let Some(space) = active.space.get::<NilSpace>() else {
@@ -95,14 +98,17 @@ pub(crate) fn upload_nil_scene(
     let base_changed = base
         .as_ref()
         .is_some_and(|b| b.is_changed() || !b.moving.is_empty());
-    if prepared.is_some() && !active.is_changed() && !base_changed && last.as_ref() == Some(&key) {
+    let now = (key, entities.generation);
+    if prepared.is_some() && !active.is_changed() && !base_changed && last.as_ref() == Some(&now) {
         return;
     }
-    let scene = nil_scene(space, &settings, base.as_deref(), time.elapsed_secs_f64());
+    let mut scene = nil_scene(space, &settings, base.as_deref(), time.elapsed_secs_f64());
+    // A game's entities (their balls with the images in the box).
+    scene.objects.extend(entities.objects.iter().copied());
     let budget = settings
         .max_crossings
         .map_or_else(|| default_nil_budget(space), |b| b.clamp(1, MAX_GPU_BUDGET));
-    *last = Some(key);
+    *last = Some(now);
     let packed = GpuScene::nil(space, &scene, budget);
     crate::plugin::product::install_scene(packed, &active.id, &mut status, &mut commands);
     status.budget = budget;

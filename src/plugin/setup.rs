@@ -160,9 +160,19 @@ impl Plugin for CurvedSpacesPlugin {
                         .after(crate::plugin::objects::collect_objects)
                         .run_if(ActiveSpace::shows(Family::Constant)),
                     crate::plugin::product::upload_product_scene
-                        .after(crate::plugin::objects::product::collect_product_objects)
+                        .after(
+                            crate::plugin::objects::gather::collect_entity_objects::<
+                                crate::space::product::ProductSpace,
+                            >,
+                        )
                         .run_if(ActiveSpace::shows(Family::Product)),
-                    crate::plugin::nil::upload_nil_scene.run_if(ActiveSpace::shows(Family::Nil)),
+                    crate::plugin::nil::upload_nil_scene
+                        .after(
+                            crate::plugin::objects::gather::collect_entity_objects::<
+                                crate::space::nil::NilSpace,
+                            >,
+                        )
+                        .run_if(ActiveSpace::shows(Family::Nil)),
                     check_stereo_settings,
                 )
                     .in_set(CurvedSpacesSystems::Upload),

@@ -324,3 +324,84 @@ fn the_plugin_walks_a_nil_space_with_e3_up() {
         .expect("a packed scene");
     assert!(prepared.0.key.nil);
 }
+
+/// A game's entities in a Nil space: a ball flies along its Nil geodesic through the box's
+/// faces (with its holonomy's crossings), is drawn as a metric ball with each lattice image
+/// that reaches into the box (every image the same point of the manifold), and the packed
+/// scene holds them; a tube and a ball wider than half the box's side are left out.
+#[test]
+fn entities_fly_through_a_nil_box_and_are_drawn_as_metric_balls_with_their_images() {
+    use bevy_curved_spaces::plugin::objects::nil::NilEntityObjects;
+    use bevy_curved_spaces::plugin::objects::{CurvedObject, CurvedTransform, CurvedVelocity};
+    use bevy_curved_spaces::space::nil::NilSpace;
+    use bevy_curved_spaces::trace::nil::NilShape;
+    use glam::DVec3;
+    let (mut app, _camera) = test_app("nil-3");
+    let space = app
+        .world()
+        .resource::<ActiveSpace>()
+        .space
+        .get::<NilSpace>()
+        .expect("a Nil space")
+        .clone();
+    let ball = app
+        .world_mut()
+        .spawn((
+            CurvedObject::ball(0.1, DVec3::new(0.9, 0.2, 0.2)),
+            CurvedTransform(DMat4::IDENTITY),
+            CurvedVelocity(bevy_curved_spaces::space::motion::Velocity {
+                linear: DVec3::new(2.0, 0.5, 0.7),
+                angular: DVec3::new(0.0, 0.0, 0.5),
+            }),
+        ))
+        .id();
+    app.world_mut().spawn((
+        CurvedObject::tube(0.3, 0.05, DVec3::ONE),
+        CurvedTransform(DMat4::IDENTITY),
+    ));
+    app.world_mut().spawn((
+        CurvedObject::ball(0.7, DVec3::ONE),
+        CurvedTransform(DMat4::IDENTITY),
+    ));
+    let (h, mut most, mut generations) =
+        (space.half_height(), 0, std::collections::BTreeSet::new());
+    for _ in 0..150 {
+        app.update();
+        let objects = app.world().resource::<NilEntityObjects>();
+        generations.insert(objects.generation);
+        most = most.max(objects.objects.len());
+        let f = app.world().get::<CurvedTransform>(ball).unwrap().0;
+        let p = f.w_axis;
+        assert!(
+            p.x.abs() <= 0.5 + 1e-9 && p.y.abs() <= 0.5 + 1e-9 && p.z.abs() <= h + 1e-9,
+            "left the box: {p}"
+        );
+        assert!(!objects.objects.is_empty(), "the ball is not drawn");
+        for o in &objects.objects {
+            let NilShape::Ball(c) = o.shape else {
+                panic!("only the ball is drawn: {o:?}");
+            };
+            assert_eq!(o.radius, 0.1, "only the small ball is drawn");
+            // Every image is the entity's point of the manifold.
+            let back = DVec3::from_array(space.into_box(c));
+            let at = DVec3::from_array(space.into_box(p.truncate().to_array()));
+            assert!((back - at).length() < 1e-9, "{c:?} is not an image of {p}");
+        }
+    }
+    let crossings = app.world().get::<Holonomy>(ball).unwrap().crossings;
+    assert!(crossings >= 2, "{crossings} crossings");
+    assert!(most >= 2, "never more than {most} copies of the ball");
+    assert!(
+        generations.len() > 50,
+        "gathered {} times",
+        generations.len()
+    );
+    let default = bevy_curved_spaces::trace::nil::default_scene(&space)
+        .objects
+        .len();
+    let drawn = app.world().resource::<NilEntityObjects>().objects.len();
+    let prepared = app
+        .world()
+        .resource::<bevy_curved_spaces::plugin::render::PreparedScene>();
+    assert_eq!(prepared.0.key.nil_objects as usize, default + drawn);
+}

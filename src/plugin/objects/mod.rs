@@ -56,7 +56,9 @@ use glam::{DMat4, DVec2, DVec3, DVec4};
 use std::collections::HashMap;
 use std::sync::Arc;
 
+pub mod gather;
 mod meshes;
+pub mod nil;
 pub mod product;
 mod ready;
 mod systems;
@@ -366,14 +368,22 @@ pub(crate) fn add_systems(app: &mut App) {
         .init_resource::<TracedMeshes>()
         .init_resource::<ActiveSightlines>()
         .init_resource::<product::ProductEntityObjects>()
+        .init_resource::<nil::NilEntityObjects>()
         .add_message::<ObjectCrossedFace>()
         .add_systems(
             Update,
             (
-                product::collect_product_objects.in_set(CurvedSpacesSystems::Upload),
+                gather::collect_entity_objects::<crate::space::product::ProductSpace>
+                    .in_set(CurvedSpacesSystems::Upload),
                 product::spawn_product_movers.before(CurvedSpacesSystems::Move),
             )
                 .run_if(ActiveSpace::shows(Family::Product)),
+        )
+        .add_systems(
+            Update,
+            gather::collect_entity_objects::<crate::space::nil::NilSpace>
+                .in_set(CurvedSpacesSystems::Upload)
+                .run_if(ActiveSpace::shows(Family::Nil)),
         )
         .add_systems(
             Update,

@@ -3,7 +3,7 @@
 //! the sides, the top and the bottom (with their [`crate::space::Holonomy`] and an
 //! [`super::ObjectCrossedFace`] each) by the family's generic systems
 //! ([`super::move_objects`], [`super::wrap_objects`]), and are drawn as product objects
-//! ([`collect_product_objects`] into [`ProductEntityObjects`]).
+//! ([`super::gather::collect_entity_objects`] into [`ProductEntityObjects`]).
 //!
 //! A product scene has balls and horizontal discs among its shapes, so those are what an
 //! entity can be here: a [`CurvedShape::Ball`] is a ball at the entity's position, a
@@ -13,37 +13,44 @@
 //! face seen from the partner side), so one flying through a face is never cut off; near a
 //! corner the images through two faces are added, not their composition.
 
+use super::gather::{EntityObjectsOf, EntityShapes, entity_colour, entity_radius};
 use super::{CurvedObject, CurvedShape, CurvedTransform, CurvedVelocity};
 use crate::geometry::Geometry;
 use crate::plugin::components::ActiveSpace;
-use crate::space::product::ProductWalker;
+use crate::space::product::{ProductSpace, ProductWalker};
 use crate::trace::product::{ProductObject, ProductShape};
 use bevy::prelude::*;
 use glam::{DMat4, DVec4};
-use std::collections::HashSet;
 
 /// The entities' objects in the product space shown, gathered when they change (read by
-/// the product scene's upload). `generation` counts the changes.
-#[derive(Resource, Clone, Debug, Default, PartialEq)]
-pub struct ProductEntityObjects {
-    /// The objects, images through the faces included.
-    pub objects: Vec<ProductObject>,
-    /// Bumped whenever `objects` changes.
-    pub generation: u64,
-}
+/// the product scene's upload) by [`super::gather::collect_entity_objects`].
+pub type ProductEntityObjects = EntityObjectsOf<ProductSpace>;
 
 pub use crate::space::product::motion::step_product_velocity as step_product_object;
 
-/// The objects whose shape or frame changed since the last run.
-type Changed<'w, 's> = Query<
-    'w,
-    's,
-    (),
-    Or<(
-        bevy::prelude::Changed<CurvedObject>,
-        bevy::prelude::Changed<CurvedTransform>,
-    )>,
->;
+/// The product spaces draw balls and horizontal discs of a game's entities.
+impl EntityShapes for ProductSpace {
+    type Object = ProductObject;
+    // The walker of the space shown, built once per space, not on every frame an object moves.
+    type Context = ProductWalker<DVec4>;
+
+    fn entity_context(&self) -> Self::Context {
+        ProductWalker::<DVec4>::new(self)
+    }
+
+    fn entity_objects(
+        &self,
+        walker: &Self::Context,
+        object: &CurvedObject,
+        frame: DMat4,
+        out: &mut Vec<ProductObject>,
+    ) -> Result<(), String> {
+        let o = product_object(self.base(), object, frame)?;
+        out.extend(images_through_faces(self, walker, &o));
+        out.push(o);
+        Ok(())
+    }
+}
 
 /// The product object of an entity's shape at `frame`, or why it has none.
 fn product_object(
@@ -51,14 +58,7 @@ fn product_object(
     object: &CurvedObject,
     frame: DMat4,
 ) -> Result<ProductObject, String> {
-    let colour = object.colour.unwrap_or(glam::DVec3::ONE) + object.emission;
-    let positive = |x: f64| {
-        if x > 0.0 && x.is_finite() {
-            Ok(x)
-        } else {
-            Err(format!("its radius must be a positive number, got {x}"))
-        }
-    };
+    let colour = entity_colour(object);
     if !frame.is_finite() {
         return Err("its frame is not finite".into());
     }
@@ -66,7 +66,7 @@ fn product_object(
     match &object.shape {
         CurvedShape::Ball { radius } => Ok(ProductObject {
             shape: ProductShape::Point(p),
-            radius: positive(*radius)?,
+            radius: entity_radius(*radius, f64::INFINITY)?,
             colour,
         }),
         CurvedShape::Disc { radius } => {
@@ -81,7 +81,7 @@ fn product_object(
             }
             Ok(ProductObject {
                 shape: ProductShape::Disc(p),
-                radius: positive(*radius)?,
+                radius: entity_radius(*radius, f64::INFINITY)?,
                 colour,
             })
         }
@@ -94,55 +94,6 @@ fn product_object(
 }
 
 use crate::trace::product::moving::images_through_faces;
-
-/// Gathers the entities' objects (and the images of balls reaching through faces) into
-/// [`ProductEntityObjects`] when any of them or the space changed.
-pub fn collect_product_objects(
-    active: Res<ActiveSpace>,
-    objects: Query<(Entity, &CurvedObject, &CurvedTransform)>,
-    changed: Changed,
-    mut removed: RemovedComponents<CurvedObject>,
-    mut warned: Local<HashSet<Entity>>,
-    mut walker: Local<Option<(usize, ProductWalker<DVec4>)>>,
-    mut out: ResMut<ProductEntityObjects>,
-) {
-    let Some(space) = active.product() else {
-        return;
-    };
-    let removed_any = removed.read().count() > 0;
-    if !(active.is_changed() || removed_any || !changed.is_empty()) {
-        return;
-    }
-    let g = space.base();
-    // The walker of the space shown, built once per space, not on every frame an object moves.
-    let key = std::sync::Arc::as_ptr(space) as usize;
-    if walker.as_ref().is_none_or(|(k, _)| *k != key) {
-        *walker = Some((key, ProductWalker::<DVec4>::new(space)));
-    }
-    let Some((_, walker)) = walker.as_ref() else {
-        return;
-    };
-    let mut sorted: Vec<_> = objects.iter().collect();
-    sorted.sort_by_key(|(e, _, _)| *e);
-    let mut gathered = Vec::with_capacity(sorted.len());
-    for (entity, object, transform) in sorted {
-        match product_object(g, object, transform.0) {
-            Ok(o) => {
-                gathered.extend(images_through_faces(space, walker, &o));
-                gathered.push(o);
-            }
-            Err(why) => {
-                if warned.insert(entity) {
-                    warn!("{entity} is not drawn in {}: {why}", active.id);
-                }
-            }
-        }
-    }
-    if gathered != out.objects {
-        out.objects = gathered;
-        out.generation += 1;
-    }
-}
 
 /// Spawns an entity (a ball flying with its velocity) for each moving ball of the base
 /// product scene while a product space is shown; on a change of the scene or the space the

@@ -59,13 +59,7 @@ use serde::Deserialize;
 use std::path::Path;
 use toml::Spanned;
 
-/// The largest radius of a Nil scene's object: half the box's side, so that the images of
-/// an object in the box that reach into it are its neighbours'.
-pub const MAX_NIL_RADIUS: f64 = 0.5;
-
-/// The most objects (with their lattice images) a Nil scene file may make: each is tested
-/// by every ray segment.
-pub const MAX_NIL_OBJECTS: usize = 400;
+pub use super::{MAX_NIL_OBJECTS, MAX_NIL_RADIUS};
 
 /// A loaded Nil scene file: the space, its scene and the start view.
 #[derive(Clone, Debug)]

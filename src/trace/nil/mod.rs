@@ -26,6 +26,15 @@ use crate::space::nil::{NilRay, NilSpace, NilWalker, flow, group_product};
 use glam::{DMat4, DVec3, DVec4};
 use image::RgbImage;
 
+/// The largest radius of a Nil scene's object (a scene file's, a game entity's): half the
+/// box's side, so that the images of an object in the box that reach into it are its
+/// neighbours'.
+pub const MAX_NIL_RADIUS: f64 = 0.5;
+
+/// The most objects (with their lattice images) a Nil scene file, or a game's entities, may
+/// make: each is tested by every ray segment.
+pub const MAX_NIL_OBJECTS: usize = 400;
+
 /// A scene of a Nil space: objects (with their images that reach into the box), one point
 /// light, ambient light and fog.
 #[derive(Clone, Debug, PartialEq)]
@@ -91,36 +100,42 @@ impl NilScene {
     }
 
     /// Adds `object` and every image `γ·object` (`γ ∈ Γ_K`) that may reach into the box:
-    /// those whose chart bounding box meets the box's.
+    /// those whose chart bounding box meets the box's ([`push_with_images`]).
     pub fn add_with_images(&mut self, space: &NilSpace, object: NilObject) {
-        let h = space.half_height();
-        let k = f64::from(space.k());
-        for p in -1i32..=1 {
-            for q in -1i32..=1 {
-                let (p, q) = (f64::from(p), f64::from(q));
-                // The heights of the moved bounds, to pick the powers of C.
-                let (lo, hi) = bounds(object, space.element(p, q, 0));
-                // A fibre is its own image by the centre.
-                let (m_lo, m_hi) = if matches!(object.shape, NilShape::Fibre(_)) {
-                    (0, 0)
-                } else {
-                    (
-                        ((-h - hi[2]) * k).floor() as i64,
-                        ((h - lo[2]) * k).ceil() as i64,
-                    )
-                };
-                for m in m_lo..=m_hi {
-                    let g = space.element(p, q, m);
-                    let (lo, hi) = bounds(object, g);
-                    let inside = lo[0] <= 0.5
-                        && hi[0] >= -0.5
-                        && lo[1] <= 0.5
-                        && hi[1] >= -0.5
-                        && lo[2] <= h
-                        && hi[2] >= -h;
-                    if inside {
-                        self.objects.push(moved(object, g));
-                    }
+        push_with_images(space, object, &mut self.objects);
+    }
+}
+
+/// Pushes onto `out` the images `γ·object` (`γ ∈ Γ_K`, the identity included) that may
+/// reach into the box of `space`: those whose chart bounding box meets the box's.
+pub fn push_with_images(space: &NilSpace, object: NilObject, out: &mut Vec<NilObject>) {
+    let h = space.half_height();
+    let k = f64::from(space.k());
+    for p in -1i32..=1 {
+        for q in -1i32..=1 {
+            let (p, q) = (f64::from(p), f64::from(q));
+            // The heights of the moved bounds, to pick the powers of C.
+            let (lo, hi) = bounds(object, space.element(p, q, 0));
+            // A fibre is its own image by the centre.
+            let (m_lo, m_hi) = if matches!(object.shape, NilShape::Fibre(_)) {
+                (0, 0)
+            } else {
+                (
+                    ((-h - hi[2]) * k).floor() as i64,
+                    ((h - lo[2]) * k).ceil() as i64,
+                )
+            };
+            for m in m_lo..=m_hi {
+                let g = space.element(p, q, m);
+                let (lo, hi) = bounds(object, g);
+                let inside = lo[0] <= 0.5
+                    && hi[0] >= -0.5
+                    && lo[1] <= 0.5
+                    && hi[1] >= -0.5
+                    && lo[2] <= h
+                    && hi[2] >= -h;
+                if inside {
+                    out.push(moved(object, g));
                 }
             }
         }
