@@ -36,6 +36,7 @@ mod product_scenes;
 mod products;
 mod render;
 mod several_cells;
+mod sl2r;
 mod soft_shadows;
 mod spaces;
 mod stereo;

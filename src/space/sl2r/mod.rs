@@ -1,0 +1,28 @@
+//! SL̃(2,R), the seventh of Thurston's geometries, as the unit tangent bundle `UT H²` with
+//! its Sasaki metric: a point is a base point `p` of the hyperboloid with a unit tangent
+//! vector `e` there, kept as the frame `(e, e⊥, p)` of `SO⁺(2,1)`. This folder holds what is
+//! SL̃(2,R)'s own: its geodesic flow in closed form ([`mod@flow`]), one formula for the
+//! three kinds of geodesic, generic over precision, checked against an independent 40-digit
+//! integration of the geodesic equations (`tests/data/sl2r_geodesics.json`, written by
+//! `scripts/sl2r-reference.py`); the exits through the polygon's sides in closed form
+//! ([`mod@exit`]); the spaces `UT Σ` of orientable hyperbolic surfaces given by their words
+//! ([`UnitTangentSpace`]); and the walk ([`Sl2rWalker`]).
+//!
+//! Conventions:
+//! - the base point `p` on `x² + y² − w² = −1`, `w > 0`, and `e` a unit tangent vector there;
+//!   `e⊥` is `e` turned by +90°, counter-clockwise seen from `+w`;
+//! - velocities in the orthonormal frame `X` (the horizontal lift of `e`: `p` moves along
+//!   `e`, `e` parallel transported), `Y` (that of `e⊥`) and `V` (vertical: `e` turns
+//!   counter-clockwise at one radian per unit length, so a fibre is a closed geodesic of
+//!   length `2π`), invariant under `PSL(2,R)`: the *body* velocity `(a, b, c)`;
+//! - an isometry `M` of `H²` acts on `(p, e)` by its differential, on the frame by `F ↦ M F`.
+
+pub mod exit;
+pub mod flow;
+mod space;
+pub mod walk;
+
+pub use exit::side_exit;
+pub use flow::{Sl2rRay, flow, on_model};
+pub use space::{Sl2rError, Sl2rSide, UnitTangentSpace};
+pub use walk::{Sl2rExit, Sl2rWalker};

@@ -1,0 +1,158 @@
+//! The spaces of SL̃(2,R) built so far: the unit tangent bundle `UT Σ = PSL(2,R)/Γ` of a
+//! closed orientable hyperbolic surface `Σ` given by its word (the product spaces' regular
+//! polygon and side pairings), its cell the polygon times the whole fibre (the fibre closes
+//! by itself: `e` turns once round), its only faces the polygon's sides.
+
+use crate::geometry::{DdMat4, DoubleDouble, Geometry, Real};
+use crate::space::surface::{Polygon, SurfaceWord, WordError};
+use std::f64::consts::PI;
+
+/// A side of the cell: the polygon's side as a covector of the hyperboloid's space
+/// (`n·p ≤ 0` inside), the pairing that carries a ray leaving through it (an element of
+/// `SO⁺(2,1)`, rows, acting on `(x, y, w)`), and the side it enters through.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sl2rSide {
+    /// The covector `(cos θ, sin θ, −tanh ρ)` of the side at angle `θ`, inradius `ρ`.
+    pub normal: [DoubleDouble; 3],
+    /// The pairing, rows.
+    pub pairing: [[DoubleDouble; 3]; 3],
+    /// The partner side.
+    pub partner: usize,
+}
+
+/// Why a word gives no unit tangent bundle of SL̃(2,R).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum Sl2rError {
+    /// The word is not a surface word.
+    #[error(transparent)]
+    Word(#[from] WordError),
+    /// The surface is not hyperbolic.
+    #[error(
+        "the word {word} is {what}: its unit tangent bundle is {geometry}, not SL̃(2,R) \
+         (SL̃(2,R)'s unit tangent bundles are of hyperbolic surfaces: Euler characteristic \
+         below 0, e.g. abABcdCD)"
+    )]
+    NotHyperbolic {
+        /// The word.
+        word: String,
+        /// What the surface is.
+        what: &'static str,
+        /// The geometry of its unit tangent bundle.
+        geometry: &'static str,
+    },
+    /// The surface is not orientable.
+    #[error(
+        "the word {word} is a non-orientable surface: its unit tangent bundle is not a \
+         quotient of SL̃(2,R) by orientation-preserving isometries; give an orientable word \
+         (each letter once lower and once upper case, e.g. abABcdCD)"
+    )]
+    NotOrientable {
+        /// The word.
+        word: String,
+    },
+}
+
+/// `UT Σ` of an orientable hyperbolic surface `Σ`, with the Sasaki metric.
+#[derive(Clone, Debug, PartialEq)]
+pub struct UnitTangentSpace {
+    word: SurfaceWord,
+    polygon: Polygon,
+    sides: Vec<Sl2rSide>,
+}
+
+/// The 3×3 part of a product space's pairing that acts on `H²` (`(x, y, w)`: the model's
+/// coordinates 0, 1 and 3), rows.
+fn surface_part(m: &DdMat4) -> [[DoubleDouble; 3]; 3] {
+    let idx = [0, 1, 3];
+    // DdMat4 is by columns: entry (row r, column c) is m.0[c].0[r].
+    idx.map(|r| idx.map(|c| m.0[c].0[r]))
+}
+
+impl UnitTangentSpace {
+    /// The unit tangent bundle of the surface of `word`; an error says why a word has none.
+    pub fn new(word: &str) -> Result<Self, Sl2rError> {
+        let word = SurfaceWord::parse(word)?;
+        if !word.orientable() {
+            return Err(Sl2rError::NotOrientable {
+                word: word.word.clone(),
+            });
+        }
+        match word.geometry() {
+            Geometry::Hyperbolic => {}
+            Geometry::Euclidean => {
+                return Err(Sl2rError::NotHyperbolic {
+                    word: word.word.clone(),
+                    what: "flat (Euler characteristic 0)",
+                    geometry: "flat: the torus's is the 3-torus, E³",
+                });
+            }
+            Geometry::Spherical => {
+                return Err(Sl2rError::NotHyperbolic {
+                    word: word.word.clone(),
+                    what: "spherical (Euler characteristic above 0)",
+                    geometry: "spherical: the sphere's is the projective space RP³, S³",
+                });
+            }
+        }
+        let polygon = Polygon::of(&word);
+        let z = DoubleDouble::ZERO;
+        let sides = polygon
+            .sides
+            .iter()
+            .map(|f| Sl2rSide {
+                normal: [f.normal[0], f.normal[1], z - f.offset],
+                pairing: surface_part(&f.pairing),
+                partner: f.partner,
+            })
+            .collect();
+        Ok(Self {
+            word,
+            polygon,
+            sides,
+        })
+    }
+
+    /// The space's id: `unit-tangent-WORD`.
+    #[must_use]
+    pub fn name(&self) -> String {
+        format!("unit-tangent-{}", self.word.word)
+    }
+
+    /// The surface's word.
+    #[must_use]
+    pub fn word(&self) -> &SurfaceWord {
+        &self.word
+    }
+
+    /// The sides of the cell, in the word's order.
+    #[must_use]
+    pub fn sides(&self) -> &[Sl2rSide] {
+        &self.sides
+    }
+
+    /// The polygon's inradius.
+    #[must_use]
+    pub fn inradius(&self) -> f64 {
+        self.polygon.inradius.hi
+    }
+
+    /// The surface's genus `g` (`χ = 2 − 2g`).
+    #[must_use]
+    pub fn genus(&self) -> u64 {
+        ((2 - self.word.euler_characteristic()) / 2) as u64
+    }
+
+    /// The volume: the fibre's length `2π` times the surface's area `2π|χ|`.
+    #[must_use]
+    pub fn volume(&self) -> f64 {
+        4.0 * PI * PI * self.word.euler_characteristic().unsigned_abs() as f64
+    }
+
+    /// `H₁(UT Σ_g) = Z^{2g} + Z/(2g − 2)`: the surface's cycles, and the fibre, whose
+    /// `2g − 2` copies bound (the Euler number of the bundle is `χ`).
+    #[must_use]
+    pub fn homology(&self) -> String {
+        let g = self.genus();
+        format!("Z^{} + Z/{}", 2 * g, 2 * g - 2)
+    }
+}

@@ -1,0 +1,232 @@
+//! The walk through the cell of `UT Σ` over the walk contract: each exit is the first point
+//! where the base point leaves the polygon (against dense sampling of the flow), a walk
+//! ends on the universal cover's geodesic carried by the pairings it crossed, long walks
+//! stay in the cell, and the f32 walk keeps the f64 walk's sides. Words that give no
+//! SL̃(2,R) space are refused with the reason.
+
+use super::*;
+use bevy_curved_spaces::geometry::Ray;
+use bevy_curved_spaces::random::SplitMix64;
+use bevy_curved_spaces::space::sl2r::flow::{base_point, moved_by};
+use bevy_curved_spaces::space::sl2r::{Sl2rWalker, UnitTangentSpace, side_exit};
+use bevy_curved_spaces::space::{CellWalk, Limit};
+use glam::{DVec4, Vec4};
+
+const WORDS: [&str; 3] = ["abABcdCD", "abcdABCD", "abABcdCDefEF"];
+
+/// A random ray in the cell: the base point within 0.9 inradii of the centre, `e` and the
+/// body velocity at random.
+fn start(rng: &mut SplitMix64, space: &UnitTangentSpace) -> Sl2rRay<f64> {
+    let r = 0.9 * space.inradius() * rng.unit().sqrt();
+    let (a, b) = (
+        std::f64::consts::TAU * rng.unit(),
+        std::f64::consts::TAU * rng.unit(),
+    );
+    // The origin's frame turned by b, then moved by r along the direction a (a boost).
+    let turned = frame_of([0.0, 0.0, 1.0], [b.cos(), b.sin(), 0.0]);
+    let (ch, sh) = (r.cosh(), r.sinh());
+    let (c, s) = (a.cos(), a.sin());
+    let boost = [
+        [1.0 + (ch - 1.0) * c * c, (ch - 1.0) * c * s, sh * c],
+        [(ch - 1.0) * c * s, 1.0 + (ch - 1.0) * s * s, sh * s],
+        [sh * c, sh * s, ch],
+    ];
+    let v = rng.direction();
+    moved_by(
+        &boost,
+        &Sl2rRay {
+            frame: turned,
+            velocity: [v.x, v.y, v.z],
+        },
+    )
+}
+
+fn as_walk(r: &Sl2rRay<f64>) -> Ray<DVec4> {
+    Sl2rWalker::<DVec4>::ray_of(r)
+}
+
+fn widen(r: &Sl2rRay<f64>) -> Sl2rRay<DoubleDouble> {
+    super::widen(r)
+}
+
+/// How far the base point `p` lies outside the polygon (at most 0 inside), by the sides'
+/// covectors.
+fn outside(space: &UnitTangentSpace, p: [f64; 3]) -> f64 {
+    space
+        .sides()
+        .iter()
+        .map(|s| {
+            let n = s.normal.map(|x| x.hi);
+            (n[0] * p[0] + n[1] * p[1] + n[2] * p[2]) / p[2]
+        })
+        .fold(f64::NEG_INFINITY, f64::max)
+}
+
+#[test]
+fn each_exit_is_the_first_point_where_the_base_point_leaves_the_polygon() {
+    let mut rng = SplitMix64(71);
+    for word in WORDS {
+        let space = UnitTangentSpace::new(word).unwrap();
+        let walker = Sl2rWalker::<DVec4>::new(&space);
+        for _ in 0..200 {
+            let ray = start(&mut rng, &space);
+            let Some(exit) = walker.exit(&as_walk(&ray), None) else {
+                // The base point on a circle inside the polygon for ever: sample a period.
+                for i in 1..=400 {
+                    let p = base_point(&ray, f64::from(i) * 0.05);
+                    assert!(outside(&space, p) <= 1e-12, "{word}: left without an exit");
+                }
+                continue;
+            };
+            let n = space.sides()[exit.face].normal.map(|x| x.hi);
+            let at = base_point(&ray, exit.t);
+            let on = (n[0] * at[0] + n[1] * at[1] + n[2] * at[2]) / at[2];
+            assert!(on.abs() < 1e-13, "{word}: the exit is {on:e} off its side");
+            for i in 1..1000 {
+                let p = base_point(&ray, exit.t * f64::from(i) / 1000.0);
+                assert!(
+                    outside(&space, p) <= 1e-13,
+                    "{word}: outside at {} before the exit at {}",
+                    exit.t * f64::from(i) / 1000.0,
+                    exit.t
+                );
+            }
+            // Just past it, outside that side.
+            let past = base_point(&ray, exit.t + 1e-6);
+            assert!(n[0] * past[0] + n[1] * past[1] + n[2] * past[2] > 0.0);
+            // The side's own root agrees (the walk's ray derives e_w and e⊥ from the rest).
+            let own = side_exit(&ray, n).expect("the side's own root");
+            assert!(
+                (own - exit.t).abs() <= 1e-12 * (1.0 + exit.t),
+                "{own} against {}",
+                exit.t
+            );
+        }
+    }
+}
+
+#[test]
+fn a_walk_ends_on_the_cover_geodesic_carried_by_the_pairings_it_crossed() {
+    let mut rng = SplitMix64(72);
+    let mut worst = 0.0_f64;
+    for word in WORDS {
+        let space = UnitTangentSpace::new(word).unwrap();
+        let walker = Sl2rWalker::<DVec4>::new(&space);
+        let mut crossed_any = 0;
+        for _ in 0..60 {
+            let s = start(&mut rng, &space);
+            let distance = 0.5 + 5.0 * rng.unit();
+            let mut faces = Vec::new();
+            let (end, walked) =
+                CellWalk::walk(&walker, as_walk(&s), Limit::Distance(distance), |c| {
+                    faces.push(c.face);
+                    true
+                });
+            assert_eq!(walked, distance);
+            crossed_any += faces.len();
+            // G = M_k ⋯ M_1 (double-double), the cover geodesic carried by it.
+            let d = DoubleDouble::new;
+            let mut cover = flow(&widen(&s), d(distance));
+            for f in &faces {
+                let m = space.sides()[*f].pairing;
+                cover = moved_by(&m, &cover);
+            }
+            let e = widen(&Sl2rWalker::<DVec4>::sl2r_ray(&end));
+            let off = gap(&e, &cover);
+            worst = worst.max(off / distance.exp());
+            assert!(
+                off < 1e-12 * distance.exp(),
+                "{word}: the end is {off:e} off the cover geodesic after {} crossings",
+                faces.len()
+            );
+        }
+        assert!(crossed_any > 30, "{word}: only {crossed_any} crossings");
+    }
+    println!("walk end against the cover geodesic: worst {worst:.2e} × e^distance");
+}
+
+#[test]
+fn long_walks_stay_in_the_cell_and_on_the_model() {
+    let mut rng = SplitMix64(73);
+    for word in WORDS {
+        let space = UnitTangentSpace::new(word).unwrap();
+        let walker = Sl2rWalker::<DVec4>::new(&space);
+        for _ in 0..3 {
+            let s = start(&mut rng, &space);
+            let mut worst = 0.0_f64;
+            let mut count = 0;
+            let (end, _) = CellWalk::walk(&walker, as_walk(&s), Limit::Crossings(20_000), |c| {
+                let r = Sl2rWalker::<DVec4>::sl2r_ray(&c.ray);
+                worst = worst.max(outside(&space, r.frame[2]));
+                count += 1;
+                true
+            });
+            let r = Sl2rWalker::<DVec4>::sl2r_ray(&end);
+            let [e, f, p] = r.frame;
+            let lorentz = |u: [f64; 3], v: [f64; 3]| u[0] * v[0] + u[1] * v[1] - u[2] * v[2];
+            assert!((lorentz(p, p) + 1.0).abs() < 1e-12);
+            assert!((lorentz(e, e) - 1.0).abs() < 1e-12 && lorentz(e, p).abs() < 1e-12);
+            assert!(lorentz(f, e).abs() < 1e-12);
+            // A ray whose base point circles inside the polygon stops crossing.
+            if count == 20_000 {
+                assert!(worst < 1e-12, "{word}: {worst:e} outside after a crossing");
+            }
+        }
+    }
+}
+
+#[test]
+fn the_f32_walk_keeps_the_f64_walks_sides() {
+    let mut rng = SplitMix64(74);
+    let (mut same, mut total) = (0, 0);
+    for word in WORDS {
+        let space = UnitTangentSpace::new(word).unwrap();
+        let w64 = Sl2rWalker::<DVec4>::new(&space);
+        let w32 = Sl2rWalker::<Vec4>::new(&space);
+        for _ in 0..100 {
+            let s = start(&mut rng, &space);
+            let mut f64_faces = Vec::new();
+            let _ = CellWalk::walk(&w64, as_walk(&s), Limit::Crossings(4), |c| {
+                f64_faces.push(c.face);
+                true
+            });
+            let s32 = Sl2rWalker::<Vec4>::ray_of(&Sl2rRay {
+                frame: s.frame.map(|c| c.map(|x| x as f32)),
+                velocity: s.velocity.map(|x| x as f32),
+            });
+            let mut f32_faces = Vec::new();
+            let _ = CellWalk::walk(&w32, s32, Limit::Crossings(4), |c| {
+                f32_faces.push(c.face);
+                true
+            });
+            total += 1;
+            if f32_faces == f64_faces {
+                same += 1;
+            }
+        }
+    }
+    assert!(
+        same * 100 >= total * 95,
+        "f32 kept the sides of {same} of {total} walks"
+    );
+}
+
+#[test]
+fn words_without_an_sl2r_bundle_are_refused_with_the_reason() {
+    for (word, says) in [
+        ("abAB", "flat"),
+        ("aA", "spherical"),
+        ("aabb", "non-orientable"),
+        ("abAc", "word"),
+    ] {
+        let e = UnitTangentSpace::new(word).unwrap_err().to_string();
+        assert!(
+            e.contains(says) || (says == "word" && !e.is_empty()),
+            "{word}: {e}"
+        );
+    }
+    let bitorus = UnitTangentSpace::new("abABcdCD").unwrap();
+    assert_eq!(bitorus.name(), "unit-tangent-abABcdCD");
+    assert_eq!(bitorus.homology(), "Z^4 + Z/2");
+    assert!((bitorus.volume() - 8.0 * std::f64::consts::PI.powi(2)).abs() < 1e-12);
+}
