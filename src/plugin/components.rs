@@ -226,6 +226,8 @@ impl BaseScenes<'_> {
             AnySpace::Constant(s) => self.constant.start_frame(active, s),
             AnySpace::Product(p) => BaseProductScene::start_frame(self.product.as_deref(), p),
             AnySpace::Nil(n) => BaseNilScene::start_frame(self.nil.as_deref(), n),
+            // No scene of its own yet: the polygon's centre.
+            AnySpace::Sl2r(s) => s.frame_from_centre(glam::DVec3::ZERO),
         }
     }
 
@@ -247,6 +249,7 @@ impl BaseScenes<'_> {
                 .as_ref()
                 .and_then(|b| b.start)
                 .map(|c| c.fov_y_degrees),
+            AnySpace::Sl2r(_) => None,
         }
     }
 }

@@ -224,6 +224,12 @@ pub fn record_flight(
     let Some(mut recorder) = recorder else {
         return;
     };
+    if let Err(e) = active.space.supports(crate::space::Feature::RecordFlight) {
+        if recorder.stopped.is_none() {
+            recorder.stop(e.to_string());
+        }
+        return;
+    }
     let Some((frame, holonomy, camera)) = cameras.iter().next() else {
         return;
     };
@@ -237,6 +243,8 @@ pub fn record_flight(
             AnySpace::Nil(space) => {
                 crate::trace::nil::flight::recorded_nil_key(space, frame.0, holonomy)
             }
+            // Refused above (`Feature::RecordFlight`).
+            AnySpace::Sl2r(_) => None,
         }
     });
     if recorder.unwritten && recorder.last_write.is_none_or(|w| now - w >= 1.0) {

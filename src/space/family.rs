@@ -14,6 +14,7 @@
 use super::dirichlet::DirichletOptions;
 use super::nil::{NilSpace, nil_space};
 use super::product::{ProductOrFlat, ProductSpace, product_space};
+use super::sl2r::{UnitTangentSpace, sl2r_space};
 use super::{Space, invariants};
 use crate::geometry::Geometry;
 use glam::{DMat4, DVec3, DVec4};
@@ -32,11 +33,15 @@ pub enum Family {
     /// Nil: the Heisenberg nilmanifolds, a box of the chart whose sides are paired by left
     /// translations ([`NilSpace`], walked by [`super::nil::NilWalker`]).
     Nil,
+    /// SL̃(2,R): unit tangent bundles of hyperbolic surfaces, a polygon times the whole
+    /// fibre whose sides are paired by the surface group ([`UnitTangentSpace`], walked by
+    /// [`super::sl2r::Sl2rWalker`]).
+    Sl2r,
 }
 
 impl Family {
     /// Every family, in the order `curved-spaces list` shows them.
-    pub const ALL: [Family; 3] = [Family::Constant, Family::Product, Family::Nil];
+    pub const ALL: [Family; 4] = [Family::Constant, Family::Product, Family::Nil, Family::Sl2r];
 
     /// The family's name, as messages use it.
     #[must_use]
@@ -45,6 +50,7 @@ impl Family {
             Family::Constant => "constant curvature (E³, S³, H³)",
             Family::Product => "product (H²×R, S²×R)",
             Family::Nil => "Nil",
+            Family::Sl2r => "SL̃(2,R)",
         }
     }
 }
@@ -170,6 +176,18 @@ impl Family {
                  scene and scene files with walls and the teaching views: `render`, `walk`, \
                  `walk --xr`, `flight`, `light`, `bench`)"
             }
+            (Family::Sl2r, Feature::Export) => {
+                "a unit tangent bundle is written by its id (`unit-tangent-WORD`), which holds \
+                 all of it"
+            }
+            (Family::Sl2r, Feature::Basepoint) => {
+                "an SL̃(2,R) cell is centred on its polygon's centre; `--basepoint` moves the \
+                 Dirichlet domains of generator files"
+            }
+            (Family::Sl2r, _) => {
+                "not written for the SL̃(2,R) family yet (its geodesics and walks are exact: \
+                 `trace`, `info`, `list`)"
+            }
             (Family::Product, Feature::SceneParts) => {
                 "a product scene file's `edges` and `centre_ball` choose the parts"
             }
@@ -205,6 +223,14 @@ pub enum AnySpace {
     Product(Arc<ProductSpace>),
     /// Nil.
     Nil(Arc<NilSpace>),
+    /// SL̃(2,R).
+    Sl2r(Arc<UnitTangentSpace>),
+}
+
+impl From<UnitTangentSpace> for AnySpace {
+    fn from(space: UnitTangentSpace) -> Self {
+        AnySpace::Sl2r(Arc::new(space))
+    }
 }
 
 impl From<NilSpace> for AnySpace {
@@ -249,6 +275,9 @@ impl AnySpace {
         if let Some(space) = nil_space(id) {
             return space.map(Self::from).map_err(|e| e.to_string());
         }
+        if let Some(space) = sl2r_space(id) {
+            return space.map(Self::from).map_err(|e| e.to_string());
+        }
         match product_space(id) {
             Some(Ok(ProductOrFlat::Product(p))) => Ok(Self::from(*p)),
             Some(Ok(ProductOrFlat::Flat(s))) => Ok(Self::from(*s)),
@@ -270,6 +299,7 @@ impl AnySpace {
             AnySpace::Constant(_) => Family::Constant,
             AnySpace::Product(_) => Family::Product,
             AnySpace::Nil(_) => Family::Nil,
+            AnySpace::Sl2r(_) => Family::Sl2r,
         }
     }
 
@@ -283,7 +313,7 @@ impl AnySpace {
     pub fn constant(&self) -> Option<&Arc<Space>> {
         match self {
             AnySpace::Constant(s) => Some(s),
-            AnySpace::Product(_) | AnySpace::Nil(_) => None,
+            AnySpace::Product(_) | AnySpace::Nil(_) | AnySpace::Sl2r(_) => None,
         }
     }
 
@@ -295,6 +325,7 @@ impl AnySpace {
             AnySpace::Constant(s) => &**s,
             AnySpace::Product(p) => &**p,
             AnySpace::Nil(n) => &**n,
+            AnySpace::Sl2r(s) => &**s,
         }
     }
 
@@ -305,6 +336,7 @@ impl AnySpace {
             AnySpace::Constant(s) => s,
             AnySpace::Product(p) => p,
             AnySpace::Nil(n) => n,
+            AnySpace::Sl2r(s) => s,
         };
         shared.downcast_ref::<Arc<F>>()
     }
@@ -314,7 +346,7 @@ impl AnySpace {
     pub fn product(&self) -> Option<&Arc<ProductSpace>> {
         match self {
             AnySpace::Product(p) => Some(p),
-            AnySpace::Constant(_) | AnySpace::Nil(_) => None,
+            AnySpace::Constant(_) | AnySpace::Nil(_) | AnySpace::Sl2r(_) => None,
         }
     }
 
@@ -325,6 +357,7 @@ impl AnySpace {
             AnySpace::Constant(s) => s.name(),
             AnySpace::Product(p) => p.name(),
             AnySpace::Nil(n) => n.name(),
+            AnySpace::Sl2r(s) => s.name(),
         }
     }
 
@@ -335,27 +368,31 @@ impl AnySpace {
             AnySpace::Constant(s) => s.description(),
             AnySpace::Product(p) => p.description(),
             AnySpace::Nil(n) => n.description(),
+            AnySpace::Sl2r(s) => s.description(),
         }
     }
 
-    /// Its geometry's name: `E3`, `S3`, `H3`, `H2xR`, `S2xR`, `Nil`.
+    /// Its geometry's name: `E3`, `S3`, `H3`, `H2xR`, `S2xR`, `Nil`, `SL2R`.
     #[must_use]
     pub fn geometry_name(&self) -> &'static str {
         match self {
             AnySpace::Constant(s) => s.geometry().name(),
             AnySpace::Product(p) => p.geometry_name(),
             AnySpace::Nil(_) => "Nil",
+            AnySpace::Sl2r(_) => "SL2R",
         }
     }
 
     /// The geometry of the model its points live in: the space's own for constant
-    /// curvature, the surface's for a product, the affine chart (`w = 1`) for Nil.
+    /// curvature, the surface's for a product, the affine chart (`w = 1`) for Nil, the
+    /// hyperboloid of the base point for SL̃(2,R).
     #[must_use]
     pub fn model_geometry(&self) -> Geometry {
         match self {
             AnySpace::Constant(s) => s.geometry(),
             AnySpace::Product(p) => p.base(),
             AnySpace::Nil(_) => Geometry::Euclidean,
+            AnySpace::Sl2r(_) => Geometry::Hyperbolic,
         }
     }
 
@@ -366,6 +403,7 @@ impl AnySpace {
             AnySpace::Constant(s) => invariants::volume(s),
             AnySpace::Product(p) => p.volume(),
             AnySpace::Nil(n) => n.volume(),
+            AnySpace::Sl2r(s) => s.volume(),
         }
     }
 
@@ -378,6 +416,7 @@ impl AnySpace {
             AnySpace::Constant(s) => invariants::inradius(s),
             AnySpace::Product(p) => p.scale(),
             AnySpace::Nil(n) => super::FrameSpace::scale(&**n),
+            AnySpace::Sl2r(s) => super::FrameSpace::scale(&**s),
         }
     }
 
@@ -388,6 +427,7 @@ impl AnySpace {
             AnySpace::Constant(s) => invariants::injectivity_radius(s),
             AnySpace::Product(p) => p.injectivity_radius(PRODUCT_GROUP_LIMIT),
             AnySpace::Nil(n) => Some(n.injectivity_radius()),
+            AnySpace::Sl2r(s) => s.injectivity_radius(),
         }
     }
 }
@@ -407,6 +447,11 @@ pub fn resolve_space(id: &str, base: &Path, options: &DirichletOptions) -> Resul
         )),
         AnySpace::Nil(space) => Err(format!(
             "{id} is a space of the geometry Nil ({}): this takes the constant-curvature \
+             geometries only (E³, S³, H³)",
+            space.description()
+        )),
+        AnySpace::Sl2r(space) => Err(format!(
+            "{id} is a space of the geometry SL̃(2,R) ({}): this takes the constant-curvature \
              geometries only (E³, S³, H³)",
             space.description()
         )),
@@ -454,12 +499,19 @@ impl CentreFrame for NilSpace {
     }
 }
 
+impl CentreFrame for UnitTangentSpace {
+    fn frame_from_centre(&self, offset: DVec3) -> DMat4 {
+        UnitTangentSpace::frame_from_centre(self, offset)
+    }
+}
+
 impl CentreFrame for AnySpace {
     fn frame_from_centre(&self, offset: DVec3) -> DMat4 {
         match self {
             AnySpace::Constant(s) => s.frame_from_centre(offset),
             AnySpace::Product(p) => p.frame_from_centre(offset),
             AnySpace::Nil(n) => n.frame_from_centre(offset),
+            AnySpace::Sl2r(s) => s.frame_from_centre(offset),
         }
     }
 }

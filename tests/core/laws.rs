@@ -15,6 +15,7 @@ use bevy_curved_spaces::random::SplitMix64;
 use bevy_curved_spaces::space::nil::{self, NilSpace};
 use bevy_curved_spaces::space::product::motion::camera_frame;
 use bevy_curved_spaces::space::product::{ProductSpace, ProductWalker};
+use bevy_curved_spaces::space::sl2r::{self, Sl2rWalker, UnitTangentSpace};
 use bevy_curved_spaces::space::{CellWalk, FamilySpace, FrameMotion, FrameSpace, Limit, Space};
 use glam::{DMat4, DVec3, DVec4, Vec4};
 
@@ -244,6 +245,74 @@ impl LawFamily for Nil {
     }
 }
 
+/// An SL̃(2,R) space: `UT Σ`, the polygon times the fibre. A walk's point holds the base
+/// point `p` (and `e`'s first entry); the laws compare base points, which the pairings
+/// carry as isometries of `H²` (the whole frame is compared in `sl2r/walks.rs`).
+struct Sl2r(UnitTangentSpace);
+
+impl Sl2r {
+    /// The pairing's action on `(x, y, w)` (the model's entries 0, 1 and 3 of the 4×4 the
+    /// holonomy composes).
+    fn surface_part(m: DMat4) -> [[f64; 3]; 3] {
+        let idx = [0, 1, 3];
+        idx.map(|r| idx.map(|c| m.col(c)[r]))
+    }
+
+    fn apply(m: &[[f64; 3]; 3], v: [f64; 3]) -> [f64; 3] {
+        [0, 1, 2].map(|r| m[r][0] * v[0] + m[r][1] * v[1] + m[r][2] * v[2])
+    }
+}
+
+impl LawFamily for Sl2r {
+    type Space = UnitTangentSpace;
+    fn cases() -> Vec<(String, Self)> {
+        ["abABcdCD", "abcdABCD", "abABcdCDefEF"]
+            .into_iter()
+            .map(|w| {
+                (
+                    format!("unit-tangent-{w}"),
+                    Sl2r(UnitTangentSpace::new(w).expect("a hyperbolic word")),
+                )
+            })
+            .collect()
+    }
+    fn space(&self) -> &UnitTangentSpace {
+        &self.0
+    }
+    fn cover_point(&self, start: &Ray<DVec4>, t: f64) -> DVec4 {
+        let ray = Sl2rWalker::<DVec4>::sl2r_ray(start);
+        DVec3::from_array(sl2r::flow::base_point(&ray, t)).extend(0.0)
+    }
+    fn carried(&self, face: usize, _entry: DVec4, p: DVec4) -> DVec4 {
+        let m = self.0.sides()[face].pairing.map(|r| r.map(|x| x.hi));
+        DVec3::from_array(Self::apply(&m, p.truncate().to_array())).extend(0.0)
+    }
+    /// The base points' gap (a walk's point also holds `e`'s first entry).
+    fn gap(&self, a: DVec4, b: DVec4) -> f64 {
+        (a.truncate() - b.truncate()).abs().max_element()
+    }
+    fn tolerance(&self, d: f64) -> f64 {
+        // Hyperbolic spreading, as in H³.
+        1e-12 * d.exp()
+    }
+    fn player_start(&self) -> DMat4 {
+        self.0.frame_from_centre(DVec3::ZERO)
+    }
+    /// The pairings move the point `(p, e)` (the last column, and `e` in the axes' fourth
+    /// entries) and keep the axes' body components.
+    fn carry_frame(&self, held: DMat4, _shift: f64, cover: DMat4) -> DMat4 {
+        let m = Self::surface_part(held);
+        let p = Self::apply(&m, cover.w_axis.truncate().to_array());
+        let e = Self::apply(&m, [cover.x_axis.w, cover.y_axis.w, cover.z_axis.w]);
+        let mut carried = cover;
+        carried.x_axis.w = e[0];
+        carried.y_axis.w = e[1];
+        carried.z_axis.w = e[2];
+        carried.w_axis = DVec3::from_array(p).extend(1.0);
+        carried
+    }
+}
+
 /// The player's wrap margin (the plugin's default).
 const MARGIN: f64 = 1e-4;
 
@@ -432,3 +501,4 @@ macro_rules! family_laws {
 family_laws!(constant_curvature, Constant);
 family_laws!(products, Product);
 family_laws!(nil_spaces, Nil);
+family_laws!(sl2r_spaces, Sl2r);

@@ -76,6 +76,10 @@ fn product(id: &str) -> Result<ProductSpace, BenchError> {
             "{id} is a Nil space, not a product space: {}",
             n.description()
         ))),
+        AnySpace::Sl2r(s) => Err(BenchError::Product(format!(
+            "{id} is an SL̃(2,R) space, not a product space: {}",
+            s.description()
+        ))),
         AnySpace::Constant(s) => Err(BenchError::Product(format!(
             "{id} is {}, not a product space: --spaces benches the constant-curvature spaces",
             if s.geometry() == crate::geometry::Geometry::Euclidean {

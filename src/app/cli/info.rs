@@ -7,6 +7,7 @@ use bevy_curved_spaces::space::invariants::Invariants;
 use bevy_curved_spaces::space::library::{FAMILIES, is_gen_path};
 use bevy_curved_spaces::space::nil::NilSpace;
 use bevy_curved_spaces::space::product::ProductSpace;
+use bevy_curved_spaces::space::sl2r::UnitTangentSpace;
 use bevy_curved_spaces::space::{SEED_SPACES, Space};
 use std::path::Path;
 
@@ -71,8 +72,14 @@ pub(super) fn list() {
     say!("");
     say!(
         "Nil spaces: nil-K (K = 1 … {}; heisenberg is nil-1), the Heisenberg group over the \
-         lattice whose centre is 1/K: `info` and `trace` take them (pictures are not drawn yet)",
+         lattice whose centre is 1/K: every command takes them",
         bevy_curved_spaces::space::nil::MAX_NIL_K
+    );
+    say!("");
+    say!(
+        "SL̃(2,R) spaces: unit-tangent-WORD (unit-tangent-bitorus is unit-tangent-abABcdCD), the \
+         unit tangent bundle of the orientable hyperbolic surface of WORD: `info`, `trace` and \
+         `list` take them (pictures are not drawn yet)"
     );
     say!("");
     say!(
@@ -274,6 +281,58 @@ pub(super) fn nil_info(space: &NilSpace, as_json: bool) -> Result<(), String> {
     say!(
         "  injectivity radius  {}",
         number(space.injectivity_radius(), 10)
+    );
+    Ok(())
+}
+
+/// `info` of an SL̃(2,R) space: its surface and cell, and the invariants computed from them.
+pub(super) fn sl2r_info(space: &UnitTangentSpace, as_json: bool) -> Result<(), String> {
+    use bevy_curved_spaces::space::FrameSpace;
+    let word = space.word();
+    if as_json {
+        let value = serde_json::json!({
+            "name": space.name(),
+            "geometry": "SL2R",
+            "description": space.description(),
+            "word": word.word,
+            "genus": space.genus(),
+            "euler_characteristic": word.euler_characteristic(),
+            "faces": space.face_count(),
+            "polygon_inradius": space.inradius(),
+            "fibre_length": std::f64::consts::TAU,
+            "volume": space.volume(),
+            "orientable": true,
+            "manifold": true,
+            "homology": space.homology(),
+            "injectivity_radius": space.injectivity_radius(),
+        });
+        say!(
+            "{}",
+            serde_json::to_string_pretty(&value).map_err(|e| e.to_string())?
+        );
+        return Ok(());
+    }
+    say!("{} (SL̃(2,R))", space.name());
+    say!("  {}", space.description());
+    say!(
+        "  surface             {} (genus {}, Euler characteristic {})",
+        word.word,
+        space.genus(),
+        word.euler_characteristic()
+    );
+    say!(
+        "  faces               {} (the polygon's sides times the fibre; inradius {})",
+        space.face_count(),
+        number(space.inradius(), 12)
+    );
+    say!("  fibre length        2π");
+    say!("  volume              {}", number(space.volume(), 12));
+    say!("  orientable          true");
+    say!("  manifold            true");
+    say!("  first homology      {}", space.homology());
+    say!(
+        "  injectivity radius  not computed yet (at most π, half the fibre, and half the \
+         surface's systole)"
     );
     Ok(())
 }

@@ -11,7 +11,14 @@ use serde_json::json;
 const DEFAULT_BOUND_FRACTION: f64 = 0.01;
 
 pub(super) fn light(args: &LightArgs) -> Result<(), String> {
-    let space = match super::space_named(&args.space)? {
+    let named = super::space_named(&args.space)?;
+    named
+        .supports(bevy_curved_spaces::space::Feature::LampFluence)
+        .map_err(|e| format!("{}: {e}", args.space))?;
+    let space = match named {
+        AnySpace::Sl2r(space) => {
+            return Err(format!("{}: no lamp's light in SL̃(2,R) yet", space.name()));
+        }
         AnySpace::Constant(space) => space,
         AnySpace::Product(space) => return light_product(args, &space),
         AnySpace::Nil(space) => return light_nil(args, &space),

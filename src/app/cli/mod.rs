@@ -742,6 +742,7 @@ pub fn run(cli: Cli) -> Result<(), String> {
             AnySpace::Product(p) => info::product_info(&p, json),
             AnySpace::Constant(s) => info::info(&s, json),
             AnySpace::Nil(n) => info::nil_info(&n, json),
+            AnySpace::Sl2r(s) => info::sl2r_info(&s, json),
         },
         Some(Command::Trace(args)) => trace::trace(&args),
         Some(Command::Light(args)) => light::light(&args),

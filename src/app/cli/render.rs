@@ -119,8 +119,19 @@ pub(super) fn choose(
             space: file.space,
         }));
     }
-    Ok(match super::space_named(space_arg)? {
+    let named = super::space_named(space_arg)?;
+    // The one table of what a family draws.
+    named
+        .supports(bevy_curved_spaces::space::Feature::Pictures)
+        .map_err(|e| format!("{space_arg}: {e}"))?;
+    Ok(match named {
         AnySpace::Nil(space) => Choice::Nil(NilChoice::new(space, None)),
+        AnySpace::Sl2r(space) => {
+            return Err(format!(
+                "{}: no pictures of the SL̃(2,R) spaces yet",
+                space.name()
+            ));
+        }
         AnySpace::Product(space) => {
             let space = std::sync::Arc::unwrap_or_clone(space);
             Choice::Product(ProductChoice {

@@ -135,6 +135,39 @@ impl TraceFamily for NilFamily {
     }
 }
 
+/// An SL̃(2,R) space: faces by side, points as the base point `[x, y, w]` on the
+/// hyperboloid; the end adds the whole model point `[p, e]` and the body direction.
+struct Sl2rFamily;
+
+impl TraceFamily for Sl2rFamily {
+    fn point_heading(&self) -> &'static str {
+        "entry base point (hyperboloid)"
+    }
+    fn face_json(&self, face: usize) -> (&'static str, Value) {
+        ("side", json!(face))
+    }
+    fn face_text(&self, face: usize) -> String {
+        format!("side {face}")
+    }
+    fn point_json(&self, p: DVec4) -> Map<String, Value> {
+        let mut m = Map::new();
+        m.insert("base_point".into(), json!([p.x, p.y, p.z]));
+        m
+    }
+    fn point_text(&self, p: DVec4) -> String {
+        format!("({:+.15}, {:+.15}, {:+.15})", p.x, p.y, p.z)
+    }
+    fn end_json(&self, end: &Ray<DVec4>) -> Map<String, Value> {
+        use bevy_curved_spaces::space::sl2r::Sl2rWalker;
+        let r = Sl2rWalker::<DVec4>::sl2r_ray(end);
+        let [e, _, p] = r.frame;
+        let mut m = Map::new();
+        m.insert("model".into(), json!([p[0], p[1], p[2], e[0], e[1], e[2]]));
+        m.insert("direction".into(), json!(r.velocity));
+        m
+    }
+}
+
 /// A product space (H²×R, S²×R): faces by name (`side k`, `top`, `bottom`), points as the
 /// chart point `(x/w, y/w, z)` beside the model point `[x, y, w, z]`.
 struct ProductFamily<'a>(&'a ProductSpace);
@@ -225,7 +258,7 @@ fn ended_early(limit: Limit, crossed: usize, distance: f64) -> Option<String> {
             };
             Some(format!(
                 "asked for {n} crossings, but the geodesic {after}: it stays inside the cell \
-                 for ever, going round a closed geodesic"
+                 for ever"
             ))
         }
         _ => None,
@@ -374,5 +407,6 @@ pub(super) fn trace(args: &TraceArgs) -> Result<(), String> {
         AnySpace::Constant(space) => trace_in(args, &*space, space.name(), &ConstantFamily(&space)),
         AnySpace::Product(space) => trace_in(args, &*space, space.name(), &ProductFamily(&space)),
         AnySpace::Nil(space) => trace_in(args, &*space, space.name(), &NilFamily),
+        AnySpace::Sl2r(space) => trace_in(args, &*space, space.name(), &Sl2rFamily),
     }
 }

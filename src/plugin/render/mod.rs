@@ -244,8 +244,8 @@ fn extract_curved_views(
         };
         let extras = match &active.space {
             AnySpace::Constant(s) => ViewExtras::new(s, &scene.0, frame.0, seconds),
-            // No avatar in a product or Nil space.
-            AnySpace::Product(_) | AnySpace::Nil(_) => ViewExtras {
+            // No avatar in the other families.
+            AnySpace::Product(_) | AnySpace::Nil(_) | AnySpace::Sl2r(_) => ViewExtras {
                 time: seconds,
                 ..ViewExtras::default()
             },

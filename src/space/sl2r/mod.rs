@@ -19,10 +19,11 @@
 
 pub mod exit;
 pub mod flow;
+mod frames;
 mod space;
 pub mod walk;
 
 pub use exit::side_exit;
 pub use flow::{Sl2rRay, flow, on_model};
-pub use space::{Sl2rError, Sl2rSide, UnitTangentSpace};
+pub use space::{Sl2rError, Sl2rSide, UNIT_TANGENT_PREFIX, UnitTangentSpace, sl2r_space};
 pub use walk::{Sl2rExit, Sl2rWalker};

@@ -40,6 +40,17 @@ pub enum Sl2rError {
         /// The geometry of its unit tangent bundle.
         geometry: &'static str,
     },
+    /// A fibre cover was asked for.
+    #[error(
+        "unit-tangent-{word}-cover-{n}: the fibre covers (the fibre closing after 2πN, cells \
+         with a top and a bottom) are not built yet; unit-tangent-{word} is"
+    )]
+    Cover {
+        /// The word.
+        word: String,
+        /// The cover's degree as written.
+        n: String,
+    },
     /// The surface is not orientable.
     #[error(
         "the word {word} is a non-orientable surface: its unit tangent bundle is not a \
@@ -55,9 +66,35 @@ pub enum Sl2rError {
 /// `UT Σ` of an orientable hyperbolic surface `Σ`, with the Sasaki metric.
 #[derive(Clone, Debug, PartialEq)]
 pub struct UnitTangentSpace {
+    name: String,
+    description: String,
     word: SurfaceWord,
     polygon: Polygon,
     sides: Vec<Sl2rSide>,
+}
+
+/// The id's prefix of the unit tangent bundles.
+pub const UNIT_TANGENT_PREFIX: &str = "unit-tangent-";
+
+/// The unit tangent bundle an id names (`unit-tangent-WORD`, `unit-tangent-bitorus` =
+/// `unit-tangent-abABcdCD`); `None` where the id is not of this family, an error where it
+/// is but names no such space.
+pub fn sl2r_space(id: &str) -> Option<Result<UnitTangentSpace, Sl2rError>> {
+    let rest = id.strip_prefix(UNIT_TANGENT_PREFIX)?;
+    if let Some((word, n)) = rest.split_once("-cover-") {
+        return Some(Err(Sl2rError::Cover {
+            word: word.to_string(),
+            n: n.to_string(),
+        }));
+    }
+    let word = match rest {
+        "bitorus" => "abABcdCD",
+        w => w,
+    };
+    Some(UnitTangentSpace::new(word).map(|mut s| {
+        s.name = id.to_string();
+        s
+    }))
 }
 
 /// The 3×3 part of a product space's pairing that acts on `H²` (`(x, y, w)`: the model's
@@ -105,17 +142,61 @@ impl UnitTangentSpace {
                 partner: f.partner,
             })
             .collect();
+        let genus = (2 - word.euler_characteristic()) / 2;
         Ok(Self {
+            name: format!("{UNIT_TANGENT_PREFIX}{}", word.word),
+            description: format!(
+                "the unit tangent bundle of the genus-{genus} surface {} (SL̃(2,R)): its \
+                 {}-gon times the fibre, a circle of length 2π",
+                word.word,
+                word.side_count()
+            ),
             word,
             polygon,
             sides,
         })
     }
 
-    /// The space's id: `unit-tangent-WORD`.
+    /// The space's id: `unit-tangent-WORD` (or the alias it was named by).
     #[must_use]
-    pub fn name(&self) -> String {
-        format!("unit-tangent-{}", self.word.word)
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// One line about it.
+    #[must_use]
+    pub fn description(&self) -> &str {
+        &self.description
+    }
+
+    /// The injectivity radius: not computed yet. It is at most `π` (half the fibre, a
+    /// closed geodesic of length `2π`) and at most half the surface's systole (the tangent
+    /// lift of a closed geodesic is one of `UT Σ`), but whether a shorter loop winds once
+    /// round the fibre, and where the first conjugate points lie, is not settled here.
+    #[must_use]
+    pub fn injectivity_radius(&self) -> Option<f64> {
+        None
+    }
+
+    /// The frame reached from the centre's frame (`p = (0, 0, 1)`, `e = (1, 0, 0)`, the
+    /// viewer's axes the body frame) along the body direction `offset` by its length.
+    #[must_use]
+    pub fn frame_from_centre(&self, offset: glam::DVec3) -> glam::DMat4 {
+        use crate::space::FrameSpace;
+        let start = glam::DMat4::from_cols(
+            glam::DVec4::new(1.0, 0.0, 0.0, 1.0),
+            glam::DVec4::new(0.0, 1.0, 0.0, 0.0),
+            glam::DVec4::new(0.0, 0.0, 1.0, 0.0),
+            glam::DVec4::new(0.0, 0.0, 1.0, 1.0),
+        );
+        self.step_frame(
+            start,
+            &crate::space::contract::FrameMotion {
+                translation: offset,
+                rotation: glam::DVec3::ZERO,
+                level: false,
+            },
+        )
     }
 
     /// The surface's word.

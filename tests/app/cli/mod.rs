@@ -8,6 +8,7 @@ mod bench;
 mod commands;
 mod edges;
 mod nil;
+mod sl2r;
 mod views;
 
 fn run(args: &[&str]) -> Output {

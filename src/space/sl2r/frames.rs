@@ -1,0 +1,272 @@
+//! `UT Σ` under the geometry contract: its chart, its cell and the motion of frames.
+//!
+//! A frame of the contract (`DMat4`) holds, for SL̃(2,R), the point `(p, e)` and the
+//! viewer's axes: the columns' first three entries are the right, up and back axes as body
+//! vectors in `(X, Y, V)`, their fourth entries are `e = (e_x, e_y, e_w)`, and the last
+//! column is `(p_x, p_y, p_w, 1)` (so `w_axis` is the base point, as the other families'
+//! positions are). A frame moves along the geodesic of its motion with its axes' body
+//! components kept: the motion is the left translation carrying the start to the end, an
+//! isometry, as the gluings are. The chart of `trace --from x,y,θ` is the reference's:
+//! `p = (x, y, √(1 + x² + y²))`, `e = cos θ E₁ + sin θ E₂` with `(E₁, E₂)` the boost of the
+//! origin's `(∂x, ∂y)` to `p`.
+
+use super::flow::{Sl2rRay, flow, moved_by, on_model};
+use super::space::UnitTangentSpace;
+use super::walk::Sl2rWalker;
+use crate::geometry::{Ray, Vector4};
+use crate::space::Family;
+use crate::space::contract::{FamilySpace, FrameCrossing, FrameMotion, FrameSpace};
+use crate::space::motion::Velocity;
+use glam::{DMat3, DMat4, DVec3, DVec4};
+
+/// The most pairings one wrap applies (a frame far outside is refused by the chart).
+const MAX_WRAPS: usize = 64;
+
+/// The point `(p, e)` of a frame, with the velocity `v`.
+fn point_of(frame: &DMat4, v: [f64; 3]) -> Sl2rRay<f64> {
+    let p = frame.w_axis.truncate().to_array();
+    let e = [frame.x_axis.w, frame.y_axis.w, frame.z_axis.w];
+    let f = [
+        p[1] * e[2] - p[2] * e[1],
+        p[2] * e[0] - p[0] * e[2],
+        -(p[0] * e[1] - p[1] * e[0]),
+    ];
+    Sl2rRay {
+        frame: [e, f, p],
+        velocity: v,
+    }
+}
+
+/// The viewer's axes (right, up, back as body vectors, columns).
+fn axes_of(frame: &DMat4) -> DMat3 {
+    DMat3::from_cols(
+        frame.x_axis.truncate(),
+        frame.y_axis.truncate(),
+        frame.z_axis.truncate(),
+    )
+}
+
+/// The frame of the point `r` with the viewer's `axes`.
+fn frame_of(r: &Sl2rRay<f64>, axes: DMat3) -> DMat4 {
+    let [e, _, p] = r.frame;
+    DMat4::from_cols(
+        axes.x_axis.extend(e[0]),
+        axes.y_axis.extend(e[1]),
+        axes.z_axis.extend(e[2]),
+        DVec3::from_array(p).extend(1.0),
+    )
+}
+
+/// Axes made orthonormal again (Gram–Schmidt, right-handed).
+fn orthonormal(axes: DMat3) -> DMat3 {
+    let x = axes.x_axis.normalize();
+    let y = (axes.y_axis - x * x.dot(axes.y_axis)).normalize();
+    DMat3::from_cols(x, y, x.cross(y))
+}
+
+/// The point `r` moved along the body direction `u` (any length) by its length.
+fn moved_along(r: &Sl2rRay<f64>, u: DVec3) -> Sl2rRay<f64> {
+    let length = u.length();
+    if !(length > 0.0) || !length.is_finite() {
+        return *r;
+    }
+    let ray = Sl2rRay {
+        frame: r.frame,
+        velocity: (u / length).to_array(),
+    };
+    on_model(&flow(&ray, length))
+}
+
+/// A 3×3 pairing of `H²` (rows, on `(x, y, w)`) as the 4×4 the holonomy composes, the
+/// fibre's coordinate (the third) fixed, as the product spaces write theirs.
+fn pairing_matrix(m: &[[f64; 3]; 3]) -> DMat4 {
+    let idx = [0, 1, 3];
+    let mut out = DMat4::IDENTITY;
+    for (r, &i) in idx.iter().enumerate() {
+        for (c, &j) in idx.iter().enumerate() {
+            out.col_mut(j)[i] = m[r][c];
+        }
+    }
+    out
+}
+
+impl UnitTangentSpace {
+    /// The sides' covectors and pairings in `f64`.
+    fn sides_f64(&self) -> Vec<([f64; 3], [[f64; 3]; 3])> {
+        self.sides()
+            .iter()
+            .map(|s| (s.normal.map(|x| x.hi), s.pairing.map(|r| r.map(|x| x.hi))))
+            .collect()
+    }
+
+    /// The side the base point `p` lies farthest outside of, and by how far (the distance
+    /// in `H²` to the side's geodesic, negative inside).
+    fn farthest_past(&self, p: [f64; 3]) -> (usize, f64) {
+        let cosh_rho = self.inradius().cosh();
+        let mut best = (0, f64::NEG_INFINITY);
+        for (i, (n, _)) in self.sides_f64().iter().enumerate() {
+            let d = (cosh_rho * (n[0] * p[0] + n[1] * p[1] + n[2] * p[2])).asinh();
+            if !(d <= best.1) {
+                best = (i, d);
+            }
+        }
+        best
+    }
+
+    /// The point `r` brought into the cell by the sides' pairings once it is past a side by
+    /// more than `margin`, with the sides crossed.
+    fn wrap_point(&self, r: &Sl2rRay<f64>, margin: f64) -> (Sl2rRay<f64>, Vec<usize>) {
+        let sides = self.sides_f64();
+        let mut r = *r;
+        let mut crossed = Vec::new();
+        for _ in 0..MAX_WRAPS {
+            let (face, past) = self.farthest_past(r.frame[2]);
+            if !(past > margin) {
+                break;
+            }
+            r = on_model(&moved_by(&sides[face].1, &r));
+            crossed.push(face);
+        }
+        (r, crossed)
+    }
+}
+
+impl FamilySpace for UnitTangentSpace {
+    const FAMILY: Family = Family::Sl2r;
+    type Walker<V: Vector4> = Sl2rWalker<V>;
+
+    fn walker<V: Vector4>(&self) -> Sl2rWalker<V> {
+        Sl2rWalker::new(self)
+    }
+}
+
+impl FrameSpace for UnitTangentSpace {
+    /// The ray from the chart point `from = (x, y, θ)` (see the module), first brought into
+    /// the cell by the pairings, along the body direction `dir` (in `X, Y, V`).
+    fn chart_ray(&self, from: DVec3, dir: DVec3) -> Result<Ray<DVec4>, String> {
+        if !from.is_finite() {
+            return Err(format!(
+                "the start point {from} is not a point of the chart"
+            ));
+        }
+        if !(dir.is_finite() && dir.length() > 0.0 && dir.length().is_finite()) {
+            return Err(format!("the direction {dir} has no length"));
+        }
+        let (x, y, theta) = (from.x, from.y, from.z);
+        let w = (1.0 + x * x + y * y).sqrt();
+        let e1 = [1.0 + x * x / (1.0 + w), x * y / (1.0 + w), x];
+        let e2 = [x * y / (1.0 + w), 1.0 + y * y / (1.0 + w), y];
+        let (c, s) = (theta.cos(), theta.sin());
+        let e = [0, 1, 2].map(|i| c * e1[i] + s * e2[i]);
+        let start = on_model(&Sl2rRay {
+            frame: [e, [0.0; 3], [x, y, w]],
+            velocity: dir.normalize().to_array(),
+        });
+        let (inside, _) = self.wrap_point(&start, 0.0);
+        if !(self.farthest_past(inside.frame[2]).1 <= 1e-9) {
+            return Err(format!(
+                "the start point {from} is too far to bring into the cell (more than \
+                 {MAX_WRAPS} side crossings): start nearer the origin"
+            ));
+        }
+        Ok(Sl2rWalker::<DVec4>::ray_of(&inside))
+    }
+
+    /// How far the base point `(p.x, p.y, p.z)` lies outside the polygon, in `H²`.
+    fn outside_by(&self, p: DVec4) -> f64 {
+        let past = self.farthest_past(p.truncate().to_array()).1;
+        if past.is_nan() { f64::INFINITY } else { past }
+    }
+
+    fn face_count(&self) -> usize {
+        self.sides().len()
+    }
+
+    fn scale(&self) -> f64 {
+        self.inradius().min(std::f64::consts::PI)
+    }
+
+    fn frame_defect(&self, frame: DMat4) -> f64 {
+        let axes = axes_of(&frame);
+        let r = point_of(&frame, [0.0; 3]);
+        let [e, _, p] = r.frame;
+        let l = super::flow::lorentz;
+        (axes.transpose() * axes - DMat3::IDENTITY)
+            .to_cols_array()
+            .iter()
+            .chain(&[l(p, p) + 1.0, l(e, e) - 1.0, l(e, p)])
+            .fold(0.0_f64, |m, x| m.max(x.abs()))
+    }
+
+    /// A step of a player: with `level` (the plugin's default) the fibre `V` stays up —
+    /// walking forward and sideways is horizontal (the axes without their `V` parts), up and
+    /// down is along the fibre, and yaw turns about `V`; without it the frame moves along
+    /// its own axes and turns about them. The axes keep their body components.
+    fn step_frame(&self, frame: DMat4, motion: &FrameMotion) -> DMat4 {
+        let d = motion.translation;
+        let mut axes = axes_of(&frame);
+        let mut r = point_of(&frame, [0.0; 3]);
+        if d.length() > 0.0 && d.is_finite() {
+            let u = if motion.level {
+                let flat = |v: DVec3| DVec3::new(v.x, v.y, 0.0);
+                let h = flat(axes.x_axis) * d.x + flat(axes.z_axis) * d.z;
+                let scale = d.x.hypot(d.z);
+                let horizontal = if h.length() > 1e-12 {
+                    h * (scale / h.length())
+                } else {
+                    DVec3::ZERO
+                };
+                horizontal + DVec3::Z * d.y
+            } else {
+                axes * d
+            };
+            r = moved_along(&r, u);
+        }
+        let turn = motion.rotation;
+        if motion.level && turn.y != 0.0 && turn.y.is_finite() {
+            axes = DMat3::from_rotation_z(turn.y) * axes;
+        }
+        for (k, (axis, angle)) in [(DVec3::X, turn.x), (DVec3::Y, turn.y), (DVec3::Z, turn.z)]
+            .into_iter()
+            .enumerate()
+        {
+            if (motion.level && k == 1) || angle == 0.0 || !angle.is_finite() {
+                continue;
+            }
+            axes *= DMat3::from_axis_angle(axis, angle);
+        }
+        frame_of(&r, orthonormal(axes))
+    }
+
+    fn step_velocity(&self, frame: DMat4, velocity: &Velocity, dt: f64) -> DMat4 {
+        if !velocity.is_finite() || !dt.is_finite() || velocity.is_zero() {
+            return frame;
+        }
+        let axes = axes_of(&frame);
+        let r = moved_along(&point_of(&frame, [0.0; 3]), axes * (velocity.linear * dt));
+        let rate = velocity.angular.length();
+        let axes = if rate > 0.0 {
+            axes * DMat3::from_axis_angle(velocity.angular / rate, rate * dt)
+        } else {
+            axes
+        };
+        frame_of(&r, orthonormal(axes))
+    }
+
+    fn wrap_frame(&self, frame: DMat4, margin: f64) -> (DMat4, Vec<FrameCrossing>) {
+        let (r, crossed) = self.wrap_point(&point_of(&frame, [0.0; 3]), margin);
+        if crossed.is_empty() {
+            return (frame, Vec::new());
+        }
+        let sides = self.sides_f64();
+        let crossings = crossed
+            .into_iter()
+            .map(|face| FrameCrossing {
+                face,
+                pairing: pairing_matrix(&sides[face].1),
+                fibre_shift: 0.0,
+            })
+            .collect();
+        (frame_of(&r, axes_of(&frame)), crossings)
+    }
+}

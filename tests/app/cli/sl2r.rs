@@ -1,0 +1,150 @@
+//! The SL̃(2,R) spaces on the command line: `info` gives the unit tangent bundle's
+//! invariants, `trace` walks its geodesics (the end a model point of `UT H²` in the cell,
+//! the vertical speed kept), and words or commands it cannot take are refused with the
+//! reason.
+
+use super::*;
+
+fn lorentz(u: &[f64], v: &[f64]) -> f64 {
+    u[0] * v[0] + u[1] * v[1] - u[2] * v[2]
+}
+
+#[test]
+fn info_gives_the_unit_tangent_bundles_invariants() {
+    for (id, word, genus) in [
+        ("unit-tangent-bitorus", "abABcdCD", 2i64),
+        ("unit-tangent-abcdABCD", "abcdABCD", 2),
+        ("unit-tangent-abABcdCDefEF", "abABcdCDefEF", 3),
+    ] {
+        let v = json(&["info", id, "--json"]);
+        assert_eq!(v["geometry"], "SL2R");
+        assert_eq!(v["name"], id);
+        assert_eq!(v["word"], word);
+        assert_eq!(v["genus"], genus);
+        let chi = 2 - 2 * genus;
+        assert_eq!(v["euler_characteristic"], chi);
+        // The fibre 2π times the area 2π|χ|.
+        let volume = 4.0 * std::f64::consts::PI.powi(2) * chi.abs() as f64;
+        assert!((v["volume"].as_f64().unwrap() - volume).abs() < 1e-12 * volume);
+        assert_eq!(
+            v["homology"],
+            format!("Z^{} + Z/{}", 2 * genus, 2 * genus - 2)
+        );
+        assert_eq!(v["faces"], 4 * genus);
+        assert_eq!(v["orientable"], true);
+    }
+}
+
+/// The end is a point of `UT H²` (`p` on the hyperboloid, `e` a unit tangent there) whose
+/// base point is in the polygon, the body velocity is unit and keeps its vertical part, and
+/// the f32 walk crosses the same sides.
+#[test]
+fn trace_walks_an_sl2r_geodesic_to_a_model_point_in_the_cell() {
+    let dir = [0.6, 0.3, 0.5];
+    let n: f64 = dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2];
+    let args = [
+        "trace",
+        "unit-tangent-bitorus",
+        "--dir",
+        "0.6,0.3,0.5",
+        "--crossings",
+        "12",
+        "--json",
+    ];
+    let v = json(&args);
+    let crossings = v["crossings"].as_array().unwrap();
+    assert_eq!(crossings.len(), 12, "{v}");
+    let end = &v["end"];
+    let m: Vec<f64> = end["model"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    let (p, e) = (&m[0..3], &m[3..6]);
+    assert!((lorentz(p, p) + 1.0).abs() < 1e-12 && p[2] > 0.0, "{m:?}");
+    assert!((lorentz(e, e) - 1.0).abs() < 1e-12, "{m:?}");
+    assert!(lorentz(e, p).abs() < 1e-12, "{m:?}");
+    let d: Vec<f64> = end["direction"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    assert!((d.iter().map(|x| x * x).sum::<f64>() - 1.0).abs() < 1e-14);
+    assert!(
+        (d[2] - 0.5 / n.sqrt()).abs() < 1e-15,
+        "the vertical speed changed: {d:?}"
+    );
+    // In the octagon: within its circumradius of the centre (cosh R = cot(π/8) cot(π/8)).
+    let cosh_r = (1.0 / (std::f64::consts::PI / 8.0).tan()).powi(2);
+    assert!(p[2] <= cosh_r + 1e-9, "{p:?} is outside the octagon");
+    let mut f32_args = args.to_vec();
+    f32_args.extend(["--precision", "f32"]);
+    let v32 = json(&f32_args);
+    let sides = |v: &Value| -> Vec<i64> {
+        v["crossings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|c| c["side"].as_i64().unwrap())
+            .collect()
+    };
+    assert_eq!(sides(&v32), sides(&v));
+}
+
+#[test]
+fn the_fibre_is_a_closed_geodesic_inside_the_cell() {
+    fails_with(
+        &[
+            "trace",
+            "unit-tangent-bitorus",
+            "--dir",
+            "0,0,1",
+            "--crossings",
+            "1",
+        ],
+        "stays inside the cell for ever",
+    );
+    // Walked by distance it goes round: back to the start after 2π.
+    let v = json(&[
+        "trace",
+        "unit-tangent-bitorus",
+        "--dir",
+        "0,0,1",
+        "--distance",
+        "6.283185307179586",
+        "--json",
+    ]);
+    let m = v["end"]["model"].as_array().unwrap();
+    let want = [0.0, 0.0, 1.0, 1.0, 0.0, 0.0];
+    for (x, w) in m.iter().zip(want) {
+        assert!((x.as_f64().unwrap() - w).abs() < 1e-14, "{m:?}");
+    }
+}
+
+#[test]
+fn words_and_commands_it_cannot_take_are_refused_with_the_reason() {
+    fails_with(&["info", "unit-tangent-abAB"], "flat");
+    fails_with(&["info", "unit-tangent-aA"], "spherical");
+    fails_with(&["info", "unit-tangent-aabb"], "non-orientable");
+    fails_with(&["info", "unit-tangent-abABcdCD-cover-2"], "not built yet");
+    fails_with(&["info", "unit-tangent-ab"], "");
+    fails_with(
+        &["render", "unit-tangent-bitorus", "--cpu", "--size", "16x9"],
+        "not in the SL̃(2,R) spaces",
+    );
+    fails_with(
+        &[
+            "light",
+            "unit-tangent-bitorus",
+            "--light",
+            "0,0,0",
+            "--at",
+            "0.1,0,0",
+        ],
+        "not in the SL̃(2,R) spaces",
+    );
+    let list = String::from_utf8(run(&["list"]).stdout).unwrap();
+    assert!(list.contains("unit-tangent-WORD"), "{list}");
+}
