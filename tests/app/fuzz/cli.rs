@@ -37,6 +37,7 @@ fn hostile_numbers_on_the_command_line() {
         let circle = format!("surface-abABcdCD-circle-{value}");
         let turned = format!("surface-aA-circle-1-turn-{value}");
         let nil = format!("nil-{value}");
+        let angle = format!("0.1,0.2,{value}");
         let cases: Vec<Vec<&str>> = vec![
             // Every numeric option of the fluence sum.
             vec!["light", "torus", "--at", &vec3],
@@ -197,6 +198,45 @@ fn hostile_numbers_on_the_command_line() {
                 value,
             ],
             tiny_render("crosscaps-circle", &["--fog", value]),
+            // SL̃(2,R): a hostile direction, start (base point and angle) and distance.
+            vec![
+                "trace",
+                "unit-tangent-bitorus",
+                "--dir",
+                &vec3,
+                "--crossings",
+                "3",
+            ],
+            vec![
+                "trace",
+                "unit-tangent-abcdABCD",
+                "--from",
+                &vec3,
+                "--dir",
+                "0.3,0.4,0.5",
+                "--distance",
+                "2",
+            ],
+            vec![
+                "trace",
+                "unit-tangent-bitorus",
+                "--from",
+                &angle,
+                "--dir",
+                "0.6,0,0.8",
+                "--crossings",
+                "2",
+            ],
+            vec![
+                "trace",
+                "unit-tangent-bitorus",
+                "--dir",
+                "1,0,0.2",
+                "--distance",
+                value,
+                "--precision",
+                "f32",
+            ],
         ];
         for mut args in cases {
             let out_dir = crate::common::scratch_dir("fuzz-cli");
@@ -225,4 +265,38 @@ fn hostile_numbers_on_the_command_line() {
         "command lines: {} ran, {} refused with a message",
         outcomes.0, outcomes.1
     );
+}
+
+/// Hostile ids of the SL̃(2,R) family: empty, short, flat, spherical, non-orientable and
+/// over-long words, broken cover suffixes, odd letters: an error that names the problem.
+#[test]
+fn hostile_unit_tangent_ids_are_refused_with_a_message() {
+    let long = "ab".repeat(40);
+    let words = [
+        "",
+        "a",
+        "ab",
+        "aA",
+        "abAB",
+        "aabb",
+        "abcabc",
+        "abABcdCD-cover-",
+        "abABcdCD-cover-x",
+        "abABcdCD-cover-0",
+        "-cover-2",
+        "ab AB",
+        "äbÄB",
+        long.as_str(),
+        "abABcdCD\u{7}",
+    ];
+    for word in words {
+        let id = format!("unit-tangent-{word}");
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_curved-spaces"))
+            .args(["info", &id])
+            .output()
+            .expect("the binary runs");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{id}: {err}");
+        assert!(err.contains("error"), "{id}: no message: {err}");
+    }
 }
