@@ -76,6 +76,8 @@ pub enum Feature {
     EveryImageBound,
     /// Pictures: `render`, `walk`, `flight`, `light`, `bench` and the plugin.
     Pictures,
+    /// `render --cpu`: pictures by the f64 CPU reference tracer.
+    ReferencePictures,
     /// The cell's walls with windows (`--walls`).
     Walls,
     /// The teaching views (`--colour-by`).
@@ -104,6 +106,7 @@ impl Feature {
             Feature::Pictures => {
                 "pictures (`render`, `walk`, `flight`, `light`, `bench`, the plugin)"
             }
+            Feature::ReferencePictures => "`render --cpu` (the CPU reference tracer)",
             Feature::Walls => "walls with windows (`--walls`)",
             Feature::TeachingViews => "the teaching views (`--colour-by`)",
             Feature::LampFluence => "`light` (a lamp's light at a point)",
@@ -137,6 +140,7 @@ impl Family {
                 | Feature::Headset
                 | Feature::MovingObjects
                 | Feature::Pictures
+                | Feature::ReferencePictures
                 | Feature::Walls
                 | Feature::TeachingViews
                 | Feature::HolonomyView
@@ -146,6 +150,7 @@ impl Family {
             (
                 Family::Nil,
                 Feature::Pictures
+                | Feature::ReferencePictures
                 | Feature::Flights
                 | Feature::RecordFlight
                 | Feature::LampFluence
@@ -176,6 +181,12 @@ impl Family {
                  scene and scene files with walls and the teaching views: `render`, `walk`, \
                  `walk --xr`, `flight`, `light`, `bench`)"
             }
+            (Family::Sl2r, Feature::ReferencePictures) => return Ok(()),
+            (Family::Sl2r, Feature::Pictures) => {
+                "the GPU tracer is not written for SL̃(2,R) yet (`walk`, `flight`, `bench`, the \
+                 plugin and `render` without `--cpu`); `render --cpu` draws its pictures with \
+                 the CPU reference"
+            }
             (Family::Sl2r, Feature::Export) => {
                 "a unit tangent bundle is written by its id (`unit-tangent-WORD`), which holds \
                  all of it"
@@ -185,8 +196,8 @@ impl Family {
                  Dirichlet domains of generator files"
             }
             (Family::Sl2r, _) => {
-                "not written for the SL̃(2,R) family yet (its geodesics and walks are exact: \
-                 `trace`, `info`, `list`)"
+                "not written for the SL̃(2,R) family yet (it walks and draws fibre tubes \
+                 exactly: `trace`, `info`, `list`, `render --cpu`)"
             }
             (Family::Product, Feature::SceneParts) => {
                 "a product scene file's `edges` and `centre_ball` choose the parts"

@@ -6,6 +6,7 @@ mod budget;
 pub mod nil;
 pub mod product;
 mod render;
+pub mod sl2r;
 
 pub use budget::{BudgetChoice, MAX_AUTO_BUDGET, auto_budget, auto_budget_with_floor, sample_rays};
 pub use render::{
@@ -22,10 +23,22 @@ pub(crate) fn render_layout(
     layout: &crate::view::ViewLayout,
     colour_of_ray: impl Fn(crate::geometry::Ray<glam::DVec4>) -> glam::DVec3 + Sync,
 ) -> image::RgbImage {
+    render_layout_by_eye(layout, |eye, u, v| {
+        colour_of_ray(layout.frame_ray(eye, u, v))
+    })
+}
+
+/// [`render_layout`] for a family whose camera ray is not a frame's column combination:
+/// `colour_at(eye, u, v)` is the colour of eye `eye` at image point `(u, v)` (its frame is
+/// `layout.frames[eye]`, its lens point `layout.lens.at(u, v)`).
+pub(crate) fn render_layout_by_eye(
+    layout: &crate::view::ViewLayout,
+    colour_at: impl Fn(usize, f64, f64) -> glam::DVec3 + Sync,
+) -> image::RgbImage {
     use rayon::prelude::*;
     let (width, height) = (layout.size[0] as u32, layout.size[1] as u32);
     let colour = |eye: usize, [u, v]: [f64; 2]| {
-        colour_of_ray(layout.frame_ray(eye, u, v)).clamp(glam::DVec3::ZERO, glam::DVec3::ONE)
+        colour_at(eye, u, v).clamp(glam::DVec3::ZERO, glam::DVec3::ONE)
     };
     let rows: Vec<Vec<u8>> = (0..height)
         .into_par_iter()

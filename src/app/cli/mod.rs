@@ -8,6 +8,7 @@ mod light;
 mod parse;
 mod render;
 mod render_nil;
+mod render_sl2r;
 mod spaces;
 mod trace;
 mod walk;

@@ -79,6 +79,8 @@ pub(super) enum Choice {
     Product(ProductChoice),
     /// Nil.
     Nil(NilChoice),
+    /// SL̃(2,R) (the CPU reference's pictures only).
+    Sl2r(std::sync::Arc<bevy_curved_spaces::space::sl2r::UnitTangentSpace>),
 }
 
 pub(super) fn choose(
@@ -120,18 +122,14 @@ pub(super) fn choose(
         }));
     }
     let named = super::space_named(space_arg)?;
-    // The one table of what a family draws.
+    // The one table of what a family draws (the GPU's pictures are asked where they are
+    // drawn: `render --cpu` needs only the reference's).
     named
-        .supports(bevy_curved_spaces::space::Feature::Pictures)
+        .supports(bevy_curved_spaces::space::Feature::ReferencePictures)
         .map_err(|e| format!("{space_arg}: {e}"))?;
     Ok(match named {
         AnySpace::Nil(space) => Choice::Nil(NilChoice::new(space, None)),
-        AnySpace::Sl2r(space) => {
-            return Err(format!(
-                "{}: no pictures of the SL̃(2,R) spaces yet",
-                space.name()
-            ));
-        }
+        AnySpace::Sl2r(space) => Choice::Sl2r(space),
         AnySpace::Product(space) => {
             let space = std::sync::Arc::unwrap_or_clone(space);
             Choice::Product(ProductChoice {
@@ -335,6 +333,7 @@ pub(super) fn render_command(args: &RenderArgs) -> Result<(), String> {
     let mut chosen = match choose(&args.space, args.scene.as_deref(), args.fog)? {
         Choice::Product(chosen) => return render_product_command(args, chosen),
         Choice::Nil(chosen) => return super::render_nil::render_nil_command(args, chosen),
+        Choice::Sl2r(space) => return super::render_sl2r::render_sl2r_command(args, &space),
         Choice::Constant(chosen) => chosen.at(args.time)?,
     };
     if args.view.changes_parts() {

@@ -130,6 +130,13 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
     };
     let chosen = match choose(&args.space, args.scene.as_deref(), args.fog)? {
         Choice::Constant(chosen) => chosen,
+        Choice::Sl2r(space) => {
+            return Err(super::spaces::refusal(
+                bevy_curved_spaces::space::Family::Sl2r,
+                space.name(),
+                bevy_curved_spaces::space::Feature::Pictures,
+            ));
+        }
         Choice::Nil(chosen) => {
             let flight = match &replay {
                 Some(file) => Some(bevy_curved_spaces::trace::nil::flight::NilFlight::new(

@@ -65,7 +65,18 @@ fn atanhc(y: f64) -> f64 {
 /// which the ray leaves the side `n·p ≤ 0`; `None` where it never does.
 #[must_use]
 pub fn side_exit<R: Real>(ray: &Sl2rRay<R>, n: [R; 3]) -> Option<R> {
+    first_crossing(ray, n, R::ZERO)
+}
+
+/// The first time at which `n·p(t) + offset` goes from `≤ 0` to `> 0` (a side's exit with
+/// `offset = 0`; the entry into the tube of radius `r` about the fibre over `q` with
+/// `n = (q_x, q_y, −q_w)`, `offset = cosh r`: inside it `⟨p, q⟩ ≥ −cosh r`); `t = 0` where
+/// it starts there and leaving; `None` where it never does. The constant only moves `α`,
+/// so the same quadratic in `τ` holds (see the module).
+#[must_use]
+pub fn first_crossing<R: Real>(ray: &Sl2rRay<R>, n: [R; 3], offset: R) -> Option<R> {
     let (alpha, beta, gamma) = side_coefficients(ray, n);
+    let alpha = alpha + offset;
     let w2 = omega_squared(ray.velocity);
     let (al, be, ga, w) = (alpha.to_f64(), beta.to_f64(), gamma.to_f64(), w2.to_f64());
     // Already outside (by rounding) and leaving: at once.

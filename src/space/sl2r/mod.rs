@@ -23,7 +23,7 @@ mod frames;
 mod space;
 pub mod walk;
 
-pub use exit::side_exit;
+pub use exit::{first_crossing, side_exit};
 pub use flow::{Sl2rRay, flow, on_model};
 pub use space::{Sl2rError, Sl2rSide, UNIT_TANGENT_PREFIX, UnitTangentSpace, sl2r_space};
 pub use walk::{Sl2rExit, Sl2rWalker};

@@ -217,6 +217,26 @@ impl UnitTangentSpace {
         self.polygon.inradius.hi
     }
 
+    /// The polygon's circumradius (the distance from its centre to its vertices).
+    #[must_use]
+    pub fn circumradius(&self) -> f64 {
+        self.polygon.circumradius.hi
+    }
+
+    /// The polygon's vertices on the hyperboloid, vertex `k` between sides `k − 1` and `k`
+    /// (side `k` is centred on the direction at angle `2πk/n`).
+    #[must_use]
+    pub fn vertices(&self) -> Vec<[f64; 3]> {
+        let n = self.sides.len();
+        let r = self.circumradius();
+        (0..n)
+            .map(|k| {
+                let phi = (2.0 * k as f64 - 1.0) * PI / n as f64;
+                [r.sinh() * phi.cos(), r.sinh() * phi.sin(), r.cosh()]
+            })
+            .collect()
+    }
+
     /// The surface's genus `g` (`χ = 2 − 2g`).
     #[must_use]
     pub fn genus(&self) -> u64 {

@@ -131,9 +131,23 @@ fn words_and_commands_it_cannot_take_are_refused_with_the_reason() {
     fails_with(&["info", "unit-tangent-abABcdCD-cover-2"], "not built yet");
     fails_with(&["info", "unit-tangent-ab"], "");
     fails_with(
-        &["render", "unit-tangent-bitorus", "--cpu", "--size", "16x9"],
+        &["render", "unit-tangent-bitorus", "--size", "16x9"],
+        "the GPU tracer is not written for SL̃(2,R) yet",
+    );
+    fails_with(
+        &["walk", "unit-tangent-bitorus"],
         "not in the SL̃(2,R) spaces",
     );
+    for extra in [
+        &["--walls", "0.5"][..],
+        &["--colour-by", "face"],
+        &["--eye", "0.1,0,0", "--look-at", "0,0,0"],
+        &["--time", "1"],
+    ] {
+        let mut args = vec!["render", "unit-tangent-bitorus", "--cpu", "--size", "16x9"];
+        args.extend_from_slice(extra);
+        fails_with(&args, "SL̃(2,R)");
+    }
     fails_with(
         &[
             "light",
@@ -147,4 +161,43 @@ fn words_and_commands_it_cannot_take_are_refused_with_the_reason() {
     );
     let list = String::from_utf8(run(&["list"]).stdout).unwrap();
     assert!(list.contains("unit-tangent-WORD"), "{list}");
+}
+
+/// `render --cpu` draws the default scene: straight ahead the centre's pale pillar, in front
+/// of the fog.
+#[test]
+fn render_cpu_draws_the_fibre_tubes() {
+    let dir = temp_dir("sl2r-render");
+    let out = dir.join("bitorus.png");
+    let run_out = run(&[
+        "render",
+        "unit-tangent-bitorus",
+        "--cpu",
+        "--size",
+        "64x36",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(
+        run_out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run_out.stderr)
+    );
+    let image = image::open(&out).expect("a PNG").to_rgb8();
+    assert_eq!(image.dimensions(), (64, 36));
+    let centre = image.get_pixel(32, 18).0;
+    // The default scene's fog, written as computed (no gamma curve).
+    let fog = [0.55f64, 0.6, 0.7].map(|c| (255.0 * c).round() as u8);
+    assert_ne!(centre, fog, "the centre pixel is fog");
+    // The pale pillar: red and green alike, unlike the fog's blue tint.
+    assert!(
+        (i32::from(centre[0]) - i32::from(centre[1])).abs() <= 6,
+        "{centre:?}"
+    );
+    let distinct: std::collections::HashSet<[u8; 3]> = image.pixels().map(|p| p.0).collect();
+    assert!(
+        distinct.len() > 50,
+        "a flat picture: {} colours",
+        distinct.len()
+    );
 }

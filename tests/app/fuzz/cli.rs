@@ -198,7 +198,19 @@ fn hostile_numbers_on_the_command_line() {
                 value,
             ],
             tiny_render("crosscaps-circle", &["--fog", value]),
-            // SL̃(2,R): a hostile direction, start (base point and angle) and distance.
+            // SL̃(2,R): a hostile fog, field of view, budget, direction, start (base point
+            // and angle) and distance.
+            tiny_render("unit-tangent-bitorus", &["--fog", value]),
+            tiny_render("unit-tangent-bitorus", &["--fov", value]),
+            vec![
+                "render",
+                "unit-tangent-abcdABCD",
+                "--cpu",
+                "--size",
+                "16x9",
+                "--crossings",
+                value,
+            ],
             vec![
                 "trace",
                 "unit-tangent-bitorus",

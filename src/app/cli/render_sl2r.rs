@@ -1,0 +1,82 @@
+//! `render` of an SL̃(2,R) space: its default scene (the cell's edges and four pillars,
+//! fibre tubes met exactly) with the f64 CPU reference, mono or stereo. The GPU tracer and
+//! the options that need a lamp, walls, a scene file or a placed eye are not written for
+//! the family yet, and each is refused by name.
+
+use super::RenderArgs;
+use super::render::{saved, stereo_words};
+use bevy_curved_spaces::space::sl2r::UnitTangentSpace;
+use bevy_curved_spaces::space::{Family, Feature, FrameSpace};
+use bevy_curved_spaces::trace::sl2r::{default_camera, default_scene, render_sl2r_view};
+use bevy_curved_spaces::view::ViewLayout;
+use std::time::Instant;
+
+/// The crossing budget where none is given: the fog's cut-off is a few cells away.
+const DEFAULT_BUDGET: usize = 24;
+
+/// `render unit-tangent-WORD --cpu`.
+pub(super) fn render_sl2r_command(
+    args: &RenderArgs,
+    space: &UnitTangentSpace,
+) -> Result<(), String> {
+    let name = space.name();
+    let refuse = |feature| super::spaces::require(Family::Sl2r, name, feature);
+    if !args.cpu {
+        refuse(Feature::Pictures)?;
+    }
+    if args.time != 0.0 {
+        refuse(Feature::MovingObjects)?;
+    }
+    if args.view.changes_parts() {
+        refuse(Feature::SceneParts)?;
+    }
+    if args.view.colour_by != super::ColourByArg::Shading {
+        refuse(Feature::TeachingViews)?;
+    }
+    if args.view.walls.walls.is_some() {
+        refuse(Feature::Walls)?;
+    }
+    if args.view.light.any() {
+        refuse(Feature::LampFluence)?;
+    }
+    if args.eye.is_some() || args.look_at.is_some() {
+        return Err(format!(
+            "{name}: --eye and --look-at are not written for SL̃(2,R) yet (the camera starts at \
+             the polygon's centre, looking along e with the fibre up)"
+        ));
+    }
+    let mut scene = default_scene(space);
+    let mut camera = default_camera(space);
+    if let Some(fog) = args.fog {
+        scene.fog_distance = fog;
+    }
+    if let Some(fov) = args.fov {
+        camera.fov_y_degrees = fov;
+    }
+    let budget = args.crossings.unwrap_or(DEFAULT_BUDGET);
+    let stereo = args.stereo.settings_for(space.scale())?;
+    say!(
+        "rendering {name} (SL̃(2,R)) at {}×{} with the f64 CPU reference (fog λ = {:.3}, ≤ \
+         {budget} crossings{})…",
+        args.size.0,
+        args.size.1,
+        scene.fog_distance,
+        stereo_words(&stereo, space.scale())
+    );
+    let started = Instant::now();
+    let eyes = if stereo.mode.is_stereo() {
+        space.eye_frames(camera.frame, stereo.ipd_for(space.scale()))
+    } else {
+        [camera.frame; 2]
+    };
+    let layout = ViewLayout::new(
+        stereo.mode,
+        stereo.swap_eyes,
+        eyes,
+        camera.fov_y_degrees,
+        args.size.0,
+        args.size.1,
+    );
+    let image = render_sl2r_view(space, &scene, &layout, budget);
+    saved(&image, args, started)
+}

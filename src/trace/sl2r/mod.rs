@@ -1,0 +1,338 @@
+//! The CPU reference tracer of the SL̃(2,R) spaces: a camera ray per pixel walks the cell of
+//! `UT Σ` ([`Sl2rWalker`], exits in closed form), and in each segment the scene's fibre
+//! tubes are met exactly.
+//!
+//! A *fibre tube* is the set of points within `r` of the fibre over a base point `q`: in the
+//! Sasaki metric (a Riemannian submersion onto `H²`) that is every `(p, e)` whose base point
+//! is within `r` of `q` in `H²`, `⟨p, q⟩ ≥ −cosh r`. Along a ray `⟨p(t), q⟩` has the form
+//! `α + βS + γK` of a side's function, so a tube is entered where the same quadratic in `τ`
+//! has its root ([`first_crossing`]): in closed form, polished to the last bit. A tube is kept
+//! with each image under the surface group that reaches into the cell. The cell's edges are
+//! the fibres over the polygon's vertices, drawn as thin tubes.
+//!
+//! Shading is by the view: a tube's surface is lit as if by a lamp at the eye (its colour
+//! times `ambient + (1 − ambient)·cos`, the cosine between its outward normal — horizontal,
+//! away from `q` — and the ray), then faded into the fog by `e^{−t/λ}` over the distance
+//! walked. No lamp, shadows or mirrors yet.
+
+use crate::space::FrameSpace;
+use crate::space::sl2r::flow::{Sl2rRay, flow, lorentz};
+use crate::space::sl2r::{Sl2rWalker, UnitTangentSpace, first_crossing};
+use crate::space::walk::{CellWalk, NextExit};
+use glam::{DMat4, DVec3, DVec4};
+use image::RgbImage;
+
+/// The tube about the fibre over a base point: the points whose base point is within
+/// `radius` of `base` in `H²`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FibreTube {
+    /// The base point `q` on the hyperboloid.
+    pub base: [f64; 3],
+    /// Its radius.
+    pub radius: f64,
+    /// Its colour, linear RGB.
+    pub colour: DVec3,
+}
+
+/// A scene of an SL̃(2,R) space: fibre tubes (with their images that reach into the cell),
+/// ambient light and fog.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sl2rScene {
+    /// The tubes.
+    pub tubes: Vec<FibreTube>,
+    /// The fog's colour, linear RGB.
+    pub fog_colour: DVec3,
+    /// The fog scale `λ`: light fades by `e^{−t/λ}` over a distance `t`.
+    pub fog_distance: f64,
+    /// The share of a surface's colour it shows facing away from the eye.
+    pub ambient: f64,
+}
+
+impl Sl2rScene {
+    /// Where the fog has left less than half a grey level (`λ ln 510`): rays stop there.
+    #[must_use]
+    pub fn cutoff_distance(&self) -> f64 {
+        self.fog_distance * 510f64.ln()
+    }
+
+    /// Adds `tube` and each image `γ·tube` (`γ` in the surface group) that reaches into the
+    /// cell: those within the polygon's circumradius plus the radius of its centre.
+    pub fn add_with_images(&mut self, space: &UnitTangentSpace, tube: FibreTube) {
+        let reach = (space.circumradius() + tube.radius).cosh();
+        for q in group_images(space, tube.base) {
+            if q[2] <= reach * (1.0 + 1e-12) {
+                self.tubes.push(FibreTube { base: q, ..tube });
+            }
+        }
+    }
+}
+
+/// The images of the base point `q` under the group words of up to four pairings,
+/// without repeats (enough for every polygon that shares a vertex with the cell).
+fn group_images(space: &UnitTangentSpace, q: [f64; 3]) -> Vec<[f64; 3]> {
+    let pairings: Vec<[[f64; 3]; 3]> = space
+        .sides()
+        .iter()
+        .map(|s| s.pairing.map(|r| r.map(|x| x.hi)))
+        .collect();
+    let apply = |m: &[[f64; 3]; 3], v: [f64; 3]| {
+        [0, 1, 2].map(|r| m[r][0] * v[0] + m[r][1] * v[1] + m[r][2] * v[2])
+    };
+    let mut seen = vec![q];
+    let mut frontier = vec![q];
+    for _ in 0..4 {
+        let mut next = Vec::new();
+        for p in &frontier {
+            for m in &pairings {
+                let image = apply(m, *p);
+                let new = seen.iter().all(|s| {
+                    (0..3).map(|i| (s[i] - image[i]).abs()).fold(0.0, f64::max) > 1e-9 * image[2]
+                });
+                if new {
+                    seen.push(image);
+                    next.push(image);
+                }
+            }
+        }
+        frontier = next;
+    }
+    seen
+}
+
+/// The base point at distance `r` from the polygon's centre in the direction `angle`.
+fn base_at(r: f64, angle: f64) -> [f64; 3] {
+    [r.sinh() * angle.cos(), r.sinh() * angle.sin(), r.cosh()]
+}
+
+/// The default scene: the cell's edges (thin white tubes over the polygon's vertices), a
+/// pale pillar (a fibre tube) over the centre and four coloured ones half-way to every
+/// other side, each with its images; fog at one inradius.
+#[must_use]
+pub fn default_scene(space: &UnitTangentSpace) -> Sl2rScene {
+    let rho = space.inradius();
+    let mut scene = Sl2rScene {
+        tubes: Vec::new(),
+        fog_colour: DVec3::new(0.55, 0.6, 0.7),
+        fog_distance: rho,
+        ambient: 0.3,
+    };
+    for v in space.vertices() {
+        scene.tubes.push(FibreTube {
+            base: v,
+            radius: 0.03 * rho,
+            colour: DVec3::splat(0.95),
+        });
+    }
+    scene.add_with_images(
+        space,
+        FibreTube {
+            base: [0.0, 0.0, 1.0],
+            radius: 0.1 * rho,
+            colour: DVec3::new(0.85, 0.85, 0.8),
+        },
+    );
+    let colours = [
+        DVec3::new(0.9, 0.25, 0.2),
+        DVec3::new(0.25, 0.75, 0.3),
+        DVec3::new(0.25, 0.4, 0.95),
+        DVec3::new(0.95, 0.8, 0.2),
+    ];
+    let n = space.sides().len();
+    for (i, colour) in colours.into_iter().enumerate() {
+        // Half-way to every other side (between the camera's looks along the sides' normals).
+        let angle = 2.0 * std::f64::consts::PI * (2 * i + 1) as f64 / n as f64;
+        scene.add_with_images(
+            space,
+            FibreTube {
+                base: base_at(0.55 * rho, angle),
+                radius: 0.08 * rho,
+                colour,
+            },
+        );
+    }
+    scene
+}
+
+/// A camera: its frame (the contract's: the viewer's axes as body vectors with `e` in their
+/// fourth entries, the base point as the position) and vertical field of view.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sl2rCamera {
+    /// The frame.
+    pub frame: DMat4,
+    /// Vertical field of view in degrees.
+    pub fov_y_degrees: f64,
+}
+
+/// The default camera: seven tenths of the inradius behind the polygon's centre, `e`
+/// pointing at the centre, looking along `X` (at the centre's pillar) with the fibre `V` up.
+#[must_use]
+pub fn default_camera(space: &UnitTangentSpace) -> Sl2rCamera {
+    let mut frame = space.frame_from_centre(DVec3::ZERO);
+    // right = −Y, up = V, back = −X (right × up = back).
+    let e = [frame.x_axis.w, frame.y_axis.w, frame.z_axis.w];
+    frame.x_axis = DVec4::new(0.0, -1.0, 0.0, e[0]);
+    frame.y_axis = DVec4::new(0.0, 0.0, 1.0, e[1]);
+    frame.z_axis = DVec4::new(-1.0, 0.0, 0.0, e[2]);
+    // Backwards along the horizontal geodesic (e stays parallel, pointing at the centre).
+    let frame = space.step_frame(
+        frame,
+        &crate::space::FrameMotion {
+            translation: DVec3::new(0.0, 0.0, 0.7 * space.inradius()),
+            rotation: DVec3::ZERO,
+            level: false,
+        },
+    );
+    Sl2rCamera {
+        frame,
+        fov_y_degrees: 70.0,
+    }
+}
+
+/// The camera ray of a frame through the lens point `(x, y)`: its point, and the body
+/// direction `x·right + y·up − back`, normalised.
+#[must_use]
+pub fn camera_ray(frame: &DMat4, x: f64, y: f64) -> Sl2rRay<f64> {
+    let axis = |c: DVec4| c.truncate();
+    let d = (x * axis(frame.x_axis) + y * axis(frame.y_axis) - axis(frame.z_axis)).normalize();
+    let p = frame.w_axis.truncate().to_array();
+    let e = [frame.x_axis.w, frame.y_axis.w, frame.z_axis.w];
+    let f = [
+        p[1] * e[2] - p[2] * e[1],
+        p[2] * e[0] - p[0] * e[2],
+        -(p[0] * e[1] - p[1] * e[0]),
+    ];
+    Sl2rRay {
+        frame: [e, f, p],
+        velocity: d.to_array(),
+    }
+}
+
+/// The first tube `ray` enters within `t_max`, and where.
+fn first_tube<'a>(
+    tubes: &'a [FibreTube],
+    ray: &Sl2rRay<f64>,
+    t_max: f64,
+) -> Option<(f64, &'a FibreTube)> {
+    let mut best: Option<(f64, &FibreTube)> = None;
+    for tube in tubes {
+        let q = tube.base;
+        let n = [q[0], q[1], -q[2]];
+        if let Some(t) = first_crossing(ray, n, tube.radius.cosh())
+            && t <= t_max
+            && best.is_none_or(|(b, _)| t < b)
+        {
+            best = Some((t, tube));
+        }
+    }
+    best
+}
+
+/// The colour of `tube` where `ray` meets it at `t`, seen along the ray.
+fn shade(scene: &Sl2rScene, tube: &FibreTube, ray: &Sl2rRay<f64>, t: f64) -> DVec3 {
+    let at = flow(ray, t);
+    let [e, f, p] = at.frame;
+    let q = tube.base;
+    // The outward normal: the tangent at p pointing away from q (−q's tangent part).
+    let along = lorentz(q, p);
+    let u = [0, 1, 2].map(|i| -(q[i] + along * p[i]));
+    let len = lorentz(u, u).max(0.0).sqrt();
+    let facing = if len > 0.0 {
+        let normal = DVec3::new(lorentz(u, e) / len, lorentz(u, f) / len, 0.0);
+        (-normal.dot(DVec3::from_array(at.velocity))).max(0.0)
+    } else {
+        1.0
+    };
+    tube.colour * (scene.ambient + (1.0 - scene.ambient) * facing)
+}
+
+/// Where a camera ray first meets a tube: the distance walked to it, the tube, and the
+/// ray at the start of the segment it is met in with the time along it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sl2rHit<'a> {
+    /// The geodesic distance from the camera.
+    pub distance: f64,
+    /// The tube met.
+    pub tube: &'a FibreTube,
+    /// The ray at the start of the segment (in the cell).
+    pub segment: Sl2rRay<f64>,
+    /// The time along `segment` to the hit.
+    pub t: f64,
+}
+
+/// The first tube the ray meets within `max_crossings` crossings and the fog's cut-off.
+#[must_use]
+pub fn first_hit<'a>(
+    walker: &Sl2rWalker<DVec4>,
+    scene: &'a Sl2rScene,
+    ray: Sl2rRay<f64>,
+    max_crossings: usize,
+) -> Option<Sl2rHit<'a>> {
+    let cutoff = scene.cutoff_distance();
+    let mut ray = Sl2rWalker::<DVec4>::ray_of(&ray);
+    let mut walked = 0.0;
+    let mut entered = None;
+    for _ in 0..=max_crossings {
+        let r = Sl2rWalker::<DVec4>::sl2r_ray(&ray);
+        let (segment, exit) = match walker.next_exit(&ray, entered, 0) {
+            NextExit::Exit(exit) => (exit.t, Some(exit)),
+            NextExit::NoFaceAhead => (cutoff - walked, None),
+            NextExit::Degenerate => return None,
+        };
+        let within = segment.min(cutoff - walked);
+        if let Some((t, tube)) = first_tube(&scene.tubes, &r, within) {
+            return Some(Sl2rHit {
+                distance: walked + t,
+                tube,
+                segment: r,
+                t,
+            });
+        }
+        walked += segment;
+        let exit = exit?;
+        if walked >= cutoff {
+            return None;
+        }
+        ray = walker.through(&ray, &exit);
+        entered = walker.skip_after(&exit);
+    }
+    None
+}
+
+/// The colour seen along the camera ray `ray`, walking at most `max_crossings` crossings.
+#[must_use]
+pub fn trace_sl2r_pixel(
+    walker: &Sl2rWalker<DVec4>,
+    scene: &Sl2rScene,
+    ray: Sl2rRay<f64>,
+    max_crossings: usize,
+) -> DVec3 {
+    match first_hit(walker, scene, ray, max_crossings) {
+        Some(hit) => {
+            let fade = (-hit.distance / scene.fog_distance).exp();
+            scene
+                .fog_colour
+                .lerp(shade(scene, hit.tube, &hit.segment, hit.t), fade)
+        }
+        None => scene.fog_colour,
+    }
+}
+
+/// Renders a view (mono or stereo) of `space` with the f64 reference.
+#[must_use]
+pub fn render_sl2r_view(
+    space: &UnitTangentSpace,
+    scene: &Sl2rScene,
+    layout: &crate::view::ViewLayout,
+    max_crossings: usize,
+) -> RgbImage {
+    let walker = Sl2rWalker::<DVec4>::new(space);
+    super::render_layout_by_eye(layout, |eye, u, v| {
+        let (x, y) = layout.lens.at(u, v);
+        trace_sl2r_pixel(
+            &walker,
+            scene,
+            camera_ray(&layout.frames[eye], x, y),
+            max_crossings,
+        )
+    })
+}
