@@ -172,6 +172,31 @@ pub fn lorentz<R: Real>(u: [R; 3], v: [R; 3]) -> R {
     u[0] * v[0] + u[1] * v[1] - u[2] * v[2]
 }
 
+/// `a d − b c` with the products' rounding errors kept (by `two_prod`): no cancellation loss.
+fn det2<R: Real>(a: R, d: R, b: R, c: R) -> R {
+    let (p, e) = a.two_prod(d);
+    let (q, f) = b.two_prod(c);
+    (p - q) + (e - f)
+}
+
+/// `e⊥ = J(p × e)` (`J = diag(1, 1, −1)`): `e` turned by +90° at `p`, Lorentz-orthogonal to
+/// both, positively oriented; each entry a 2×2 determinant summed without cancellation loss.
+#[must_use]
+pub fn perp<R: Real>(p: [R; 3], e: [R; 3]) -> [R; 3] {
+    [
+        det2(p[1], e[2], p[2], e[1]),
+        det2(p[2], e[0], p[0], e[2]),
+        -det2(p[0], e[1], p[1], e[0]),
+    ]
+}
+
+/// The `w` entry of the tangent vector at `p` with entries `e_x`, `e_y` (`⟨e, p⟩ = 0`):
+/// `(e_x p_x + e_y p_y)/p_w`, its sum without cancellation loss.
+#[must_use]
+pub fn tangent_w<R: Real>(p: [R; 3], ex: R, ey: R) -> R {
+    det2(ex, p[0], -ey, p[1]) / p[2]
+}
+
 /// The ray put back on the model: `p` on the hyperboloid, `e` a unit tangent vector at it,
 /// `e⊥` completing the positively oriented frame, the velocity unit.
 #[must_use]
@@ -182,12 +207,7 @@ pub fn on_model<R: Real>(ray: &Sl2rRay<R>) -> Sl2rRay<R> {
     let along = lorentz(e, p);
     let e = [0, 1, 2].map(|i| e[i] + along * p[i]);
     let e = scale(e, R::ONE / lorentz(e, e).sqrt());
-    // J (p × e), J = diag(1, 1, −1): Lorentz-orthogonal to both, positively oriented.
-    let f = [
-        p[1] * e[2] - p[2] * e[1],
-        p[2] * e[0] - p[0] * e[2],
-        -(p[0] * e[1] - p[1] * e[0]),
-    ];
+    let f = perp(p, e);
     let v = ray.velocity;
     let norm = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
     Sl2rRay {

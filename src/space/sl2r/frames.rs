@@ -26,13 +26,8 @@ const MAX_WRAPS: usize = 64;
 fn point_of(frame: &DMat4, v: [f64; 3]) -> Sl2rRay<f64> {
     let p = frame.w_axis.truncate().to_array();
     let e = [frame.x_axis.w, frame.y_axis.w, frame.z_axis.w];
-    let f = [
-        p[1] * e[2] - p[2] * e[1],
-        p[2] * e[0] - p[0] * e[2],
-        -(p[0] * e[1] - p[1] * e[0]),
-    ];
     Sl2rRay {
-        frame: [e, f, p],
+        frame: [e, super::flow::perp(p, e), p],
         velocity: v,
     }
 }

@@ -17,6 +17,7 @@
 //!   length `2π`), invariant under `PSL(2,R)`: the *body* velocity `(a, b, c)`;
 //! - an isometry `M` of `H²` acts on `(p, e)` by its differential, on the frame by `F ↦ M F`.
 
+pub mod accuracy;
 pub mod exit;
 pub mod flow;
 mod frames;

@@ -12,7 +12,7 @@
 //! entering there, so that crossing is no exit.
 
 use super::exit::side_exit;
-use super::flow::{Sl2rRay, flow, moved_by, on_model};
+use super::flow::{Sl2rRay, flow, on_model, perp, tangent_w};
 use super::space::UnitTangentSpace;
 use crate::geometry::{DoubleDouble, Ray, Real, Vector4};
 use crate::space::walk::{CellWalk, NextExit};
@@ -26,12 +26,40 @@ pub struct Sl2rExit<R> {
     pub t: R,
 }
 
-/// A side of the cell in the walker's precision.
+/// A side of the cell in the walker's precision: its pairing as the nearest matrix and what
+/// that leaves out (zero in double-double), applied by compensated sums.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Side<R> {
     normal: [R; 3],
     pairing: [[R; 3]; 3],
+    pairing_lo: [[R; 3]; 3],
     partner: usize,
+}
+
+/// What rounding `x` to `R` left out, in `R` (zero where `R` holds all of it).
+fn rest<R: Real>(x: DoubleDouble) -> R {
+    if R::EPSILON.to_f64() < f64::EPSILON {
+        return R::ZERO;
+    }
+    let held = real::<R>(x).to_f64();
+    R::from_f64((x - DoubleDouble::new(held)).to_f64())
+}
+
+/// `(hi + lo)·v` by compensated dot products (each row's products and sums with their
+/// rounding errors kept, and `lo`'s share added): as if in twice the precision. The
+/// pairings' entries reach `cosh 2ρ` while the frame's stay near `cosh R`, so a plain
+/// product would lose about a tenth of the digits to cancellation and rounded entries.
+fn apply_compensated<R: Real>(hi: &[[R; 3]; 3], lo: &[[R; 3]; 3], v: [R; 3]) -> [R; 3] {
+    [0, 1, 2].map(|r| {
+        let (mut sum, mut carry) = (R::ZERO, R::ZERO);
+        for k in 0..3 {
+            let (p, e) = hi[r][k].two_prod(v[k]);
+            let (s, e2) = sum.two_sum(p);
+            sum = s;
+            carry = carry + e + e2 + lo[r][k] * v[k];
+        }
+        sum + carry
+    })
 }
 
 /// The cell of a unit tangent bundle in the precision `V`, ready to walk rays.
@@ -56,6 +84,7 @@ impl<V: Vector4> Sl2rWalker<V> {
                 .map(|s| Side {
                     normal: s.normal.map(real),
                     pairing: s.pairing.map(|row| row.map(real)),
+                    pairing_lo: s.pairing.map(|row| row.map(rest)),
                     partner: s.partner,
                 })
                 .collect(),
@@ -68,12 +97,8 @@ impl<V: Vector4> Sl2rWalker<V> {
         let c = |v: V, i| v.component(i);
         let p = [c(ray.point, 0), c(ray.point, 1), c(ray.point, 2)];
         let (ex, ey) = (c(ray.point, 3), c(ray.tangent, 0));
-        let e = [ex, ey, (ex * p[0] + ey * p[1]) / p[2]];
-        let f = [
-            p[1] * e[2] - p[2] * e[1],
-            p[2] * e[0] - p[0] * e[2],
-            -(p[0] * e[1] - p[1] * e[0]),
-        ];
+        let e = [ex, ey, tangent_w(p, ex, ey)];
+        let f = perp(p, e);
         Sl2rRay {
             frame: [e, f, p],
             velocity: [c(ray.tangent, 1), c(ray.tangent, 2), c(ray.tangent, 3)],
@@ -145,7 +170,13 @@ impl<V: Vector4> CellWalk<V> for Sl2rWalker<V> {
 
     fn through(&self, ray: &Ray<V>, exit: &Self::Exit) -> Ray<V> {
         let at = flow(&Self::sl2r_ray(ray), exit.t);
-        let moved = moved_by(&self.sides[exit.face].pairing, &at);
+        let side = &self.sides[exit.face];
+        let moved = Sl2rRay {
+            frame: at
+                .frame
+                .map(|v| apply_compensated(&side.pairing, &side.pairing_lo, v)),
+            velocity: at.velocity,
+        };
         Self::ray_of(&on_model(&moved))
     }
 

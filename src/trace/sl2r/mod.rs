@@ -196,13 +196,8 @@ pub fn camera_ray(frame: &DMat4, x: f64, y: f64) -> Sl2rRay<f64> {
     let d = (x * axis(frame.x_axis) + y * axis(frame.y_axis) - axis(frame.z_axis)).normalize();
     let p = frame.w_axis.truncate().to_array();
     let e = [frame.x_axis.w, frame.y_axis.w, frame.z_axis.w];
-    let f = [
-        p[1] * e[2] - p[2] * e[1],
-        p[2] * e[0] - p[0] * e[2],
-        -(p[0] * e[1] - p[1] * e[0]),
-    ];
     Sl2rRay {
-        frame: [e, f, p],
+        frame: [e, crate::space::sl2r::flow::perp(p, e), p],
         velocity: d.to_array(),
     }
 }
