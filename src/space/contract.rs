@@ -119,6 +119,23 @@ pub trait FrameSpace: Send + Sync + std::fmt::Debug {
     }
 }
 
+/// The body direction (its length the step's) of a *level* step in a family whose "up" is
+/// the third body axis (Nil's `E₃`, SL̃(2,R)'s fibre `V`): forward and sideways along the
+/// horizontal parts of the frame's back and right (their up parts removed), at the step's
+/// horizontal length, and up along that axis by `d.y`.
+#[must_use]
+pub fn level_step(right: DVec3, back: DVec3, d: DVec3) -> DVec3 {
+    let flat = |v: DVec3| DVec3::new(v.x, v.y, 0.0);
+    let h = flat(right) * d.x + flat(back) * d.z;
+    let scale = d.x.hypot(d.z);
+    let horizontal = if h.length() > 1e-12 {
+        h * (scale / h.length())
+    } else {
+        DVec3::ZERO
+    };
+    horizontal + DVec3::Z * d.y
+}
+
 /// The frame after a local motion in a constant-curvature geometry: translated along the
 /// local direction, then turned about right, up and back in that order, each by its angle.
 #[must_use]

@@ -225,7 +225,7 @@ impl NilChoice {
 /// `render` of a product space (H²×R, S²×R): its default scene and view or a scene file's,
 /// mono or stereo, on the GPU or with the CPU reference (`--cpu`).
 fn render_product_command(args: &RenderArgs, chosen: ProductChoice) -> Result<(), String> {
-    use bevy_curved_spaces::space::product::motion::{camera_frame, product_eye_frames};
+    use bevy_curved_spaces::space::product::motion::camera_frame;
     use bevy_curved_spaces::trace::product::render_product_view;
     let ProductChoice {
         space,
@@ -304,19 +304,7 @@ fn render_product_command(args: &RenderArgs, chosen: ProductChoice) -> Result<()
     let started = Instant::now();
     let image = if args.cpu {
         let head = camera_frame(camera.point, camera.frame);
-        let eyes = if stereo.mode.is_stereo() {
-            product_eye_frames(&space, head, stereo.ipd_for(space.scale()))
-        } else {
-            [head; 2]
-        };
-        let layout = ViewLayout::new(
-            stereo.mode,
-            stereo.swap_eyes,
-            eyes,
-            camera.fov_y_degrees,
-            args.size.0,
-            args.size.1,
-        );
+        let layout = head_layout(&space, head, camera.fov_y_degrees, &stereo, args.size);
         render_product_view(&space, &scene, &layout, budget)
     } else {
         let gpu_budget = gpu_budget(budget)?;
@@ -515,6 +503,31 @@ fn render_gpu(args: &RenderArgs, chosen: &Chosen, view: &View) -> Result<RgbImag
         )
     })
     .map_err(|e| e.to_string())
+}
+
+/// The view of a head frame for the CPU reference: in a stereo mode both eyes, each carried
+/// half the eye distance along the head's right and wrapped into the cell by the family's
+/// contract ([`FrameSpace::eye_frames`]), else the head for both.
+pub(super) fn head_layout(
+    space: &dyn bevy_curved_spaces::space::FrameSpace,
+    head: glam::DMat4,
+    fov_y_degrees: f64,
+    stereo: &StereoSettings,
+    size: (u32, u32),
+) -> ViewLayout {
+    let eyes = if stereo.mode.is_stereo() {
+        space.eye_frames(head, stereo.ipd_for(space.scale()))
+    } else {
+        [head; 2]
+    };
+    ViewLayout::new(
+        stereo.mode,
+        stereo.swap_eyes,
+        eyes,
+        fov_y_degrees,
+        size.0,
+        size.1,
+    )
 }
 
 /// `, stereo MODE: eyes B apart` for a stereo view of a space of size `scale`, else nothing.

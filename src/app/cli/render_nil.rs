@@ -5,7 +5,6 @@ use super::RenderArgs;
 use super::render::{NilChoice, saved, stereo_words};
 use bevy_curved_spaces::space::{Family, Feature, FrameSpace};
 use bevy_curved_spaces::trace::nil::{NilCamera, render_nil_view};
-use bevy_curved_spaces::view::ViewLayout;
 use std::time::Instant;
 
 /// `render nil-K`: on the GPU, or with the f64 CPU reference (`--cpu`).
@@ -58,18 +57,12 @@ pub(super) fn render_nil_command(args: &RenderArgs, chosen: NilChoice) -> Result
         stereo_words(&stereo, space.scale())
     );
     let started = Instant::now();
-    let eyes = if stereo.mode.is_stereo() {
-        space.eye_frames(camera.frame, stereo.ipd_for(space.scale()))
-    } else {
-        [camera.frame; 2]
-    };
-    let layout = ViewLayout::new(
-        stereo.mode,
-        stereo.swap_eyes,
-        eyes,
+    let layout = super::render::head_layout(
+        space,
+        camera.frame,
         camera.fov_y_degrees,
-        args.size.0,
-        args.size.1,
+        &stereo,
+        args.size,
     );
     let image = if args.cpu {
         render_nil_view(space, &scene, &layout, budget)

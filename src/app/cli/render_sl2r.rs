@@ -8,7 +8,6 @@ use super::render::{saved, stereo_words};
 use bevy_curved_spaces::space::sl2r::UnitTangentSpace;
 use bevy_curved_spaces::space::{Family, Feature, FrameSpace};
 use bevy_curved_spaces::trace::sl2r::{default_camera, default_scene, render_sl2r_view};
-use bevy_curved_spaces::view::ViewLayout;
 use std::time::Instant;
 
 /// The crossing budget where none is given: the fog's cut-off is a few cells away.
@@ -64,18 +63,12 @@ pub(super) fn render_sl2r_command(
         stereo_words(&stereo, space.scale())
     );
     let started = Instant::now();
-    let eyes = if stereo.mode.is_stereo() {
-        space.eye_frames(camera.frame, stereo.ipd_for(space.scale()))
-    } else {
-        [camera.frame; 2]
-    };
-    let layout = ViewLayout::new(
-        stereo.mode,
-        stereo.swap_eyes,
-        eyes,
+    let layout = super::render::head_layout(
+        space,
+        camera.frame,
         camera.fov_y_degrees,
-        args.size.0,
-        args.size.1,
+        &stereo,
+        args.size,
     );
     let image = render_sl2r_view(space, &scene, &layout, budget);
     saved(&image, args, started)

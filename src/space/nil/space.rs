@@ -348,15 +348,8 @@ impl FrameSpace for NilSpace {
         let mut f = frame;
         if d.length() > 0.0 && d.is_finite() {
             if motion.level {
-                let flat = |v: DVec4| DVec3::new(v.x, v.y, 0.0);
-                let h = flat(f.x_axis) * d.x + flat(f.z_axis) * d.z;
-                let scale = d.x.hypot(d.z);
-                let horizontal = if h.length() > 1e-12 {
-                    h * (scale / h.length())
-                } else {
-                    DVec3::ZERO
-                };
-                let u = horizontal + DVec3::Z * d.y;
+                let u =
+                    crate::space::contract::level_step(f.x_axis.truncate(), f.z_axis.truncate(), d);
                 let length = u.length();
                 if length > 0.0 {
                     let moved = flow(

@@ -3,7 +3,7 @@
 //! A side of the polygon lies on a geodesic of `H²`, `n·p = 0` (`n` a covector of the
 //! hyperboloid's space, `n·p ≤ 0` inside); the cell is the polygon times the whole fibre,
 //! so a side is crossed where the base point crosses it. Along a ray the base point is
-//! `p(t) = F₀ (S a + K bc, S b − K ac, 1 + K(a² + b²))` ([`super::flow`]), so with
+//! `p(t) = F₀ (S a + K bc, S b − K ac, 1 + K(a² + b²))` ([`mod@super::flow`]), so with
 //! `u = F₀ᵀ n`,
 //!
 //! ```text

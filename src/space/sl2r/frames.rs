@@ -203,15 +203,7 @@ impl FrameSpace for UnitTangentSpace {
         let mut r = point_of(&frame, [0.0; 3]);
         if d.length() > 0.0 && d.is_finite() {
             let u = if motion.level {
-                let flat = |v: DVec3| DVec3::new(v.x, v.y, 0.0);
-                let h = flat(axes.x_axis) * d.x + flat(axes.z_axis) * d.z;
-                let scale = d.x.hypot(d.z);
-                let horizontal = if h.length() > 1e-12 {
-                    h * (scale / h.length())
-                } else {
-                    DVec3::ZERO
-                };
-                horizontal + DVec3::Z * d.y
+                crate::space::contract::level_step(axes.x_axis, axes.z_axis, d)
             } else {
                 axes * d
             };
