@@ -438,7 +438,7 @@ impl AnySpace {
             AnySpace::Constant(s) => invariants::injectivity_radius(s),
             AnySpace::Product(p) => p.injectivity_radius(PRODUCT_GROUP_LIMIT),
             AnySpace::Nil(n) => Some(n.injectivity_radius()),
-            AnySpace::Sl2r(s) => s.injectivity_radius(),
+            AnySpace::Sl2r(s) => s.injectivity_radius(PRODUCT_GROUP_LIMIT),
         }
     }
 }
@@ -469,7 +469,8 @@ pub fn resolve_space(id: &str, base: &Path, options: &DirichletOptions) -> Resul
     }
 }
 
-/// Surface group elements enumerated at most for a product space's injectivity radius.
+/// Surface group elements enumerated at most for a product's or a unit tangent bundle's
+/// injectivity radius.
 pub const PRODUCT_GROUP_LIMIT: usize = 200_000;
 
 /// A frame at the end of a geodesic from the cell's centre: where an entity or a camera is

@@ -442,6 +442,136 @@ fn side_pairing(
     }
 }
 
+/// How far a surface isometry (a 4×4 matrix fixing `z`) moves the points of H² at least:
+/// `cosh a = (tr − det)/2` of its 3×3 part (a translation, or a glide reflection with
+/// `det = −1`); 0 for an elliptic one.
+fn surface_displacement(h: &glam::DMat4) -> f64 {
+    let m = glam::DMat3::from_cols(
+        glam::DVec3::new(h.x_axis.x, h.x_axis.y, h.x_axis.w),
+        glam::DVec3::new(h.y_axis.x, h.y_axis.y, h.y_axis.w),
+        glam::DVec3::new(h.w_axis.x, h.w_axis.y, h.w_axis.w),
+    );
+    let det = m.determinant().signum();
+    let trace = m.x_axis.x + m.y_axis.y + m.z_axis.z;
+    let c = 0.5 * (trace - det);
+    if c > 1.0 { c.acosh() } else { 0.0 }
+}
+
+/// The systole of a hyperbolic surface (its shortest closed geodesic): the shortest
+/// translation among the elements of its group, enumerated breadth first by the side pairings while they move
+/// the centre at most [`systole_search_radius`]. The products are taken in double-double:
+/// in f64 a word's rounding grows like the product of its letters' sizes, and a relation's
+/// partial products (which close up into the identity) would come out as tiny translations.
+///
+/// The breadth-first search finds every element within the radius: the polygon is the
+/// Dirichlet domain of its centre `c` (each side is the bisector of `c` and the neighbour's
+/// centre), so any `h ≠ 1` has a side pairing `s` with `d(c, h s c) < d(c, h c)`, a parent
+/// nearer the centre.
+pub(crate) fn systole(word: &SurfaceWord, polygon: &Polygon, limit: usize) -> Option<f64> {
+    let inradius = polygon.inradius.to_f64();
+    let glides = !word.orientable();
+    systole_within(polygon, limit, |best| {
+        systole_search_radius(best, inradius, glides)
+    })
+}
+
+/// The systole, searching the elements that move the centre at most `radius_for(best)`,
+/// `best` the shortest translation found so far.
+fn systole_within(polygon: &Polygon, limit: usize, radius_for: impl Fn(f64) -> f64) -> Option<f64> {
+    use crate::space::group::polish_isometry_dd;
+    use crate::space::orbit::OrbitPoints;
+    let g = Geometry::Hyperbolic;
+    let moves: Vec<DdMat4> = polygon.sides.iter().map(|s| s.pairing).collect();
+    let radius = |h: &glam::DMat4| g.distance(glam::DVec4::W, h.w_axis);
+    // The generators' translations bound the systole from above.
+    let mut best = moves
+        .iter()
+        .map(|m| surface_displacement(&m.round_f64()))
+        .filter(|&a| a > 1e-9)
+        .fold(f64::INFINITY, f64::min);
+    let mut seen = OrbitPoints::new(g, 1e-7);
+    seen.insert(glam::DVec4::W);
+    let mut frontier = vec![DdMat4::IDENTITY];
+    let mut count = 1usize;
+    while !frontier.is_empty() {
+        let reach = radius_for(best) + 1e-9;
+        let mut next = Vec::new();
+        for h in &frontier {
+            for m in &moves {
+                let e = polish_isometry_dd(g, &(*h * *m));
+                let rounded = e.round_f64();
+                if radius(&rounded) > reach || !seen.insert(rounded.w_axis) {
+                    continue;
+                }
+                count += 1;
+                if count > limit {
+                    return None;
+                }
+                let a = surface_displacement(&rounded);
+                if a > 1e-9 {
+                    best = best.min(a);
+                }
+                next.push(e);
+            }
+        }
+        frontier = next;
+    }
+    Some(best)
+}
+
+/// How far from the polygon's centre `c` the search for a closed geodesic of length at most
+/// `length` must look, on a surface tiled by regular polygons of inradius `r`.
+///
+/// Every geodesic line comes within `r` of some polygon's centre: the discs of radius `r`
+/// inscribed in the polygons touch at the sides' midpoints, and what they leave uncovered
+/// is one bounded star round each vertex, joined to the next only at a midpoint, where the
+/// one line that stays outside both touching discs is the side's own. So the axis of a
+/// shortest element, conjugated to bring that centre to `c`, passes within `δ ≤ r` of `c`,
+/// and an element translating by `a` along an axis at distance `δ` moves `c` by `d` with
+/// `sinh(d/2) = cosh δ sinh(a/2)`, or for a glide reflection (which also flips `c` across
+/// the axis) `cosh(d/2) = cosh δ cosh(a/2)`. This is `2r` less a little than the older
+/// bound `a + 2R` (`R` the circumradius, much larger than `r` for many-sided polygons with
+/// thin corners): a 52-gon's search visits hundreds of elements instead of tens of thousands.
+fn systole_search_radius(length: f64, r: f64, glides: bool) -> f64 {
+    let half = 0.5 * length;
+    let translation = 2.0 * (r.cosh() * half.sinh()).asinh();
+    if glides {
+        translation.max(2.0 * (r.cosh() * half.cosh()).acosh())
+    } else {
+        translation
+    }
+}
+
+#[cfg(test)]
+mod systole_tests {
+    use super::*;
+
+    /// The search within the inradius bound finds the systole that the older, wider search
+    /// (the systole plus twice the circumradius) finds, orientable words and not.
+    #[test]
+    fn the_narrower_systole_search_finds_the_same_systole() {
+        for word in [
+            "abABcdCD",
+            "abABcdCDefEF",
+            "aabbcc",
+            "abcdABCD",
+            "aabbccdd",
+            "aabcBC",
+        ] {
+            let w = SurfaceWord::parse(word).unwrap();
+            let polygon = Polygon::of(&w);
+            let circumradius = polygon.circumradius.to_f64();
+            let wide =
+                systole_within(&polygon, 1_000_000, |best| best + 2.0 * circumradius).unwrap();
+            let narrow = systole(&w, &polygon, 1_000_000).unwrap();
+            assert!(
+                (wide - narrow).abs() < 1e-9,
+                "{word}: {narrow} against {wide}"
+            );
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

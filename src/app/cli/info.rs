@@ -289,6 +289,7 @@ pub(super) fn nil_info(space: &NilSpace, as_json: bool) -> Result<(), String> {
 pub(super) fn sl2r_info(space: &UnitTangentSpace, as_json: bool) -> Result<(), String> {
     use bevy_curved_spaces::space::FrameSpace;
     let word = space.word();
+    let inj = space.injectivity_radius(bevy_curved_spaces::space::family::PRODUCT_GROUP_LIMIT);
     if as_json {
         let value = serde_json::json!({
             "name": space.name(),
@@ -304,7 +305,7 @@ pub(super) fn sl2r_info(space: &UnitTangentSpace, as_json: bool) -> Result<(), S
             "orientable": true,
             "manifold": true,
             "homology": space.homology(),
-            "injectivity_radius": space.injectivity_radius(),
+            "injectivity_radius": inj,
         });
         say!(
             "{}",
@@ -330,10 +331,13 @@ pub(super) fn sl2r_info(space: &UnitTangentSpace, as_json: bool) -> Result<(), S
     say!("  orientable          true");
     say!("  manifold            true");
     say!("  first homology      {}", space.homology());
-    say!(
-        "  injectivity radius  not computed yet (at most π, half the fibre, and half the \
-         surface's systole)"
-    );
+    match inj {
+        Some(r) => say!(
+            "  injectivity radius  {} (half the surface's systole, at most π)",
+            number(r, 10)
+        ),
+        None => say!("  injectivity radius  (the surface group is too large to search)"),
+    }
     Ok(())
 }
 

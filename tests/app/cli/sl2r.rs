@@ -32,6 +32,8 @@ fn info_gives_the_unit_tangent_bundles_invariants() {
         );
         assert_eq!(v["faces"], 4 * genus);
         assert_eq!(v["orientable"], true);
+        let inj = v["injectivity_radius"].as_f64().unwrap();
+        assert!(inj > 0.5 && inj <= std::f64::consts::PI, "{id}: {inj}");
     }
 }
 

@@ -339,3 +339,64 @@ fn rays_through_corners_cross_consistently() {
         }
     }
 }
+
+/// The injectivity radius is `min(π, sys/2)`: half the surface's systole here (the same
+/// systole a product with a long circle has), and the two facts behind the π: a geodesic
+/// whose base point circles (`c > 1/√2`) comes back to its fibre after `2π/√(2c² − 1)`,
+/// its `e` turned by `2π(2c/√(2c² − 1) − 1)`, which is `2π` only for the fibre itself.
+#[test]
+fn the_injectivity_radius_is_half_the_systole_at_most_pi() {
+    use bevy_curved_spaces::space::product::{ProductOrFlat, product_space};
+    for word in WORDS {
+        let space = UnitTangentSpace::new(word).unwrap();
+        let inj = space
+            .injectivity_radius(200_000)
+            .expect("a searchable group");
+        let Some(Ok(ProductOrFlat::Product(product))) =
+            product_space(&format!("surface-{word}-circle-100"))
+        else {
+            panic!("{word}: no product");
+        };
+        let half_systole = product.injectivity_radius(200_000).unwrap();
+        assert!(
+            (inj - half_systole.min(std::f64::consts::PI)).abs() < 1e-12,
+            "{word}"
+        );
+        assert!(inj > 0.0 && inj <= std::f64::consts::PI);
+    }
+    for c in [0.72, 0.8, 0.9, 0.99, 0.999_999] {
+        let a = (1.0 - c * c).sqrt();
+        let ray = Sl2rRay {
+            frame: frame_of(
+                [
+                    DoubleDouble::new(0.0),
+                    DoubleDouble::new(0.0),
+                    DoubleDouble::new(1.0),
+                ],
+                [
+                    DoubleDouble::new(1.0),
+                    DoubleDouble::new(0.0),
+                    DoubleDouble::new(0.0),
+                ],
+            ),
+            velocity: [a, 0.0, c].map(DoubleDouble::new),
+        };
+        let root = (2.0 * c * c - 1.0).sqrt();
+        let period = 2.0 * std::f64::consts::PI / root;
+        let turned = 2.0 * std::f64::consts::PI * (2.0 * c / root - 1.0);
+        assert!(turned >= 2.0 * std::f64::consts::PI - 1e-9);
+        let end = flow(&ray, DoubleDouble::new(period));
+        let [e, _, p] = end.frame.map(|v| v.map(|x| x.to_f64()));
+        assert!(
+            p[0].abs() < 1e-12 && p[1].abs() < 1e-12,
+            "c = {c}: the base point did not come back: {p:?}"
+        );
+        let angle = e[1].atan2(e[0]);
+        let want = turned.rem_euclid(std::f64::consts::TAU);
+        let diff = (angle.rem_euclid(std::f64::consts::TAU) - want).abs();
+        assert!(
+            diff < 1e-9 || (std::f64::consts::TAU - diff) < 1e-9,
+            "c = {c}: e turned by {angle}, not {turned}"
+        );
+    }
+}
