@@ -46,10 +46,10 @@ pub(super) fn flight(args: &FlightArgs) -> Result<(), String> {
         Choice::Constant(chosen) => chosen,
         Choice::Product(product) => return flight_product(args, &name, &file, product),
         Choice::Nil(chosen) => return flight_nil(args, &name, &file, chosen),
-        Choice::Sl2r(space) => {
+        Choice::Sl2r(chosen) => {
             return Err(super::spaces::refusal(
                 bevy_curved_spaces::space::Family::Sl2r,
-                space.name(),
+                chosen.space.name(),
                 bevy_curved_spaces::space::Feature::Flights,
             ));
         }

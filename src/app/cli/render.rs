@@ -80,7 +80,17 @@ pub(super) enum Choice {
     /// Nil.
     Nil(NilChoice),
     /// SL̃(2,R) (the CPU reference's pictures only).
-    Sl2r(std::sync::Arc<bevy_curved_spaces::space::sl2r::UnitTangentSpace>),
+    Sl2r(Sl2rChoice),
+}
+
+/// An SL̃(2,R) space with the scene and the start view shown in it.
+pub(super) struct Sl2rChoice {
+    /// The space.
+    pub space: std::sync::Arc<bevy_curved_spaces::space::sl2r::UnitTangentSpace>,
+    /// Its scene (a file's, or the default one).
+    pub scene: bevy_curved_spaces::trace::sl2r::Sl2rScene,
+    /// The start view.
+    pub camera: bevy_curved_spaces::trace::sl2r::Sl2rCamera,
 }
 
 pub(super) fn choose(
@@ -100,6 +110,19 @@ pub(super) fn choose(
                 scene: file.scene,
                 camera,
                 space: file.space,
+            }));
+        }
+        if let Some(file) = bevy_curved_spaces::trace::sl2r::file::load_sl2r_scene_file(path)
+            .map_err(|e| e.to_string())?
+        {
+            let mut scene = file.scene;
+            if let Some(fog) = fog {
+                scene.fog_distance = fog;
+            }
+            return Ok(Choice::Sl2r(Sl2rChoice {
+                space: std::sync::Arc::new(file.space),
+                scene,
+                camera: file.start,
             }));
         }
         if let Some(file) = bevy_curved_spaces::trace::nil::file::load_nil_scene_file(path)
@@ -129,7 +152,11 @@ pub(super) fn choose(
         .map_err(|e| format!("{space_arg}: {e}"))?;
     Ok(match named {
         AnySpace::Nil(space) => Choice::Nil(NilChoice::new(space, None)),
-        AnySpace::Sl2r(space) => Choice::Sl2r(space),
+        AnySpace::Sl2r(space) => Choice::Sl2r(Sl2rChoice {
+            scene: bevy_curved_spaces::trace::sl2r::default_scene(&space),
+            camera: bevy_curved_spaces::trace::sl2r::default_camera(&space),
+            space,
+        }),
         AnySpace::Product(space) => {
             let space = std::sync::Arc::unwrap_or_clone(space);
             Choice::Product(ProductChoice {
@@ -321,7 +348,7 @@ pub(super) fn render_command(args: &RenderArgs) -> Result<(), String> {
     let mut chosen = match choose(&args.space, args.scene.as_deref(), args.fog)? {
         Choice::Product(chosen) => return render_product_command(args, chosen),
         Choice::Nil(chosen) => return super::render_nil::render_nil_command(args, chosen),
-        Choice::Sl2r(space) => return super::render_sl2r::render_sl2r_command(args, &space),
+        Choice::Sl2r(chosen) => return super::render_sl2r::render_sl2r_command(args, chosen),
         Choice::Constant(chosen) => chosen.at(args.time)?,
     };
     if args.view.changes_parts() {

@@ -1,23 +1,22 @@
-//! `render` of an SL̃(2,R) space: its default scene (the cell's edges and four pillars,
-//! fibre tubes met exactly) with the f64 CPU reference, mono or stereo. The GPU tracer and
-//! the options that need a lamp, walls, a scene file or a placed eye are not written for
-//! the family yet, and each is refused by name.
+//! `render` of an SL̃(2,R) space: its default scene (the cell's edges and five pillars,
+//! fibre tubes met exactly) or a scene file's, with the f64 CPU reference, mono or stereo.
+//! The GPU tracer and the options that need a lamp, walls or a placed eye are not written
+//! for the family yet, and each is refused by name.
 
 use super::RenderArgs;
+use super::render::Sl2rChoice;
 use super::render::{saved, stereo_words};
 use bevy_curved_spaces::space::sl2r::UnitTangentSpace;
 use bevy_curved_spaces::space::{Family, Feature, FrameSpace};
-use bevy_curved_spaces::trace::sl2r::{default_camera, default_scene, render_sl2r_view};
+use bevy_curved_spaces::trace::sl2r::render_sl2r_view;
 use std::time::Instant;
 
 /// The crossing budget where none is given: the fog's cut-off is a few cells away.
 const DEFAULT_BUDGET: usize = 24;
 
 /// `render unit-tangent-WORD --cpu`.
-pub(super) fn render_sl2r_command(
-    args: &RenderArgs,
-    space: &UnitTangentSpace,
-) -> Result<(), String> {
+pub(super) fn render_sl2r_command(args: &RenderArgs, chosen: Sl2rChoice) -> Result<(), String> {
+    let space: &UnitTangentSpace = &chosen.space;
     let name = space.name();
     let refuse = |feature| super::spaces::require(Family::Sl2r, name, feature);
     if !args.cpu {
@@ -44,8 +43,8 @@ pub(super) fn render_sl2r_command(
              the polygon's centre, looking along e with the fibre up)"
         ));
     }
-    let mut scene = default_scene(space);
-    let mut camera = default_camera(space);
+    let mut scene = chosen.scene;
+    let mut camera = chosen.camera;
     if let Some(fog) = args.fog {
         scene.fog_distance = fog;
     }

@@ -130,10 +130,10 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
     };
     let chosen = match choose(&args.space, args.scene.as_deref(), args.fog)? {
         Choice::Constant(chosen) => chosen,
-        Choice::Sl2r(space) => {
+        Choice::Sl2r(chosen) => {
             return Err(super::spaces::refusal(
                 bevy_curved_spaces::space::Family::Sl2r,
-                space.name(),
+                chosen.space.name(),
                 bevy_curved_spaces::space::Feature::Pictures,
             ));
         }

@@ -15,6 +15,9 @@
 //! away from `q` — and the ray), then faded into the fog by `e^{−t/λ}` over the distance
 //! walked. No lamp, shadows or mirrors yet.
 
+#[cfg(feature = "scene-files")]
+pub mod file;
+
 use crate::space::FrameSpace;
 use crate::space::sl2r::flow::{Sl2rRay, flow, lorentz};
 use crate::space::sl2r::{Sl2rWalker, UnitTangentSpace, first_crossing};
@@ -104,11 +107,35 @@ fn base_at(r: f64, angle: f64) -> [f64; 3] {
     [r.sinh() * angle.cos(), r.sinh() * angle.sin(), r.cosh()]
 }
 
+/// Which parts of the default scene a scene is built on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Sl2rParts {
+    /// The cell's edges: thin white tubes over the polygon's vertices.
+    pub edges: bool,
+    /// A pale pillar (a fibre tube) over the polygon's centre.
+    pub centre_pillar: bool,
+    /// Four coloured pillars half-way to every other side.
+    pub pillars: bool,
+}
+
 /// The default scene: the cell's edges (thin white tubes over the polygon's vertices), a
 /// pale pillar (a fibre tube) over the centre and four coloured ones half-way to every
 /// other side, each with its images; fog at one inradius.
 #[must_use]
 pub fn default_scene(space: &UnitTangentSpace) -> Sl2rScene {
+    scene_with_parts(
+        space,
+        Sl2rParts {
+            edges: true,
+            centre_pillar: true,
+            pillars: true,
+        },
+    )
+}
+
+/// The default scene's `parts` (no tube where none is asked for), its fog and ambient.
+#[must_use]
+pub fn scene_with_parts(space: &UnitTangentSpace, parts: Sl2rParts) -> Sl2rScene {
     let rho = space.inradius();
     let mut scene = Sl2rScene {
         tubes: Vec::new(),
@@ -116,21 +143,28 @@ pub fn default_scene(space: &UnitTangentSpace) -> Sl2rScene {
         fog_distance: rho,
         ambient: 0.3,
     };
-    for v in space.vertices() {
-        scene.tubes.push(FibreTube {
-            base: v,
-            radius: 0.03 * rho,
-            colour: DVec3::splat(0.95),
-        });
+    if parts.edges {
+        for v in space.vertices() {
+            scene.tubes.push(FibreTube {
+                base: v,
+                radius: 0.03 * rho,
+                colour: DVec3::splat(0.95),
+            });
+        }
     }
-    scene.add_with_images(
-        space,
-        FibreTube {
-            base: [0.0, 0.0, 1.0],
-            radius: 0.1 * rho,
-            colour: DVec3::new(0.85, 0.85, 0.8),
-        },
-    );
+    if parts.centre_pillar {
+        scene.add_with_images(
+            space,
+            FibreTube {
+                base: [0.0, 0.0, 1.0],
+                radius: 0.1 * rho,
+                colour: DVec3::new(0.85, 0.85, 0.8),
+            },
+        );
+    }
+    if !parts.pillars {
+        return scene;
+    }
     let colours = [
         DVec3::new(0.9, 0.25, 0.2),
         DVec3::new(0.25, 0.75, 0.3),
@@ -139,7 +173,6 @@ pub fn default_scene(space: &UnitTangentSpace) -> Sl2rScene {
     ];
     let n = space.sides().len();
     for (i, colour) in colours.into_iter().enumerate() {
-        // Half-way to every other side (between the camera's looks along the sides' normals).
         let angle = 2.0 * std::f64::consts::PI * (2 * i + 1) as f64 / n as f64;
         scene.add_with_images(
             space,
@@ -163,16 +196,50 @@ pub struct Sl2rCamera {
     pub fov_y_degrees: f64,
 }
 
+/// The viewer's axes looking along `e` (the body direction `X`) with the fibre `V` up:
+/// right `−Y`, up `V`, back `−X` (right × up = back), at the point of `frame`.
+fn looking_along_e(frame: DMat4) -> DMat4 {
+    let e = [frame.x_axis.w, frame.y_axis.w, frame.z_axis.w];
+    DMat4::from_cols(
+        DVec4::new(0.0, -1.0, 0.0, e[0]),
+        DVec4::new(0.0, 0.0, 1.0, e[1]),
+        DVec4::new(-1.0, 0.0, 0.0, e[2]),
+        frame.w_axis,
+    )
+}
+
+impl Sl2rCamera {
+    /// The camera at the chart point `(x, y, θ)` (base point `(x, y, √(1 + x² + y²))`, `e` at
+    /// angle `θ` in the frame boosted from the origin's; first brought into the cell by the
+    /// pairings), looking along `e` with the fibre up; an error names a point the chart or
+    /// the cell cannot take.
+    pub fn at(space: &UnitTangentSpace, point: DVec3, fov_y_degrees: f64) -> Result<Self, String> {
+        if !(fov_y_degrees > 0.0 && fov_y_degrees < 180.0) {
+            return Err(format!(
+                "the field of view must be between 0 and 180 degrees, got {fov_y_degrees}"
+            ));
+        }
+        let ray = space.chart_ray(point, DVec3::X)?;
+        let r = Sl2rWalker::<DVec4>::sl2r_ray(&ray);
+        let [e, _, p] = r.frame;
+        let frame = DMat4::from_cols(
+            DVec4::new(1.0, 0.0, 0.0, e[0]),
+            DVec4::new(0.0, 1.0, 0.0, e[1]),
+            DVec4::new(0.0, 0.0, 1.0, e[2]),
+            DVec3::from_array(p).extend(1.0),
+        );
+        Ok(Self {
+            frame: looking_along_e(frame),
+            fov_y_degrees,
+        })
+    }
+}
+
 /// The default camera: seven tenths of the inradius behind the polygon's centre, `e`
 /// pointing at the centre, looking along `X` (at the centre's pillar) with the fibre `V` up.
 #[must_use]
 pub fn default_camera(space: &UnitTangentSpace) -> Sl2rCamera {
-    let mut frame = space.frame_from_centre(DVec3::ZERO);
-    // right = −Y, up = V, back = −X (right × up = back).
-    let e = [frame.x_axis.w, frame.y_axis.w, frame.z_axis.w];
-    frame.x_axis = DVec4::new(0.0, -1.0, 0.0, e[0]);
-    frame.y_axis = DVec4::new(0.0, 0.0, 1.0, e[1]);
-    frame.z_axis = DVec4::new(-1.0, 0.0, 0.0, e[2]);
+    let frame = looking_along_e(space.frame_from_centre(DVec3::ZERO));
     // Backwards along the horizontal geodesic (e stays parallel, pointing at the centre).
     let frame = space.step_frame(
         frame,

@@ -203,3 +203,40 @@ fn render_cpu_draws_the_fibre_tubes() {
         distinct.len()
     );
 }
+
+/// The example scene file renders with the CPU reference (straight ahead its red tube), and
+/// the GPU is refused with the reason.
+#[test]
+fn the_example_scene_file_renders_on_the_cpu() {
+    let scene = format!(
+        "{}/assets/scenes/unit_tangent_ring.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let dir = temp_dir("sl2r-scene");
+    let out = dir.join("ring.png");
+    let run_out = run(&[
+        "render",
+        "--scene",
+        &scene,
+        "--cpu",
+        "--size",
+        "48x27",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(
+        run_out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run_out.stderr)
+    );
+    let image = image::open(&out).expect("a PNG").to_rgb8();
+    let centre = image.get_pixel(24, 13).0;
+    assert!(
+        centre[0] > centre[1] + 40 && centre[0] > centre[2] + 40,
+        "not the red tube ahead: {centre:?}"
+    );
+    fails_with(
+        &["render", "--scene", &scene, "--size", "16x9"],
+        "the GPU tracer is not written for SL̃(2,R) yet",
+    );
+}

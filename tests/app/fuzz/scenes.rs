@@ -1,4 +1,4 @@
-//! Scene files (constant-curvature, product and Nil): every number made hostile, lines cut and
+//! Scene files (constant-curvature, product, Nil and SL̃(2,R)): every number made hostile, lines cut and
 //! scrambled, tables nested past the parser's depth.
 
 use super::*;
@@ -43,6 +43,9 @@ fn outcome(text: &str, base: &Path) -> bool {
     }
     if bevy_curved_spaces::trace::nil::file::names_nil_space(text) {
         return nil_outcome(text);
+    }
+    if bevy_curved_spaces::trace::sl2r::file::names_sl2r_space(text) {
+        return sl2r_outcome(text);
     }
     let started = Instant::now();
     let result = parse_scene(text, base, "fuzz.toml");
@@ -122,6 +125,38 @@ fn product_outcome(text: &str) -> bool {
         }
         Err(e) => {
             assert!(e.to_string().starts_with("fuzz.toml"), "{e}");
+            false
+        }
+    }
+}
+
+/// A mutated SL̃(2,R) scene file: a finite scene that draws, or an error naming the file.
+fn sl2r_outcome(text: &str) -> bool {
+    use bevy_curved_spaces::trace::sl2r::file::parse_sl2r_scene;
+    use bevy_curved_spaces::trace::sl2r::{camera_ray, first_hit};
+    let started = Instant::now();
+    match parse_sl2r_scene(text, "fuzz.toml") {
+        Ok(file) => {
+            let s = &file.scene;
+            assert!(
+                s.tubes.iter().all(|t| t.base.iter().all(|x| x.is_finite())
+                    && t.radius.is_finite()
+                    && t.colour.is_finite())
+                    && s.fog_distance.is_finite()
+                    && file.start.frame.is_finite(),
+                "a non-finite SL̃(2,R) scene from:\n{text}"
+            );
+            // A few camera rays walk and meet what they meet, never panic.
+            let walker =
+                bevy_curved_spaces::space::sl2r::Sl2rWalker::<glam::DVec4>::new(&file.space);
+            for (x, y) in [(0.0, 0.0), (0.4, -0.3), (-0.7, 0.5)] {
+                let _ = first_hit(&walker, s, camera_ray(&file.start.frame, x, y), 8);
+            }
+            assert!(started.elapsed().as_secs_f64() < 10.0, "slow:\n{text}");
+            true
+        }
+        Err(e) => {
+            assert!(e.to_string().contains("fuzz.toml"), "{e}");
             false
         }
     }

@@ -8,6 +8,8 @@
 //! close as any method can get from a rounded start. Along a hypercycle the frame's entries
 //! grow like `e^{ωt}` and so do the errors of any start; along a circle they stay bounded.
 
+#[cfg(feature = "scene-files")]
+mod files;
 mod pictures;
 mod walks;
 

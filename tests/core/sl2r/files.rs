@@ -1,0 +1,113 @@
+//! SL̃(2,R)'s scene files: a tube written anywhere is brought into the polygon and drawn
+//! with its images under the surface group; the start view stands where the file says,
+//! looking along `e`; what is not written for the family yet, and bad values, are refused
+//! with the line.
+
+use bevy_curved_spaces::space::FrameSpace;
+use bevy_curved_spaces::space::sl2r::Sl2rWalker;
+use bevy_curved_spaces::trace::sl2r::file::{MAX_SL2R_TUBES, parse_sl2r_scene};
+
+const HEAD: &str = "space = \"unit-tangent-bitorus\"\nedges = false\n";
+
+#[test]
+fn a_tube_comes_with_its_images_and_the_start_stands_where_written() {
+    let text = format!(
+        "{HEAD}[start]\nposition = [0.2, -0.1, 0.5]\nfov = 60\n\
+         [[object]]\ntype = \"tube\"\nposition = [0.9, 0.3]\nradius = 0.4\ncolour = [1, 0, 0]\n"
+    );
+    let file = parse_sl2r_scene(&text, "t.toml").expect("a scene");
+    let tubes = &file.scene.tubes;
+    // The written base point (inside the octagon) is kept, and images of it beyond sides it
+    // comes within 0.4 of.
+    let written = [0.9, 0.3, (1.0f64 + 0.81 + 0.09).sqrt()];
+    assert!(
+        tubes
+            .iter()
+            .any(|t| (0..3).all(|i| (t.base[i] - written[i]).abs() < 1e-12))
+    );
+    assert!(tubes.len() > 1, "no image through the near side");
+    let circum = file.space.circumradius();
+    for t in tubes {
+        // On the hyperboloid, the same tube, and near enough to reach the cell.
+        let p = t.base;
+        assert!((p[0] * p[0] + p[1] * p[1] - p[2] * p[2] + 1.0).abs() < 1e-9);
+        assert_eq!(t.radius, 0.4);
+        assert!(p[2].acosh() <= circum + 0.4 + 1e-9);
+        // An image of the written point: brought back into the cell by the pairings, it is
+        // the written point.
+        let ray = file
+            .space
+            .chart_ray(glam::DVec3::new(p[0], p[1], 0.0), glam::DVec3::X)
+            .expect("a chart point");
+        let back = Sl2rWalker::<glam::DVec4>::sl2r_ray(&ray).frame[2];
+        assert!(
+            (0..3).all(|i| (back[i] - written[i]).abs() < 1e-9),
+            "{p:?} is not an image of the written point"
+        );
+    }
+    let f = file.start.frame;
+    let want = [0.2, -0.1, (1.0f64 + 0.04 + 0.01).sqrt()];
+    for (i, w) in want.iter().enumerate() {
+        assert!((f.w_axis[i] - w).abs() < 1e-12, "{f}");
+    }
+    assert_eq!(file.start.fov_y_degrees, 60.0);
+    // Looking along e: back = −X, up = V.
+    assert_eq!(f.z_axis.truncate(), glam::DVec3::new(-1.0, 0.0, 0.0));
+    assert_eq!(f.y_axis.truncate(), glam::DVec3::new(0.0, 0.0, 1.0));
+}
+
+#[test]
+fn what_is_not_written_yet_and_bad_values_are_refused_with_the_line() {
+    for (body, says, line) in [
+        (
+            "[[light]]\nposition = [0, 0, 0]\n",
+            "`light` is not written",
+            3,
+        ),
+        ("walls = 0.5\n", "`walls` is not written", 3),
+        (
+            "[[object]]\ntype = \"tube\"\nposition = [0, 0]\nradius = 5\n",
+            "at most",
+            3,
+        ),
+        (
+            "[[object]]\ntype = \"ball\"\nposition = [0, 0]\nradius = 0.1\n",
+            "unknown variant",
+            3,
+        ),
+        ("fog = -1\n", "positive", 3),
+        (
+            "[start]\nposition = [0, 0, 0]\nfov = 400\n",
+            "field of view",
+            3,
+        ),
+        ("[start]\nposition = [1e200, 0, 0]\n", "too far", 3),
+        ("colour_fog = [1, 1, 1]\n", "fog_colour", 3),
+    ] {
+        let text = format!("{HEAD}{body}");
+        let e = parse_sl2r_scene(&text, "t.toml")
+            .expect_err(body)
+            .to_string();
+        assert!(e.contains(says), "{body}: {e}");
+        assert!(
+            e.contains(&format!("t.toml:{line}")) || e.contains("t.toml"),
+            "{e}"
+        );
+    }
+    let e = parse_sl2r_scene("space = \"unit-tangent-abAB\"\n", "t.toml")
+        .expect_err("flat")
+        .to_string();
+    assert!(e.contains("flat"), "{e}");
+    // Too many tubes with their images.
+    let mut many = String::from(HEAD);
+    for i in 0..MAX_SL2R_TUBES {
+        many.push_str(&format!(
+            "[[object]]\ntype = \"tube\"\nposition = [{}, 0.1]\nradius = 0.5\n",
+            0.001 * i as f64
+        ));
+    }
+    let e = parse_sl2r_scene(&many, "t.toml")
+        .expect_err("too many")
+        .to_string();
+    assert!(e.contains("more than"), "{e}");
+}
