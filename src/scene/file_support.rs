@@ -1,7 +1,8 @@
-//! What both kinds of scene file share ([`super::file`] for the constant-curvature spaces,
-//! `trace::product::file` for the product ones): reading the text, errors that name the
-//! file and the line, "did you mean" for an unknown key, and the keys both take (colours,
-//! `ambient`, `walls` and `wall_opacity`).
+//! What the families' scene files share ([`super::file`] for the constant-curvature spaces,
+//! `trace::product::file`, `trace::nil::file` and `trace::sl2r::file` for the others):
+//! reading the text and telling the families' files apart by their `space` key, errors that
+//! name the file and the line, "did you mean" for an unknown key, and the keys they take
+//! alike (colours, `ambient`, `walls` and `wall_opacity`, a point light and start view).
 
 use glam::DVec3;
 use std::path::Path;
@@ -18,6 +19,34 @@ pub struct SceneFileError {
     pub line: Option<usize>,
     /// What is wrong.
     pub message: String,
+}
+
+/// The `space` key of a scene file's text, where it can be read: how the loaders tell the
+/// families' files apart.
+pub(crate) fn space_key(text: &str) -> Option<String> {
+    #[derive(serde::Deserialize)]
+    struct SpaceOnly {
+        space: String,
+    }
+    toml::from_str::<SpaceOnly>(text)
+        .ok()
+        .map(|peek| peek.space)
+}
+
+/// Reads the scene file at `path` and parses it with `parse` if `names` says its text is
+/// of the family; `Ok(None)` for any other file (another family's, or one whose `space`
+/// cannot be read: the constant-curvature loader says what is wrong with it).
+pub(crate) fn load_family_scene<T>(
+    path: &Path,
+    names: impl Fn(&str) -> bool,
+    parse: impl Fn(&str, &str) -> Result<T, SceneFileError>,
+) -> Result<Option<T>, SceneFileError> {
+    let (name, text) = read_scene_text(path)?;
+    if names(&text) {
+        parse(&text, &name).map(Some)
+    } else {
+        Ok(None)
+    }
 }
 
 /// A scene file's name and text (at most [`crate::files::MAX_SCENE_FILE_BYTES`]), or an

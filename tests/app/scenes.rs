@@ -297,6 +297,12 @@ fn every_example_scene_file_loads() {
                 n += 1;
                 continue;
             }
+            use bevy_curved_spaces::trace::sl2r::file::load_sl2r_scene_file;
+            if let Some(sl2r) = load_sl2r_scene_file(&path).unwrap_or_else(|e| panic!("{e}")) {
+                assert!(!sl2r.scene.tubes.is_empty());
+                n += 1;
+                continue;
+            }
             let file = load_scene_file(&path).unwrap_or_else(|e| panic!("{e}"));
             assert!(
                 !file.base.objects.is_empty() && !file.base.lights.is_empty(),

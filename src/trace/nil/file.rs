@@ -51,7 +51,7 @@ use super::{
 use crate::scene::file::SceneFileError;
 use crate::scene::file_support::{
     LightingSpec, PointLightSpec, PointStartSpec, ambient_of, colour, failing, lighting_of,
-    one_light, parse_toml, read_scene_text, walls_of,
+    load_family_scene, one_light, parse_toml, space_key, walls_of,
 };
 use crate::space::nil::{NilSpace, nil_space};
 use glam::DVec3;
@@ -161,30 +161,19 @@ enum ObjectSpec {
     },
 }
 
-/// Only the `space` key, to tell the kinds of scene file apart.
-#[derive(Deserialize)]
-struct SpaceOnly {
-    space: String,
-}
-
 /// Whether a scene file's text names a Nil space in its `space` key (or a Nil id that is
 /// wrong, such as `nil-0`: its loader says what is wrong with it); `false` where the key
 /// cannot be read.
 #[must_use]
 pub fn names_nil_space(text: &str) -> bool {
-    toml::from_str::<SpaceOnly>(text).is_ok_and(|peek| nil_space(&peek.space).is_some())
+    space_key(text).is_some_and(|id| nil_space(&id).is_some())
 }
 
 /// Reads a scene file if its space is a Nil space; `Ok(None)` for any other file (another
 /// family's, or one whose `space` cannot be read: the constant-curvature loader says what
 /// is wrong with it).
 pub fn load_nil_scene_file(path: &Path) -> Result<Option<NilSceneFile>, SceneFileError> {
-    let (name, text) = read_scene_text(path)?;
-    if names_nil_space(&text) {
-        parse_nil_scene(&text, &name).map(Some)
-    } else {
-        Ok(None)
-    }
+    load_family_scene(path, names_nil_space, parse_nil_scene)
 }
 
 /// Parses a Nil scene file's text; errors name `file` and the line.

@@ -50,7 +50,7 @@ use crate::geometry::Geometry;
 use crate::scene::file::SceneFileError;
 use crate::scene::file_support::{
     LightingSpec, PointLightSpec, PointStartSpec, ambient_of, colour, failing, lighting_of,
-    one_light, parse_toml, read_scene_text, walls_of,
+    load_family_scene, one_light, parse_toml, space_key, walls_of,
 };
 use crate::space::product::motion::camera_frame;
 use crate::space::product::{ProductOrFlat, ProductSpace, product_space};
@@ -210,22 +210,11 @@ enum ObjectSpec {
 /// The most triangles a product scene file may hold (each is one object of the tracer).
 pub const MAX_PRODUCT_TRIANGLES: usize = 512;
 
-/// Only the `space` key, to tell the two kinds of scene file apart.
-#[derive(Deserialize)]
-struct SpaceOnly {
-    space: Spanned<String>,
-}
-
 /// Reads a scene file if its space is a product space; `Ok(None)` for any other file (a
 /// constant-curvature scene file, or one whose `space` cannot be read: the
 /// constant-curvature loader says what is wrong with it).
 pub fn load_product_scene_file(path: &Path) -> Result<Option<ProductSceneFile>, SceneFileError> {
-    let (name, text) = read_scene_text(path)?;
-    if names_product_space(&text) {
-        parse_product_scene(&text, &name).map(Some)
-    } else {
-        Ok(None)
-    }
+    load_family_scene(path, names_product_space, parse_product_scene)
 }
 
 /// Whether a scene file's text names a product space in its `space` key (or a product id
@@ -233,13 +222,12 @@ pub fn load_product_scene_file(path: &Path) -> Result<Option<ProductSceneFile>, 
 /// read.
 #[must_use]
 pub fn names_product_space(text: &str) -> bool {
-    let Ok(peek) = toml::from_str::<SpaceOnly>(text) else {
-        return false;
-    };
-    matches!(
-        product_space(peek.space.get_ref()),
-        Some(Ok(ProductOrFlat::Product(_)) | Err(_))
-    )
+    space_key(text).is_some_and(|id| {
+        matches!(
+            product_space(&id),
+            Some(Ok(ProductOrFlat::Product(_)) | Err(_))
+        )
+    })
 }
 
 /// Parses a product scene file's text; errors name `file` and the line.

@@ -32,7 +32,9 @@
 
 use super::{FibreTube, Sl2rCamera, Sl2rParts, Sl2rScene, default_camera, scene_with_parts};
 use crate::scene::file::SceneFileError;
-use crate::scene::file_support::{ambient_of, colour, failing, parse_toml, read_scene_text};
+use crate::scene::file_support::{
+    ambient_of, colour, failing, load_family_scene, parse_toml, space_key,
+};
 use crate::space::FrameSpace;
 use crate::space::sl2r::{Sl2rWalker, UnitTangentSpace, sl2r_space};
 use glam::{DVec3, DVec4};
@@ -123,28 +125,17 @@ enum ObjectSpec {
     },
 }
 
-/// Only the `space` key, to tell the kinds of scene file apart.
-#[derive(Deserialize)]
-struct SpaceOnly {
-    space: String,
-}
-
 /// Whether a scene file's text names an SL̃(2,R) space in its `space` key (or such an id
 /// that is wrong: its loader says what is wrong with it); `false` where the key cannot be
 /// read.
 #[must_use]
 pub fn names_sl2r_space(text: &str) -> bool {
-    toml::from_str::<SpaceOnly>(text).is_ok_and(|peek| sl2r_space(&peek.space).is_some())
+    space_key(text).is_some_and(|id| sl2r_space(&id).is_some())
 }
 
 /// Reads a scene file if its space is an SL̃(2,R) space; `Ok(None)` for any other file.
 pub fn load_sl2r_scene_file(path: &Path) -> Result<Option<Sl2rSceneFile>, SceneFileError> {
-    let (name, text) = read_scene_text(path)?;
-    if names_sl2r_space(&text) {
-        parse_sl2r_scene(&text, &name).map(Some)
-    } else {
-        Ok(None)
-    }
+    load_family_scene(path, names_sl2r_space, parse_sl2r_scene)
 }
 
 /// Parses an SL̃(2,R) scene file's text; errors name `file` and the line.
