@@ -405,3 +405,25 @@ fn entities_fly_through_a_nil_box_and_are_drawn_as_metric_balls_with_their_image
         .resource::<bevy_curved_spaces::plugin::render::PreparedScene>();
     assert_eq!(prepared.0.key.nil_objects as usize, default + drawn);
 }
+
+/// A game that shows a space of a family the plugin cannot draw (made with
+/// `ActiveSpace::new`; `ActiveSpace::named` refuses the id) sees why in the status, and the
+/// previous space's picture is taken away; the app runs on.
+#[test]
+fn a_space_the_plugin_cannot_draw_is_reported_not_shown_stale() {
+    use bevy_curved_spaces::plugin::components::TracerStatus;
+    use bevy_curved_spaces::plugin::render::PreparedScene;
+    let (mut app, _camera) = test_app("nil-3");
+    assert!(app.world().get_resource::<PreparedScene>().is_some());
+    let id = "unit-tangent-bitorus";
+    assert!(ActiveSpace::named(id).is_err());
+    let space = bevy_curved_spaces::space::AnySpace::named(id).expect("an SL̃(2,R) space");
+    app.world_mut().insert_resource(ActiveSpace::new(id, space));
+    for _ in 0..5 {
+        app.update();
+    }
+    let status = app.world().resource::<TracerStatus>();
+    let error = status.error.as_deref().unwrap_or_default();
+    assert!(error.contains("not in the SL̃(2,R) spaces"), "{error:?}");
+    assert!(app.world().get_resource::<PreparedScene>().is_none());
+}
