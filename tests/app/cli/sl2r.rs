@@ -161,6 +161,19 @@ fn words_and_commands_it_cannot_take_are_refused_with_the_reason() {
         ],
         "not in the SL̃(2,R) spaces",
     );
+    let dir = temp_dir("sl2r-flight");
+    let flight = dir.join("f.toml");
+    std::fs::write(
+        &flight,
+        "space = \"unit-tangent-bitorus\"\n[[key]]\ntime = 0.0\nposition = [0, 0, 0]\n\
+         look_at = [1, 0, 0]\n[[key]]\ntime = 1.0\nposition = [0.1, 0, 0]\nlook_at = [1, 0, 0]\n",
+    )
+    .unwrap();
+    fails_with(
+        &["flight", flight.to_str().unwrap(), "--size", "16x9"],
+        "not in the SL̃(2,R) spaces",
+    );
+    fails_with(&["walk", "unit-tangent-bitorus", "--xr"], "SL̃(2,R)");
     let list = String::from_utf8(run(&["list"]).stdout).unwrap();
     assert!(list.contains("unit-tangent-WORD"), "{list}");
 }
