@@ -181,7 +181,11 @@ impl Family {
                  scene and scene files with walls and the teaching views: `render`, `walk`, \
                  `walk --xr`, `flight`, `light`, `bench`)"
             }
-            (Family::Sl2r, Feature::ReferencePictures) => return Ok(()),
+            (Family::Sl2r, Feature::ReferencePictures | Feature::TeachingViews) => return Ok(()),
+            (Family::Sl2r, Feature::HolonomyView) => {
+                "the holonomy view is not written for SL̃(2,R) yet; `--colour-by crossings` or \
+                 `face` tell the copies apart"
+            }
             (Family::Sl2r, Feature::Pictures) => {
                 "the GPU tracer is not written for SL̃(2,R) yet (`walk`, `flight`, `bench`, the \
                  plugin and `render` without `--cpu`); `render --cpu` draws its pictures with \

@@ -28,8 +28,8 @@ pub(super) fn render_sl2r_command(args: &RenderArgs, chosen: Sl2rChoice) -> Resu
     if args.view.changes_parts() {
         refuse(Feature::SceneParts)?;
     }
-    if args.view.colour_by != super::ColourByArg::Shading {
-        refuse(Feature::TeachingViews)?;
+    if args.view.colour_by == super::ColourByArg::Holonomy {
+        refuse(Feature::HolonomyView)?;
     }
     if args.view.walls.walls.is_some() {
         refuse(Feature::Walls)?;
@@ -51,6 +51,7 @@ pub(super) fn render_sl2r_command(args: &RenderArgs, chosen: Sl2rChoice) -> Resu
     if let Some(fov) = args.fov {
         camera.fov_y_degrees = fov;
     }
+    scene.colour_by = args.view.colour_by.into();
     let budget = args.crossings.unwrap_or(DEFAULT_BUDGET);
     let stereo = args.stereo.settings_for(space.scale())?;
     say!(

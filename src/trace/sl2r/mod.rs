@@ -49,6 +49,9 @@ pub struct Sl2rScene {
     pub fog_distance: f64,
     /// The share of a surface's colour it shows facing away from the eye.
     pub ambient: f64,
+    /// The teaching view: surfaces tinted by the crossings or the last face crossed
+    /// ([`crate::scene::ColourBy`]; the holonomy view is not written for this family).
+    pub colour_by: crate::scene::ColourBy,
 }
 
 impl Sl2rScene {
@@ -142,6 +145,7 @@ pub fn scene_with_parts(space: &UnitTangentSpace, parts: Sl2rParts) -> Sl2rScene
         fog_colour: DVec3::new(0.55, 0.6, 0.7),
         fog_distance: rho,
         ambient: 0.3,
+        colour_by: crate::scene::ColourBy::Shading,
     };
     if parts.edges {
         for v in space.vertices() {
@@ -319,6 +323,10 @@ pub struct Sl2rHit<'a> {
     pub segment: Sl2rRay<f64>,
     /// The time along `segment` to the hit.
     pub t: f64,
+    /// The faces crossed before it.
+    pub crossings: usize,
+    /// The last face crossed, if any.
+    pub last_face: Option<usize>,
 }
 
 /// The first tube the ray meets within `max_crossings` crossings and the fog's cut-off.
@@ -333,7 +341,8 @@ pub fn first_hit<'a>(
     let mut ray = Sl2rWalker::<DVec4>::ray_of(&ray);
     let mut walked = 0.0;
     let mut entered = None;
-    for _ in 0..=max_crossings {
+    let mut last_face = None;
+    for crossings in 0..=max_crossings {
         let r = Sl2rWalker::<DVec4>::sl2r_ray(&ray);
         let (segment, exit) = match walker.next_exit(&ray, entered, 0) {
             NextExit::Exit(exit) => (exit.t, Some(exit)),
@@ -347,6 +356,8 @@ pub fn first_hit<'a>(
                 tube,
                 segment: r,
                 t,
+                crossings,
+                last_face,
             });
         }
         walked += segment;
@@ -356,6 +367,7 @@ pub fn first_hit<'a>(
         }
         ray = walker.through(&ray, &exit);
         entered = walker.skip_after(&exit);
+        last_face = Some(exit.face);
     }
     None
 }
@@ -371,9 +383,18 @@ pub fn trace_sl2r_pixel(
     match first_hit(walker, scene, ray, max_crossings) {
         Some(hit) => {
             let fade = (-hit.distance / scene.fog_distance).exp();
-            scene
-                .fog_colour
-                .lerp(shade(scene, hit.tube, &hit.segment, hit.t), fade)
+            let mut surface = shade(scene, hit.tube, &hit.segment, hit.t);
+            if scene.colour_by != crate::scene::ColourBy::Shading {
+                // The holonomy view is refused for this family: crossings and face tint.
+                let tint = scene.colour_by.tint(
+                    crate::geometry::Geometry::Hyperbolic,
+                    hit.crossings,
+                    hit.last_face,
+                    DMat4::IDENTITY,
+                );
+                surface = crate::scene::ColourBy::recolour(tint, surface);
+            }
+            scene.fog_colour.lerp(surface, fade)
         }
         None => scene.fog_colour,
     }

@@ -142,7 +142,7 @@ fn words_and_commands_it_cannot_take_are_refused_with_the_reason() {
     );
     for extra in [
         &["--walls", "0.5"][..],
-        &["--colour-by", "face"],
+        &["--colour-by", "holonomy"],
         &["--eye", "0.1,0,0", "--look-at", "0,0,0"],
         &["--time", "1"],
     ] {
@@ -252,4 +252,33 @@ fn the_example_scene_file_renders_on_the_cpu() {
         &["render", "--scene", &scene, "--size", "16x9"],
         "the GPU tracer is not written for SL̃(2,R) yet",
     );
+}
+
+/// The teaching views tint by the crossings or the last side crossed: the pictures differ
+/// from the plain one and from each other.
+#[test]
+fn the_teaching_views_tint_the_copies() {
+    let dir = temp_dir("sl2r-views");
+    let picture = |extra: &[&str], name: &str| {
+        let out = dir.join(name);
+        let mut args = vec![
+            "render",
+            "unit-tangent-bitorus",
+            "--cpu",
+            "--size",
+            "64x36",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let o = run(&args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        image::open(&out).expect("a PNG").to_rgb8()
+    };
+    let plain = picture(&[], "plain.png");
+    let crossings = picture(&["--colour-by", "crossings"], "crossings.png");
+    let face = picture(&["--colour-by", "face"], "face.png");
+    assert_ne!(plain, crossings);
+    assert_ne!(plain, face);
+    assert_ne!(crossings, face);
 }
