@@ -49,6 +49,53 @@ pub(crate) fn load_family_scene<T>(
     }
 }
 
+/// The fog keys the families' files share, checked: `fog` (a positive distance, `unit`
+/// named in the message), `ambient` (0 to 1) and `fog_colour` (finite, at most 1); `None`
+/// for a key the file leaves out.
+pub(crate) struct FogKeys {
+    /// The fog distance.
+    pub fog: Option<f64>,
+    /// The ambient share.
+    pub ambient: Option<f64>,
+    /// The fog's colour.
+    pub fog_colour: Option<DVec3>,
+}
+
+/// Reads the shared fog keys ([`FogKeys`]); an error comes with the key's span.
+pub(crate) fn fog_keys(
+    fog: Option<&Spanned<f64>>,
+    ambient: Option<&Spanned<f64>>,
+    fog_colour: Option<&Spanned<[f64; 3]>>,
+    unit: &str,
+) -> Result<FogKeys, SpanError> {
+    let fog = match fog {
+        Some(f) if !(*f.get_ref() > 0.0 && f.get_ref().is_finite()) => {
+            return Err((
+                f.span(),
+                format!(
+                    "the fog distance must be a positive number{unit}, got {}",
+                    f.get_ref()
+                ),
+            ));
+        }
+        f => f.map(|f| *f.get_ref()),
+    };
+    let ambient = ambient.map(ambient_of).transpose()?;
+    let fog_colour = match fog_colour {
+        Some(c) => Some(
+            colour(*c.get_ref())
+                .map_err(|m| (c.span(), format!("fog_colour: {m}")))?
+                .min(DVec3::ONE),
+        ),
+        None => None,
+    };
+    Ok(FogKeys {
+        fog,
+        ambient,
+        fog_colour,
+    })
+}
+
 /// A scene file's name and text (at most [`crate::files::MAX_SCENE_FILE_BYTES`]), or an
 /// error naming it.
 pub(crate) fn read_scene_text(path: &Path) -> Result<(String, String), SceneFileError> {

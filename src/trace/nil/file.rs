@@ -50,7 +50,7 @@ use super::{
 };
 use crate::scene::file::SceneFileError;
 use crate::scene::file_support::{
-    LightingSpec, PointLightSpec, PointStartSpec, ambient_of, colour, failing, lighting_of,
+    LightingSpec, PointLightSpec, PointStartSpec, colour, failing, fog_keys, lighting_of,
     load_family_scene, one_light, parse_toml, space_key, walls_of,
 };
 use crate::space::nil::{NilSpace, nil_space};
@@ -198,25 +198,19 @@ pub fn parse_nil_scene(text: &str, file: &str) -> Result<NilSceneFile, SceneFile
             centre_ball: spec.centre_ball,
         },
     );
-    if let Some(f) = &spec.fog {
-        let f = *f.get_ref();
-        if !(f > 0.0 && f.is_finite()) {
-            return Err(fail(
-                spec.fog.as_ref().map(Spanned::span),
-                format!("the fog distance must be a positive number, got {f}"),
-            ));
-        }
+    let fog = fog_keys(
+        spec.fog.as_ref(),
+        spec.ambient.as_ref(),
+        spec.fog_colour.as_ref(),
+        "",
+    )
+    .map_err(|(s, m)| fail(Some(s), m))?;
+    if let Some(f) = fog.fog {
         scene.fog_distance = f;
         scene.power = super::default_power(&space, f);
     }
-    if let Some(a) = &spec.ambient {
-        scene.ambient = ambient_of(a).map_err(|(s, m)| fail(Some(s), m))?;
-    }
-    if let Some(c) = &spec.fog_colour {
-        scene.fog_colour = colour(*c.get_ref())
-            .map_err(|m| fail(Some(c.span()), format!("fog_colour: {m}")))?
-            .min(DVec3::ONE);
-    }
+    scene.ambient = fog.ambient.unwrap_or(scene.ambient);
+    scene.fog_colour = fog.fog_colour.unwrap_or(scene.fog_colour);
     scene.walls = walls_of(spec.walls.as_ref(), spec.wall_opacity.as_ref())
         .map_err(|(s, m)| fail(Some(s), m))?
         .filter(|w| w.opening < 1.0);

@@ -49,7 +49,7 @@ use super::{
 use crate::geometry::Geometry;
 use crate::scene::file::SceneFileError;
 use crate::scene::file_support::{
-    LightingSpec, PointLightSpec, PointStartSpec, ambient_of, colour, failing, lighting_of,
+    LightingSpec, PointLightSpec, PointStartSpec, colour, failing, fog_keys, lighting_of,
     load_family_scene, one_light, parse_toml, space_key, walls_of,
 };
 use crate::space::product::motion::camera_frame;
@@ -265,19 +265,18 @@ pub fn parse_product_scene(text: &str, file: &str) -> Result<ProductSceneFile, S
             centre_ball: spec.centre_ball,
         },
     );
-    if let Some(f) = &spec.fog {
-        let f = positive_finite(*f.get_ref(), "the fog distance")
-            .map_err(|m| fail(Some(f.span()), m))?;
+    let fog = fog_keys(
+        spec.fog.as_ref(),
+        spec.ambient.as_ref(),
+        spec.fog_colour.as_ref(),
+        " (in units of the space's scale)",
+    )
+    .map_err(|(s, m)| fail(Some(s), m))?;
+    if let Some(f) = fog.fog {
         scene.fog_distance = f * scale;
     }
-    if let Some(a) = &spec.ambient {
-        scene.ambient = ambient_of(a).map_err(|(s, m)| fail(Some(s), m))?;
-    }
-    if let Some(c) = &spec.fog_colour {
-        scene.fog_colour = colour(*c.get_ref())
-            .map_err(|m| fail(Some(c.span()), format!("fog_colour: {m}")))?
-            .min(DVec3::ONE);
-    }
+    scene.ambient = fog.ambient.unwrap_or(scene.ambient);
+    scene.fog_colour = fog.fog_colour.unwrap_or(scene.fog_colour);
     scene.walls = walls_of(spec.walls.as_ref(), spec.wall_opacity.as_ref())
         .map_err(|(s, m)| fail(Some(s), m))?
         .filter(|w| w.opening < 1.0);

@@ -33,7 +33,7 @@
 use super::{FibreTube, Sl2rCamera, Sl2rParts, Sl2rScene, default_camera, scene_with_parts};
 use crate::scene::file::SceneFileError;
 use crate::scene::file_support::{
-    ambient_of, colour, failing, load_family_scene, parse_toml, space_key,
+    colour, failing, fog_keys, load_family_scene, parse_toml, space_key,
 };
 use crate::space::FrameSpace;
 use crate::space::sl2r::{Sl2rWalker, UnitTangentSpace, sl2r_space};
@@ -176,24 +176,16 @@ pub fn parse_sl2r_scene(text: &str, file: &str) -> Result<Sl2rSceneFile, SceneFi
             pillars: false,
         },
     );
-    if let Some(f) = &spec.fog {
-        let f = *f.get_ref();
-        if !(f > 0.0 && f.is_finite()) {
-            return Err(fail(
-                spec.fog.as_ref().map(Spanned::span),
-                format!("the fog distance must be a positive number, got {f}"),
-            ));
-        }
-        scene.fog_distance = f;
-    }
-    if let Some(a) = &spec.ambient {
-        scene.ambient = ambient_of(a).map_err(|(s, m)| fail(Some(s), m))?;
-    }
-    if let Some(c) = &spec.fog_colour {
-        scene.fog_colour = colour(*c.get_ref())
-            .map_err(|m| fail(Some(c.span()), format!("fog_colour: {m}")))?
-            .min(DVec3::ONE);
-    }
+    let fog = fog_keys(
+        spec.fog.as_ref(),
+        spec.ambient.as_ref(),
+        spec.fog_colour.as_ref(),
+        "",
+    )
+    .map_err(|(s, m)| fail(Some(s), m))?;
+    scene.fog_distance = fog.fog.unwrap_or(scene.fog_distance);
+    scene.ambient = fog.ambient.unwrap_or(scene.ambient);
+    scene.fog_colour = fog.fog_colour.unwrap_or(scene.fog_colour);
     for object in &spec.objects {
         let at = |m: String| fail(Some(object.span()), m);
         let tube = build_tube(&space, object.get_ref()).map_err(at)?;
