@@ -5,7 +5,8 @@
 //! mirrored cubes and dodecahedra, surfaces times a circle (H²×R, S²×R), the Heisenberg
 //! nilmanifolds (Nil) — and see what light does there: every frame is ray traced on the GPU
 //! through the fundamental cell and its face pairings, so you see the universal cover tiled
-//! with copies of the scene.
+//! with copies of the scene. The unit tangent bundles of hyperbolic surfaces (SL̃(2,R)) are
+//! walked exactly and drawn by the CPU reference ([`space::sl2r`], [`trace::sl2r`]).
 //!
 //! ## The plugin
 //!
