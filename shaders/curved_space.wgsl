@@ -40,6 +40,9 @@
 //   NIL + NIL_OBJECTS, NIL_IMAGES,       a Nil space (with EUCLIDEAN, no faces packed): the
 //   NIL_SHADOWS                          box's walk, its objects, the lamp's images and
 //                                        shadows (shaders/nil.wgsl)
+//   SL2R + SL2R_TUBE_VECS                an SL̃(2,R) space (with HYPERBOLIC): FACE_COUNT
+//                                        sides, the walk of UT H² and its fibre tubes
+//                                        (shaders/sl2r.wgsl)
 //
 // Points and tangents are 4-vectors with ⟨u,v⟩ = u.xyz·v.xyz + κ u.w v.w; a ray segment in
 // the cell is X(s) ∝ p + s v, a straight line of the chart, so faces are planes (N·X = 0)
@@ -49,6 +52,9 @@
 #import curved_spaces::hit_id::{hit_id}
 // The one place a family is chosen: each family's tracer module has the camera ray's
 // colour under the same name, `ray_colour`.
+#ifdef SL2R
+#import curved_spaces::sl2r::{sl2r_eye_colour}
+#else
 #ifdef NIL
 #import curved_spaces::nil::{ray_colour}
 #else
@@ -56,6 +62,7 @@
 #import curved_spaces::product::{ray_colour}
 #else
 #import curved_spaces::trace::{ray_colour}
+#endif
 #endif
 #endif
 
@@ -86,7 +93,12 @@ fn eye_colour(eye: u32, uv: vec2<f32>) -> vec3<f32> {
     let px = mix(lens.x, lens.y, uv.x);
     let py = mix(lens.w, lens.z, uv.y);
     let f = space.view.frames[eye];
+#ifdef SL2R
+    // The frame holds e beside the viewer's axes: the family reads the whole of it.
+    return clamp(sl2r_eye_colour(f, px, py), vec3<f32>(0.0), vec3<f32>(1.0));
+#else
     return clamp(ray_colour(f[3], px * f[0] + py * f[1] - f[2]), vec3<f32>(0.0), vec3<f32>(1.0));
+#endif
 }
 
 // The linear colour seen through a fragment of the viewport (ViewLayout::eye_at and

@@ -182,6 +182,13 @@ struct SpaceUniform {
     nil_images: array<vec4<f32>, #{NIL_IMAGES}>,
 #endif
 #endif
+#ifdef SL2R
+    // The number of tubes, unused ×3 (Rust: `trace::sl2r::Sl2rScene`; the face arrays above
+    // are the polygon's sides: covectors, 3×3 pairings in a mat4, partners).
+    sl2r: vec4<f32>,
+    // Per tube: its base point q (xyz) and radius; its colour (rgb) and cosh(radius).
+    sl2r_tubes: array<vec4<f32>, #{SL2R_TUBE_VECS}>,
+#endif
 #ifdef WALLS
     // Per face: the covector scaled to a unit normal (N̂·X̂ = S(signed distance)).
     wall_units: array<vec4<f32>, #{FACE_SLOTS}>,

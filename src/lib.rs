@@ -6,7 +6,7 @@
 //! nilmanifolds (Nil) — and see what light does there: every frame is ray traced on the GPU
 //! through the fundamental cell and its face pairings, so you see the universal cover tiled
 //! with copies of the scene. The unit tangent bundles of hyperbolic surfaces (SL̃(2,R)) are
-//! walked exactly and drawn by the CPU reference ([`space::sl2r`], [`trace::sl2r`]).
+//! walked exactly too ([`space::sl2r`], [`trace::sl2r`]).
 //!
 //! ## The plugin
 //!
@@ -112,6 +112,7 @@ pub use plugin::components::{
     CurvedSpacesSystems, Quality, SceneObjects, TracerSettings, TracerStatus,
 };
 pub use plugin::nil::BaseNilScene;
+pub use plugin::sl2r::BaseSl2rScene;
 
 /// The types most programs need.
 pub mod prelude {
@@ -127,6 +128,7 @@ pub mod prelude {
         ActiveSightlines, CurvedObject, CurvedShape, CurvedTransform, CurvedVelocity,
         ObjectCrossedFace,
     };
+    pub use crate::plugin::sl2r::BaseSl2rScene;
     #[cfg(feature = "scene-files")]
     pub use crate::scene::file::{SceneFile, load_scene_file};
     pub use crate::scene::{

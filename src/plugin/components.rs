@@ -214,6 +214,8 @@ pub struct BaseScenes<'w> {
     pub product: Option<Res<'w, BaseProductScene>>,
     /// The Nil spaces' base scene, where a game set one.
     pub nil: Option<Res<'w, BaseNilScene>>,
+    /// The SL̃(2,R) spaces' base scene, where a game set one.
+    pub sl2r: Option<Res<'w, BaseSl2rScene>>,
 }
 
 impl BaseScenes<'_> {
@@ -226,8 +228,7 @@ impl BaseScenes<'_> {
             AnySpace::Constant(s) => self.constant.start_frame(active, s),
             AnySpace::Product(p) => BaseProductScene::start_frame(self.product.as_deref(), p),
             AnySpace::Nil(n) => BaseNilScene::start_frame(self.nil.as_deref(), n),
-            // No scene of its own yet: the polygon's centre.
-            AnySpace::Sl2r(s) => s.frame_from_centre(glam::DVec3::ZERO),
+            AnySpace::Sl2r(s) => BaseSl2rScene::start_frame(self.sl2r.as_deref(), s),
         }
     }
 
@@ -249,8 +250,31 @@ impl BaseScenes<'_> {
                 .as_ref()
                 .and_then(|b| b.start)
                 .map(|c| c.fov_y_degrees),
-            AnySpace::Sl2r(_) => None,
+            AnySpace::Sl2r(_) => self
+                .sl2r
+                .as_ref()
+                .and_then(|b| b.start)
+                .map(|c| c.fov_y_degrees),
         }
+    }
+}
+
+/// The scene shown in an SL̃(2,R) space instead of its default one, and where players start.
+#[derive(Resource, Clone, Debug, PartialEq)]
+pub struct BaseSl2rScene {
+    /// The scene.
+    pub scene: crate::trace::sl2r::Sl2rScene,
+    /// The start view (`None`: the space's default camera).
+    pub start: Option<crate::trace::sl2r::Sl2rCamera>,
+}
+
+impl BaseSl2rScene {
+    /// Where players start in `space`: the base scene's start view, else the default one.
+    #[must_use]
+    pub fn start_frame(base: Option<&Self>, space: &crate::space::sl2r::UnitTangentSpace) -> DMat4 {
+        base.and_then(|b| b.start)
+            .unwrap_or_else(|| crate::trace::sl2r::default_camera(space))
+            .frame
     }
 }
 

@@ -32,6 +32,7 @@ pub mod product;
 pub mod render;
 pub mod screenshot;
 pub mod setup;
+pub mod sl2r;
 #[cfg(feature = "ui")]
 pub mod ui;
 #[cfg(feature = "xr")]

@@ -409,6 +409,43 @@ impl OffscreenRenderer {
         )
     }
 
+    /// Renders an SL̃(2,R) space's scene from `camera` on the GPU (mono or stereo), as the
+    /// plugin draws it while the space is shown.
+    pub fn render_sl2r(
+        &mut self,
+        space: &crate::space::sl2r::UnitTangentSpace,
+        scene: &crate::trace::sl2r::Sl2rScene,
+        camera: &crate::trace::sl2r::Sl2rCamera,
+        (w, h): (u32, u32),
+        max_crossings: u32,
+        stereo: StereoSettings,
+    ) -> Result<RgbImage, OffscreenError> {
+        if !(1..=8192).contains(&w) || !(1..=8192).contains(&h) {
+            return Err(OffscreenError::BadSize(w, h));
+        }
+        // A scene the GPU cannot take would only time out below: say why now.
+        crate::plugin::render::gpu::GpuScene::sl2r(space, scene, max_crossings)
+            .map_err(|e| OffscreenError::Scene(e.to_string()))?;
+        let world = self.app.world_mut();
+        let same_space = world.get_resource::<ActiveSpace>().is_some_and(|a| {
+            a.space
+                .get::<crate::space::sl2r::UnitTangentSpace>()
+                .is_some_and(|s| s.name() == space.name())
+        });
+        if !same_space {
+            world.insert_resource(ActiveSpace::new(space.name(), space.clone()));
+        }
+        world.insert_resource(crate::plugin::sl2r::BaseSl2rScene {
+            scene: scene.clone(),
+            start: Some(*camera),
+        });
+        self.picture(
+            (w, h),
+            (max_crossings, scene.colour_by, stereo),
+            (camera.fov_y_degrees, camera.frame),
+        )
+    }
+
     fn capture(&mut self, handle: &Handle<Image>) -> Result<RgbImage, OffscreenError> {
         let failure = self
             .app

@@ -166,7 +166,8 @@ impl Plugin for CurvedSpacesPlugin {
                             >,
                         )
                         .run_if(ActiveSpace::shows(Family::Product)),
-                    refuse_undrawn_spaces,
+                    crate::plugin::sl2r::upload_sl2r_scene
+                        .run_if(ActiveSpace::shows(Family::Sl2r)),
                     crate::plugin::nil::upload_nil_scene
                         .after(
                             crate::plugin::objects::gather::collect_entity_objects::<
@@ -186,6 +187,7 @@ impl Plugin for CurvedSpacesPlugin {
             FamilyPlugin::<crate::space::Space>::default(),
             FamilyPlugin::<crate::space::product::ProductSpace>::default(),
             FamilyPlugin::<crate::space::nil::NilSpace>::default(),
+            FamilyPlugin::<crate::space::sl2r::UnitTangentSpace>::default(),
         ));
         #[cfg(feature = "scene-files")]
         app.add_systems(Last, crate::plugin::flight::finish_recording);
@@ -239,26 +241,6 @@ fn start_camera(
     }
     // The tracer writes final colours: no anti-aliasing, tonemapping or dithering on top.
     entity.insert((Msaa::Off, Tonemapping::None, DebandDither::Disabled));
-}
-
-/// When the space shown is of a family the plugin cannot draw (an `ActiveSpace` a game made
-/// with `ActiveSpace::new`: `ActiveSpace::named` refuses such ids), takes the previous
-/// space's packed scene away, so nothing stale is shown, and says why in
-/// [`TracerStatus::error`] (the one table's message).
-fn refuse_undrawn_spaces(
-    active: Option<Res<ActiveSpace>>,
-    mut status: ResMut<TracerStatus>,
-    mut commands: Commands,
-) {
-    let Some(active) = active.filter(|a| a.is_changed()) else {
-        return;
-    };
-    if let Err(e) = active.space.supports(crate::space::Feature::Pictures) {
-        let message = format!("{}: {e}", active.id);
-        warn!("{message}");
-        status.error = Some(message);
-        commands.remove_resource::<crate::plugin::render::PreparedScene>();
-    }
 }
 
 /// Reports an eye distance that cannot be used (the tracer falls back to the default).

@@ -181,15 +181,13 @@ impl Family {
                  scene and scene files with walls and the teaching views: `render`, `walk`, \
                  `walk --xr`, `flight`, `light`, `bench`)"
             }
-            (Family::Sl2r, Feature::ReferencePictures | Feature::TeachingViews) => return Ok(()),
+            (
+                Family::Sl2r,
+                Feature::Pictures | Feature::ReferencePictures | Feature::TeachingViews,
+            ) => return Ok(()),
             (Family::Sl2r, Feature::HolonomyView) => {
                 "the holonomy view is not written for SL̃(2,R) yet; `--colour-by crossings` or \
                  `face` tell the copies apart"
-            }
-            (Family::Sl2r, Feature::Pictures) => {
-                "the GPU tracer is not written for SL̃(2,R) yet (`walk`, `flight`, `bench`, the \
-                 plugin and `render` without `--cpu`); `render --cpu` draws its pictures with \
-                 the CPU reference"
             }
             (Family::Sl2r, Feature::Export) => {
                 "a unit tangent bundle is written by its id (`unit-tangent-WORD`), which holds \
@@ -200,8 +198,8 @@ impl Family {
                  Dirichlet domains of generator files"
             }
             (Family::Sl2r, _) => {
-                "not written for the SL̃(2,R) family yet (it walks and draws fibre tubes \
-                 exactly: `trace`, `info`, `list`, `render --cpu`)"
+                "not written for the SL̃(2,R) family yet (it draws its fibre tubes and walks \
+                 exactly: `trace`, `info`, `list`, `render`, `walk`)"
             }
             (Family::Product, Feature::SceneParts) => {
                 "a product scene file's `edges` and `centre_ball` choose the parts"

@@ -19,7 +19,7 @@ fn compose(key: &ShaderKey) -> Result<naga::Module, String> {
 }
 
 /// Validates a composed module and returns the size naga lays `SpaceUniform` out with.
-fn validate(key: &ShaderKey) -> usize {
+pub(crate) fn validate(key: &ShaderKey) -> usize {
     let module = compose(key).unwrap_or_else(|e| panic!("composing failed: {e}"));
     naga::valid::Validator::new(
         naga::valid::ValidationFlags::all(),

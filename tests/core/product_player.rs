@@ -406,24 +406,32 @@ fn entities_fly_through_a_nil_box_and_are_drawn_as_metric_balls_with_their_image
     assert_eq!(prepared.0.key.nil_objects as usize, default + drawn);
 }
 
-/// A game that shows a space of a family the plugin cannot draw (made with
-/// `ActiveSpace::new`; `ActiveSpace::named` refuses the id) sees why in the status, and the
-/// previous space's picture is taken away; the app runs on.
+/// The plugin in an SL̃(2,R) space: `CurvedSpacesPlugin { space: "unit-tangent-bitorus" }`
+/// starts at the default view, packs the scene for the GPU's SL2R variant, and the player
+/// walks through the polygon's sides and climbs the fibre, staying in the cell and on the
+/// model.
 #[test]
-fn a_space_the_plugin_cannot_draw_is_reported_not_shown_stale() {
-    use bevy_curved_spaces::plugin::components::TracerStatus;
+fn the_plugin_walks_an_sl2r_space_with_the_fibre_up() {
     use bevy_curved_spaces::plugin::render::PreparedScene;
-    let (mut app, _camera) = test_app("nil-3");
-    assert!(app.world().get_resource::<PreparedScene>().is_some());
-    let id = "unit-tangent-bitorus";
-    assert!(ActiveSpace::named(id).is_err());
-    let space = bevy_curved_spaces::space::AnySpace::named(id).expect("an SL̃(2,R) space");
-    app.world_mut().insert_resource(ActiveSpace::new(id, space));
-    for _ in 0..5 {
-        app.update();
-    }
-    let status = app.world().resource::<TracerStatus>();
-    let error = status.error.as_deref().unwrap_or_default();
-    assert!(error.contains("not in the SL̃(2,R) spaces"), "{error:?}");
-    assert!(app.world().get_resource::<PreparedScene>().is_none());
+    use bevy_curved_spaces::space::FrameSpace;
+    use bevy_curved_spaces::space::sl2r::UnitTangentSpace;
+    let (mut app, camera) = test_app("unit-tangent-bitorus");
+    let active = app.world().resource::<ActiveSpace>();
+    assert_eq!(active.family(), Family::Sl2r);
+    let space = active
+        .space
+        .get::<UnitTangentSpace>()
+        .expect("an SL̃(2,R) space")
+        .clone();
+    let start = bevy_curved_spaces::trace::sl2r::default_camera(&space).frame;
+    assert!((frame(&app, camera) - start).abs_diff_eq(DMat4::ZERO, 1e-12));
+    assert!(app.world().resource::<PreparedScene>().0.key.sl2r);
+    set_step(&mut app, 0.1);
+    hold(&mut app, KeyCode::KeyW, 40);
+    hold(&mut app, KeyCode::KeyD, 20);
+    hold(&mut app, KeyCode::Space, 20);
+    let f = frame(&app, camera);
+    assert!(space.outside_by(f.w_axis) <= 1e-3, "left the cell: {f}");
+    assert!(space.frame_defect(f) < 1e-9);
+    assert!(holonomy(&app, camera).crossings > 0, "crossed no side");
 }

@@ -78,8 +78,8 @@ pub(super) fn list() {
     say!("");
     say!(
         "SL̃(2,R) spaces: unit-tangent-WORD (unit-tangent-bitorus is unit-tangent-abABcdCD), the \
-         unit tangent bundle of the orientable hyperbolic surface of WORD: `info`, `trace` and \
-         `list` take them (pictures are not drawn yet)"
+         unit tangent bundle of the orientable hyperbolic surface of WORD: `info`, `trace`, \
+         `render` and `walk` take them (not yet `flight`, `light` or the headset)"
     );
     say!("");
     say!(

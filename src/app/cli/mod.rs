@@ -12,6 +12,7 @@ mod render_sl2r;
 mod spaces;
 mod trace;
 mod walk;
+mod walk_sl2r;
 
 use bevy::prelude::*;
 use bevy_curved_spaces::plugin::components::Quality;

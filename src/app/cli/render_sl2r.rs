@@ -1,7 +1,7 @@
 //! `render` of an SL̃(2,R) space: its default scene (the cell's edges and five pillars,
-//! fibre tubes met exactly) or a scene file's, with the f64 CPU reference, mono or stereo.
-//! The GPU tracer and the options that need a lamp, walls or a placed eye are not written
-//! for the family yet, and each is refused by name.
+//! fibre tubes met exactly) or a scene file's, on the GPU or with the f64 CPU reference,
+//! mono or stereo. The options that need a lamp, walls or a placed eye are not written for
+//! the family yet, and each is refused by name.
 
 use super::RenderArgs;
 use super::render::Sl2rChoice;
@@ -12,16 +12,13 @@ use bevy_curved_spaces::trace::sl2r::render_sl2r_view;
 use std::time::Instant;
 
 /// The crossing budget where none is given: the fog's cut-off is a few cells away.
-const DEFAULT_BUDGET: usize = 24;
+const DEFAULT_BUDGET: usize = bevy_curved_spaces::plugin::sl2r::DEFAULT_SL2R_BUDGET as usize;
 
-/// `render unit-tangent-WORD --cpu`.
+/// `render unit-tangent-WORD`: on the GPU, or with the f64 CPU reference (`--cpu`).
 pub(super) fn render_sl2r_command(args: &RenderArgs, chosen: Sl2rChoice) -> Result<(), String> {
     let space: &UnitTangentSpace = &chosen.space;
     let name = space.name();
     let refuse = |feature| super::spaces::require(Family::Sl2r, name, feature);
-    if !args.cpu {
-        refuse(Feature::Pictures)?;
-    }
     if args.time != 0.0 {
         refuse(Feature::MovingObjects)?;
     }
@@ -55,10 +52,15 @@ pub(super) fn render_sl2r_command(args: &RenderArgs, chosen: Sl2rChoice) -> Resu
     let budget = args.crossings.unwrap_or(DEFAULT_BUDGET);
     let stereo = args.stereo.settings_for(space.scale())?;
     say!(
-        "rendering {name} (SL̃(2,R)) at {}×{} with the f64 CPU reference (fog λ = {:.3}, ≤ \
-         {budget} crossings{})…",
+        "rendering {name} (SL̃(2,R)) at {}×{} with the {} (fog λ = {:.3}, ≤ {budget} \
+         crossings{})…",
         args.size.0,
         args.size.1,
+        if args.cpu {
+            "f64 CPU reference"
+        } else {
+            "GPU tracer"
+        },
         scene.fog_distance,
         stereo_words(&stereo, space.scale())
     );
@@ -70,6 +72,13 @@ pub(super) fn render_sl2r_command(args: &RenderArgs, chosen: Sl2rChoice) -> Resu
         &stereo,
         args.size,
     );
-    let image = render_sl2r_view(space, &scene, &layout, budget);
+    let image = if args.cpu {
+        render_sl2r_view(space, &scene, &layout, budget)
+    } else {
+        let gpu_budget = super::render::gpu_budget(budget)?;
+        bevy_curved_spaces::plugin::offscreen::OffscreenRenderer::new()
+            .and_then(|mut r| r.render_sl2r(space, &scene, &camera, args.size, gpu_budget, stereo))
+            .map_err(|e| e.to_string())?
+    };
     saved(&image, args, started)
 }

@@ -19,8 +19,8 @@ use std::path::{Path, PathBuf};
 /// `walk --screenshot`: where to save, and whether it was requested.
 #[derive(Resource)]
 pub(super) struct ScreenshotThenExit {
-    path: PathBuf,
-    requested: bool,
+    pub(super) path: PathBuf,
+    pub(super) requested: bool,
 }
 
 /// Frames the tracer draws before `--screenshot` captures (the window has settled).
@@ -130,13 +130,7 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
     };
     let chosen = match choose(&args.space, args.scene.as_deref(), args.fog)? {
         Choice::Constant(chosen) => chosen,
-        Choice::Sl2r(chosen) => {
-            return Err(super::spaces::refusal(
-                bevy_curved_spaces::space::Family::Sl2r,
-                chosen.space.name(),
-                bevy_curved_spaces::space::Feature::Pictures,
-            ));
-        }
+        Choice::Sl2r(chosen) => return super::walk_sl2r::walk_sl2r(args, chosen),
         Choice::Nil(chosen) => {
             let flight = match &replay {
                 Some(file) => Some(bevy_curved_spaces::trace::nil::flight::NilFlight::new(
@@ -262,7 +256,7 @@ fn record_to(app: &mut App, args: &WalkArgs) -> Result<(), String> {
 
 /// Says that there is no display and what `walk` does instead: one picture of the start
 /// view, offscreen, and none of the options that need a walk in a window.
-fn say_no_display(args: &WalkArgs) {
+pub(super) fn say_no_display(args: &WalkArgs) {
     eprintln!(
         "no display found (DISPLAY and WAYLAND_DISPLAY are unset): rendering {} offscreen to curved-spaces.png instead",
         args.space

@@ -132,12 +132,9 @@ fn words_and_commands_it_cannot_take_are_refused_with_the_reason() {
     fails_with(&["info", "unit-tangent-aabb"], "non-orientable");
     fails_with(&["info", "unit-tangent-abABcdCD-cover-2"], "not built yet");
     fails_with(&["info", "unit-tangent-ab"], "");
+    // walk refuses by the table what it cannot do (before it would open a window).
     fails_with(
-        &["render", "unit-tangent-bitorus", "--size", "16x9"],
-        "the GPU tracer is not written for SL̃(2,R) yet",
-    );
-    fails_with(
-        &["walk", "unit-tangent-bitorus"],
+        &["walk", "unit-tangent-bitorus", "--walls", "0.5"],
         "not in the SL̃(2,R) spaces",
     );
     for extra in [
@@ -173,7 +170,10 @@ fn words_and_commands_it_cannot_take_are_refused_with_the_reason() {
         &["flight", flight.to_str().unwrap(), "--size", "16x9"],
         "not in the SL̃(2,R) spaces",
     );
-    fails_with(&["walk", "unit-tangent-bitorus", "--xr"], "SL̃(2,R)");
+    fails_with(
+        &["walk", "unit-tangent-bitorus", "--xr"],
+        "not in the SL̃(2,R) spaces",
+    );
     let list = String::from_utf8(run(&["list"]).stdout).unwrap();
     assert!(list.contains("unit-tangent-WORD"), "{list}");
 }
@@ -217,8 +217,8 @@ fn render_cpu_draws_the_fibre_tubes() {
     );
 }
 
-/// The example scene file renders with the CPU reference (straight ahead its red tube), and
-/// the GPU is refused with the reason.
+/// The example scene file renders with the CPU reference and on the GPU: straight ahead its
+/// red tube.
 #[test]
 fn the_example_scene_file_renders_on_the_cpu() {
     let scene = format!(
@@ -242,16 +242,30 @@ fn the_example_scene_file_renders_on_the_cpu() {
         "{}",
         String::from_utf8_lossy(&run_out.stderr)
     );
-    let image = image::open(&out).expect("a PNG").to_rgb8();
-    let centre = image.get_pixel(24, 13).0;
+    let gpu_out = dir.join("ring-gpu.png");
+    let gpu_run = run(&[
+        "render",
+        "--scene",
+        &scene,
+        "--size",
+        "48x27",
+        "--out",
+        gpu_out.to_str().unwrap(),
+    ]);
     assert!(
-        centre[0] > centre[1] + 40 && centre[0] > centre[2] + 40,
-        "not the red tube ahead: {centre:?}"
+        gpu_run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&gpu_run.stderr)
     );
-    fails_with(
-        &["render", "--scene", &scene, "--size", "16x9"],
-        "the GPU tracer is not written for SL̃(2,R) yet",
-    );
+    for path in [&out, &gpu_out] {
+        let image = image::open(path).expect("a PNG").to_rgb8();
+        let centre = image.get_pixel(24, 13).0;
+        assert!(
+            centre[0] > centre[1] + 40 && centre[0] > centre[2] + 40,
+            "{}: not the red tube ahead: {centre:?}",
+            path.display()
+        );
+    }
 }
 
 /// The teaching views tint by the crossings or the last side crossed: the pictures differ

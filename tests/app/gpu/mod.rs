@@ -21,6 +21,7 @@ mod laws;
 mod light;
 mod nil;
 mod scenes;
+mod sl2r;
 mod spaces;
 mod stereo;
 mod views;

@@ -239,11 +239,38 @@ fn the_example_scene_files_render_alike_on_gpu_and_cpu() {
             super::judge(&name, &gpu, &cpu, &out, &mut failures);
             continue;
         }
-        // SL̃(2,R) scenes are drawn by the CPU reference only (no GPU tracer yet).
-        if bevy_curved_spaces::trace::sl2r::file::load_sl2r_scene_file(path)
+        // An SL̃(2,R) scene (its GPU test also draws it in stereo: gpu/sl2r.rs).
+        if let Some(file) = bevy_curved_spaces::trace::sl2r::file::load_sl2r_scene_file(path)
             .unwrap_or_else(|e| panic!("{e}"))
-            .is_some()
         {
+            let size = (64, 36);
+            let layout = bevy_curved_spaces::view::ViewLayout::new(
+                bevy_curved_spaces::view::StereoMode::Mono,
+                false,
+                [file.start.frame; 2],
+                file.start.fov_y_degrees,
+                size.0,
+                size.1,
+            );
+            let cpu = bevy_curved_spaces::trace::sl2r::render_sl2r_view(
+                &file.space,
+                &file.scene,
+                &layout,
+                24,
+            );
+            let gpu = renderer
+                .render_sl2r(
+                    &file.space,
+                    &file.scene,
+                    &file.start,
+                    size,
+                    24,
+                    Default::default(),
+                )
+                .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            let name = path.file_stem().expect("name").to_string_lossy();
+            let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("gpu-vs-cpu");
+            super::judge(&name, &gpu, &cpu, &out, &mut failures);
             continue;
         }
         let file = load_scene_file(path).unwrap_or_else(|e| panic!("{e}"));

@@ -85,6 +85,11 @@ pub struct ShaderKey {
     pub nil_images: u32,
     /// Whether a Nil scene walks shadow rays (shader def `NIL_SHADOWS`).
     pub nil_shadows: bool,
+    /// An SL̃(2,R) space (shader def `SL2R`; `faces` counts the polygon's sides, the
+    /// geometry's formulas unused).
+    pub sl2r: bool,
+    /// The fibre tubes of an SL̃(2,R) scene (shader def `SL2R_TUBE_VECS`, two vec4 each).
+    pub sl2r_tubes: u32,
 }
 
 /// The vec4s of one Nil object in the uniform (shape, info, colour, its chart box).
@@ -132,6 +137,8 @@ impl ShaderKey {
             nil_objects: 0,
             nil_images: 0,
             nil_shadows: false,
+            sl2r: false,
+            sl2r_tubes: 0,
         }
     }
 
@@ -187,6 +194,13 @@ impl ShaderKey {
                     defs.push("NIL_SHADOWS".into());
                 }
             }
+        }
+        if self.sl2r {
+            defs.push("SL2R".into());
+            defs.push(ShaderDefVal::UInt(
+                "SL2R_TUBE_VECS".into(),
+                2 * self.sl2r_tubes.max(1),
+            ));
         }
         if self.straightforward {
             defs.push("STRAIGHTFORWARD".into());
@@ -342,6 +356,11 @@ impl ShaderKey {
                     } else {
                         0
                     }
+            } else {
+                0
+            }
+            + if self.sl2r {
+                (1 + 2 * count(self.sl2r_tubes.max(1))) * vec4
             } else {
                 0
             }

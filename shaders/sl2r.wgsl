@@ -1,0 +1,300 @@
+// SL̃(2,R) (shader def SL2R): the GPU twin of the CPU reference in src/trace/sl2r, in f32,
+// on the geometry of src/space/sl2r. A point of UT H² is the Lorentz frame (e, e⊥, p); a
+// geodesic is F·exp(tW)·exp(2ct R) with exp(tW) = I + S W + K W², S and K entire in ω²t²
+// (one formula for hypercycles, horocycles and circles). A side n·p ≤ 0 and a fibre tube
+// ⟨p, q⟩ ≥ −cosh r are both met where n·p(t) + c crosses 0, a quadratic in
+// τ = tanh(ωt/2)/(ω/2), polished by Newton's method. The sides' covectors, pairings (3×3 in
+// a mat4, with what rounding left out) and partners are the face arrays; the tubes follow.
+#define_import_path curved_spaces::sl2r
+
+#import curved_spaces::layout::{space}
+#ifdef COLOUR_BY
+#import curved_spaces::shading::{colour_by_tint, recolour}
+#endif
+
+const SL2R_PI: f32 = 3.14159265358979;
+const SL2R_NONE: f32 = -1.0;
+
+struct Sl2rRay {
+    e: vec3<f32>,
+    f: vec3<f32>,
+    p: vec3<f32>,
+    // The body velocity (a, b, c) in (X, Y, V).
+    v: vec3<f32>,
+}
+
+fn sl2r_lorentz(u: vec3<f32>, w: vec3<f32>) -> f32 {
+    return u.x * w.x + u.y * w.y - u.z * w.z;
+}
+
+// e turned by +90° at p: J(p × e).
+fn sl2r_perp(p: vec3<f32>, e: vec3<f32>) -> vec3<f32> {
+    let c = cross(p, e);
+    return vec3<f32>(c.x, c.y, -c.z);
+}
+
+// (S, K) of the flow for ω² = w2 at time t: series while |ω²t²| < 4, closed forms beyond.
+fn sl2r_terms(w2: f32, t: f32) -> vec2<f32> {
+    let x = w2 * t * t;
+    if abs(x) < 4.0 {
+        // Σ xᵏ/(2k+1)! and Σ xᵏ/(2k+2)!, k ≤ 7: the next terms are below f32's last bit.
+        var s = 1.0 / 1307674368000.0;
+        s = s * x + 1.0 / 6227020800.0;
+        s = s * x + 1.0 / 39916800.0;
+        s = s * x + 1.0 / 362880.0;
+        s = s * x + 1.0 / 5040.0;
+        s = s * x + 1.0 / 120.0;
+        s = s * x + 1.0 / 6.0;
+        s = s * x + 1.0;
+        var k = 1.0 / 20922789888000.0;
+        k = k * x + 1.0 / 87178291200.0;
+        k = k * x + 1.0 / 479001600.0;
+        k = k * x + 1.0 / 3628800.0;
+        k = k * x + 1.0 / 40320.0;
+        k = k * x + 1.0 / 720.0;
+        k = k * x + 1.0 / 24.0;
+        k = k * x + 0.5;
+        return vec2<f32>(t * s, t * t * k);
+    }
+    if w2 > 0.0 {
+        let om = sqrt(w2);
+        let h = sinh(0.5 * om * t);
+        return vec2<f32>(sinh(om * t) / om, 2.0 * h * h / w2);
+    }
+    let om = sqrt(-w2);
+    let h = sin(0.5 * om * t);
+    return vec2<f32>(sin(om * t) / om, 2.0 * h * h / (-w2));
+}
+
+// The ray moved by t along its geodesic.
+fn sl2r_flow(r: Sl2rRay, t: f32) -> Sl2rRay {
+    let a = r.v.x;
+    let b = r.v.y;
+    let c = r.v.z;
+    let sk = sl2r_terms(a * a + b * b - c * c, t);
+    let s = sk.x;
+    let k = sk.y;
+    // exp(tW) = I + S W + K W² (rows), W = a B₁ + b B₂ − c R.
+    let m0 = vec3<f32>(1.0 + k * (a * a - c * c), s * c + k * a * b, s * a + k * b * c);
+    let m1 = vec3<f32>(-s * c + k * a * b, 1.0 + k * (b * b - c * c), s * b - k * a * c);
+    let m2 = vec3<f32>(s * a - k * b * c, s * b + k * a * c, 1.0 + k * (a * a + b * b));
+    // Column j of F·exp(tW) is e·m0[j] + f·m1[j] + p·m2[j].
+    let e = r.e * m0.x + r.f * m1.x + r.p * m2.x;
+    let f = r.e * m0.y + r.f * m1.y + r.p * m2.y;
+    let p = r.e * m0.z + r.f * m1.z + r.p * m2.z;
+    let phi = 2.0 * c * t;
+    let co = cos(phi);
+    let si = sin(phi);
+    return Sl2rRay(e * co + f * si, f * co - e * si, p, vec3<f32>(a * co + b * si, b * co - a * si, c));
+}
+
+// The ray back on the model: p on the hyperboloid, e a unit tangent there, e⊥ completing
+// the frame, the velocity unit.
+fn sl2r_on_model(r: Sl2rRay) -> Sl2rRay {
+    let p = r.p / sqrt(max(-sl2r_lorentz(r.p, r.p), 1e-30));
+    let t = r.e + sl2r_lorentz(r.e, p) * p;
+    let e = t / sqrt(max(sl2r_lorentz(t, t), 1e-30));
+    return Sl2rRay(e, sl2r_perp(p, e), p, normalize(r.v));
+}
+
+// atanh(√y)/√y (atan(√−y)/√−y for y < 0).
+fn sl2r_atanhc(y: f32) -> f32 {
+    if abs(y) < 0.01 {
+        return 1.0 + y * (1.0 / 3.0 + y * (0.2 + y * (1.0 / 7.0)));
+    }
+    if y > 0.0 {
+        let s = sqrt(y);
+        return 0.5 * log((1.0 + s) / (1.0 - s)) / s;
+    }
+    let s = sqrt(-y);
+    return atan(s) / s;
+}
+
+// The time at which τ(t) first equals tau (SL2R_NONE where it never does); an infinite
+// root (a circle's half period) is asked with `infinite`.
+fn sl2r_time_of(tau: f32, w2: f32, infinite: bool) -> f32 {
+    if w2 >= 0.0 {
+        let y = 0.25 * w2 * tau * tau;
+        if infinite || tau < 0.0 || y >= 1.0 {
+            return SL2R_NONE;
+        }
+        return tau * sl2r_atanhc(y);
+    }
+    let om = sqrt(-w2);
+    if infinite {
+        return SL2R_PI / om;
+    }
+    let y = 0.25 * w2 * tau * tau;
+    if tau >= 0.0 {
+        if y > -0.01 {
+            return tau * sl2r_atanhc(y);
+        }
+        return 2.0 * atan(0.5 * om * tau) / om;
+    }
+    return 2.0 * (SL2R_PI + atan(0.5 * om * tau)) / om;
+}
+
+// The first t ≥ 0 at which n·p(t) + offset goes from ≤ 0 to > 0 (SL2R_NONE: never).
+fn sl2r_crossing(r: Sl2rRay, n: vec3<f32>, offset: f32) -> f32 {
+    let u = vec3<f32>(dot(n, r.e), dot(n, r.f), dot(n, r.p));
+    let a = r.v.x;
+    let b = r.v.y;
+    let c = r.v.z;
+    let alpha = u.z + offset;
+    let beta = a * u.x + b * u.y;
+    let gamma = c * (b * u.x - a * u.y) + (a * a + b * b) * u.z;
+    let w2 = a * a + b * b - c * c;
+    if alpha >= 0.0 && beta > 0.0 {
+        return 0.0;
+    }
+    let qa = 0.5 * gamma - 0.25 * alpha * w2;
+    let disc = beta * beta - 4.0 * qa * alpha;
+    if disc < 0.0 {
+        return SL2R_NONE;
+    }
+    let q = -0.5 * (beta + select(1.0, -1.0, beta < 0.0) * sqrt(disc));
+    var best = 1e30;
+    // The root q/A (at infinity where A = 0), then α/q.
+    if qa != 0.0 {
+        let tau = q / qa;
+        if 2.0 * qa * tau + beta > 0.0 {
+            let t = sl2r_time_of(tau, w2, false);
+            if t >= 0.0 {
+                best = min(best, t);
+            }
+        }
+    } else if beta < 0.0 {
+        let t = sl2r_time_of(0.0, w2, true);
+        if t >= 0.0 {
+            best = min(best, t);
+        }
+    }
+    if q != 0.0 {
+        let tau = alpha / q;
+        if 2.0 * qa * tau + beta > 0.0 {
+            let t = sl2r_time_of(tau, w2, false);
+            if t >= 0.0 {
+                best = min(best, t);
+            }
+        }
+    }
+    if best >= 1e30 {
+        return SL2R_NONE;
+    }
+    // Newton's steps on f itself, each kept where it makes |f| smaller.
+    var t = best;
+    var sk = sl2r_terms(w2, t);
+    var f = alpha + beta * sk.x + gamma * sk.y;
+    for (var i = 0u; i < 2u; i += 1u) {
+        let df = beta * (1.0 + w2 * sk.y) + gamma * sk.x;
+        if f == 0.0 || df == 0.0 {
+            break;
+        }
+        let next = max(t - f / df, 0.0);
+        let nsk = sl2r_terms(w2, next);
+        let nf = alpha + beta * nsk.x + gamma * nsk.y;
+        if !(abs(nf) < abs(f)) {
+            break;
+        }
+        t = next;
+        sk = nsk;
+        f = nf;
+    }
+    return t;
+}
+
+fn sl2r_partner(face: u32) -> u32 {
+    return space.partners[face / 4u][face % 4u];
+}
+
+// The frame vector v moved by side `face`'s pairing (its nearest f32 matrix and the rest).
+fn sl2r_paired(face: u32, v: vec3<f32>) -> vec3<f32> {
+    let x = vec4<f32>(v, 0.0);
+    return (space.pairings[face] * x + space.pairings_lo[face] * x).xyz;
+}
+
+// The colour of tube `j` met by r at t, lit from the eye.
+fn sl2r_shade(j: u32, r: Sl2rRay, t: f32) -> vec3<f32> {
+    let at = sl2r_flow(r, t);
+    let q = space.sl2r_tubes[2u * j].xyz;
+    let u = -(q + sl2r_lorentz(q, at.p) * at.p);
+    let len = sqrt(max(sl2r_lorentz(u, u), 0.0));
+    var facing = 1.0;
+    if len > 0.0 {
+        let normal = vec3<f32>(sl2r_lorentz(u, at.e) / len, sl2r_lorentz(u, at.f) / len, 0.0);
+        facing = max(-dot(normal, at.v), 0.0);
+    }
+    let ambient = space.shading.fog.w;
+    return space.sl2r_tubes[2u * j + 1u].rgb * (ambient + (1.0 - ambient) * facing);
+}
+
+// The colour seen from the eye frame f (the viewer's axes as body vectors with e in their
+// fourth entries, the base point in the last column) through the lens point (px, py).
+fn sl2r_eye_colour(frame: mat4x4<f32>, px: f32, py: f32) -> vec3<f32> {
+    let d = normalize(px * frame[0].xyz + py * frame[1].xyz - frame[2].xyz);
+    let p = frame[3].xyz;
+    let e = vec3<f32>(frame[0].w, frame[1].w, frame[2].w);
+    var r = Sl2rRay(e, sl2r_perp(p, e), p, d);
+    let shading = space.shading;
+    let cutoff = shading.params.y;
+    let budget = u32(shading.params.w);
+    var walked = 0.0;
+    var entered = 0xffffffffu;
+    var last_face = 0xffffffffu;
+    for (var crossings = 0u; crossings <= budget; crossings += 1u) {
+        // The side left first.
+        var exit_t = 1e30;
+        var exit_face = 0xffffffffu;
+        for (var i = 0u; i < #{FACE_COUNT}u; i += 1u) {
+            let t = sl2r_crossing(r, space.covectors[i].xyz, 0.0);
+            if t < 0.0 || (i == entered && t == 0.0) {
+                continue;
+            }
+            if t < exit_t {
+                exit_t = t;
+                exit_face = i;
+            }
+        }
+        let segment = select(cutoff - walked, exit_t, exit_face != 0xffffffffu);
+        let within = min(segment, cutoff - walked);
+        // The nearest tube within it.
+        var hit_t = 1e30;
+        var hit = 0xffffffffu;
+        for (var j = 0u; j < u32(space.sl2r.x); j += 1u) {
+            let q = space.sl2r_tubes[2u * j];
+            let t = sl2r_crossing(r, vec3<f32>(q.x, q.y, -q.z), space.sl2r_tubes[2u * j + 1u].w);
+            if t >= 0.0 && t <= within && t < hit_t {
+                hit_t = t;
+                hit = j;
+            }
+        }
+        if hit != 0xffffffffu {
+            var surface = sl2r_shade(hit, r, hit_t);
+#ifdef COLOUR_BY
+            let unturned = mat4x4<f32>(
+                vec4<f32>(1.0, 0.0, 0.0, 0.0),
+                vec4<f32>(0.0, 1.0, 0.0, 0.0),
+                vec4<f32>(0.0, 0.0, 1.0, 0.0),
+                vec4<f32>(0.0, 0.0, 0.0, 1.0),
+            );
+            surface = recolour(colour_by_tint(crossings, last_face, unturned), surface);
+#endif
+            let w = exp(-(walked + hit_t) / shading.params.x);
+            return w * surface + (1.0 - w) * shading.fog.rgb;
+        }
+        walked += segment;
+        if exit_face == 0xffffffffu || walked >= cutoff {
+            break;
+        }
+        let at = sl2r_flow(r, exit_t);
+        r = sl2r_on_model(Sl2rRay(
+            sl2r_paired(exit_face, at.e),
+            sl2r_paired(exit_face, at.f),
+            sl2r_paired(exit_face, at.p),
+            at.v,
+        ));
+        entered = sl2r_partner(exit_face);
+        last_face = exit_face;
+    }
+    return shading.fog.rgb;
+}

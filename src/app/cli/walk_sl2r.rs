@@ -1,0 +1,80 @@
+//! `walk` in an SL̃(2,R) space: the plugin draws the unit tangent bundle on the GPU and the
+//! player walks with the fibre up (moving along it turns `e`, which the picture shows as the
+//! world turning round the fibre). Without a display it renders one picture instead, as
+//! `walk` does in every family. What is not written for the family yet (flights, the
+//! headset, lamps, walls) is refused by the one table.
+
+use super::render::{Sl2rChoice, render_command};
+use super::walk::{
+    ScreenshotThenExit, add_walk_plugins, display_available, exit_result, say_no_display,
+    screenshot_then_exit, window_titled,
+};
+use super::*;
+use bevy::prelude::*;
+use bevy_curved_spaces::plugin::offscreen::gpu_available;
+use bevy_curved_spaces::space::{AnySpace, Family, Feature};
+use bevy_curved_spaces::{ActiveSpace, CurvedSpaceCamera};
+
+pub(super) fn walk_sl2r(args: &WalkArgs, chosen: Sl2rChoice) -> Result<(), String> {
+    let space = &chosen.space;
+    let refuse = |feature| super::spaces::require(Family::Sl2r, space.name(), feature);
+    for (asked, feature) in [
+        (
+            args.view.colour_by == super::ColourByArg::Holonomy,
+            Feature::HolonomyView,
+        ),
+        (args.view.changes_parts(), Feature::SceneParts),
+        (args.view.light.any(), Feature::LampFluence),
+        (args.view.walls.walls.is_some(), Feature::Walls),
+        (args.xr, Feature::Headset),
+        (args.replay.is_some(), Feature::Flights),
+        (args.record.is_some(), Feature::RecordFlight),
+    ] {
+        if asked {
+            refuse(feature)?;
+        }
+    }
+    if !display_available() {
+        say_no_display(args);
+        let mut render = RenderArgs::of(&args.space);
+        render.fog = args.fog;
+        render.crossings = args.crossings.map(|c| c as usize);
+        render.view.colour_by = args.view.colour_by;
+        render.scene = args.scene.clone();
+        render.stereo = args.stereo;
+        if !gpu_available() {
+            eprintln!("no GPU adapter found: using the CPU reference renderer");
+            render.cpu = true;
+        }
+        return render_command(&render);
+    }
+    let active = ActiveSpace::new(space.name(), AnySpace::Sl2r(space.clone()));
+    let stereo = args.stereo.settings_for(active.inradius)?;
+    eprintln!(
+        "walking in {} (SL̃(2,R)): click to look around, WASD to walk on the surface, \
+         Space/Shift along the fibre (which turns e: the world turns round you), Esc releases \
+         the mouse, F1 the panel",
+        space.name()
+    );
+    let mut app = App::new();
+    app.add_plugins(DefaultPlugins.set(window_titled(format!("curved spaces: {}", space.name()))));
+    app.insert_resource(active)
+        .insert_resource(bevy_curved_spaces::plugin::sl2r::BaseSl2rScene {
+            scene: chosen.scene.clone(),
+            start: Some(chosen.camera),
+        });
+    add_walk_plugins(&mut app, args, stereo, None, None).add_systems(
+        Startup,
+        |mut commands: Commands| {
+            commands.spawn((Camera3d::default(), CurvedSpaceCamera::default()));
+        },
+    );
+    if let Some(path) = &args.screenshot {
+        app.insert_resource(ScreenshotThenExit {
+            path: path.clone(),
+            requested: false,
+        })
+        .add_systems(Update, screenshot_then_exit);
+    }
+    exit_result(app.run())
+}

@@ -1,0 +1,101 @@
+//! An SL̃(2,R) space and its scene packed for the WGSL tracer's `SL2R` variant
+//! (`shaders/sl2r.wgsl`): the shading, the polygon's sides as the face arrays (covectors,
+//! 3×3 pairings in a mat4 with what rounding to f32 left out, partners), then the tubes
+//! (base point and radius; colour and `cosh` of the radius).
+
+use super::VIEW_WORDS;
+use super::{DataSources, GpuScene, GpuSceneError, MAX_UNIFORM_BYTES, ShaderKey};
+use crate::geometry::{DoubleDouble, Geometry};
+use crate::plugin::render::layout::{GpuShading, UniformWriter, colour, vec4};
+use crate::space::sl2r::UnitTangentSpace;
+use crate::trace::sl2r::Sl2rScene;
+use glam::DVec4;
+use std::sync::Arc;
+
+/// A double-double as the nearest `f32` and the `f32` nearest what that leaves out.
+fn split(x: DoubleDouble) -> (f32, f32) {
+    let hi = x.round_f32();
+    let rest = (x - DoubleDouble::new(f64::from(hi))).hi;
+    (hi, rest as f32)
+}
+
+impl GpuScene {
+    /// Packs an SL̃(2,R) space and its scene with a crossing budget per ray. Drawn by
+    /// [`crate::plugin::offscreen::OffscreenRenderer::render_sl2r`] (the command line's
+    /// `render`).
+    pub fn sl2r(
+        space: &UnitTangentSpace,
+        scene: &Sl2rScene,
+        max_crossings: u32,
+    ) -> Result<Self, GpuSceneError> {
+        super::check_budget(max_crossings)?;
+        let sides = space.sides();
+        let key = ShaderKey {
+            sl2r: true,
+            sl2r_tubes: scene.tubes.len() as u32,
+            faces: sides.len() as u32,
+            colour_by: scene.colour_by.index(),
+            ..ShaderKey::empty(Geometry::Hyperbolic)
+        };
+        let bytes = key.uniform_bytes();
+        if bytes > MAX_UNIFORM_BYTES {
+            return Err(GpuSceneError::TooLarge {
+                bytes,
+                limit: MAX_UNIFORM_BYTES,
+                faces: sides.len() as u32,
+                objects: scene.tubes.len(),
+                lights: 0,
+            });
+        }
+        let mut out = UniformWriter::with_capacity(bytes);
+        out.push(&GpuShading::of_fog(
+            scene.fog_colour,
+            scene.ambient,
+            (scene.fog_distance, scene.cutoff_distance()),
+            max_crossings,
+        ));
+        // No scene data: the offsets are unused.
+        out.push(&[0u32; 4]);
+        for s in sides {
+            let n = s.normal.map(|x| split(x).0);
+            out.push(&[n[0], n[1], n[2], 0.0f32]);
+        }
+        // The pairings as mat4 columns (column j holds the 3×3's column j), then the rests.
+        for part in [0usize, 1] {
+            for s in sides {
+                let mut m = [[0.0f32; 4]; 4];
+                for (j, column) in m.iter_mut().enumerate().take(3) {
+                    for (r, x) in column.iter_mut().enumerate().take(3) {
+                        let (hi, lo) = split(s.pairing[r][j]);
+                        *x = if part == 0 { hi } else { lo };
+                    }
+                }
+                if part == 0 {
+                    m[3][3] = 1.0;
+                }
+                out.push(&m);
+            }
+        }
+        let mut partners: Vec<u32> = sides.iter().map(|s| s.partner as u32).collect();
+        partners.resize(4 * sides.len().div_ceil(4), 0);
+        out.words.extend(partners);
+        out.push(&vec4(DVec4::new(scene.tubes.len() as f64, 0.0, 0.0, 0.0)));
+        for t in &scene.tubes {
+            out.push(&vec4(DVec4::new(t.base[0], t.base[1], t.base[2], t.radius)));
+            out.push(&colour(t.colour, t.radius.cosh()));
+        }
+        if scene.tubes.is_empty() {
+            out.push(&[[0.0f32; 4]; 2]);
+        }
+        let words = out.words;
+        debug_assert_eq!(words.len() * 4 + VIEW_WORDS * 4, bytes);
+        Ok(Self {
+            key,
+            words,
+            data: Arc::new(vec![0; 4]),
+            textures: Arc::new(Vec::new()),
+            avatar: None,
+            sources: DataSources::empty(),
+        })
+    }
+}
