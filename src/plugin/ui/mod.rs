@@ -21,6 +21,7 @@ mod minimap;
 mod nil;
 mod picker;
 mod product;
+mod sl2r;
 
 use controls::{
     colour_by_controls, lighting_controls, stereo_controls, tracer_controls, wall_controls,
@@ -86,6 +87,7 @@ impl Plugin for CurvedSpacesUiPlugin {
                     panel.run_if(ActiveSpace::shows(Family::Constant)),
                     product::product_panel.run_if(ActiveSpace::shows(Family::Product)),
                     nil::nil_panel.run_if(ActiveSpace::shows(Family::Nil)),
+                    sl2r::sl2r_panel.run_if(ActiveSpace::shows(Family::Sl2r)),
                 ),
             );
     }

@@ -1,0 +1,97 @@
+//! The panel while an SL̃(2,R) space is shown: the picker, the tracer's knobs, the walk's
+//! feel (with the fibre up, and what climbing it does) and the bundle's invariants.
+
+use super::*;
+
+#[allow(clippy::too_many_arguments)]
+pub(super) fn sl2r_panel(
+    mut contexts: EguiContexts,
+    shown: Res<PanelVisible>,
+    mut over_ui: ResMut<PointerOverUi>,
+    active: Res<ActiveSpace>,
+    mut settings: ResMut<TracerSettings>,
+    mut player: ResMut<PlayerSettings>,
+    status: Res<TracerStatus>,
+    mut stereo: ResMut<StereoSettings>,
+    diagnostics: Res<DiagnosticsStore>,
+    mut cameras: Query<(&mut CurvedSpaceCamera, &PlayerFrame, &Holonomy)>,
+    mut picker: Local<SpacePicker>,
+    mut commands: Commands,
+) -> Result {
+    let Some(space) = active.space.get::<crate::space::sl2r::UnitTangentSpace>() else {
+        return Ok(());
+    };
+    let ctx = contexts.ctx_mut()?;
+    if !shown.0 {
+        over_ui.0 = false;
+        return Ok(());
+    }
+    egui::Window::new("Curved spaces")
+        .default_pos((12.0, 12.0))
+        .default_width(300.0)
+        .vscroll(true)
+        .show(ctx, |ui| {
+            if let Some(id) = space_picker(ui, &active.id, space.description(), &mut picker)
+                && id != active.id
+            {
+                picker.error = switch_space(&id, &mut commands).err();
+                if let Some(e) = &picker.error {
+                    error!("{e}");
+                }
+            }
+            ui.separator();
+            let scene = crate::trace::sl2r::default_scene(space);
+            tracer_controls(ui, &mut settings, &status, scene.fog_distance);
+            ui.separator();
+            super::controls::walk_feel(
+                ui,
+                &mut player,
+                &mut cameras,
+                &mut stereo,
+                active.inradius,
+                &diagnostics,
+                (
+                    "keep the fibre up",
+                    "Walk on the surface with the fibre up; Space and Shift climb along the \
+                     fibre, which turns e (half of where you are): the world turns round you, \
+                     as turning on the spot and climbing are one motion here; off, fly along \
+                     your own axes",
+                ),
+            );
+            for (_, frame, holonomy) in &cameras {
+                let p = frame.0.w_axis;
+                let e = [frame.0.x_axis.w, frame.0.y_axis.w];
+                ui.label(format!(
+                    "base point ({:+.4}, {:+.4}, {:.4}), e at {:+.1}°",
+                    p.x,
+                    p.y,
+                    p.z,
+                    e[1].atan2(e[0]).to_degrees()
+                ));
+                let last = holonomy
+                    .last_face
+                    .map_or_else(|| "none".to_string(), |f| format!("side {f}"));
+                ui.label(format!("crossings: {} (last {last})", holonomy.crossings));
+            }
+            ui.label(format!(
+                "SL̃(2,R), genus {}, volume {:.6}, H₁ = {}",
+                space.genus(),
+                active.volume,
+                space.homology()
+            ));
+            if let Some(r) = active.injectivity_radius {
+                ui.label(format!("injectivity radius {r:.6}"));
+            }
+            for e in [&status.error, &status.stereo_error].into_iter().flatten() {
+                ui.colored_label(egui::Color32::LIGHT_RED, e);
+            }
+            ui.label(
+                egui::RichText::new(
+                    "click: mouse look · Esc: release · WASD on the surface, Space/Shift along the fibre, Q/E · scroll: speed · F1: panel · F3: stereo mode · F12: screenshot",
+                )
+                .small(),
+            );
+        });
+    over_ui.0 = ctx.is_pointer_over_egui();
+    Ok(())
+}
