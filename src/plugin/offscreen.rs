@@ -316,27 +316,53 @@ impl OffscreenRenderer {
         max_crossings: u32,
         stereo: StereoSettings,
     ) -> Result<RgbImage, OffscreenError> {
+        let frame = crate::space::product::motion::camera_frame(camera.point, camera.frame);
+        self.render_family(
+            (space, space.name()),
+            || crate::plugin::render::gpu::GpuScene::product(space, scene, max_crossings),
+            BaseProductScene::new(scene.clone()),
+            ((w, h), max_crossings, scene.colour_by, stereo),
+            (camera.fov_y_degrees, frame),
+        )
+    }
+
+    /// Shows `space` (named `name`) with `base` as its family's base scene and draws the
+    /// picture from a camera of `fov` degrees at `frame`, once the size is one a picture can
+    /// have and `pack` (the scene as the GPU would take it) packs: a scene the GPU cannot take
+    /// would only time out later, so its error is said now. The space is inserted only when
+    /// another is shown, so the renderer keeps its pipeline from picture to picture.
+    fn render_family<F: crate::space::FamilySpace + Clone>(
+        &mut self,
+        (space, name): (&F, &str),
+        pack: impl FnOnce() -> Result<
+            crate::plugin::render::gpu::GpuScene,
+            crate::plugin::render::gpu::GpuSceneError,
+        >,
+        base: impl Resource,
+        ((w, h), max_crossings, colour_by, stereo): (
+            (u32, u32),
+            u32,
+            crate::scene::ColourBy,
+            StereoSettings,
+        ),
+        view: (f64, DMat4),
+    ) -> Result<RgbImage, OffscreenError>
+    where
+        crate::space::AnySpace: From<F>,
+    {
         if !(1..=8192).contains(&w) || !(1..=8192).contains(&h) {
             return Err(OffscreenError::BadSize(w, h));
         }
-        // A scene the GPU cannot take would only time out below: say why now.
-        crate::plugin::render::gpu::GpuScene::product(space, scene, max_crossings)
-            .map_err(|e| OffscreenError::Scene(e.to_string()))?;
+        pack().map_err(|e| OffscreenError::Scene(e.to_string()))?;
         let world = self.app.world_mut();
         let same_space = world
             .get_resource::<ActiveSpace>()
-            .and_then(|a| a.product())
-            .is_some_and(|a| a.name() == space.name());
+            .is_some_and(|a| a.space.get::<F>().is_some() && a.space.name() == name);
         if !same_space {
-            world.insert_resource(ActiveSpace::new(space.name(), space.clone()));
+            world.insert_resource(ActiveSpace::new(name, space.clone()));
         }
-        world.insert_resource(BaseProductScene::new(scene.clone()));
-        let frame = crate::space::product::motion::camera_frame(camera.point, camera.frame);
-        self.picture(
-            (w, h),
-            (max_crossings, scene.colour_by, stereo),
-            (camera.fov_y_degrees, frame),
-        )
+        world.insert_resource(base);
+        self.picture((w, h), (max_crossings, colour_by, stereo), view)
     }
 
     /// The picture of the space and scene now in the world from a camera of `fov` degrees at
@@ -382,29 +408,15 @@ impl OffscreenRenderer {
         max_crossings: u32,
         stereo: StereoSettings,
     ) -> Result<RgbImage, OffscreenError> {
-        if !(1..=8192).contains(&w) || !(1..=8192).contains(&h) {
-            return Err(OffscreenError::BadSize(w, h));
-        }
-        // A scene the GPU cannot take would only time out below: say why now.
-        crate::plugin::render::gpu::GpuScene::nil(space, scene, max_crossings)
-            .map_err(|e| OffscreenError::Scene(e.to_string()))?;
-        let world = self.app.world_mut();
-        let same_space = world.get_resource::<ActiveSpace>().is_some_and(|a| {
-            a.space
-                .get::<crate::space::nil::NilSpace>()
-                .is_some_and(|n| n.name() == space.name())
-        });
-        if !same_space {
-            world.insert_resource(ActiveSpace::new(space.name(), space.clone()));
-        }
-        world.insert_resource(crate::plugin::nil::BaseNilScene {
-            scene: scene.clone(),
-            start: Some(*camera),
-            moving: Vec::new(),
-        });
-        self.picture(
-            (w, h),
-            (max_crossings, scene.colour_by, stereo),
+        self.render_family(
+            (space, space.name()),
+            || crate::plugin::render::gpu::GpuScene::nil(space, scene, max_crossings),
+            crate::plugin::nil::BaseNilScene {
+                scene: scene.clone(),
+                start: Some(*camera),
+                moving: Vec::new(),
+            },
+            ((w, h), max_crossings, scene.colour_by, stereo),
             (camera.fov_y_degrees, camera.frame),
         )
     }
@@ -420,28 +432,14 @@ impl OffscreenRenderer {
         max_crossings: u32,
         stereo: StereoSettings,
     ) -> Result<RgbImage, OffscreenError> {
-        if !(1..=8192).contains(&w) || !(1..=8192).contains(&h) {
-            return Err(OffscreenError::BadSize(w, h));
-        }
-        // A scene the GPU cannot take would only time out below: say why now.
-        crate::plugin::render::gpu::GpuScene::sl2r(space, scene, max_crossings)
-            .map_err(|e| OffscreenError::Scene(e.to_string()))?;
-        let world = self.app.world_mut();
-        let same_space = world.get_resource::<ActiveSpace>().is_some_and(|a| {
-            a.space
-                .get::<crate::space::sl2r::UnitTangentSpace>()
-                .is_some_and(|s| s.name() == space.name())
-        });
-        if !same_space {
-            world.insert_resource(ActiveSpace::new(space.name(), space.clone()));
-        }
-        world.insert_resource(crate::plugin::sl2r::BaseSl2rScene {
-            scene: scene.clone(),
-            start: Some(*camera),
-        });
-        self.picture(
-            (w, h),
-            (max_crossings, scene.colour_by, stereo),
+        self.render_family(
+            (space, space.name()),
+            || crate::plugin::render::gpu::GpuScene::sl2r(space, scene, max_crossings),
+            crate::plugin::sl2r::BaseSl2rScene {
+                scene: scene.clone(),
+                start: Some(*camera),
+            },
+            ((w, h), max_crossings, scene.colour_by, stereo),
             (camera.fov_y_degrees, camera.frame),
         )
     }
