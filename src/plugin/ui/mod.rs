@@ -28,7 +28,7 @@ use controls::{
 };
 use minimap::{inspector, minimap};
 pub use picker::SpacePicker;
-use picker::{space_picker, switch_space};
+use picker::{family_window, space_picker, switch_space};
 
 /// Whether the panel is shown.
 #[derive(Resource, Clone, Copy, Debug, PartialEq, Eq)]

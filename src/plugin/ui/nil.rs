@@ -16,6 +16,7 @@ pub(super) fn nil_panel(
     diagnostics: Res<DiagnosticsStore>,
     mut cameras: Query<(&mut CurvedSpaceCamera, &PlayerFrame, &Holonomy)>,
     mut picker: Local<SpacePicker>,
+    mut defaults: Local<Option<(usize, crate::trace::nil::NilScene)>>,
     mut commands: Commands,
 ) -> Result {
     let Some(space) = active.space.get::<crate::space::nil::NilSpace>() else {
@@ -26,21 +27,23 @@ pub(super) fn nil_panel(
         over_ui.0 = false;
         return Ok(());
     }
-    egui::Window::new("Curved spaces")
-        .default_pos((12.0, 12.0))
-        .default_width(300.0)
-        .vscroll(true)
-        .show(ctx, |ui| {
-            if let Some(id) = space_picker(ui, &active.id, space.description(), &mut picker)
-                && id != active.id
-            {
-                picker.error = switch_space(&id, &mut commands).err();
-                if let Some(e) = &picker.error {
-                    error!("{e}");
-                }
+    over_ui.0 = family_window(
+        ctx,
+        &active,
+        &mut picker,
+        &mut commands,
+        &status,
+        "click: mouse look · Esc: release · WASD, Space/Shift (along E₃), Q/E · scroll: speed · F1: panel · F3: stereo mode · F12: screenshot",
+        |ui| {
+            // The default scene (its fog and lighting), built once per space, not per frame:
+            // its lamp's images are a search.
+            let key = std::sync::Arc::as_ptr(space) as usize;
+            if defaults.as_ref().is_none_or(|(k, _)| *k != key) {
+                *defaults = Some((key, crate::trace::nil::default_scene(space)));
             }
-            ui.separator();
-            let scene = crate::trace::nil::default_scene(space);
+            let Some((_, scene)) = defaults.as_ref() else {
+                return;
+            };
             tracer_controls(ui, &mut settings, &status, scene.fog_distance);
             ui.separator();
             super::controls::lighting_controls(ui, &mut settings, Some(scene.lighting), false);
@@ -82,16 +85,7 @@ pub(super) fn nil_panel(
             if let Some(r) = active.injectivity_radius {
                 ui.label(format!("injectivity radius {r:.6}"));
             }
-            for e in [&status.error, &status.stereo_error].into_iter().flatten() {
-                ui.colored_label(egui::Color32::LIGHT_RED, e);
-            }
-            ui.label(
-                egui::RichText::new(
-                    "click: mouse look · Esc: release · WASD, Space/Shift (along E₃), Q/E · scroll: speed · F1: panel · F3: stereo mode · F12: screenshot",
-                )
-                .small(),
-            );
-        });
-    over_ui.0 = ctx.is_pointer_over_egui();
+        },
+    );
     Ok(())
 }

@@ -166,3 +166,38 @@ pub(super) fn switch_space(id: &str, commands: &mut Commands) -> Result<(), Stri
     commands.insert_resource(ActiveSpace::named(id)?);
     Ok(())
 }
+
+/// The panel's window in a family of its own section (products, Nil, SL̃(2,R)): the space
+/// picker at the top (a pick switches the space), the family's `body`, then the tracer's
+/// errors and the `keys` hint. Marks whether the pointer is over it.
+pub(super) fn family_window(
+    ctx: &egui::Context,
+    active: &ActiveSpace,
+    picker: &mut SpacePicker,
+    commands: &mut Commands,
+    status: &TracerStatus,
+    keys: &str,
+    body: impl FnOnce(&mut egui::Ui),
+) -> bool {
+    egui::Window::new("Curved spaces")
+        .default_pos((12.0, 12.0))
+        .default_width(300.0)
+        .vscroll(true)
+        .show(ctx, |ui| {
+            if let Some(id) = space_picker(ui, &active.id, active.space.description(), picker)
+                && id != active.id
+            {
+                picker.error = switch_space(&id, commands).err();
+                if let Some(e) = &picker.error {
+                    error!("{e}");
+                }
+            }
+            ui.separator();
+            body(ui);
+            for e in [&status.error, &status.stereo_error].into_iter().flatten() {
+                ui.colored_label(egui::Color32::LIGHT_RED, e);
+            }
+            ui.label(egui::RichText::new(keys).small());
+        });
+    ctx.is_pointer_over_egui()
+}

@@ -18,6 +18,7 @@ pub(super) fn product_panel(
     diagnostics: Res<DiagnosticsStore>,
     mut cameras: Query<(&mut CurvedSpaceCamera, &PlayerFrame, &Holonomy)>,
     mut picker: Local<SpacePicker>,
+    mut defaults: Local<Option<(usize, crate::trace::product::ProductScene)>>,
     mut commands: Commands,
 ) -> Result {
     let Some(space) = active.product() else {
@@ -28,31 +29,30 @@ pub(super) fn product_panel(
         over_ui.0 = false;
         return Ok(());
     }
-    egui::Window::new("Curved spaces")
-        .default_pos((12.0, 12.0))
-        .default_width(300.0)
-        .vscroll(true)
-        .show(ctx, |ui| {
-            if let Some(id) = space_picker(ui, &active.id, space.description(), &mut picker)
-                && id != active.id
-            {
-                picker.error = switch_space(&id, &mut commands).err();
-                if let Some(e) = &picker.error {
-                    error!("{e}");
-                }
+    over_ui.0 = family_window(
+        ctx,
+        &active,
+        &mut picker,
+        &mut commands,
+        &status,
+        "click: mouse look · Esc: release · WASD, Space/Shift (along the fibre), Q/E · scroll: speed · F1: panel · F3: stereo mode · F12: screenshot",
+        |ui| {
+            // The default scene, built once per space, not per frame (its lamp's images are
+            // a search).
+            let key = std::sync::Arc::as_ptr(space) as usize;
+            if defaults.as_ref().is_none_or(|(k, _)| *k != key) {
+                *defaults = Some((key, crate::trace::product::default_scene(space)));
             }
-            ui.separator();
-            let default_fog = base.as_ref().map_or_else(
-                || crate::trace::product::default_scene(space).fog_distance,
-                |b| b.scene.fog_distance,
-            );
+            let Some((_, default)) = defaults.as_ref() else {
+                return;
+            };
+            let default_fog = base
+                .as_ref()
+                .map_or(default.fog_distance, |b| b.scene.fog_distance);
             tracer_controls(ui, &mut settings, &status, default_fog);
             wall_controls(ui, &mut settings, base.as_ref().and_then(|b| b.scene.walls));
             ui.separator();
-            let shown = base.as_ref().map_or_else(
-                || crate::trace::product::default_scene(space).lighting,
-                |b| b.scene.lighting,
-            );
+            let shown = base.as_ref().map_or(default.lighting, |b| b.scene.lighting);
             super::controls::lighting_controls(ui, &mut settings, Some(shown), false);
             // Faces as the walk numbers them: the sides, the top, the bottom.
             colour_by_controls(ui, &mut settings, space.face_count());
@@ -70,7 +70,10 @@ pub(super) fn product_panel(
                 &mut stereo,
                 active.inradius,
                 &diagnostics,
-                ("keep the fibre up", "Walk horizontally and turn about the fibre, with Space and Shift climbing along it; off, fly freely"),
+                (
+                    "keep the fibre up",
+                    "Walk horizontally and turn about the fibre, with Space and Shift climbing along it; off, fly freely",
+                ),
             );
             for (_, frame, holonomy) in &cameras {
                 let p = frame.0.w_axis;
@@ -88,10 +91,7 @@ pub(super) fn product_panel(
                         None => format!("side {f}"),
                     },
                 );
-                ui.label(format!(
-                    "crossings: {} (last {last})",
-                    holonomy.crossings
-                ));
+                ui.label(format!("crossings: {} (last {last})", holonomy.crossings));
             }
             ui.label(format!(
                 "{} geometry, volume {:.6}, base χ = {}, {}",
@@ -108,16 +108,7 @@ pub(super) fn product_panel(
                 Some(r) => ui.label(format!("injectivity radius {r:.6}")),
                 None => ui.label("injectivity radius: not enumerated"),
             };
-            for e in [&status.error, &status.stereo_error].into_iter().flatten() {
-                ui.colored_label(egui::Color32::LIGHT_RED, e);
-            }
-            ui.label(
-                egui::RichText::new(
-                    "click: mouse look · Esc: release · WASD, Space/Shift (along the fibre), Q/E · scroll: speed · F1: panel · F3: stereo mode · F12: screenshot",
-                )
-                .small(),
-            );
-        });
-    over_ui.0 = ctx.is_pointer_over_egui();
+        },
+    );
     Ok(())
 }

@@ -26,22 +26,18 @@ pub(super) fn sl2r_panel(
         over_ui.0 = false;
         return Ok(());
     }
-    egui::Window::new("Curved spaces")
-        .default_pos((12.0, 12.0))
-        .default_width(300.0)
-        .vscroll(true)
-        .show(ctx, |ui| {
-            if let Some(id) = space_picker(ui, &active.id, space.description(), &mut picker)
-                && id != active.id
-            {
-                picker.error = switch_space(&id, &mut commands).err();
-                if let Some(e) = &picker.error {
-                    error!("{e}");
-                }
-            }
-            ui.separator();
-            let scene = crate::trace::sl2r::default_scene(space);
-            tracer_controls(ui, &mut settings, &status, scene.fog_distance);
+    over_ui.0 = family_window(
+        ctx,
+        &active,
+        &mut picker,
+        &mut commands,
+        &status,
+        "click: mouse look · Esc: release · WASD on the surface, Space/Shift along the fibre, Q/E · scroll: speed · F1: panel · F3: stereo mode · F12: screenshot",
+        |ui| {
+            // The default fog (not the whole default scene, whose tubes' images a frame need
+            // not find again).
+            let fog = crate::trace::sl2r::default_fog_distance(space);
+            tracer_controls(ui, &mut settings, &status, fog);
             ui.separator();
             super::controls::walk_feel(
                 ui,
@@ -82,16 +78,7 @@ pub(super) fn sl2r_panel(
             if let Some(r) = active.injectivity_radius {
                 ui.label(format!("injectivity radius {r:.6}"));
             }
-            for e in [&status.error, &status.stereo_error].into_iter().flatten() {
-                ui.colored_label(egui::Color32::LIGHT_RED, e);
-            }
-            ui.label(
-                egui::RichText::new(
-                    "click: mouse look · Esc: release · WASD on the surface, Space/Shift along the fibre, Q/E · scroll: speed · F1: panel · F3: stereo mode · F12: screenshot",
-                )
-                .small(),
-            );
-        });
-    over_ui.0 = ctx.is_pointer_over_egui();
+        },
+    );
     Ok(())
 }

@@ -136,6 +136,12 @@ pub fn default_scene(space: &UnitTangentSpace) -> Sl2rScene {
     )
 }
 
+/// The default scene's fog distance: the polygon's inradius.
+#[must_use]
+pub fn default_fog_distance(space: &UnitTangentSpace) -> f64 {
+    space.inradius()
+}
+
 /// The default scene's `parts` (no tube where none is asked for), its fog and ambient.
 #[must_use]
 pub fn scene_with_parts(space: &UnitTangentSpace, parts: Sl2rParts) -> Sl2rScene {
@@ -143,7 +149,7 @@ pub fn scene_with_parts(space: &UnitTangentSpace, parts: Sl2rParts) -> Sl2rScene
     let mut scene = Sl2rScene {
         tubes: Vec::new(),
         fog_colour: DVec3::new(0.55, 0.6, 0.7),
-        fog_distance: rho,
+        fog_distance: default_fog_distance(space),
         ambient: 0.3,
         colour_by: crate::scene::ColourBy::Shading,
     };
