@@ -17,6 +17,7 @@ pub mod motion;
 pub mod nil;
 pub mod orbit;
 pub mod product;
+pub mod roots;
 pub mod sl2r;
 pub mod surface;
 mod validate;

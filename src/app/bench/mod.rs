@@ -12,6 +12,7 @@ pub mod harness;
 
 mod accuracy;
 mod edge_work;
+mod families;
 mod lighting;
 mod nil;
 mod plot;
@@ -19,6 +20,7 @@ mod products;
 mod report;
 mod rows;
 mod runs;
+mod sl2r;
 mod timing;
 
 use crate::plugin::components::Quality;
@@ -42,7 +44,8 @@ use timing::*;
 
 pub use harness::{BASELINE_WGSL, DeviceInfo, Frame, Harness, HarnessError, Output, Program};
 
-pub use nil::{NilRow, check_nil};
+pub use families::{FamilyRow, NilRow};
+pub use nil::check_nil;
 pub use plot::{Chart, Corner, PlotError, Series, write_chart};
 pub use products::{PRODUCT_REFERENCE_SPACE, ProductRow, check_products};
 pub use rows::{
@@ -51,7 +54,10 @@ pub use rows::{
 };
 #[cfg(feature = "scene-files")]
 pub use runs::run_scene;
-pub use runs::{DEFAULT_FOG_FACTOR, run, run_edges, run_nil, run_products, run_straightforward};
+pub use runs::{
+    DEFAULT_FOG_FACTOR, run, run_edges, run_nil, run_products, run_sl2r, run_straightforward,
+};
+pub use sl2r::check_sl2r;
 
 /// The crossing budget of the "exact" reference: far more than any ray of the default
 /// scenes needs before the fog cut-off.
@@ -100,9 +106,12 @@ pub struct BenchConfig {
     /// configurations.
     #[serde(default)]
     pub products: Vec<String>,
-    /// Nil spaces by their K ([`NilRow`]); absent from older configurations.
+    /// Nil spaces by their K ([`FamilyRow`]); absent from older configurations.
     #[serde(default)]
     pub nil: Vec<u32>,
+    /// SL̃(2,R) spaces by id ([`FamilyRow`]); absent from older configurations.
+    #[serde(default)]
+    pub sl2r: Vec<String>,
 }
 
 impl BenchConfig {
@@ -140,6 +149,11 @@ impl BenchConfig {
                 .map(|a| a.id.to_string())
                 .collect(),
             nil: vec![1, 3, 50],
+            sl2r: vec![
+                "unit-tangent-bitorus".into(),
+                "unit-tangent-abcdABCD".into(),
+                "unit-tangent-abABcdCDefEF".into(),
+            ],
         }
     }
 
@@ -163,6 +177,7 @@ impl BenchConfig {
             mesh_triangles: vec![12, 960],
             products: vec!["projective-plane-circle".into()],
             nil: vec![1],
+            sl2r: vec!["unit-tangent-bitorus".into()],
         }
     }
 }
@@ -202,9 +217,10 @@ pub enum BenchError {
     /// A product space id is wrong (the reason is attached).
     #[error("{0}")]
     Product(String),
-    /// A Nil space's K is wrong (the reason is attached).
+    /// A space of a family with its own tracer (Nil, SL̃(2,R)) is wrong, or its row could
+    /// not be measured (the reason is attached).
     #[error("{0}")]
-    Nil(String),
+    Family(String),
     /// A lighting could not be set (the reason is attached).
     #[error("the lighting cannot be used: {0}")]
     Lighting(String),

@@ -46,7 +46,7 @@ pub fn write_report(
 ) -> Result<Vec<PathBuf>, BenchError> {
     let config = serde_json::to_value(config).map_err(|e| write_error(dir, &e))?;
     let mut written = vec![write_json(dir, config, report)?];
-    let tables: [(&str, Vec<serde_json::Value>); 14] = [
+    let tables: [(&str, Vec<serde_json::Value>); 15] = [
         ("timings", to_values(&report.timings)),
         ("errors", to_values(&report.errors)),
         ("conditioning", to_values(&report.conditioning)),
@@ -61,6 +61,7 @@ pub fn write_report(
         ("straightforward", to_values(&report.straightforward)),
         ("products", to_values(&report.products)),
         ("nil", to_values(&report.nil)),
+        ("sl2r", to_values(&report.sl2r)),
     ];
     for (name, rows) in tables {
         written.push(write_text(dir, &format!("{name}.csv"), &to_csv(&rows))?);
@@ -108,11 +109,11 @@ pub fn write_scene_report(
     Ok(vec![json, csv, summary])
 }
 
-/// Writes an edges-only, straightforward-only, products-only or Nil-only benchmark
-/// ([`super::run_edges`], [`super::run_straightforward`], [`super::run_products`],
-/// [`super::run_nil`]): `bench.json`, `edges.csv`, `straightforward.csv`, `products.csv` or
-/// `nil.csv`
-/// and a `summary.md` with the table.
+/// Writes an edges-only, straightforward-only, products-only, Nil-only or SL̃(2,R)-only
+/// benchmark ([`super::run_edges`], [`super::run_straightforward`], [`super::run_products`],
+/// [`super::run_nil`], [`super::run_sl2r`]): `bench.json`, `edges.csv`,
+/// `straightforward.csv`, `products.csv`, `nil.csv` or `sl2r.csv` and a `summary.md` with
+/// the table.
 pub fn write_edges_report(
     report: &BenchReport,
     config: &BenchConfig,
@@ -149,12 +150,14 @@ pub fn write_edges_report(
             &to_csv(&to_values(&report.products)),
         )?);
     }
-    if !report.nil.is_empty() {
-        written.push(write_text(
-            dir,
-            "nil.csv",
-            &to_csv(&to_values(&report.nil)),
-        )?);
+    for (name, rows) in [("nil", &report.nil), ("sl2r", &report.sl2r)] {
+        if !rows.is_empty() {
+            written.push(write_text(
+                dir,
+                &format!("{name}.csv"),
+                &to_csv(&to_values(rows)),
+            )?);
+        }
     }
     let device = report.device.as_ref().map_or_else(
         || "no GPU".to_string(),
@@ -164,7 +167,7 @@ pub fn write_edges_report(
     edges_section(&mut md, report);
     straightforward_section(&mut md, report);
     products_section(&mut md, report);
-    nil_section(&mut md, report);
+    families_section(&mut md, report);
     super::lighting::lighting_section(&mut md, report);
     written.push(write_text(dir, "summary.md", &md)?);
     if let Some(chart) = super::lighting::lighting_chart(report) {
@@ -239,7 +242,7 @@ pub fn summary_markdown(report: &BenchReport) -> String {
     edges_section(&mut md, report);
     straightforward_section(&mut md, report);
     products_section(&mut md, report);
-    nil_section(&mut md, report);
+    families_section(&mut md, report);
     specialisation_section(&mut md, report);
     stereo_section(&mut md, report);
     mesh_section(&mut md, report);

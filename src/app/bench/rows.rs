@@ -291,7 +291,10 @@ pub struct BenchReport {
     pub products: Vec<super::ProductRow>,
     /// The Nil spaces (absent from older reports).
     #[serde(default)]
-    pub nil: Vec<super::NilRow>,
+    pub nil: Vec<super::FamilyRow>,
+    /// The SL̃(2,R) spaces (absent from older reports).
+    #[serde(default)]
+    pub sl2r: Vec<super::FamilyRow>,
     /// The lightings' frame time against error (absent from reports written before them).
     #[serde(default)]
     pub lighting: Vec<super::LightingRow>,

@@ -174,7 +174,7 @@ pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, 
     };
     let per_space = gpu_steps + 2 + config.fog_factors.len();
     let product_steps = if harness.is_some() {
-        config.products.len() + config.nil.len()
+        config.products.len() + config.nil.len() + config.sl2r.len()
     } else {
         0
     };
@@ -195,6 +195,7 @@ pub fn run(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, 
     if let Some(harness) = harness.as_mut() {
         report.products = products::product_rows(harness, config, progress)?;
         report.nil = nil::nil_rows(harness, config, progress)?;
+        report.sl2r = sl2r::sl2r_rows(harness, config, progress)?;
     }
     progress.finish_and_clear();
     Ok(report)
@@ -439,6 +440,23 @@ pub fn run_nil(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchRepo
     progress.set_length(config.nil.len() as u64);
     let mut report = BenchReport::empty(Some(&harness));
     report.nil = nil::nil_rows(&mut harness, config, progress)?;
+    progress.finish_and_clear();
+    Ok(report)
+}
+
+/// Only the SL̃(2,R) spaces of `config.sl2r`: each default view timed against
+/// [`products::PRODUCT_REFERENCE_SPACE`]'s in the same rounds, the GPU against the CPU
+/// reference, the walks against the double-double walk over the conditioning limit
+/// ([`super::FamilyRow`]).
+pub fn run_sl2r(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, BenchError> {
+    if config.sl2r.is_empty() || config.sizes.is_empty() {
+        return Err(BenchError::Empty("no SL̃(2,R) spaces or sizes were named"));
+    }
+    sl2r::check_sl2r(&config.sl2r)?;
+    let mut harness = Harness::new()?;
+    progress.set_length(config.sl2r.len() as u64);
+    let mut report = BenchReport::empty(Some(&harness));
+    report.sl2r = sl2r::sl2r_rows(&mut harness, config, progress)?;
     progress.finish_and_clear();
     Ok(report)
 }

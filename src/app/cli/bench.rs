@@ -98,6 +98,61 @@ pub(super) fn bench(args: &BenchArgs) -> Result<(), String> {
         );
         let report =
             bevy_curved_spaces::bench::run_nil(&config, &progress).map_err(|e| e.to_string())?;
+        say_family_rows(&report.nil, "ε(1 + t²)");
+        let written = bevy_curved_spaces::bench::write_edges_report(&report, &config, &args.out)
+            .map_err(|e| e.to_string())?;
+        say_written(&written, &args.out, started);
+        return Ok(());
+    }
+    if let Some(ids) = &args.sl2r {
+        config.sl2r.clone_from(ids);
+        bevy_curved_spaces::bench::check_sl2r(ids).map_err(|e| e.to_string())?;
+        eprintln!(
+            "benchmarking SL̃(2,R) spaces {ids:?} at {:?} against {}…",
+            config.sizes,
+            bevy_curved_spaces::bench::PRODUCT_REFERENCE_SPACE
+        );
+        let report =
+            bevy_curved_spaces::bench::run_sl2r(&config, &progress).map_err(|e| e.to_string())?;
+        say_family_rows(&report.sl2r, "the conditioning limit");
+        let written = bevy_curved_spaces::bench::write_edges_report(&report, &config, &args.out)
+            .map_err(|e| e.to_string())?;
+        say_written(&written, &args.out, started);
+        return Ok(());
+    }
+    if let Some(products) = &args.products {
+        eprintln!(
+            "benchmarking product spaces {products:?} at {:?} against {}…",
+            config.sizes,
+            bevy_curved_spaces::bench::PRODUCT_REFERENCE_SPACE
+        );
+    } else if let Some(scene) = &args.scene {
+        eprintln!(
+            "benchmarking the start view of {} at {} size(s), budgets {:?}…",
+            scene.display(),
+            config.sizes.len(),
+            config.budgets
+        );
+    } else {
+        eprintln!(
+            "benchmarking {} space(s) at {} size(s), budgets {:?}, fog {:?} inradii…",
+            config.spaces.len(),
+            config.sizes.len(),
+            config.budgets,
+            config.fog_factors
+        );
+    }
+    let started = Instant::now();
+    let progress = indicatif::ProgressBar::new(0);
+    if let Some(ks) = &args.nil {
+        config.nil.clone_from(ks);
+        eprintln!(
+            "benchmarking Nil spaces {ks:?} at {:?} against {}…",
+            config.sizes,
+            bevy_curved_spaces::bench::PRODUCT_REFERENCE_SPACE
+        );
+        let report =
+            bevy_curved_spaces::bench::run_nil(&config, &progress).map_err(|e| e.to_string())?;
         for r in &report.nil {
             say!(
                 "{:<8} {:>8.2} ms, {:.2}× {} ({} objects, budget {}), {:.2} crossings a pixel, {:.2} % of pixels differ from the CPU, walks f64 {:.3} / f32 {:.3} × ε(1 + t²) (median)",
@@ -312,4 +367,25 @@ fn say_written(written: &[std::path::PathBuf], out: &std::path::Path, started: I
             .display(),
         started.elapsed().as_secs_f64()
     );
+}
+
+/// One line a row of a family with its own tracer; `bound` names what its walks' error is
+/// divided by.
+fn say_family_rows(rows: &[bevy_curved_spaces::bench::FamilyRow], bound: &str) {
+    for r in rows {
+        say!(
+            "{:<8} {:>8.2} ms, {:.2}× {} ({} objects, budget {}), {:.2} crossings and {:.1} root iterations a pixel, {:.2} % of pixels differ from the CPU, walks f64 {:.3} / f32 {:.3} × {bound} (median)",
+            r.space,
+            r.tracer_ms,
+            r.ratio,
+            r.reference_space,
+            r.objects,
+            r.budget,
+            r.crossings_per_pixel,
+            r.root_iterations_per_pixel,
+            100.0 * r.differing_pixels,
+            r.f64_median,
+            r.f32_median
+        );
+    }
 }

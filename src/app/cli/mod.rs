@@ -461,6 +461,14 @@ struct BenchArgs {
     /// writes nil.csv and summary.md. The full run measures nil-1, nil-3 and nil-50.
     #[arg(long, value_delimiter = ',', value_parser = clap::value_parser!(u32).range(1..=1000), conflicts_with_all = ["cpu_only", "from", "scene", "entities", "edges", "straightforward", "spaces", "products"])]
     nil: Option<Vec<u32>>,
+    /// Measure only the SL̃(2,R) spaces (comma-separated ids, such as
+    /// unit-tangent-bitorus): each default view timed against Seifert–Weber's in the same
+    /// rounds, crossings and root iterations a pixel, the GPU against the CPU reference, the
+    /// f64 and f32 walks against double-double over the conditioning limit; writes sl2r.csv
+    /// and summary.md. The full run measures the bitorus's, unit-tangent-abcdABCD and genus
+    /// three's.
+    #[arg(long, value_delimiter = ',', conflicts_with_all = ["cpu_only", "from", "scene", "entities", "edges", "straightforward", "spaces", "products", "nil"])]
+    sl2r: Option<Vec<String>>,
     /// Time only what the cell's edges cost: the default view with its edges culled,
     /// unculled and absent, in turn, per space (at the first of --budgets, default 32, and
     /// the middle of --sizes); writes edges.csv and summary.md.

@@ -42,76 +42,10 @@ fn pi<R: Real>() -> R {
     R::from_f64(std::f64::consts::PI) + R::from_f64(1.224_646_799_147_353_2e-16)
 }
 
-/// Half way between `lo` and `hi`.
-fn half_way<R: Real>(lo: R, hi: R) -> R {
-    R::from_f64(0.5) * (lo + hi)
-}
-
-thread_local! {
-    /// Iterations of the safeguarded root finder on this thread (see [`work`]).
-    static ROOT_ITERATIONS: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
-    /// Safe (Lipschitz) steps towards objects on this thread.
-    static SAFE_STEPS: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
-}
-
-/// The work Nil's root finding has done on this thread so far: the iterations of the
-/// safeguarded root finder (the horizontal exits, the distance's winding, the balls' and
-/// the tracer's refinements) and the safe steps towards objects. The bench reads them
-/// before and after a picture to report them per pixel.
-#[must_use]
-pub fn work() -> (u64, u64) {
-    (ROOT_ITERATIONS.get(), SAFE_STEPS.get())
-}
-
-/// Counts one safe step towards an object (for [`work`]).
-pub(crate) fn count_safe_step() {
-    SAFE_STEPS.set(SAFE_STEPS.get() + 1);
-}
-
-/// Counts one iteration of a root finder (for [`work`]).
-pub(crate) fn count_root_iteration() {
-    ROOT_ITERATIONS.set(ROOT_ITERATIONS.get() + 1);
-}
-
-/// Most steps of [`bracketed_root`]: each Newton step that fails is replaced by a bisection,
-/// so 200 reach double-double's last bit from any bracket.
-const MAX_ROOT_STEPS: usize = 200;
-
-/// The root of `f` (its value and rate at a point) in the bracket `(lo, hi)`, where it
-/// changes sign once, from `start`: Newton's steps where they stay inside the bracket,
-/// bisection where they do not, until the bracket stops shrinking. `below(value)` says
-/// whether a value lies on `lo`'s side of the root. Nil's horizontal exits, its distance's
-/// winding angle and its balls' hits all finish with it.
-fn bracketed_root<R: Real>(
-    f: &impl Fn(R) -> (R, R),
-    (lo, hi): (R, R),
-    start: R,
-    below: impl Fn(R) -> bool,
-) -> R {
-    let zero = R::ZERO;
-    let (mut lo, mut hi) = (lo, hi);
-    let mut t = start;
-    for _ in 0..MAX_ROOT_STEPS {
-        count_root_iteration();
-        let (value, rate) = f(t);
-        if value == zero {
-            return t;
-        }
-        if below(value) {
-            lo = t;
-        } else {
-            hi = t;
-        }
-        let newton = t - value / rate;
-        let next = if rate != zero && newton > lo && newton < hi {
-            newton
-        } else {
-            half_way(lo, hi)
-        };
-        if next == t || !(lo < hi) {
-            break;
-        }
-        t = next;
-    }
-    t
-}
+/// The work Nil's root finding has done on this thread so far (the shared counters of
+/// [`crate::space::roots`]: the horizontal exits, the distance's winding, the balls' and
+/// the tracer's refinements, and the safe steps towards objects).
+pub use crate::space::roots::work;
+pub(crate) use crate::space::roots::{
+    bracketed_root, count_root_iteration, count_safe_step, half_way,
+};

@@ -138,6 +138,7 @@ fn time_of(tau: f64, w2: f64) -> Option<f64> {
 /// kept only where it makes `|f|` smaller.
 fn polish<R: Real>(alpha: R, beta: R, gamma: R, w2: R, mut t: R) -> R {
     let f_at = |t: R| {
+        crate::space::roots::count_root_iteration();
         let (s, k) = flow_terms(w2, t);
         (
             alpha + beta * s + gamma * k,

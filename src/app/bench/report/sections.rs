@@ -459,19 +459,41 @@ pub(super) fn products_section(md: &mut String, report: &BenchReport) {
     }
 }
 
-/// The Nil spaces: speed against a constant-curvature view, and error.
-pub(super) fn nil_section(md: &mut String, report: &BenchReport) {
+/// The families with their own tracer (Nil, SL̃(2,R)): speed against a constant-curvature
+/// view, and error.
+pub(super) fn families_section(md: &mut String, report: &BenchReport) {
+    family_section(
+        md,
+        &report.nil,
+        "Nil",
+        &format!(
+            "the f64 and f32 walks ({} long) against the exact geodesic in double-double, as error / (ε (1 + t²))",
+            super::super::nil::WALK_DISTANCE
+        ),
+    );
+    family_section(
+        md,
+        &report.sl2r,
+        "SL̃(2,R)",
+        &format!(
+            "the f64 and f32 walks ({} long) against the double-double walk, as error / the conditioning limit (the exact walk's spread under one rounding of its start)",
+            super::super::sl2r::WALK_DISTANCE
+        ),
+    );
+}
+
+/// One family's table, `accuracy` saying what its walk columns measure.
+fn family_section(md: &mut String, rows: &[super::super::FamilyRow], family: &str, accuracy: &str) {
     use std::fmt::Write as _;
-    let Some(first) = report.nil.first() else {
+    let Some(first) = rows.first() else {
         return;
     };
     let reference = &first.reference_space;
     let _ = writeln!(
         *md,
-        "\n### Nil spaces: each default view timed in the same rounds as {reference}'s default view at the same size (Nil at the plugin's default budget, {reference} at its automatic one); objects in the scene; crossings a pixel makes, and the root finder's iterations and the safe steps towards objects a pixel takes (the f64 CPU tracer, shadow rays included); the GPU picture against the f64 CPU reference (pixels off by more than 10/255); the f64 and f32 walks ({} long) against the exact geodesic in double-double, as error / (ε (1 + t²))\n\n| space | size | budget | objects | ms | {reference} ms | × {reference} | crossings / pixel | root iterations / pixel | safe steps / pixel | pixels differing | mean error /255 | f64 median / worst | f32 median / worst |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
-        super::super::nil::WALK_DISTANCE
+        "\n### {family} spaces: each default view timed in the same rounds as {reference}'s default view at the same size ({family} at the plugin's default budget, {reference} at its automatic one); objects in the scene; crossings a pixel makes, and the root finders' iterations and the safe steps towards objects a pixel takes (the f64 CPU tracer, shadow rays included); the GPU picture against the f64 CPU reference (pixels off by more than 10/255); {accuracy}\n\n| space | size | budget | objects | ms | {reference} ms | × {reference} | crossings / pixel | root iterations / pixel | safe steps / pixel | pixels differing | mean error /255 | f64 median / worst | f32 median / worst |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
     );
-    for r in &report.nil {
+    for r in rows {
         let _ = writeln!(
             *md,
             "| {} | {}×{} | {} | {} | {:.2} | {:.2} | {:.2}× | {:.2} | {:.1} | {:.1} | {} % | {:.2} | {:.3} / {:.3} | {:.3} / {:.3} |",
