@@ -151,7 +151,6 @@ impl BenchConfig {
             nil: vec![1, 3, 50],
             sl2r: vec![
                 "unit-tangent-bitorus".into(),
-                "unit-tangent-abcdABCD".into(),
                 "unit-tangent-abABcdCDefEF".into(),
             ],
         }

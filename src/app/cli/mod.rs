@@ -465,8 +465,8 @@ struct BenchArgs {
     /// unit-tangent-bitorus): each default view timed against Seifert–Weber's in the same
     /// rounds, crossings and root iterations a pixel, the GPU against the CPU reference, the
     /// f64 and f32 walks against double-double over the conditioning limit; writes sl2r.csv
-    /// and summary.md. The full run measures the bitorus's, unit-tangent-abcdABCD and genus
-    /// three's.
+    /// and summary.md. The full run measures the bitorus's and genus three's (the bundles of
+    /// two surfaces tiled by the same polygon walk alike: their rays cross the same tiling).
     #[arg(long, value_delimiter = ',', conflicts_with_all = ["cpu_only", "from", "scene", "entities", "edges", "straightforward", "spaces", "products", "nil"])]
     sl2r: Option<Vec<String>>,
     /// Time only what the cell's edges cost: the default view with its edges culled,

@@ -147,14 +147,8 @@ impl FrameSpace for UnitTangentSpace {
         if !(dir.is_finite() && dir.length() > 0.0 && dir.length().is_finite()) {
             return Err(format!("the direction {dir} has no length"));
         }
-        let (x, y, theta) = (from.x, from.y, from.z);
-        let w = (1.0 + x * x + y * y).sqrt();
-        let e1 = [1.0 + x * x / (1.0 + w), x * y / (1.0 + w), x];
-        let e2 = [x * y / (1.0 + w), 1.0 + y * y / (1.0 + w), y];
-        let (c, s) = (theta.cos(), theta.sin());
-        let e = [0, 1, 2].map(|i| c * e1[i] + s * e2[i]);
         let start = on_model(&Sl2rRay {
-            frame: [e, [0.0; 3], [x, y, w]],
+            frame: super::chart_frame(from.x, from.y, from.z),
             velocity: dir.normalize().to_array(),
         });
         let (inside, _) = self.wrap_point(&start, 0.0);

@@ -18,6 +18,8 @@
 //! - an isometry `M` of `H²` acts on `(p, e)` by its differential, on the frame by `F ↦ M F`.
 
 pub mod accuracy;
+pub mod ball;
+pub mod distance;
 pub mod exit;
 pub mod flow;
 mod frames;
@@ -28,3 +30,17 @@ pub use exit::{first_crossing, side_exit};
 pub use flow::{Sl2rRay, flow, on_model};
 pub use space::{Sl2rError, Sl2rSide, UNIT_TANGENT_PREFIX, UnitTangentSpace, sl2r_space};
 pub use walk::{Sl2rExit, Sl2rWalker};
+
+/// The frame at the chart point `(x, y, θ)`: the base point `(x, y, √(1 + x² + y²))` and `e`
+/// at the angle `θ` from the boost of the origin's `(1, 0, 0)` (the frame the commands'
+/// `--from x,y,θ` and the scene files' points name).
+#[must_use]
+pub fn chart_frame(x: f64, y: f64, theta: f64) -> [[f64; 3]; 3] {
+    let w = (1.0 + x * x + y * y).sqrt();
+    let e1 = [1.0 + x * x / (1.0 + w), x * y / (1.0 + w), x];
+    let e2 = [x * y / (1.0 + w), 1.0 + y * y / (1.0 + w), y];
+    let (c, s) = (theta.cos(), theta.sin());
+    let e = [0, 1, 2].map(|i| c * e1[i] + s * e2[i]);
+    let p = [x, y, w];
+    [e, flow::perp(p, e), p]
+}
