@@ -1,7 +1,8 @@
 //! `render` of an SL̃(2,R) space: its default scene (the cell's edges and five pillars,
-//! fibre tubes met exactly) or a scene file's, on the GPU or with the f64 CPU reference,
-//! mono or stereo. The options that need a lamp, walls or a placed eye are not written for
-//! the family yet, and each is refused by name.
+//! fibre tubes met exactly, and a stack of metric balls along a fibre) or a scene file's, on
+//! the GPU or with the f64 CPU reference, mono or stereo, from the default view or a placed
+//! eye (`--eye x,y,θ --look-at x,y,θ`). The options that need a lamp or walls are not
+//! written for the family yet, and each is refused by name.
 
 use super::RenderArgs;
 use super::render::Sl2rChoice;
@@ -34,14 +35,17 @@ pub(super) fn render_sl2r_command(args: &RenderArgs, chosen: Sl2rChoice) -> Resu
     if args.view.light.any() {
         refuse(Feature::LampFluence)?;
     }
-    if args.eye.is_some() || args.look_at.is_some() {
-        return Err(format!(
-            "{name}: --eye and --look-at are not written for SL̃(2,R) yet (the camera starts at \
-             the polygon's centre, looking along e with the fibre up)"
-        ));
-    }
     let mut scene = chosen.scene;
     let mut camera = chosen.camera;
+    if let (Some(eye), Some(target)) = (args.eye, args.look_at) {
+        camera = bevy_curved_spaces::trace::sl2r::Sl2rCamera::looking_at(
+            space,
+            eye,
+            target,
+            camera.fov_y_degrees,
+        )
+        .map_err(|e| format!("{name}: {e}"))?;
+    }
     if let Some(fog) = args.fog {
         scene.fog_distance = fog;
     }

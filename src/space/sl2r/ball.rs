@@ -15,7 +15,7 @@
 
 use super::distance::{Frame, distance_floor, shortest, shortest_within};
 use super::flow::{Sl2rRay, flow};
-use crate::space::roots::{bracketed_root, count_safe_step, half_way};
+use crate::space::roots::{bracketed_root, count_safe_step};
 
 /// The largest radius of a ball (half a unit: its distance is then always solved within
 /// the trusted length, with room for the images of the surface group to stay apart).

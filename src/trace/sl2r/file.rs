@@ -4,9 +4,10 @@
 //!
 //! A tube's `position` is the chart point `[x, y]` of its base point `(x, y, √(1 + x² + y²))`
 //! on the hyperboloid; it is brought into the polygon by the surface group, and drawn with
-//! each of its images that reaches into the cell. The start view's `position` is `[x, y, θ]`:
-//! the base point, and `e` at angle `θ` (radians) in the frame boosted from the origin's; the
-//! camera looks along `e` with the fibre up (turn it by `θ`). Radii are distances in `H²`.
+//! each of its images that reaches into the cell. A ball's `position` and the start view's
+//! are `[x, y, θ]`: the base point, and `e` at angle `θ` (radians) in the frame boosted from
+//! the origin's; the camera looks along `e` with the fibre up (turn it by `θ`). A tube's
+//! radius is a distance in `H²`, a ball's a distance in the space (at most ½).
 //!
 //! ```toml
 //! space = "unit-tangent-bitorus"
@@ -25,12 +26,21 @@
 //! position = [0.3, 0.2]
 //! radius = 0.15
 //! colour = [0.9, 0.5, 0.2]
+//!
+//! [[object]]
+//! type = "ball"           # the points within radius of the point [x, y, θ]
+//! position = [0.0, 0.4, 1.5]
+//! radius = 0.2
+//! colour = [0.3, 0.6, 0.95]
 //! ```
 //!
 //! SL̃(2,R) scenes have no lamps, walls or moving objects yet: such keys are refused by
 //! name. An error names the file and the line.
 
-use super::{FibreTube, Sl2rCamera, Sl2rParts, Sl2rScene, default_camera, scene_with_parts};
+use super::{
+    FibreTube, Sl2rBall, Sl2rCamera, Sl2rParts, Sl2rScene, default_camera, scene_with_parts,
+};
+use crate::space::sl2r::ball::MAX_SL2R_BALL_RADIUS;
 use crate::scene::file::SceneFileError;
 use crate::scene::file_support::{
     colour, failing, fog_keys, load_family_scene, parse_toml, space_key,
@@ -45,6 +55,10 @@ use toml::Spanned;
 /// The most tubes (with their images) a scene file may make: each is tested by every ray
 /// segment of the CPU reference.
 pub const MAX_SL2R_TUBES: usize = 400;
+
+/// The most balls (with their images) a scene file may make: each is a root search along
+/// every ray segment that comes near it.
+pub const MAX_SL2R_BALLS: usize = 120;
 
 /// A loaded SL̃(2,R) scene file: the space, its scene and the start view.
 #[derive(Clone, Debug)]
@@ -123,6 +137,12 @@ enum ObjectSpec {
         #[serde(default = "white")]
         colour: [f64; 3],
     },
+    Ball {
+        position: [f64; 3],
+        radius: f64,
+        #[serde(default = "white")]
+        colour: [f64; 3],
+    },
 }
 
 /// Whether a scene file's text names an SL̃(2,R) space in its `space` key (or such an id
@@ -174,6 +194,7 @@ pub fn parse_sl2r_scene(text: &str, file: &str) -> Result<Sl2rSceneFile, SceneFi
             edges: spec.edges,
             centre_pillar: spec.centre_pillar,
             pillars: false,
+            ball_stack: false,
         },
     );
     let fog = fog_keys(
@@ -188,8 +209,17 @@ pub fn parse_sl2r_scene(text: &str, file: &str) -> Result<Sl2rSceneFile, SceneFi
     scene.fog_colour = fog.fog_colour.unwrap_or(scene.fog_colour);
     for object in &spec.objects {
         let at = |m: String| fail(Some(object.span()), m);
-        let tube = build_tube(&space, object.get_ref()).map_err(at)?;
-        scene.add_with_images(&space, tube);
+        match build_object(&space, object.get_ref()).map_err(at)? {
+            Built::Tube(tube) => scene.add_with_images(&space, tube),
+            Built::Ball(ball) => scene.add_ball_with_images(&space, ball),
+        }
+        if scene.balls.len() > MAX_SL2R_BALLS {
+            return Err(at(format!(
+                "the scene has more than {MAX_SL2R_BALLS} balls with the images that reach into \
+                 the cell ({} so far): make the balls fewer or smaller",
+                scene.balls.len()
+            )));
+        }
         if scene.tubes.len() > MAX_SL2R_TUBES {
             return Err(at(format!(
                 "the scene has more than {MAX_SL2R_TUBES} tubes with the images that reach into \
@@ -217,28 +247,59 @@ pub fn parse_sl2r_scene(text: &str, file: &str) -> Result<Sl2rSceneFile, SceneFi
     })
 }
 
-/// A tube of the file, its base point brought into the polygon (its images are added by the
-/// scene).
-fn build_tube(space: &UnitTangentSpace, spec: &ObjectSpec) -> Result<FibreTube, String> {
-    let ObjectSpec::Tube {
-        position,
-        radius,
-        colour: c,
-    } = spec;
-    let rho = space.inradius();
-    if !(*radius > 0.0 && *radius <= rho) {
+/// An object of the file, before its images.
+enum Built {
+    Tube(FibreTube),
+    Ball(Sl2rBall),
+}
+
+/// An object of the file, its base point brought into the polygon (its images are added by
+/// the scene).
+fn build_object(space: &UnitTangentSpace, spec: &ObjectSpec) -> Result<Built, String> {
+    let (point, radius, c, largest, what) = match spec {
+        ObjectSpec::Tube {
+            position,
+            radius,
+            colour,
+        } => (
+            DVec3::new(position[0], position[1], 0.0),
+            *radius,
+            *colour,
+            space.inradius(),
+            "the polygon's inradius",
+        ),
+        ObjectSpec::Ball {
+            position,
+            radius,
+            colour,
+        } => (
+            DVec3::from_array(*position),
+            *radius,
+            *colour,
+            MAX_SL2R_BALL_RADIUS.min(space.inradius()),
+            "the largest ball radius (half a unit, and the polygon's inradius)",
+        ),
+    };
+    if !(radius > 0.0 && radius <= largest) {
         return Err(format!(
-            "radius must be a positive distance of at most {rho:.6} (the polygon's inradius), \
-             got {radius}"
+            "radius must be a positive distance of at most {largest:.6} ({what}), got {radius}"
         ));
     }
     let ray = space
-        .chart_ray(DVec3::new(position[0], position[1], 0.0), DVec3::X)
-        .map_err(|m| format!("the tube's position: {m}"))?;
-    let base = Sl2rWalker::<DVec4>::sl2r_ray(&ray).frame[2];
-    Ok(FibreTube {
-        base,
-        radius: *radius,
-        colour: colour(*c)?.min(DVec3::ONE),
+        .chart_ray(point, DVec3::X)
+        .map_err(|m| format!("the object's position: {m}"))?;
+    let frame = Sl2rWalker::<DVec4>::sl2r_ray(&ray).frame;
+    let colour = colour(c)?.min(DVec3::ONE);
+    Ok(match spec {
+        ObjectSpec::Tube { .. } => Built::Tube(FibreTube {
+            base: frame[2],
+            radius,
+            colour,
+        }),
+        ObjectSpec::Ball { .. } => Built::Ball(Sl2rBall {
+            centre: frame,
+            radius,
+            colour,
+        }),
     })
 }

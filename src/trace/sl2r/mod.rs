@@ -10,6 +10,13 @@
 //! with each image under the surface group that reaches into the cell. The cell's edges are
 //! the fibres over the polygon's vertices, drawn as thin tubes.
 //!
+//! A *metric ball* is the set of points within `r` of a centre `(q, f)` by the Sasaki
+//! distance itself ([`crate::space::sl2r::ball`]: the inverse exponential map in closed form
+//! but for one scanned unknown, safe steps by the distance, the hit to the last bit). A ball
+//! is kept with each image under the surface group that reaches into the cell; because the
+//! pairings turn `e` as they move `p`, the copies of a stack of balls along one fibre come
+//! back turned: that is the bundle's twist, seen.
+//!
 //! Shading is by the view: a tube's surface is lit as if by a lamp at the eye (its colour
 //! times `ambient + (1 − ambient)·cos`, the cosine between its outward normal — horizontal,
 //! away from `q` — and the ray), then faded into the fog by `e^{−t/λ}` over the distance
@@ -20,6 +27,7 @@ pub mod file;
 
 use crate::space::FrameSpace;
 use crate::space::sl2r::flow::{Sl2rRay, flow, lorentz};
+use crate::space::sl2r::ball::{MAX_SL2R_BALL_RADIUS, ball_hit};
 use crate::space::sl2r::{Sl2rWalker, UnitTangentSpace, first_crossing};
 use crate::space::walk::{CellWalk, NextExit};
 use glam::{DMat4, DVec3, DVec4};
@@ -37,12 +45,45 @@ pub struct FibreTube {
     pub colour: DVec3,
 }
 
-/// A scene of an SL̃(2,R) space: fibre tubes (with their images that reach into the cell),
-/// ambient light and fog.
+/// The metric ball of `radius` about a point of `UT H²` (its frame `(e, e⊥, p)`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sl2rBall {
+    /// The centre's frame: columns `e`, `e⊥`, `p`.
+    pub centre: [[f64; 3]; 3],
+    /// Its radius, at most [`MAX_SL2R_BALL_RADIUS`].
+    pub radius: f64,
+    /// Its colour, linear RGB.
+    pub colour: DVec3,
+}
+
+/// What a ray meets: a tube or a ball of the scene.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Sl2rObject<'a> {
+    /// A fibre tube.
+    Tube(&'a FibreTube),
+    /// A metric ball.
+    Ball(&'a Sl2rBall),
+}
+
+impl Sl2rObject<'_> {
+    /// The object's colour.
+    #[must_use]
+    pub fn colour(&self) -> DVec3 {
+        match self {
+            Self::Tube(t) => t.colour,
+            Self::Ball(b) => b.colour,
+        }
+    }
+}
+
+/// A scene of an SL̃(2,R) space: fibre tubes and metric balls (with their images that reach
+/// into the cell), ambient light and fog.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Sl2rScene {
     /// The tubes.
     pub tubes: Vec<FibreTube>,
+    /// The balls.
+    pub balls: Vec<Sl2rBall>,
     /// The fog's colour, linear RGB.
     pub fog_colour: DVec3,
     /// The fog scale `λ`: light fades by `e^{−t/λ}` over a distance `t`.
@@ -65,44 +106,66 @@ impl Sl2rScene {
     /// cell: those within the polygon's circumradius plus the radius of its centre.
     pub fn add_with_images(&mut self, space: &UnitTangentSpace, tube: FibreTube) {
         let reach = (space.circumradius() + tube.radius).cosh();
-        for q in group_images(space, tube.base) {
+        for m in group_elements(space, tube.base) {
+            let q = apply(&m, tube.base);
             if q[2] <= reach * (1.0 + 1e-12) {
                 self.tubes.push(FibreTube { base: q, ..tube });
             }
         }
     }
+
+    /// Adds `ball` and each image `γ·ball` that reaches into the cell (its base point
+    /// within the polygon's circumradius plus the radius of the centre: the base point of
+    /// every point of a ball is within its radius of the centre's).
+    pub fn add_ball_with_images(&mut self, space: &UnitTangentSpace, ball: Sl2rBall) {
+        let reach = (space.circumradius() + ball.radius).cosh();
+        for m in group_elements(space, ball.centre[2]) {
+            let centre = ball.centre.map(|c| apply(&m, c));
+            if centre[2][2] <= reach * (1.0 + 1e-12) {
+                self.balls.push(Sl2rBall { centre, ..ball });
+            }
+        }
+    }
 }
 
-/// The images of the base point `q` under the group words of up to four pairings,
-/// without repeats (enough for every polygon that shares a vertex with the cell).
-fn group_images(space: &UnitTangentSpace, q: [f64; 3]) -> Vec<[f64; 3]> {
+/// `m v` for a 3×3 matrix of rows.
+fn apply(m: &[[f64; 3]; 3], v: [f64; 3]) -> [f64; 3] {
+    [0, 1, 2].map(|r| m[r][0] * v[0] + m[r][1] * v[1] + m[r][2] * v[2])
+}
+
+/// The elements of the surface group that are words of up to four pairings, one for each
+/// image of the base point `q` (enough for every polygon that shares a vertex with the
+/// cell; the group is torsion-free, so distinct elements move `q` apart).
+fn group_elements(space: &UnitTangentSpace, q: [f64; 3]) -> Vec<[[f64; 3]; 3]> {
     let pairings: Vec<[[f64; 3]; 3]> = space
         .sides()
         .iter()
         .map(|s| s.pairing.map(|r| r.map(|x| x.hi)))
         .collect();
-    let apply = |m: &[[f64; 3]; 3], v: [f64; 3]| {
-        [0, 1, 2].map(|r| m[r][0] * v[0] + m[r][1] * v[1] + m[r][2] * v[2])
+    let times = |a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]| {
+        [0, 1, 2].map(|i| [0, 1, 2].map(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum::<f64>()))
     };
-    let mut seen = vec![q];
-    let mut frontier = vec![q];
+    let identity = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    let mut seen = vec![(identity, q)];
+    let mut frontier = vec![identity];
     for _ in 0..4 {
         let mut next = Vec::new();
-        for p in &frontier {
+        for g in &frontier {
             for m in &pairings {
-                let image = apply(m, *p);
-                let new = seen.iter().all(|s| {
+                let element = times(m, g);
+                let image = apply(&element, q);
+                let new = seen.iter().all(|(_, s)| {
                     (0..3).map(|i| (s[i] - image[i]).abs()).fold(0.0, f64::max) > 1e-9 * image[2]
                 });
                 if new {
-                    seen.push(image);
-                    next.push(image);
+                    seen.push((element, image));
+                    next.push(element);
                 }
             }
         }
         frontier = next;
     }
-    seen
+    seen.into_iter().map(|(m, _)| m).collect()
 }
 
 /// The base point at distance `r` from the polygon's centre in the direction `angle`.
@@ -119,11 +182,15 @@ pub struct Sl2rParts {
     pub centre_pillar: bool,
     /// Four coloured pillars half-way to every other side.
     pub pillars: bool,
+    /// A stack of three balls along one fibre (0.8 radians apart), whose copies
+    /// across the sides come back turned: the bundle's twist.
+    pub ball_stack: bool,
 }
 
 /// The default scene: the cell's edges (thin white tubes over the polygon's vertices), a
 /// pale pillar (a fibre tube) over the centre and four coloured ones half-way to every
-/// other side, each with its images; fog at one inradius.
+/// other side, and a stack of three balls along one fibre, each with its images; fog at one
+/// inradius.
 #[must_use]
 pub fn default_scene(space: &UnitTangentSpace) -> Sl2rScene {
     scene_with_parts(
@@ -132,6 +199,7 @@ pub fn default_scene(space: &UnitTangentSpace) -> Sl2rScene {
             edges: true,
             centre_pillar: true,
             pillars: true,
+            ball_stack: true,
         },
     )
 }
@@ -148,6 +216,7 @@ pub fn scene_with_parts(space: &UnitTangentSpace, parts: Sl2rParts) -> Sl2rScene
     let rho = space.inradius();
     let mut scene = Sl2rScene {
         tubes: Vec::new(),
+        balls: Vec::new(),
         fog_colour: DVec3::new(0.55, 0.6, 0.7),
         fog_distance: default_fog_distance(space),
         ambient: 0.3,
@@ -171,6 +240,30 @@ pub fn scene_with_parts(space: &UnitTangentSpace, parts: Sl2rParts) -> Sl2rScene
                 colour: DVec3::new(0.85, 0.85, 0.8),
             },
         );
+    }
+    if parts.ball_stack {
+        // Over the base point half-way to side 2 (left of the centre as the default camera
+        // sees it), e at −0.8, 0 and 0.8 radians: violet, orange and white, climbing.
+        let n = space.sides().len() as f64;
+        let angle = 2.0 * std::f64::consts::PI * 2.0 / n;
+        let (r, b) = (0.5 * rho, 0.0);
+        let (x, y) = (r.sinh() * angle.cos(), r.sinh() * angle.sin());
+        let colours = [
+            DVec3::new(0.6, 0.3, 0.9),
+            DVec3::new(0.95, 0.55, 0.15),
+            DVec3::new(0.95, 0.95, 0.95),
+        ];
+        for (k, colour) in colours.into_iter().enumerate() {
+            let theta = b + 0.8 * (k as f64 - 1.0);
+            scene.add_ball_with_images(
+                space,
+                Sl2rBall {
+                    centre: crate::space::sl2r::chart_frame(x, y, theta),
+                    radius: (0.22 * rho).min(MAX_SL2R_BALL_RADIUS),
+                    colour,
+                },
+            );
+        }
     }
     if !parts.pillars {
         return scene;
@@ -245,6 +338,63 @@ impl Sl2rCamera {
     }
 }
 
+impl Sl2rCamera {
+    /// The camera at the chart point `eye` (`[x, y, θ]`, as [`Sl2rCamera::at`]) looking along
+    /// the shortest geodesic to the chart point `target`, with the fibre as near up as the
+    /// view allows; an error names a point the chart cannot take, a target on the eye, or one
+    /// farther than the inverse exponential map is solved
+    /// ([`crate::space::sl2r::distance::TRUSTED_LENGTH`]).
+    pub fn looking_at(
+        space: &UnitTangentSpace,
+        eye: DVec3,
+        target: DVec3,
+        fov_y_degrees: f64,
+    ) -> Result<Self, String> {
+        use crate::space::sl2r::distance::{TRUSTED_LENGTH, shortest};
+        if !(eye.is_finite() && target.is_finite()) {
+            return Err(format!(
+                "the eye {eye} and the point looked at {target} must be chart points"
+            ));
+        }
+        let from = crate::space::sl2r::chart_frame(eye.x, eye.y, eye.z);
+        let to = crate::space::sl2r::chart_frame(target.x, target.y, target.z);
+        let (length, v) = shortest(&from, &to).ok_or_else(|| {
+            format!(
+                "the point looked at {target} is {} or more from the eye {eye}: the direction is \
+                 solved only within the injectivity radius of UT H² (pick a nearer point)",
+                TRUSTED_LENGTH
+            )
+        })?;
+        if length == 0.0 {
+            return Err("the camera looks at its own position: nothing to look towards".into());
+        }
+        let camera = Self::at(space, eye, fov_y_degrees)?;
+        let forward = DVec3::from_array(v);
+        let up = DVec3::Z - forward * forward.z;
+        let up = if up.length() > 1e-9 {
+            up.normalize()
+        } else {
+            DVec3::X
+        };
+        let back = -forward;
+        let right = up.cross(back);
+        let e = [
+            camera.frame.x_axis.w,
+            camera.frame.y_axis.w,
+            camera.frame.z_axis.w,
+        ];
+        Ok(Self {
+            frame: DMat4::from_cols(
+                right.extend(e[0]),
+                up.extend(e[1]),
+                back.extend(e[2]),
+                camera.frame.w_axis,
+            ),
+            fov_y_degrees,
+        })
+    }
+}
+
 /// The default camera: seven tenths of the inradius behind the polygon's centre, `e`
 /// pointing at the centre, looking along `X` (at the centre's pillar) with the fibre `V` up.
 #[must_use]
@@ -279,52 +429,63 @@ pub fn camera_ray(frame: &DMat4, x: f64, y: f64) -> Sl2rRay<f64> {
     }
 }
 
-/// The first tube `ray` enters within `t_max`, and where.
-fn first_tube<'a>(
-    tubes: &'a [FibreTube],
+/// The first object `ray` meets within `t_max`, and where: the tubes in closed form, then
+/// the balls within what is left (each a bracketed root of its distance).
+fn first_object<'a>(
+    scene: &'a Sl2rScene,
     ray: &Sl2rRay<f64>,
     t_max: f64,
-) -> Option<(f64, &'a FibreTube)> {
-    let mut best: Option<(f64, &FibreTube)> = None;
-    for tube in tubes {
+) -> Option<(f64, Sl2rObject<'a>)> {
+    let mut best: Option<(f64, Sl2rObject<'a>)> = None;
+    for tube in &scene.tubes {
         let q = tube.base;
         let n = [q[0], q[1], -q[2]];
         if let Some(t) = first_crossing(ray, n, tube.radius.cosh())
             && t <= t_max
             && best.is_none_or(|(b, _)| t < b)
         {
-            best = Some((t, tube));
+            best = Some((t, Sl2rObject::Tube(tube)));
+        }
+    }
+    for ball in &scene.balls {
+        let reach = best.map_or(t_max, |(b, _)| b);
+        if let Some(t) = ball_hit(ray, &ball.centre, ball.radius, reach)
+            && t <= reach
+        {
+            best = Some((t, Sl2rObject::Ball(ball)));
         }
     }
     best
 }
 
-/// The colour of `tube` where `ray` meets it at `t`, seen along the ray.
-fn shade(scene: &Sl2rScene, tube: &FibreTube, ray: &Sl2rRay<f64>, t: f64) -> DVec3 {
+/// The colour of `object` where `ray` meets it at `t`, seen along the ray.
+fn shade(scene: &Sl2rScene, object: Sl2rObject, ray: &Sl2rRay<f64>, t: f64) -> DVec3 {
     let at = flow(ray, t);
     let [e, f, p] = at.frame;
-    let q = tube.base;
-    // The outward normal: the tangent at p pointing away from q (−q's tangent part).
-    let along = lorentz(q, p);
-    let u = [0, 1, 2].map(|i| -(q[i] + along * p[i]));
-    let len = lorentz(u, u).max(0.0).sqrt();
-    let facing = if len > 0.0 {
-        let normal = DVec3::new(lorentz(u, e) / len, lorentz(u, f) / len, 0.0);
-        (-normal.dot(DVec3::from_array(at.velocity))).max(0.0)
-    } else {
-        1.0
+    let normal = match object {
+        Sl2rObject::Tube(tube) => {
+            let q = tube.base;
+            // The outward normal: the tangent at p pointing away from q (−q's tangent part).
+            let along = lorentz(q, p);
+            let u = [0, 1, 2].map(|i| -(q[i] + along * p[i]));
+            let len = lorentz(u, u).max(0.0).sqrt();
+            (len > 0.0).then(|| DVec3::new(lorentz(u, e) / len, lorentz(u, f) / len, 0.0))
+        }
+        Sl2rObject::Ball(ball) => crate::space::sl2r::ball::normal(&ball.centre, &at.frame)
+            .map(DVec3::from_array),
     };
-    tube.colour * (scene.ambient + (1.0 - scene.ambient) * facing)
+    let facing = normal.map_or(1.0, |n| (-n.dot(DVec3::from_array(at.velocity))).max(0.0));
+    object.colour() * (scene.ambient + (1.0 - scene.ambient) * facing)
 }
 
-/// Where a camera ray first meets a tube: the distance walked to it, the tube, and the
-/// ray at the start of the segment it is met in with the time along it.
+/// Where a camera ray first meets an object: the distance walked to it, the object, and
+/// the ray at the start of the segment it is met in with the time along it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sl2rHit<'a> {
     /// The geodesic distance from the camera.
     pub distance: f64,
-    /// The tube met.
-    pub tube: &'a FibreTube,
+    /// The object met.
+    pub object: Sl2rObject<'a>,
     /// The ray at the start of the segment (in the cell).
     pub segment: Sl2rRay<f64>,
     /// The time along `segment` to the hit.
@@ -335,7 +496,7 @@ pub struct Sl2rHit<'a> {
     pub last_face: Option<usize>,
 }
 
-/// The first tube the ray meets within `max_crossings` crossings and the fog's cut-off.
+/// The first object the ray meets within `max_crossings` crossings and the fog's cut-off.
 #[must_use]
 pub fn first_hit<'a>(
     walker: &Sl2rWalker<DVec4>,
@@ -356,10 +517,10 @@ pub fn first_hit<'a>(
             NextExit::Degenerate => return None,
         };
         let within = segment.min(cutoff - walked);
-        if let Some((t, tube)) = first_tube(&scene.tubes, &r, within) {
+        if let Some((t, object)) = first_object(scene, &r, within) {
             return Some(Sl2rHit {
                 distance: walked + t,
-                tube,
+                object,
                 segment: r,
                 t,
                 crossings,
@@ -389,7 +550,7 @@ pub fn trace_sl2r_pixel(
     match first_hit(walker, scene, ray, max_crossings) {
         Some(hit) => {
             let fade = (-hit.distance / scene.fog_distance).exp();
-            let mut surface = shade(scene, hit.tube, &hit.segment, hit.t);
+            let mut surface = shade(scene, hit.object, &hit.segment, hit.t);
             if scene.colour_by != crate::scene::ColourBy::Shading {
                 // The holonomy view is refused for this family: crossings and face tint.
                 let tint = scene.colour_by.tint(
