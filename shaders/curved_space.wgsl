@@ -40,9 +40,9 @@
 //   NIL + NIL_OBJECTS, NIL_IMAGES,       a Nil space (with EUCLIDEAN, no faces packed): the
 //   NIL_SHADOWS                          box's walk, its objects, the lamp's images and
 //                                        shadows (shaders/nil.wgsl)
-//   SL2R + SL2R_TUBE_VECS                an SL̃(2,R) space (with HYPERBOLIC): FACE_COUNT
-//                                        sides, the walk of UT H² and its fibre tubes
-//                                        (shaders/sl2r.wgsl)
+//   SL2R + SL2R_OBJECT_VECS              an SL̃(2,R) space (with HYPERBOLIC): FACE_COUNT
+//                                        sides, the walk of UT H², its fibre tubes and
+//                                        (SL2R_BALLS) metric balls (shaders/sl2r.wgsl)
 //
 // Points and tangents are 4-vectors with ⟨u,v⟩ = u.xyz·v.xyz + κ u.w v.w; a ray segment in
 // the cell is X(s) ∝ p + s v, a straight line of the chart, so faces are planes (N·X = 0)

@@ -183,11 +183,13 @@ struct SpaceUniform {
 #endif
 #endif
 #ifdef SL2R
-    // The number of tubes, unused ×3 (Rust: `trace::sl2r::Sl2rScene`; the face arrays above
-    // are the polygon's sides: covectors, 3×3 pairings in a mat4, partners).
+    // The number of tubes, of balls, unused ×2 (Rust: `trace::sl2r::Sl2rScene`; the face
+    // arrays above are the polygon's sides: covectors, 3×3 pairings in a mat4, partners).
     sl2r: vec4<f32>,
-    // Per tube: its base point q (xyz) and radius; its colour (rgb) and cosh(radius).
-    sl2r_tubes: array<vec4<f32>, #{SL2R_TUBE_VECS}>,
+    // Per tube: its base point q (xyz) and radius; its colour (rgb) and cosh(radius). Then
+    // per ball: its centre's base point (xyz) and radius; its e (xyz) and cosh(radius); its
+    // colour (rgb) and sinh(radius).
+    sl2r_objects: array<vec4<f32>, #{SL2R_OBJECT_VECS}>,
 #endif
 #ifdef WALLS
     // Per face: the covector scaled to a unit normal (N̂·X̂ = S(signed distance)).

@@ -4,7 +4,10 @@
 // (one formula for hypercycles, horocycles and circles). A side n·p ≤ 0 and a fibre tube
 // ⟨p, q⟩ ≥ −cosh r are both met where n·p(t) + c crosses 0, a quadratic in
 // τ = tanh(ωt/2)/(ω/2), polished by Newton's method. The sides' covectors, pairings (3×3 in
-// a mat4, with what rounding left out) and partners are the face arrays; the tubes follow.
+// a mat4, with what rounding left out) and partners are the face arrays; the tubes follow,
+// then (SL2R_BALLS) the metric balls: the distance by the inverse exponential map (one
+// unknown γ, the logarithm of SO(2,1) in closed form, scanned and refined by the Illinois
+// method), safe steps by it and by its root-free floor, Newton's steps near the sphere.
 #define_import_path curved_spaces::sl2r
 
 #import curved_spaces::layout::{space}
@@ -213,10 +216,235 @@ fn sl2r_paired(face: u32, v: vec3<f32>) -> vec3<f32> {
     return (space.pairings[face] * x + space.pairings_lo[face] * x).xyz;
 }
 
+#ifdef SL2R_BALLS
+// Beyond this gap over the radius the distance's floor alone gives the step.
+const SL2R_BALL_FAR: f32 = 0.5;
+const SL2R_SCAN_STEP: f32 = 0.125;
+
+// A logarithm (x, y, z) of exp(xB₁ + yB₂ + zR), φ = z + γ there, and whether it exists.
+struct Sl2rLog {
+    u: vec3<f32>,
+    f: f32,
+    ok: bool,
+}
+
+// log(G·exp(−2γR)) on the principal branch (G by its rows) and φ(γ).
+fn sl2r_phi(g0: vec3<f32>, g1: vec3<f32>, g2: vec3<f32>, gamma: f32) -> Sl2rLog {
+    let co = cos(2.0 * gamma);
+    let si = sin(2.0 * gamma);
+    let h0 = vec3<f32>(g0.x * co - g0.y * si, g0.x * si + g0.y * co, g0.z);
+    let h1 = vec3<f32>(g1.x * co - g1.y * si, g1.x * si + g1.y * co, g1.z);
+    let h2 = vec3<f32>(g2.x * co - g2.y * si, g2.x * si + g2.y * co, g2.z);
+    // (H − H⁻¹)/2 = S·U with H⁻¹ = J Hᵀ J; N = S²ω², C = (tr H − 1)/2.
+    let x = 0.5 * (h0.z + h2.x);
+    let y = 0.5 * (h1.z + h2.y);
+    let z = 0.5 * (h1.x - h0.y);
+    let n = x * x + y * y - z * z;
+    let c = 0.5 * (h0.x + h1.y + h2.z - 1.0);
+    var s = 1.0;
+    if abs(n) < 1e-2 && c > 0.0 {
+        s = 1.0 / (1.0 + n * (-1.0 / 6.0 + n * (3.0 / 40.0 + n * (-5.0 / 112.0 + n * (35.0 / 1152.0)))));
+    } else if n > 0.0 {
+        if c < 0.999 {
+            return Sl2rLog(vec3<f32>(0.0), 0.0, false);
+        }
+        let u = sqrt(n);
+        s = u / asinh(u);
+    } else {
+        let u = sqrt(-n);
+        if u < 1e-20 {
+            return Sl2rLog(vec3<f32>(0.0), 0.0, false);
+        }
+        s = u / atan2(u, c);
+    }
+    let l = vec3<f32>(x, y, z) / s;
+    return Sl2rLog(l, l.z + gamma, true);
+}
+
+// The shortest geodesic from the frame (ec, fc, pc) to the frame of `at` shorter than
+// `bound`: (its length, its unit start velocity), or a length below 0 where there is none.
+fn sl2r_shortest(ec: vec3<f32>, fc: vec3<f32>, pc: vec3<f32>, at: Sl2rRay, bound: f32) -> vec4<f32> {
+    // G = F₀⁻¹F₁: G[i][j] = sᵢ⟨F₀ᵢ, F₁ⱼ⟩, s = (1, 1, −1).
+    let g0 = vec3<f32>(sl2r_lorentz(ec, at.e), sl2r_lorentz(ec, at.f), sl2r_lorentz(ec, at.p));
+    let g1 = vec3<f32>(sl2r_lorentz(fc, at.e), sl2r_lorentz(fc, at.f), sl2r_lorentz(fc, at.p));
+    let g2 = -vec3<f32>(sl2r_lorentz(pc, at.e), sl2r_lorentz(pc, at.f), sl2r_lorentz(pc, at.p));
+    var best = vec4<f32>(-1.0, 0.0, 0.0, 0.0);
+    // The secant method from the principal guess first: a geodesic shorter than the
+    // injectivity radius π is the only one that short, so a root it finds below 3 is the
+    // answer.
+    let principal = sl2r_phi(g0, g1, g2, 0.0);
+    if principal.ok {
+        var ga = principal.u.z;
+        var a0 = sl2r_phi(g0, g1, g2, ga);
+        var gb = ga + a0.f;
+        var b0 = sl2r_phi(g0, g1, g2, gb);
+        var settled = false;
+        for (var i = 0u; i < 10u; i += 1u) {
+            if !(a0.ok && b0.ok) {
+                break;
+            }
+            if b0.f == 0.0 || abs(gb - ga) <= 1e-6 * (1.0 + abs(gb)) {
+                settled = true;
+                break;
+            }
+            if b0.f == a0.f {
+                break;
+            }
+            let gc = gb - b0.f * (gb - ga) / (b0.f - a0.f);
+            ga = gb;
+            a0 = b0;
+            gb = gc;
+            b0 = sl2r_phi(g0, g1, g2, gb);
+        }
+        if settled && b0.ok && abs(b0.f) < 1e-4 {
+            let len = length(vec3<f32>(b0.u.x, b0.u.y, gb));
+            if len < 3.0 {
+                if len < bound {
+                    best = vec4<f32>(len, vec3<f32>(b0.u.x, b0.u.y, gb) / max(len, 1e-30));
+                }
+                return best;
+            }
+        }
+    }
+    var reach = bound;
+    let zero = sl2r_phi(g0, g1, g2, 0.0);
+    for (var side = 0u; side < 2u; side += 1u) {
+        let sign = select(1.0, -1.0, side == 1u);
+        var a = 0.0;
+        var fa = zero.f;
+        var last_ok = zero.ok;
+        for (var k = 1u; k < 12u; k += 1u) {
+            let gamma = sign * f32(k) * SL2R_SCAN_STEP;
+            if abs(gamma) - SL2R_SCAN_STEP >= reach {
+                break;
+            }
+            let here = sl2r_phi(g0, g1, g2, gamma);
+            if last_ok && here.ok && (fa < 0.0) != (here.f < 0.0) && abs(fa - here.f) < SL2R_PI {
+                // The Illinois method on [a, b].
+                var lo = a;
+                var flo = fa;
+                var b = gamma;
+                var fb = here.f;
+                var u = here.u;
+                for (var i = 0u; i < 24u; i += 1u) {
+                    if fb == 0.0 || abs(b - lo) <= 1e-6 * (1.0 + abs(b)) {
+                        break;
+                    }
+                    var m = (lo * fb - b * flo) / (fb - flo);
+                    if !(m > min(lo, b) && m < max(lo, b)) {
+                        m = 0.5 * (lo + b);
+                    }
+                    let r = sl2r_phi(g0, g1, g2, m);
+                    if !r.ok {
+                        break;
+                    }
+                    if (r.f < 0.0) != (fb < 0.0) {
+                        lo = b;
+                        flo = fb;
+                    } else {
+                        flo = 0.5 * flo;
+                    }
+                    b = m;
+                    fb = r.f;
+                    u = r.u;
+                }
+                let len = length(vec3<f32>(u.x, u.y, b));
+                if len < reach {
+                    reach = len;
+                    best = vec4<f32>(len, vec3<f32>(u.x, u.y, b) / max(len, 1e-30));
+                }
+            }
+            a = gamma;
+            fa = here.f;
+            last_ok = here.ok;
+        }
+    }
+    return best;
+}
+
+// A floor of the distance from the frame (ec, fc, pc) to `at`: the base distance, and the
+// turn of e against fc carried along the base geodesic (|ψ| ≤ L + L²/π).
+fn sl2r_floor(ec: vec3<f32>, pc: vec3<f32>, at: Sl2rRay) -> f32 {
+    let d = at.p - pc;
+    let rho = 2.0 * asinh(0.5 * sqrt(max(sl2r_lorentz(d, d), 0.0)));
+    let k = sl2r_lorentz(at.p, ec) / (1.0 - sl2r_lorentz(pc, at.p));
+    let g = ec + k * (pc + at.p);
+    let psi = atan2(abs(sl2r_lorentz(g, at.f)), sl2r_lorentz(g, at.e));
+    return max(rho, 2.0 * psi / (1.0 + sqrt(1.0 + 4.0 * psi / SL2R_PI)));
+}
+
+// Ball j's gap d − r at `at` and the rate along at's velocity (2, no cosine, where only a
+// floor is known).
+fn sl2r_ball_gap(base: u32, at: Sl2rRay) -> vec2<f32> {
+    let pc = space.sl2r_objects[base].xyz;
+    let radius = space.sl2r_objects[base].w;
+    let ec = space.sl2r_objects[base + 1u].xyz;
+    let fl = sl2r_floor(ec, pc, at);
+    if fl > radius + SL2R_BALL_FAR {
+        return vec2<f32>(fl - radius, 2.0);
+    }
+    let fc = sl2r_perp(pc, ec);
+    let geo = sl2r_shortest(ec, fc, pc, at, radius + SL2R_BALL_FAR);
+    if geo.x < 0.0 {
+        return vec2<f32>(max(fl - radius, SL2R_BALL_FAR), 2.0);
+    }
+    let n = sl2r_flow(Sl2rRay(ec, fc, pc, geo.yzw), geo.x).v;
+    return vec2<f32>(geo.x - radius, dot(n, at.v));
+}
+
+// The first t in [0, t_max] at which r comes within ball j's radius (SL2R_NONE: never):
+// safe steps by the floor's gap far away, Newton's steps near (safe by convexity).
+fn sl2r_ball_hit(base: u32, r: Sl2rRay, t_max: f32) -> f32 {
+    var t = 0.0;
+    for (var i = 0u; i < 64u; i += 1u) {
+        // The segment's start is the ray itself: no flow (most balls end at the first step).
+        var at = r;
+        if i > 0u {
+            at = sl2r_flow(r, t);
+        }
+        let g = sl2r_ball_gap(base, at);
+        if g.x <= 2e-5 * (1.0 + t) {
+            return t;
+        }
+        // The distance is convex below π (the curvature is at most ¼): Newton's steps stay
+        // before the root, and moving away at d < π there is no hit before another
+        // (π − d) + (π − r). Where only the floor is known (g.y = 2), its gap is safe.
+        var step = g.x;
+        if g.y >= 0.0 && g.y <= 1.0 {
+            step = 2.0 * SL2R_PI - g.x - 2.0 * space.sl2r_objects[base].w;
+        } else if g.y < 0.0 {
+            step = g.x / -g.y;
+        }
+        t += step;
+        if t > t_max {
+            return SL2R_NONE;
+        }
+    }
+    return SL2R_NONE;
+}
+
+// The colour of the ball at `base` met by r at t, lit from the eye.
+fn sl2r_shade_ball(base: u32, r: Sl2rRay, t: f32) -> vec3<f32> {
+    let at = sl2r_flow(r, t);
+    let pc = space.sl2r_objects[base].xyz;
+    let radius = space.sl2r_objects[base].w;
+    let ec = space.sl2r_objects[base + 1u].xyz;
+    let fc = sl2r_perp(pc, ec);
+    let geo = sl2r_shortest(ec, fc, pc, at, radius + SL2R_BALL_FAR);
+    var facing = 1.0;
+    if geo.x >= 0.0 {
+        let n = sl2r_flow(Sl2rRay(ec, fc, pc, geo.yzw), geo.x).v;
+        facing = max(-dot(n, at.v), 0.0);
+    }
+    let ambient = space.shading.fog.w;
+    return space.sl2r_objects[base + 2u].rgb * (ambient + (1.0 - ambient) * facing);
+}
+#endif
+
 // The colour of tube `j` met by r at t, lit from the eye.
 fn sl2r_shade(j: u32, r: Sl2rRay, t: f32) -> vec3<f32> {
     let at = sl2r_flow(r, t);
-    let q = space.sl2r_tubes[2u * j].xyz;
+    let q = space.sl2r_objects[2u * j].xyz;
     let u = -(q + sl2r_lorentz(q, at.p) * at.p);
     let len = sqrt(max(sl2r_lorentz(u, u), 0.0));
     var facing = 1.0;
@@ -225,7 +453,7 @@ fn sl2r_shade(j: u32, r: Sl2rRay, t: f32) -> vec3<f32> {
         facing = max(-dot(normal, at.v), 0.0);
     }
     let ambient = space.shading.fog.w;
-    return space.sl2r_tubes[2u * j + 1u].rgb * (ambient + (1.0 - ambient) * facing);
+    return space.sl2r_objects[2u * j + 1u].rgb * (ambient + (1.0 - ambient) * facing);
 }
 
 // The colour seen from the eye frame f (the viewer's axes as body vectors with e in their
@@ -261,15 +489,47 @@ fn sl2r_eye_colour(frame: mat4x4<f32>, px: f32, py: f32) -> vec3<f32> {
         var hit_t = 1e30;
         var hit = 0xffffffffu;
         for (var j = 0u; j < u32(space.sl2r.x); j += 1u) {
-            let q = space.sl2r_tubes[2u * j];
-            let t = sl2r_crossing(r, vec3<f32>(q.x, q.y, -q.z), space.sl2r_tubes[2u * j + 1u].w);
+            let q = space.sl2r_objects[2u * j];
+            let t = sl2r_crossing(r, vec3<f32>(q.x, q.y, -q.z), space.sl2r_objects[2u * j + 1u].w);
             if t >= 0.0 && t <= within && t < hit_t {
                 hit_t = t;
                 hit = j;
             }
         }
+        var hit_ball = false;
+#ifdef SL2R_BALLS
+        let balls_at = 2u * u32(space.sl2r.x);
+        // The base point moves at most `reach` in H², and the distance is at least the base
+        // distance: a ball whose centre's base point is farther than reach + r is passed by
+        // one Lorentz product.
+        let reach = min(hit_t, within);
+        let cosh_reach = cosh(reach);
+        let sinh_reach = sinh(reach);
+        for (var j = 0u; j < u32(space.sl2r.y); j += 1u) {
+            let centre = space.sl2r_objects[balls_at + 3u * j];
+            // cosh(reach + r) by the sum formula (cosh r and sinh r are packed with the ball).
+            let far = cosh_reach * space.sl2r_objects[balls_at + 3u * j + 1u].w
+                + sinh_reach * space.sl2r_objects[balls_at + 3u * j + 2u].w;
+            if -sl2r_lorentz(r.p, centre.xyz) > far {
+                continue;
+            }
+            let t = sl2r_ball_hit(balls_at + 3u * j, r, reach);
+            if t >= 0.0 && t < hit_t {
+                hit_t = t;
+                hit = balls_at + 3u * j;
+                hit_ball = true;
+            }
+        }
+#endif
         if hit != 0xffffffffu {
-            var surface = sl2r_shade(hit, r, hit_t);
+            var surface = vec3<f32>(0.0);
+            if hit_ball {
+#ifdef SL2R_BALLS
+                surface = sl2r_shade_ball(hit, r, hit_t);
+#endif
+            } else {
+                surface = sl2r_shade(hit, r, hit_t);
+            }
 #ifdef COLOUR_BY
             let unturned = mat4x4<f32>(
                 vec4<f32>(1.0, 0.0, 0.0, 0.0),

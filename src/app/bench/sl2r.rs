@@ -66,7 +66,7 @@ impl BenchedFamily for Sl2rBench {
     }
 
     fn objects(&self) -> usize {
-        self.scene.tubes.len()
+        self.scene.tubes.len() + self.scene.balls.len()
     }
 
     fn camera(&self) -> (DMat4, f64) {

@@ -3,19 +3,26 @@
 //! ball's outward normal there.
 //!
 //! Along a unit-speed geodesic `γ`, `f(t) = d(γ(t), c) − r` changes at rate at most 1 (the
-//! distance is 1-Lipschitz), so no root of `f` lies before `t + f(t)`: steps of `f(t)` are
-//! safe and approach the first root from outside (far from the ball the root-free floor of
-//! the distance, [`distance_floor`], gives the step). Once a Newton step from there lands
-//! inside the ball, the root is bracketed with no other before it, and bisection
-//! safeguarding Newton's steps finds it to the last bit (the rate `f′` is the cosine between
-//! the ray and the ball's normal). A ray that only grazes the ball is a miss where the safe
-//! steps shrink below the precision without entering. Radii are at most
+//! distance is 1-Lipschitz), so no root of `f` lies before `t + f(t)`: far from the ball
+//! (where only the root-free floor of the distance is known, [`distance_floor`]) steps of
+//! the floor's gap are safe.
+//!
+//! **Near the ball, Newton's steps are safe.** The sectional curvature is at most ¼, so by
+//! the Hessian comparison the distance to the centre is convex along a geodesic while it is
+//! below `π` (its Hessian is at least `½ cot(d/2)` across the geodesic's direction). So where
+//! the distance is solved (`d < r + ½ < π`) and falls (`f′ < 0`), the tangent line lies below
+//! `f`: Newton's step `−f/f′` lands at or before the first root and never passes it, and it
+//! converges quadratically to a transversal hit, to the last bit. Where it grows (`f′ ≥ 0`)
+//! the ray keeps moving away until it is `π` from the centre, and must come back from there
+//! to reach the ball: no hit before another `(π − d) + (π − r)`. A ray that grazes the ball
+//! (a double root) is met where the gap falls below the precision. Radii are at most
 //! [`MAX_SL2R_BALL_RADIUS`], well inside the injectivity radius of `UT H²` (`π`), where the
 //! shortest geodesic is the one the solver finds.
 
 use super::distance::{Frame, distance_floor, shortest, shortest_within};
 use super::flow::{Sl2rRay, flow};
-use crate::space::roots::{bracketed_root, count_safe_step};
+use crate::space::roots::count_safe_step;
+use std::f64::consts::PI;
 
 /// The largest radius of a ball (half a unit: its distance is then always solved within
 /// the trusted length, with room for the images of the surface group to stay apart).
@@ -76,38 +83,28 @@ fn gap_and_rate(ray: &Sl2rRay<f64>, centre: &Frame, radius: f64, t: f64) -> (f64
 
 /// The first time `t` in `[0, t_max]` at which `ray` (a unit body velocity) meets the
 /// metric ball of `radius` about `centre`; `Some(0)` for a start inside it, `None` for a
-/// miss or a graze (see the module).
+/// miss (see the module).
 #[must_use]
 pub fn ball_hit(ray: &Sl2rRay<f64>, centre: &Frame, radius: f64, t_max: f64) -> Option<f64> {
     let mut t = 0.0;
     for _ in 0..MAX_BALL_STEPS {
         let (gap, rate) = gap_and_rate(ray, centre, radius, t);
-        if gap <= 0.0 {
+        if gap <= 4.0 * f64::EPSILON * (1.0 + t) {
             return Some(t);
         }
-        let closing = rate.filter(|&r| r < 0.0);
-        if gap <= 4.0 * f64::EPSILON * (1.0 + t) {
-            // On the sphere to the last bit: a hit where the ray enters, a graze otherwise.
-            return closing.filter(|&r| r < -1e-6).map(|_| t);
-        }
-        if let Some(rate) = closing {
-            // Newton's step, and twice it (the distance is convex near the sphere, so
-            // Newton's steps from outside stay outside): the first that lands inside
-            // brackets the root.
-            let newton = -gap / rate;
-            for step in [newton, 2.0 * newton] {
-                let guess = t + step;
-                if guess <= t_max && gap_and_rate(ray, centre, radius, guess).0 <= 0.0 {
-                    let f = |s: f64| {
-                        let (g, r) = gap_and_rate(ray, centre, radius, s);
-                        (g, r.unwrap_or(1.0))
-                    };
-                    return Some(bracketed_root(&f, (t, guess), t + gap, |v| v > 0.0));
-                }
+        t += match rate {
+            // Moving away at d = gap + radius < π (see the module).
+            Some(rate) if rate >= 0.0 => 2.0 * PI - (gap + radius) - radius,
+            // Newton's step: safe where the distance is convex.
+            Some(rate) => {
+                crate::space::roots::count_root_iteration();
+                -gap / rate
             }
-        }
-        count_safe_step();
-        t += gap;
+            None => {
+                count_safe_step();
+                gap
+            }
+        };
         if t > t_max {
             return None;
         }

@@ -133,20 +133,71 @@ fn refine(
 /// Most steps of [`refine`].
 const MAX_REFINE_STEPS: usize = 100;
 
+/// Most steps of [`secant`].
+const MAX_SECANT_STEPS: usize = 12;
+
+/// A root of `φ` by the secant method from the principal guess `γ₀ = z(log G)` (`φ′ ≈ −1`
+/// near the identity, so the first step is `γ₀ + φ(γ₀)`), or `None` where it leaves the
+/// branch or does not settle: the quick way in, as a geodesic shorter than `π` is the only
+/// one shorter than `π` ([`shortest_within`]).
+fn secant(g: &[[f64; 3]; 3]) -> Option<(f64, [f64; 3])> {
+    let mut g0 = log(g)?[2];
+    let (mut f0, u0) = phi(g, g0)?;
+    if f0 == 0.0 {
+        return Some((g0, u0));
+    }
+    let mut g1 = g0 + f0;
+    let (mut f1, mut u1) = phi(g, g1)?;
+    for _ in 0..MAX_SECANT_STEPS {
+        crate::space::roots::count_root_iteration();
+        if f1 == 0.0 {
+            return Some((g1, u1));
+        }
+        if f1 == f0 {
+            break;
+        }
+        let g2 = g1 - f1 * (g1 - g0) / (f1 - f0);
+        let (f2, u2) = phi(g, g2)?;
+        let settled = (g2 - g1).abs() <= 4.0 * f64::EPSILON * (1.0 + g2.abs());
+        (g0, f0) = (g1, f1);
+        (g1, f1, u1) = (g2, f2, u2);
+        if settled {
+            return Some((g1, u1));
+        }
+    }
+    (f1.abs() <= 1e-12 * (1.0 + g1.abs())).then_some((g1, u1))
+}
+
 /// The shortest geodesic from the frame `from` to the frame `to` shorter than `bound`
 /// (at most [`TRUSTED_LENGTH`]): its length and unit start velocity in `from`'s body frame,
 /// or `None` where there is none — the distance is then at least `bound`.
 ///
-/// Every geodesic of length `L < π` is a root of `φ` with `|γ| ≤ L`, so the roots with
-/// `|γ| < bound` are all there is to search: `φ` is scanned outwards from `γ = 0` in steps of
-/// [`SCAN_STEP`], each sign change that is no jump of the branch is refined, and the scan
-/// stops once `|γ|` passes the shortest length found.
+/// Below the injectivity radius `π` the exponential map is one to one, so a root of `φ`
+/// whose geodesic is shorter than `π` is the shortest geodesic and the only one that short:
+/// the secant method from the principal guess is tried first, and where it finds such a
+/// root, that is the answer. Otherwise every geodesic of length `L < π` is a root with
+/// `|γ| ≤ L`, so the roots with `|γ| < bound` are all there is to search: `φ` is scanned
+/// outwards from `γ = 0` in steps of [`SCAN_STEP`], each sign change that is no jump of the
+/// branch is refined, and the scan stops once `|γ|` passes the shortest length found.
 #[must_use]
 pub fn shortest_within(from: &Frame, to: &Frame, bound: f64) -> Option<(f64, [f64; 3])> {
     let g = relative(from, to);
     let bound = bound.min(TRUSTED_LENGTH);
     let mut best: Option<(f64, [f64; 3])> = None;
     let length_of = |gamma: f64, u: [f64; 3]| (u[0] * u[0] + u[1] * u[1] + gamma * gamma).sqrt();
+    let unit = |(length, [x, y, gamma]): (f64, [f64; 3])| {
+        if length == 0.0 {
+            (0.0, [0.0, 0.0, 1.0])
+        } else {
+            (length, [x / length, y / length, gamma / length])
+        }
+    };
+    if let Some((gamma, u)) = secant(&g) {
+        let length = length_of(gamma, u);
+        if length < TRUSTED_LENGTH {
+            return (length < bound).then(|| unit((length, [u[0], u[1], gamma])));
+        }
+    }
     let zero = phi(&g, 0.0);
     if let Some((f, u)) = zero
         && f == 0.0
@@ -177,13 +228,7 @@ pub fn shortest_within(from: &Frame, to: &Frame, bound: f64) -> Option<(f64, [f6
             last = here;
         }
     }
-    best.map(|(length, [x, y, gamma])| {
-        if length == 0.0 {
-            (0.0, [0.0, 0.0, 1.0])
-        } else {
-            (length, [x / length, y / length, gamma / length])
-        }
-    })
+    best.map(unit)
 }
 
 /// [`shortest_within`] the trusted length.

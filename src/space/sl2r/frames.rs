@@ -108,6 +108,13 @@ impl UnitTangentSpace {
         best
     }
 
+    /// The ray `r` brought into the cell by the sides' pairings (its base point into the
+    /// polygon, up to rounding), its body velocity kept.
+    #[must_use]
+    pub fn into_cell(&self, r: &Sl2rRay<f64>) -> Sl2rRay<f64> {
+        self.wrap_point(r, 0.0).0
+    }
+
     /// The point `r` brought into the cell by the sides' pairings once it is past a side by
     /// more than `margin`, with the sides crossed.
     fn wrap_point(&self, r: &Sl2rRay<f64>, margin: f64) -> (Sl2rRay<f64>, Vec<usize>) {

@@ -40,12 +40,12 @@
 use super::{
     FibreTube, Sl2rBall, Sl2rCamera, Sl2rParts, Sl2rScene, default_camera, scene_with_parts,
 };
-use crate::space::sl2r::ball::MAX_SL2R_BALL_RADIUS;
 use crate::scene::file::SceneFileError;
 use crate::scene::file_support::{
     colour, failing, fog_keys, load_family_scene, parse_toml, space_key,
 };
 use crate::space::FrameSpace;
+use crate::space::sl2r::ball::MAX_SL2R_BALL_RADIUS;
 use crate::space::sl2r::{Sl2rWalker, UnitTangentSpace, sl2r_space};
 use glam::{DVec3, DVec4};
 use serde::Deserialize;

@@ -26,8 +26,8 @@
 pub mod file;
 
 use crate::space::FrameSpace;
-use crate::space::sl2r::flow::{Sl2rRay, flow, lorentz};
 use crate::space::sl2r::ball::{MAX_SL2R_BALL_RADIUS, ball_hit};
+use crate::space::sl2r::flow::{Sl2rRay, flow, lorentz};
 use crate::space::sl2r::{Sl2rWalker, UnitTangentSpace, first_crossing};
 use crate::space::walk::{CellWalk, NextExit};
 use glam::{DMat4, DVec3, DVec4};
@@ -471,8 +471,9 @@ fn shade(scene: &Sl2rScene, object: Sl2rObject, ray: &Sl2rRay<f64>, t: f64) -> D
             let len = lorentz(u, u).max(0.0).sqrt();
             (len > 0.0).then(|| DVec3::new(lorentz(u, e) / len, lorentz(u, f) / len, 0.0))
         }
-        Sl2rObject::Ball(ball) => crate::space::sl2r::ball::normal(&ball.centre, &at.frame)
-            .map(DVec3::from_array),
+        Sl2rObject::Ball(ball) => {
+            crate::space::sl2r::ball::normal(&ball.centre, &at.frame).map(DVec3::from_array)
+        }
     };
     let facing = normal.map_or(1.0, |n| (-n.dot(DVec3::from_array(at.velocity))).max(0.0));
     object.colour() * (scene.ambient + (1.0 - scene.ambient) * facing)

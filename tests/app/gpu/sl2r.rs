@@ -61,10 +61,22 @@ fn sl2r_spaces_render_on_the_gpu_like_the_cpu_reference() {
         let space = UnitTangentSpace::new(word).unwrap();
         let scene = default_scene(&space);
         let camera = default_camera(&space);
+        // Close to the stack of balls, looking at it by the inverse exponential map.
+        let rho = space.inradius();
+        let angle = 2.0 * std::f64::consts::PI * 2.0 / space.sides().len() as f64;
+        let stack = (0.5 * rho).sinh();
+        let near = Sl2rCamera::looking_at(
+            &space,
+            glam::DVec3::new(-0.2, 0.0, 0.0),
+            glam::DVec3::new(stack * angle.cos(), stack * angle.sin(), 0.4),
+            60.0,
+        )
+        .expect("a view of the stack");
         for (view, camera) in [
             ("default", camera),
             ("up", pitched(camera, 1.2)),
             ("down", pitched(camera, -0.6)),
+            ("balls", near),
         ] {
             let reference = cpu(&space, &scene, &camera, size, StereoSettings::default());
             let gpu = renderer
@@ -135,8 +147,9 @@ fn sl2r_spaces_render_on_the_gpu_like_the_cpu_reference() {
     assert!(failures.is_empty(), "{failures:#?}");
 }
 
-/// The SL2R variant validates for three surfaces' default scenes, in the teaching views and
-/// with no tube at all, and the packer writes exactly the layout naga computes.
+/// The SL2R variant validates for three surfaces' default scenes, in the teaching views,
+/// with balls and no tube and with no object at all, and the packer writes exactly the
+/// layout naga computes.
 #[test]
 fn sl2r_variants_validate_and_match_the_packed_layout() {
     use bevy_curved_spaces::plugin::render::gpu::{GpuScene, VIEW_WORDS};
@@ -152,11 +165,17 @@ fn sl2r_variants_validate_and_match_the_packed_layout() {
             assert_eq!((gpu.words.len() + VIEW_WORDS) * 4, bytes, "{word}");
         }
         scene.tubes.clear();
-        let gpu = GpuScene::sl2r(&space, &scene, 8).expect("packs");
-        assert_eq!(
-            crate::shaders::validate(&gpu.key),
-            (gpu.words.len() + VIEW_WORDS) * 4
-        );
+        for balls in [true, false] {
+            if !balls {
+                scene.balls.clear();
+            }
+            let gpu = GpuScene::sl2r(&space, &scene, 8).expect("packs");
+            assert_eq!(gpu.key.sl2r_balls > 0, balls);
+            assert_eq!(
+                crate::shaders::validate(&gpu.key),
+                (gpu.words.len() + VIEW_WORDS) * 4
+            );
+        }
         assert!(GpuScene::sl2r(&space, &scene, 0).is_err());
     }
 }

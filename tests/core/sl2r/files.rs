@@ -72,6 +72,16 @@ fn what_is_not_written_yet_and_bad_values_are_refused_with_the_line() {
         ),
         (
             "[[object]]\ntype = \"ball\"\nposition = [0, 0]\nradius = 0.1\n",
+            "length",
+            3,
+        ),
+        (
+            "[[object]]\ntype = \"ball\"\nposition = [0, 0, 0]\nradius = 0.7\n",
+            "largest ball radius",
+            3,
+        ),
+        (
+            "[[object]]\ntype = \"globe\"\nposition = [0, 0, 0]\nradius = 0.1\n",
             "unknown variant",
             3,
         ),
@@ -110,4 +120,41 @@ fn what_is_not_written_yet_and_bad_values_are_refused_with_the_line() {
         .expect_err("too many")
         .to_string();
     assert!(e.contains("more than"), "{e}");
+}
+
+/// A ball written near a side comes with its images: each is the written point of the
+/// manifold (moved back by the pairing it came by, its frame — base point and `e` — is the
+/// written frame), and each reaches into the cell.
+#[test]
+fn a_ball_comes_with_its_images_each_the_same_point_of_the_bundle() {
+    use bevy_curved_spaces::space::sl2r::chart_frame;
+    let text =
+        format!("{HEAD}[[object]]\ntype = \"ball\"\nposition = [0.85, 0.2, 2.0]\nradius = 0.3\n");
+    let file = parse_sl2r_scene(&text, "t.toml").expect("a scene");
+    let balls = &file.scene.balls;
+    assert!(balls.len() > 1, "no image through the near side");
+    let written = chart_frame(0.85, 0.2, 2.0);
+    let circum = file.space.circumradius();
+    let mut found_written = false;
+    for b in balls {
+        assert_eq!(b.radius, 0.3);
+        assert!(b.centre[2][2].acosh() <= circum + 0.3 + 1e-9);
+        // Brought into the cell by the pairings, the centre is the written frame.
+        let [e, _, p] = b.centre;
+        let back = file
+            .space
+            .into_cell(&bevy_curved_spaces::space::sl2r::Sl2rRay {
+                frame: b.centre,
+                velocity: [1.0, 0.0, 0.0],
+            })
+            .frame;
+        for (got, want) in [(back[0], written[0]), (back[2], written[2])] {
+            assert!(
+                (0..3).all(|i| (got[i] - want[i]).abs() < 1e-9),
+                "{p:?} {e:?} is no image of the written frame"
+            );
+        }
+        found_written |= (0..3).all(|i| (p[i] - written[2][i]).abs() < 1e-12);
+    }
+    assert!(found_written, "the written ball is not among them");
 }

@@ -88,8 +88,12 @@ pub struct ShaderKey {
     /// An SL̃(2,R) space (shader def `SL2R`; `faces` counts the polygon's sides, the
     /// geometry's formulas unused).
     pub sl2r: bool,
-    /// The fibre tubes of an SL̃(2,R) scene (shader def `SL2R_TUBE_VECS`, two vec4 each).
+    /// The fibre tubes of an SL̃(2,R) scene (two vec4 each in `SL2R_OBJECT_VECS`).
     pub sl2r_tubes: u32,
+    /// The metric balls of an SL̃(2,R) scene (three vec4 each in `SL2R_OBJECT_VECS`, after
+    /// the tubes; shader def `SL2R_BALLS` where there are any, so that a scene without them
+    /// compiles no distance solver).
+    pub sl2r_balls: u32,
 }
 
 /// The vec4s of one Nil object in the uniform (shape, info, colour, its chart box).
@@ -102,6 +106,12 @@ pub const PRODUCT_OBJECT_VEC4S: usize = 6;
 pub const GENERAL_CAPACITY: (u32, u32, u32) = (crate::space::MAX_FACES as u32, 256, 256);
 
 impl ShaderKey {
+    /// The vec4s of an SL̃(2,R) scene's objects: two a tube, three a ball (at least two).
+    #[must_use]
+    pub fn sl2r_object_vecs(&self) -> u32 {
+        (2 * self.sl2r_tubes + 3 * self.sl2r_balls).max(2)
+    }
+
     /// The key of an empty scene in `geometry` (no faces, objects or lights): a start for
     /// struct-update syntax.
     #[must_use]
@@ -139,6 +149,7 @@ impl ShaderKey {
             nil_shadows: false,
             sl2r: false,
             sl2r_tubes: 0,
+            sl2r_balls: 0,
         }
     }
 
@@ -198,9 +209,12 @@ impl ShaderKey {
         if self.sl2r {
             defs.push("SL2R".into());
             defs.push(ShaderDefVal::UInt(
-                "SL2R_TUBE_VECS".into(),
-                2 * self.sl2r_tubes.max(1),
+                "SL2R_OBJECT_VECS".into(),
+                self.sl2r_object_vecs(),
             ));
+            if self.sl2r_balls > 0 {
+                defs.push("SL2R_BALLS".into());
+            }
         }
         if self.straightforward {
             defs.push("STRAIGHTFORWARD".into());
@@ -360,7 +374,7 @@ impl ShaderKey {
                 0
             }
             + if self.sl2r {
-                (1 + 2 * count(self.sl2r_tubes.max(1))) * vec4
+                (1 + count(self.sl2r_object_vecs())) * vec4
             } else {
                 0
             }

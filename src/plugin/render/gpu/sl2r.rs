@@ -1,7 +1,8 @@
 //! An SL̃(2,R) space and its scene packed for the WGSL tracer's `SL2R` variant
 //! (`shaders/sl2r.wgsl`): the shading, the polygon's sides as the face arrays (covectors,
 //! 3×3 pairings in a mat4 with what rounding to f32 left out, partners), then the tubes
-//! (base point and radius; colour and `cosh` of the radius).
+//! (base point and radius; colour and `cosh` of the radius) and the balls (the centre's
+//! base point and radius; its `e` and `cosh` of the radius; colour and `sinh` of the radius).
 
 use super::VIEW_WORDS;
 use super::{DataSources, GpuScene, GpuSceneError, MAX_UNIFORM_BYTES, ShaderKey};
@@ -33,6 +34,7 @@ impl GpuScene {
         let key = ShaderKey {
             sl2r: true,
             sl2r_tubes: scene.tubes.len() as u32,
+            sl2r_balls: scene.balls.len() as u32,
             faces: sides.len() as u32,
             colour_by: scene.colour_by.index(),
             ..ShaderKey::empty(Geometry::Hyperbolic)
@@ -43,7 +45,7 @@ impl GpuScene {
                 bytes,
                 limit: MAX_UNIFORM_BYTES,
                 faces: sides.len() as u32,
-                objects: scene.tubes.len(),
+                objects: scene.tubes.len() + scene.balls.len(),
                 lights: 0,
             });
         }
@@ -79,12 +81,23 @@ impl GpuScene {
         let mut partners: Vec<u32> = sides.iter().map(|s| s.partner as u32).collect();
         partners.resize(4 * sides.len().div_ceil(4), 0);
         out.words.extend(partners);
-        out.push(&vec4(DVec4::new(scene.tubes.len() as f64, 0.0, 0.0, 0.0)));
+        out.push(&vec4(DVec4::new(
+            scene.tubes.len() as f64,
+            scene.balls.len() as f64,
+            0.0,
+            0.0,
+        )));
         for t in &scene.tubes {
             out.push(&vec4(DVec4::new(t.base[0], t.base[1], t.base[2], t.radius)));
             out.push(&colour(t.colour, t.radius.cosh()));
         }
-        if scene.tubes.is_empty() {
+        for b in &scene.balls {
+            let [e, _, p] = b.centre;
+            out.push(&vec4(DVec4::new(p[0], p[1], p[2], b.radius)));
+            out.push(&vec4(DVec4::new(e[0], e[1], e[2], b.radius.cosh())));
+            out.push(&colour(b.colour, b.radius.sinh()));
+        }
+        if scene.tubes.is_empty() && scene.balls.is_empty() {
             out.push(&[[0.0f32; 4]; 2]);
         }
         let words = out.words;
