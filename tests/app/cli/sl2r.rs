@@ -140,7 +140,6 @@ fn words_and_commands_it_cannot_take_are_refused_with_the_reason() {
     for extra in [
         &["--walls", "0.5"][..],
         &["--colour-by", "holonomy"],
-        &["--eye", "0.1,0,0", "--look-at", "0,0,0"],
         &["--time", "1"],
     ] {
         let mut args = vec!["render", "unit-tangent-bitorus", "--cpu", "--size", "16x9"];
@@ -295,4 +294,59 @@ fn the_teaching_views_tint_the_copies() {
     assert_ne!(plain, crossings);
     assert_ne!(plain, face);
     assert_ne!(crossings, face);
+}
+
+/// `--eye x,y,θ --look-at x,y,θ` places the camera and turns it along the shortest geodesic
+/// to the point (the ball stack, where the picture is the stack's orange); a point too far
+/// for the inverse exponential map and a point on the eye are refused with the reason.
+#[test]
+fn render_looks_at_a_point_by_the_inverse_exponential_map() {
+    let dir = temp_dir("sl2r-look-at");
+    let out = dir.join("stack.png");
+    // The stack's middle ball: half the inradius (1.5286) towards side 2, e at angle 0.
+    let y = (0.5f64 * 1.528_570_919_480_998_2).sinh();
+    let target = format!("0,{y},0");
+    let run_out = run(&[
+        "render",
+        "unit-tangent-bitorus",
+        "--cpu",
+        "--size",
+        "32x18",
+        "--eye",
+        "-0.2,0,0",
+        "--look-at",
+        &target,
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(
+        run_out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run_out.stderr)
+    );
+    let image = image::open(&out).expect("a PNG").to_rgb8();
+    let [r, g, b] = image.get_pixel(16, 9).0;
+    assert!(
+        r > g && g > b && r > 120,
+        "the centre of the view is not the orange ball: {r},{g},{b}"
+    );
+    for (look_at, says) in [
+        ("10,10,0", "injectivity radius"),
+        ("-0.2,0,0", "own position"),
+    ] {
+        fails_with(
+            &[
+                "render",
+                "unit-tangent-bitorus",
+                "--cpu",
+                "--size",
+                "16x9",
+                "--eye",
+                "-0.2,0,0",
+                "--look-at",
+                look_at,
+            ],
+            says,
+        );
+    }
 }

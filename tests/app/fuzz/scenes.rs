@@ -142,6 +142,12 @@ fn sl2r_outcome(text: &str) -> bool {
                 s.tubes.iter().all(|t| t.base.iter().all(|x| x.is_finite())
                     && t.radius.is_finite()
                     && t.colour.is_finite())
+                    && s.balls
+                        .iter()
+                        .all(|b| b.centre.iter().flatten().all(|x| x.is_finite())
+                            && b.radius > 0.0
+                            && b.radius <= 0.5
+                            && b.colour.is_finite())
                     && s.fog_distance.is_finite()
                     && file.start.frame.is_finite(),
                 "a non-finite SL̃(2,R) scene from:\n{text}"
