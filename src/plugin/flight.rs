@@ -32,6 +32,9 @@ pub type ProductFlightReplay = FlightReplay<crate::trace::product::flight::Produ
 /// A replay of a Nil flight.
 pub type NilFlightReplay = FlightReplay<crate::trace::nil::flight::NilFlight>;
 
+/// The replay of an SL̃(2,R) flight.
+pub type Sl2rFlightReplay = FlightReplay<crate::trace::sl2r::flight::Sl2rFlight>;
+
 impl<F: CoverFlight> FlightReplay<F> {
     /// A replay of `flight` from the next frame on.
     #[must_use]

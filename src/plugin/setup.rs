@@ -149,6 +149,9 @@ impl Plugin for CurvedSpacesPlugin {
                             crate::trace::product::flight::ProductFlight,
                         >,
                         crate::plugin::flight::replay_flight::<crate::trace::nil::flight::NilFlight>,
+                        crate::plugin::flight::replay_flight::<
+                            crate::trace::sl2r::flight::Sl2rFlight,
+                        >,
                     ),
                     crate::plugin::flight::record_flight,
                 )

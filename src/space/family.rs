@@ -183,7 +183,10 @@ impl Family {
             }
             (
                 Family::Sl2r,
-                Feature::Pictures | Feature::ReferencePictures | Feature::TeachingViews,
+                Feature::Pictures
+                | Feature::ReferencePictures
+                | Feature::TeachingViews
+                | Feature::Flights,
             ) => return Ok(()),
             (Family::Sl2r, Feature::HolonomyView) => {
                 "the holonomy view is not written for SL̃(2,R) yet; `--colour-by crossings` or \
@@ -198,8 +201,9 @@ impl Family {
                  Dirichlet domains of generator files"
             }
             (Family::Sl2r, _) => {
-                "not written for the SL̃(2,R) family yet (it draws its fibre tubes and walks \
-                 exactly: `trace`, `info`, `list`, `render`, `walk`)"
+                "not written for the SL̃(2,R) family yet (it draws its fibre tubes and metric \
+                 balls and walks exactly: `trace`, `info`, `list`, `render`, `walk`, `flight`, \
+                 `walk --replay`, `bench`)"
             }
             (Family::Product, Feature::SceneParts) => {
                 "a product scene file's `edges` and `centre_ball` choose the parts"

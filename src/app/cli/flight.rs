@@ -46,13 +46,7 @@ pub(super) fn flight(args: &FlightArgs) -> Result<(), String> {
         Choice::Constant(chosen) => chosen,
         Choice::Product(product) => return flight_product(args, &name, &file, product),
         Choice::Nil(chosen) => return flight_nil(args, &name, &file, chosen),
-        Choice::Sl2r(chosen) => {
-            return Err(super::spaces::refusal(
-                bevy_curved_spaces::space::Family::Sl2r,
-                chosen.space.name(),
-                bevy_curved_spaces::space::Feature::Flights,
-            ));
-        }
+        Choice::Sl2r(chosen) => return flight_sl2r(args, &name, &file, chosen),
     };
     let space = &chosen.space;
     let flight = Flight::new(space, &file).map_err(|e| format!("{name}: {e}"))?;
@@ -388,6 +382,78 @@ fn flight_nil(
                 }
                 Some(r) => r
                     .render_nil(
+                        space,
+                        &scene,
+                        &camera,
+                        args.size,
+                        gpu_budget,
+                        Default::default(),
+                    )
+                    .map_err(|e| format!("frame {n}: {e}"))?,
+            };
+            Ok(image)
+        },
+    )
+}
+
+/// `flight` in an SL̃(2,R) space: its default scene or its scene file's along the flight,
+/// with the f64 CPU reference (`--cpu`) or on the GPU.
+fn flight_sl2r(
+    args: &FlightArgs,
+    name: &str,
+    file: &bevy_curved_spaces::scene::flight::FlightFile,
+    chosen: super::render::Sl2rChoice,
+) -> Result<(), String> {
+    use bevy_curved_spaces::space::{Family, Feature};
+    use bevy_curved_spaces::trace::sl2r::flight::Sl2rFlight;
+    use bevy_curved_spaces::trace::sl2r::render_sl2r_view;
+    use bevy_curved_spaces::view::ViewLayout;
+    let space = &*chosen.space;
+    let refuse = |feature| super::spaces::require(Family::Sl2r, space.name(), feature);
+    if args.colour_by == super::ColourByArg::Holonomy {
+        refuse(Feature::HolonomyView)?;
+    }
+    if args.walls.walls.is_some() {
+        refuse(Feature::Walls)?;
+    }
+    if args.light.any() {
+        refuse(Feature::LampFluence)?;
+    }
+    let flight = Sl2rFlight::new(file).map_err(|e| format!("{name}: {e}"))?;
+    let total = flight.frame_count(args.fps);
+    let (first, last, todo) = frames_to_do(args, total)?;
+    let mut scene = chosen.scene;
+    scene.colour_by = args.colour_by.into();
+    let budget = args
+        .crossings
+        .unwrap_or(bevy_curved_spaces::plugin::sl2r::DEFAULT_SL2R_BUDGET as usize);
+    let gpu_budget = if args.cpu {
+        0
+    } else {
+        super::render::gpu_budget(budget)?
+    };
+    render_frames(
+        args,
+        &format!("flight {name}: {} (SL̃(2,R))", space.name()),
+        (total, flight.duration()),
+        (first, last, &todo),
+        budget,
+        |n, t, renderer| {
+            let camera = flight.camera(space, t);
+            let image = match renderer {
+                None => {
+                    let layout = ViewLayout::new(
+                        Default::default(),
+                        false,
+                        [camera.frame; 2],
+                        camera.fov_y_degrees,
+                        args.size.0,
+                        args.size.1,
+                    );
+                    render_sl2r_view(space, &scene, &layout, budget)
+                }
+                Some(r) => r
+                    .render_sl2r(
                         space,
                         &scene,
                         &camera,

@@ -44,22 +44,6 @@ pub(super) fn constant_for(space: &AnySpace, feature: Feature) -> Result<&Space,
 
 /// `Ok(())` where the family does `feature`, else its reason as the command line says it,
 /// naming the space.
-/// Why `family` cannot do `feature`, as [`require`] says it (a fallback message where the
-/// table allows it, for a caller that refuses it on its own account).
-pub(super) fn refusal(
-    family: bevy_curved_spaces::space::Family,
-    name: &str,
-    feature: Feature,
-) -> String {
-    require(family, name, feature).err().unwrap_or_else(|| {
-        format!(
-            "{name}: {} is not written for the {} spaces here",
-            feature.name(),
-            family.name()
-        )
-    })
-}
-
 pub(super) fn require(
     family: bevy_curved_spaces::space::Family,
     name: &str,

@@ -130,7 +130,15 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
     };
     let chosen = match choose(&args.space, args.scene.as_deref(), args.fog)? {
         Choice::Constant(chosen) => chosen,
-        Choice::Sl2r(chosen) => return super::walk_sl2r::walk_sl2r(args, chosen),
+        Choice::Sl2r(chosen) => {
+            let flight = match &replay {
+                Some(file) => Some(bevy_curved_spaces::trace::sl2r::flight::Sl2rFlight::new(
+                    file,
+                )?),
+                None => None,
+            };
+            return super::walk_sl2r::walk_sl2r(args, chosen, flight);
+        }
         Choice::Nil(chosen) => {
             let flight = match &replay {
                 Some(file) => Some(bevy_curved_spaces::trace::nil::flight::NilFlight::new(

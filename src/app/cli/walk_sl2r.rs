@@ -1,8 +1,9 @@
 //! `walk` in an SL̃(2,R) space: the plugin draws the unit tangent bundle on the GPU and the
 //! player walks with the fibre up (moving along it turns `e`, which the picture shows as the
 //! world turning round the fibre). Without a display it renders one picture instead, as
-//! `walk` does in every family. What is not written for the family yet (flights, the
-//! headset, lamps, walls) is refused by the one table.
+//! `walk` does in every family. `--replay FILE` flies a flight file's path instead of the
+//! player. What is not written for the family yet (recording, the headset, lamps, walls) is
+//! refused by the one table.
 
 use super::render::{Sl2rChoice, render_command};
 use super::walk::{
@@ -15,7 +16,11 @@ use bevy_curved_spaces::plugin::offscreen::gpu_available;
 use bevy_curved_spaces::space::{AnySpace, Family, Feature};
 use bevy_curved_spaces::{ActiveSpace, CurvedSpaceCamera};
 
-pub(super) fn walk_sl2r(args: &WalkArgs, chosen: Sl2rChoice) -> Result<(), String> {
+pub(super) fn walk_sl2r(
+    args: &WalkArgs,
+    chosen: Sl2rChoice,
+    flight: Option<bevy_curved_spaces::trace::sl2r::flight::Sl2rFlight>,
+) -> Result<(), String> {
     let space = &chosen.space;
     let refuse = |feature| super::spaces::require(Family::Sl2r, space.name(), feature);
     for (asked, feature) in [
@@ -27,7 +32,6 @@ pub(super) fn walk_sl2r(args: &WalkArgs, chosen: Sl2rChoice) -> Result<(), Strin
         (args.view.light.any(), Feature::LampFluence),
         (args.view.walls.walls.is_some(), Feature::Walls),
         (args.xr, Feature::Headset),
-        (args.replay.is_some(), Feature::Flights),
         (args.record.is_some(), Feature::RecordFlight),
     ] {
         if asked {
@@ -69,6 +73,11 @@ pub(super) fn walk_sl2r(args: &WalkArgs, chosen: Sl2rChoice) -> Result<(), Strin
             commands.spawn((Camera3d::default(), CurvedSpaceCamera::default()));
         },
     );
+    if let Some(flight) = flight {
+        app.insert_resource(bevy_curved_spaces::plugin::flight::Sl2rFlightReplay::new(
+            flight, true,
+        ));
+    }
     if let Some(path) = &args.screenshot {
         app.insert_resource(ScreenshotThenExit {
             path: path.clone(),

@@ -201,6 +201,7 @@ pub fn shortest_within(from: &Frame, to: &Frame, bound: f64) -> Option<(f64, [f6
     let zero = phi(&g, 0.0);
     if let Some((f, u)) = zero
         && f == 0.0
+        && length_of(0.0, u) < bound
     {
         best = Some((length_of(0.0, u), [u[0], u[1], 0.0]));
     }

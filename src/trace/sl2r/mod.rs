@@ -24,6 +24,7 @@
 
 #[cfg(feature = "scene-files")]
 pub mod file;
+pub mod flight;
 
 use crate::space::FrameSpace;
 use crate::space::sl2r::ball::{MAX_SL2R_BALL_RADIUS, ball_hit};
@@ -369,30 +370,47 @@ impl Sl2rCamera {
             return Err("the camera looks at its own position: nothing to look towards".into());
         }
         let camera = Self::at(space, eye, fov_y_degrees)?;
-        let forward = DVec3::from_array(v);
-        let up = DVec3::Z - forward * forward.z;
-        let up = if up.length() > 1e-9 {
-            up.normalize()
-        } else {
-            DVec3::X
-        };
-        let back = -forward;
-        let right = up.cross(back);
-        let e = [
-            camera.frame.x_axis.w,
-            camera.frame.y_axis.w,
-            camera.frame.z_axis.w,
-        ];
         Ok(Self {
-            frame: DMat4::from_cols(
-                right.extend(e[0]),
-                up.extend(e[1]),
-                back.extend(e[2]),
-                camera.frame.w_axis,
-            ),
+            frame: looking_along(camera.frame, v),
             fov_y_degrees,
         })
     }
+}
+
+/// The camera frame at `frame`'s point looking along the body direction `forward` (unit),
+/// with the fibre `V` as near up as the view allows (`X` where it looks straight along the
+/// fibre).
+#[must_use]
+pub fn looking_along(frame: DMat4, forward: [f64; 3]) -> DMat4 {
+    let forward = DVec3::from_array(forward);
+    let up = DVec3::Z - forward * forward.z;
+    let up = if up.length() > 1e-9 {
+        up.normalize()
+    } else {
+        DVec3::X
+    };
+    let back = -forward;
+    let right = up.cross(back);
+    DMat4::from_cols(
+        right.extend(frame.x_axis.w),
+        up.extend(frame.y_axis.w),
+        back.extend(frame.z_axis.w),
+        frame.w_axis,
+    )
+}
+
+/// The camera frame (viewer's axes as body vectors with `e` in their fourth entries, the
+/// base point as the position) at the point `(e, e⊥, p)`, looking along `e` with the fibre
+/// up.
+#[must_use]
+pub fn frame_at(point: &[[f64; 3]; 3]) -> DMat4 {
+    let [e, _, p] = *point;
+    looking_along_e(DMat4::from_cols(
+        DVec4::new(1.0, 0.0, 0.0, e[0]),
+        DVec4::new(0.0, 1.0, 0.0, e[1]),
+        DVec4::new(0.0, 0.0, 1.0, e[2]),
+        DVec3::from_array(p).extend(1.0),
+    ))
 }
 
 /// The default camera: seven tenths of the inradius behind the polygon's centre, `e`

@@ -65,6 +65,12 @@ fn the_shortest_geodesic_is_the_one_that_made_the_pair() {
         }
     }
     eprintln!("shortest geodesics found again: worst end {worst:e}");
+    // Beyond the trusted length there is no answer, not a wrong one: a horizontal pair 3.69
+    // apart (the base distance, whose geodesic is the horizontal one: φ(0) = 0 exactly).
+    let a = bevy_curved_spaces::space::sl2r::chart_frame(0.0, 0.0, 0.0);
+    let b = bevy_curved_spaces::space::sl2r::chart_frame(20.0, 0.0, 0.0);
+    assert_eq!(shortest(&a, &b), None);
+    assert!((distance_floor(&a, &b) - 20f64.asinh()).abs() < 1e-12);
 }
 
 /// The floor never exceeds the distance, and on the two extremes it is the distance: the

@@ -158,3 +158,69 @@ fn a_ball_comes_with_its_images_each_the_same_point_of_the_bundle() {
     }
     assert!(found_written, "the written ball is not among them");
 }
+
+/// An SL̃(2,R) flight: between two keys the eye is on the shortest geodesic joining them
+/// (its distances to the two keys add up to theirs), looks along the shortest geodesic to the
+/// target between theirs, and its frames lie in the cell; the first frame is the view
+/// `render --eye --look-at` sets up; keys too far apart for the inverse exponential map are
+/// refused with the reason.
+#[test]
+fn an_sl2r_flight_flies_the_geodesic_between_its_keys() {
+    use bevy_curved_spaces::scene::flight::parse_flight;
+    use bevy_curved_spaces::space::motion::CoverFlight;
+    use bevy_curved_spaces::space::sl2r::chart_frame;
+    use bevy_curved_spaces::space::sl2r::distance::shortest;
+    use bevy_curved_spaces::trace::sl2r::Sl2rCamera;
+    use bevy_curved_spaces::trace::sl2r::flight::Sl2rFlight;
+    let text = "space = \"unit-tangent-bitorus\"\n[[key]]\ntime = 0.0\n\
+                position = [-0.6, 0.0, 0.0]\nlook_at = [0.0, 0.84, 0.0]\n[[key]]\ntime = 2.0\n\
+                position = [2.0, 2.0, 0.5]\nlook_at = [2.6, 2.4, 0.5]\n";
+    let file = parse_flight(text, "f.toml").expect("a flight");
+    let space = bevy_curved_spaces::space::sl2r::sl2r_space("unit-tangent-bitorus")
+        .unwrap()
+        .unwrap();
+    let flight = Sl2rFlight::new(&file).expect("an SL̃(2,R) flight");
+    let a = chart_frame(-0.6, 0.0, 0.0);
+    let b = chart_frame(2.0, 2.0, 0.5);
+    let d = |x: &[[f64; 3]; 3], y: &[[f64; 3]; 3]| shortest(x, y).expect("near").0;
+    let whole = d(&a, &b);
+    let mut crossed_any = false;
+    for i in 0..=20 {
+        let t = 0.1 * f64::from(i);
+        let f = flight.cover_frame(t);
+        let p = [f.w_axis.x, f.w_axis.y, f.w_axis.z];
+        let e = [f.x_axis.w, f.y_axis.w, f.z_axis.w];
+        let frame = [e, bevy_curved_spaces::space::sl2r::flow::perp(p, e), p];
+        let sum = d(&a, &frame) + d(&frame, &b);
+        assert!((sum - whole).abs() < 1e-9, "at {t} s: {sum} against {whole}");
+        let (inside, crossed) = flight.frame_in_cell(&space, t);
+        let q = inside.w_axis;
+        assert!(
+            space
+                .sides()
+                .iter()
+                .all(|s| s.normal.iter().zip([q.x, q.y, q.z]).map(|(n, x)| n.hi * x).sum::<f64>()
+                    <= 1e-9),
+            "at {t} s the frame is outside the polygon"
+        );
+        crossed_any |= !crossed.is_empty();
+    }
+    assert!(crossed_any, "the last key lies beyond a side");
+    let first = Sl2rCamera::looking_at(
+        &space,
+        glam::DVec3::new(-0.6, 0.0, 0.0),
+        glam::DVec3::new(0.0, 0.84, 0.0),
+        70.0,
+    )
+    .expect("a view");
+    let gap = (flight.frame_in_cell(&space, 0.0).0 - first.frame)
+        .to_cols_array()
+        .iter()
+        .fold(0.0_f64, |m, x| m.max(x.abs()));
+    assert!(gap < 1e-12, "the first frame is {gap:e} from the view");
+    let far = "space = \"unit-tangent-bitorus\"\n[[key]]\ntime = 0.0\nposition = [0, 0, 0]\n\
+               look_at = [0.5, 0, 0]\n[[key]]\ntime = 1.0\nposition = [20, 0, 0]\n\
+               look_at = [21, 0, 0]\n";
+    let e = Sl2rFlight::new(&parse_flight(far, "f.toml").unwrap()).expect_err("too far");
+    assert!(e.contains("add keys between"), "{e}");
+}

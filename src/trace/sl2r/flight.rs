@@ -1,0 +1,127 @@
+//! A camera flight in an SL̃(2,R) space: a flight file's keys as chart points `[x, y, θ]` of
+//! `UT H²` (the base point `(x, y, √(1 + x² + y²))` and `e` at angle `θ`, as `render --eye`
+//! and the scene files name them), the camera between two keys on the shortest geodesic
+//! between them (the inverse exponential map, [`shortest`], then the flow), looking along
+//! the shortest geodesic to the point between their targets with the fibre as near up as the
+//! view allows, and brought back into the cell through the sides it passed (the frame's axes
+//! are body vectors, which the surface group keeps).
+//!
+//! The inverse exponential map is solved within [`TRUSTED_LENGTH`] (below the injectivity
+//! radius `π` of `UT H²`), so consecutive keys, and each key's position and target, must lie
+//! within that of each other (add keys between farther ones); between keys, where the target
+//! passes farther than that from the eye, the camera looks along its `e`. The keys' `up` is
+//! not used (the fibre is up).
+
+use crate::scene::flight::FlightFile;
+use crate::space::motion::{CoverFlight, keyed};
+use crate::space::sl2r::distance::{Frame, TRUSTED_LENGTH, shortest};
+use crate::space::sl2r::{Sl2rRay, UnitTangentSpace, chart_frame, flow};
+use glam::{DMat4, DVec3};
+
+/// The farthest a key's base point may lie from the origin in the chart: `√(x² + y²)` at most
+/// 100, about 5.3 in `H²` (the frames are brought into the cell crossing by crossing, in f64).
+pub const MAX_KEY_CHART: f64 = 100.0;
+
+/// A flight through an SL̃(2,R) space: its keys as frames of `UT H²`.
+#[derive(Clone, Debug)]
+pub struct Sl2rFlight {
+    /// Time, position and target of each key.
+    keys: Vec<(f64, Frame, Frame)>,
+    /// Vertical field of view in degrees.
+    pub fov: f64,
+}
+
+/// The frame a fraction `s` of the way along the shortest geodesic from `a` to `b` (`a`
+/// where they are farther apart than the solver reaches: refused when the flight is read).
+fn between(a: Frame, b: Frame, s: f64) -> Frame {
+    match shortest(&a, &b) {
+        Some((length, velocity)) if length > 0.0 => {
+            flow(
+                &Sl2rRay {
+                    frame: a,
+                    velocity,
+                },
+                s * length,
+            )
+            .frame
+        }
+        _ => a,
+    }
+}
+
+/// A key's chart point as a frame, refused where it is not finite.
+fn key_frame(p: DVec3, what: &str) -> Result<Frame, String> {
+    if !p.is_finite() || p.truncate().length() > MAX_KEY_CHART || p.z.abs() > 1e6 {
+        return Err(format!(
+            "{what} {:?} is not a chart point [x, y, θ] with x² + y² ≤ {MAX_KEY_CHART}² (a base point at most about 5.3 from the origin) and |θ| ≤ 10⁶",
+            p.to_array()
+        ));
+    }
+    Ok(chart_frame(p.x, p.y, p.z))
+}
+
+/// Refuses two frames farther apart than the inverse exponential map is solved.
+fn within_reach(a: &Frame, b: &Frame, what: &str) -> Result<(), String> {
+    if shortest(a, b).is_some() {
+        Ok(())
+    } else {
+        Err(format!(
+            "{what} lie {TRUSTED_LENGTH} or more apart: the shortest geodesic between points of \
+             SL̃(2,R) is solved only within the injectivity radius (add keys between)"
+        ))
+    }
+}
+
+impl Sl2rFlight {
+    /// The flight of a file's keys.
+    pub fn new(file: &FlightFile) -> Result<Self, String> {
+        let mut keys: Vec<(f64, Frame, Frame)> = Vec::with_capacity(file.keys.len());
+        for (i, &(time, position, target)) in file.keys.iter().enumerate() {
+            let n = i + 1;
+            let p = key_frame(position, &format!("key {n}: position"))?;
+            let t = key_frame(target, &format!("key {n}: look_at"))?;
+            within_reach(&p, &t, &format!("key {n}'s position and look_at"))?;
+            if let Some(last) = keys.last() {
+                within_reach(&last.1, &p, &format!("keys {} and {n}'s positions", n - 1))?;
+                within_reach(&last.2, &t, &format!("keys {} and {n}'s look_at", n - 1))?;
+            }
+            keys.push((time, p, t));
+        }
+        Ok(Self {
+            keys,
+            fov: file.fov,
+        })
+    }
+
+    /// The camera frame at time `t` in `UT H²` (before wrapping).
+    #[must_use]
+    pub fn cover_frame(&self, t: f64) -> DMat4 {
+        let (p, target) = keyed(&self.keys, t, between);
+        let eye = super::frame_at(&p);
+        match shortest(&p, &target) {
+            Some((length, v)) if length > 0.0 => super::looking_along(eye, v),
+            _ => eye,
+        }
+    }
+
+    /// The camera at time `t` in the cell.
+    #[must_use]
+    pub fn camera(&self, space: &UnitTangentSpace, t: f64) -> super::Sl2rCamera {
+        super::Sl2rCamera {
+            frame: self.frame_in_cell(space, t).0,
+            fov_y_degrees: self.fov,
+        }
+    }
+}
+
+impl CoverFlight for Sl2rFlight {
+    type Space = UnitTangentSpace;
+
+    fn duration(&self) -> f64 {
+        self.keys.last().map_or(0.0, |k| k.0)
+    }
+
+    fn cover_frame(&self, t: f64) -> DMat4 {
+        Sl2rFlight::cover_frame(self, t)
+    }
+}
