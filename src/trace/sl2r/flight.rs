@@ -36,14 +36,7 @@ pub struct Sl2rFlight {
 fn between(a: Frame, b: Frame, s: f64) -> Frame {
     match shortest(&a, &b) {
         Some((length, velocity)) if length > 0.0 => {
-            flow(
-                &Sl2rRay {
-                    frame: a,
-                    velocity,
-                },
-                s * length,
-            )
-            .frame
+            flow(&Sl2rRay { frame: a, velocity }, s * length).frame
         }
         _ => a,
     }

@@ -44,3 +44,23 @@ fn fails_with(args: &[&str], needle: &str) {
 fn temp_dir(name: &str) -> std::path::PathBuf {
     crate::common::scratch_dir(&format!("cli-{name}"))
 }
+
+/// A CPU picture of `args` (a `render` or `flight` command line without its output) as
+/// RGB, written under `dir` as `name`.
+pub(crate) fn cpu_picture(dir: &std::path::Path, name: &str, args: &[&str]) -> image::RgbImage {
+    let out = dir.join(name);
+    let mut all = args.to_vec();
+    all.extend(["--cpu", "--size", "40x24", "--out", out.to_str().unwrap()]);
+    let output = run(&all);
+    assert!(
+        output.status.success(),
+        "{all:?}: {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let png = if args[0] == "flight" {
+        out.join("frame-00001.png")
+    } else {
+        out
+    };
+    image::open(&png).expect("a PNG").to_rgb8()
+}

@@ -125,26 +125,6 @@ fn bad_nil_ids_and_drawing_commands_get_clear_errors() {
     );
 }
 
-/// A CPU picture of `args` (a `render` or `flight` command line without its output) as
-/// RGB, written under `dir` as `name`.
-fn cpu_picture(dir: &std::path::Path, name: &str, args: &[&str]) -> image::RgbImage {
-    let out = dir.join(name);
-    let mut all = args.to_vec();
-    all.extend(["--cpu", "--size", "40x24", "--out", out.to_str().unwrap()]);
-    let output = run(&all);
-    assert!(
-        output.status.success(),
-        "{all:?}: {}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    let png = if args[0] == "flight" {
-        out.join("frame-00001.png")
-    } else {
-        out
-    };
-    image::open(&png).expect("a PNG").to_rgb8()
-}
-
 /// A scene file of a Nil space draws its own objects from its start view: the view aimed at
 /// its ball sees the ball's colour in the middle, and `--eye --look-at` from the same place
 /// draws the same picture as the file's `[start]`.

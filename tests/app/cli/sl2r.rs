@@ -157,18 +157,6 @@ fn words_and_commands_it_cannot_take_are_refused_with_the_reason() {
         ],
         "not in the SL̃(2,R) spaces",
     );
-    let dir = temp_dir("sl2r-flight");
-    let flight = dir.join("f.toml");
-    std::fs::write(
-        &flight,
-        "space = \"unit-tangent-bitorus\"\n[[key]]\ntime = 0.0\nposition = [0, 0, 0]\n\
-         look_at = [1, 0, 0]\n[[key]]\ntime = 1.0\nposition = [0.1, 0, 0]\nlook_at = [1, 0, 0]\n",
-    )
-    .unwrap();
-    fails_with(
-        &["flight", flight.to_str().unwrap(), "--size", "16x9"],
-        "not in the SL̃(2,R) spaces",
-    );
     fails_with(
         &["walk", "unit-tangent-bitorus", "--xr"],
         "not in the SL̃(2,R) spaces",
@@ -349,4 +337,69 @@ fn render_looks_at_a_point_by_the_inverse_exponential_map() {
             says,
         );
     }
+}
+
+/// An SL̃(2,R) flight's first frame is the view from its first key (the same picture as
+/// `render --eye --look-at`), the example flight flies through a side on the GPU's twin (the
+/// CPU here), and keys too far apart, and a recording, are refused with the reason.
+#[test]
+fn flights_fly_through_unit_tangent_bundles() {
+    let dir = temp_dir("sl2r-flight");
+    let flight = dir.join("flight.toml");
+    std::fs::write(
+        &flight,
+        "space = \"unit-tangent-bitorus\"\nfov = 60\n[[key]]\ntime = 0.0\n\
+         position = [-0.6, 0.0, 0.0]\nlook_at = [0.0, 0.84, 0.0]\n[[key]]\ntime = 1.0\n\
+         position = [0.2, 0.5, 0.3]\nlook_at = [0.0, 1.2, 0.5]\n",
+    )
+    .expect("write");
+    let flown = cpu_picture(
+        &dir,
+        "frames",
+        &["flight", flight.to_str().unwrap(), "--fps", "2"],
+    );
+    let rendered = cpu_picture(
+        &dir,
+        "key.png",
+        &[
+            "render",
+            "unit-tangent-bitorus",
+            "--eye",
+            "-0.6,0,0",
+            "--look-at",
+            "0,0.84,0",
+            "--fov",
+            "60",
+        ],
+    );
+    assert_eq!(flown, rendered);
+    assert!(dir.join("frames/frame-00002.png").exists());
+    let example = format!(
+        "{}/assets/flights/unit_tangent_past_the_stack.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let _ = cpu_picture(&dir, "example", &["flight", &example, "--fps", "1"]);
+    assert!(dir.join("example/frame-00004.png").exists());
+    let far = dir.join("far.toml");
+    std::fs::write(
+        &far,
+        "space = \"unit-tangent-bitorus\"\n[[key]]\ntime = 0.0\nposition = [0, 0, 0]\n\
+         look_at = [0.5, 0, 0]\n[[key]]\ntime = 1.0\nposition = [20, 0, 0]\n\
+         look_at = [21, 0, 0]\n",
+    )
+    .expect("write");
+    fails_with(&["flight", far.to_str().unwrap()], "add keys between");
+    fails_with(
+        &["walk", "--replay", far.to_str().unwrap()],
+        "add keys between",
+    );
+    fails_with(
+        &[
+            "walk",
+            "unit-tangent-bitorus",
+            "--record",
+            dir.join("rec.toml").to_str().unwrap(),
+        ],
+        "SL̃(2,R)",
+    );
 }

@@ -3,7 +3,8 @@
 use super::*;
 use bevy_curved_spaces::space::motion::CoverFlight as _;
 
-/// The shipped flight file, and a recorded-style one with `up`, as texts.
+/// The shipped flight files (constant curvature, two products, SL̃(2,R)), and a
+/// recorded-style one with `up`, as texts.
 fn flight_texts() -> Vec<String> {
     let shipped = std::fs::read_to_string(
         manifest().join("assets/flights/seifert_weber_through_a_face.toml"),
@@ -20,6 +21,7 @@ fn flight_texts() -> Vec<String> {
         recorded,
         product("bitorus_through_a_side.toml"),
         product("turned_sphere_up_the_fibre.toml"),
+        product("unit_tangent_past_the_stack.toml"),
     ]
 }
 
@@ -56,6 +58,24 @@ fn flight_outcome(text: &str) {
             );
         }
     }
+    // An SL̃(2,R) flight: the frames stay finite and in the cell.
+    if let Ok(file) = parse_flight(text, "fuzz.toml")
+        && let Some(id) = &file.space
+        && let Some(Ok(space)) = bevy_curved_spaces::space::sl2r::sl2r_space(id)
+        && let Ok(flight) = bevy_curved_spaces::trace::sl2r::flight::Sl2rFlight::new(&file)
+    {
+        for t in [0.0, 0.5 * flight.duration(), flight.duration(), 1e9] {
+            let f = flight.camera(&space, t).frame;
+            assert!(f.is_finite(), "a non-finite frame at {t} s from:\n{text}");
+            let p = f.w_axis;
+            assert!(
+                space.sides().iter().all(|s| {
+                    s.normal[0].hi * p.x + s.normal[1].hi * p.y + s.normal[2].hi * p.z < 1e-6
+                }),
+                "a frame outside the cell at {t} s from:\n{text}"
+            );
+        }
+    }
     let seconds = started.elapsed().as_secs_f64();
     assert!(seconds < 10.0, "{seconds:.1} s for:\n{text}");
 }
@@ -69,7 +89,7 @@ proptest! {
 
     /// A number of a flight file replaced by a hostile one.
     #[test]
-    fn flight_files_with_hostile_numbers(which in 0usize..4, slot in 0usize..64, value in 0usize..HOSTILE.len()) {
+    fn flight_files_with_hostile_numbers(which in 0usize..5, slot in 0usize..64, value in 0usize..HOSTILE.len()) {
         let texts = flight_texts();
         let text = &texts[which];
         let spots = numbers(text);
@@ -79,7 +99,7 @@ proptest! {
 
     /// A flight file cut short, or with random characters inserted.
     #[test]
-    fn flight_files_cut_and_scrambled(which in 0usize..4, cut in 0.0f64..1.0, junk in "[ -~\\n]{0,24}") {
+    fn flight_files_cut_and_scrambled(which in 0usize..5, cut in 0.0f64..1.0, junk in "[ -~\\n]{0,24}") {
         let texts = flight_texts();
         let text = &texts[which];
         let mut at = (cut * text.len() as f64) as usize;

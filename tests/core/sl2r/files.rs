@@ -192,15 +192,20 @@ fn an_sl2r_flight_flies_the_geodesic_between_its_keys() {
         let e = [f.x_axis.w, f.y_axis.w, f.z_axis.w];
         let frame = [e, bevy_curved_spaces::space::sl2r::flow::perp(p, e), p];
         let sum = d(&a, &frame) + d(&frame, &b);
-        assert!((sum - whole).abs() < 1e-9, "at {t} s: {sum} against {whole}");
+        assert!(
+            (sum - whole).abs() < 1e-9,
+            "at {t} s: {sum} against {whole}"
+        );
         let (inside, crossed) = flight.frame_in_cell(&space, t);
         let q = inside.w_axis;
         assert!(
-            space
-                .sides()
+            space.sides().iter().all(|s| s
+                .normal
                 .iter()
-                .all(|s| s.normal.iter().zip([q.x, q.y, q.z]).map(|(n, x)| n.hi * x).sum::<f64>()
-                    <= 1e-9),
+                .zip([q.x, q.y, q.z])
+                .map(|(n, x)| n.hi * x)
+                .sum::<f64>()
+                <= 1e-9),
             "at {t} s the frame is outside the polygon"
         );
         crossed_any |= !crossed.is_empty();
