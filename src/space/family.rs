@@ -186,7 +186,8 @@ impl Family {
                 Feature::Pictures
                 | Feature::ReferencePictures
                 | Feature::TeachingViews
-                | Feature::Flights,
+                | Feature::Flights
+                | Feature::Headset,
             ) => return Ok(()),
             (Family::Sl2r, Feature::HolonomyView) => {
                 "the holonomy view is not written for SL̃(2,R) yet; `--colour-by crossings` or \
@@ -203,7 +204,7 @@ impl Family {
             (Family::Sl2r, _) => {
                 "not written for the SL̃(2,R) family yet (it draws its fibre tubes and metric \
                  balls and walks exactly: `trace`, `info`, `list`, `render`, `walk`, `flight`, \
-                 `walk --replay`, `bench`)"
+                 `walk --replay`, `walk --xr`, `bench`)"
             }
             (Family::Product, Feature::SceneParts) => {
                 "a product scene file's `edges` and `centre_ball` choose the parts"

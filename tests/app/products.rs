@@ -290,7 +290,7 @@ fn the_teaching_views_colour_product_spaces_alike_on_the_cpu_and_the_gpu() {
 
 /// `curved-spaces ARGS` in `dir` with no display (and no OpenXR runtime): it must succeed;
 /// returns what it said.
-fn walk_without_display(dir: &std::path::Path, args: &[&str]) -> String {
+pub(crate) fn walk_without_display(dir: &std::path::Path, args: &[&str]) -> String {
     let out = Command::new(env!("CARGO_BIN_EXE_curved-spaces"))
         .args(args)
         .current_dir(dir)

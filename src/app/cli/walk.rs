@@ -85,7 +85,7 @@ pub(super) fn xr_runtime() -> Result<(), String> {
 /// feature), the headset `session` runs and its result is returned; else this says which is
 /// missing, switches `stereo` to the desktop fallback and returns `None`.
 #[cfg_attr(not(feature = "xr"), allow(unused_variables))]
-fn headset_or_desktop(
+pub(super) fn headset_or_desktop(
     stereo: &mut StereoArgs,
     session: impl FnOnce() -> Result<(), String>,
 ) -> Option<Result<(), String>> {
@@ -386,7 +386,7 @@ pub(super) fn walk_xr(args: &WalkArgs, chosen: &Chosen) -> Result<(), String> {
 /// The headset session of `walk --xr` in `active`, a space of any family: `add_scene` adds
 /// the scene's resources (a product scene file's base scene).
 #[cfg_attr(not(feature = "xr"), allow(unused_variables))]
-fn run_xr(
+pub(super) fn run_xr(
     args: &WalkArgs,
     active: ActiveSpace,
     settings: (

@@ -31,12 +31,27 @@ pub(super) fn walk_sl2r(
         (args.view.changes_parts(), Feature::SceneParts),
         (args.view.light.any(), Feature::LampFluence),
         (args.view.walls.walls.is_some(), Feature::Walls),
-        (args.xr, Feature::Headset),
         (args.record.is_some(), Feature::RecordFlight),
     ] {
         if asked {
             refuse(feature)?;
         }
+    }
+    let mut stereo_args = args.stereo;
+    if args.xr
+        && let Some(done) = super::walk::headset_or_desktop(&mut stereo_args, || {
+            let active = ActiveSpace::new(space.name(), AnySpace::Sl2r(space.clone()));
+            let stereo = args.stereo.settings_for(active.inradius)?;
+            let base = bevy_curved_spaces::plugin::sl2r::BaseSl2rScene {
+                scene: chosen.scene.clone(),
+                start: Some(chosen.camera),
+            };
+            super::walk::run_xr(args, active, (stereo, None, None), move |app| {
+                app.insert_resource(base);
+            })
+        })
+    {
+        return done;
     }
     if !display_available() {
         say_no_display(args);
@@ -45,7 +60,7 @@ pub(super) fn walk_sl2r(
         render.crossings = args.crossings.map(|c| c as usize);
         render.view.colour_by = args.view.colour_by;
         render.scene = args.scene.clone();
-        render.stereo = args.stereo;
+        render.stereo = stereo_args;
         if !gpu_available() {
             eprintln!("no GPU adapter found: using the CPU reference renderer");
             render.cpu = true;
@@ -53,7 +68,7 @@ pub(super) fn walk_sl2r(
         return render_command(&render);
     }
     let active = ActiveSpace::new(space.name(), AnySpace::Sl2r(space.clone()));
-    let stereo = args.stereo.settings_for(active.inradius)?;
+    let stereo = stereo_args.settings_for(active.inradius)?;
     eprintln!(
         "walking in {} (SL̃(2,R)): click to look around, WASD to walk on the surface, \
          Space/Shift along the fibre (which turns e: the world turns round you), Esc releases \

@@ -157,10 +157,6 @@ fn words_and_commands_it_cannot_take_are_refused_with_the_reason() {
         ],
         "not in the SL̃(2,R) spaces",
     );
-    fails_with(
-        &["walk", "unit-tangent-bitorus", "--xr"],
-        "not in the SL̃(2,R) spaces",
-    );
     let list = String::from_utf8(run(&["list"]).stdout).unwrap();
     assert!(list.contains("unit-tangent-WORD"), "{list}");
 }
@@ -402,4 +398,23 @@ fn flights_fly_through_unit_tangent_bundles() {
         ],
         "SL̃(2,R)",
     );
+}
+
+/// `walk --xr` takes an SL̃(2,R) space: without a runtime it says so and falls back to
+/// desktop stereo (here, without a display, a stereo picture of the space).
+#[test]
+fn the_headset_mode_takes_unit_tangent_bundles() {
+    let dir = temp_dir("sl2r-xr");
+    let said = crate::products::walk_without_display(
+        &dir,
+        &["walk", "unit-tangent-bitorus", "--xr", "--crossings", "8"],
+    );
+    assert!(said.contains("falling back to desktop stereo"), "{said}");
+    let picture = image::open(dir.join("curved-spaces.png"))
+        .expect("a picture")
+        .to_rgb8();
+    // Side by side: the two halves are the two eyes, not the same picture.
+    let (w, h) = picture.dimensions();
+    let half = |x0: u32| image::imageops::crop_imm(&picture, x0, 0, w / 2, h).to_image();
+    assert_ne!(half(0), half(w / 2), "{said}");
 }

@@ -400,3 +400,57 @@ fn the_injectivity_radius_is_half_the_systole_at_most_pi() {
         );
     }
 }
+
+/// The headset's head in an SL̃(2,R) space (`walk --xr`): walking straight ahead in the room
+/// walks one geodesic of `UT Σ` through the sides — the head ends where the walker's ray of
+/// the same start and direction ends (base point and `e`, through the same pairings) — and
+/// stays in the cell with an orthonormal frame.
+#[test]
+fn a_headset_walks_sl2r_geodesics_through_the_sides() {
+    use bevy_curved_spaces::space::FrameSpace;
+    use bevy_curved_spaces::space::sl2r::{Sl2rWalker, sl2r_space};
+    use bevy_curved_spaces::space::walk::{CellWalk, Limit};
+    use bevy_curved_spaces::trace::sl2r::{camera_ray, default_camera};
+    use bevy_curved_spaces::view::headset::{HeadTracker, RoomPose};
+    use glam::{DQuat, DVec3, DVec4};
+    let space = sl2r_space("unit-tangent-bitorus").unwrap().unwrap();
+    let start = default_camera(&space).frame;
+    let units = 0.8;
+    let mut head = HeadTracker::new(start, units, 1e-6);
+    head.track(&space, RoomPose::IDENTITY);
+    let metres = 8.0;
+    let steps = 800;
+    for k in 1..=steps {
+        let z = -metres * f64::from(k) / f64::from(steps);
+        head.track(
+            &space,
+            RoomPose::new(DVec3::new(0.0, 0.0, z), DQuat::IDENTITY),
+        );
+        assert!(space.outside_by(head.frame.w_axis) <= 1e-6 + 1e-12);
+        assert!(space.frame_defect(head.frame) < 1e-9);
+    }
+    assert!(
+        head.holonomy.crossings >= 2,
+        "{} crossings",
+        head.holonomy.crossings
+    );
+    // The walker from the same start along the view's centre, as far.
+    let walker = Sl2rWalker::<DVec4>::new(&space);
+    let (end, _) = walker.walk(
+        Sl2rWalker::<DVec4>::ray_of(&camera_ray(&start, 0.0, 0.0)),
+        Limit::Distance(metres * units),
+        |_| true,
+    );
+    let end = Sl2rWalker::<DVec4>::sl2r_ray(&end);
+    let f = head.frame;
+    let p = [f.w_axis.x, f.w_axis.y, f.w_axis.z];
+    let e = [f.x_axis.w, f.y_axis.w, f.z_axis.w];
+    let gap = (0..3)
+        .map(|i| {
+            (p[i] - end.frame[2][i])
+                .abs()
+                .max((e[i] - end.frame[0][i]).abs())
+        })
+        .fold(0.0, f64::max);
+    assert!(gap < 1e-7, "the head ends {gap:e} from the walked ray");
+}
