@@ -246,8 +246,7 @@ pub fn record_flight(
             AnySpace::Nil(space) => {
                 crate::trace::nil::flight::recorded_nil_key(space, frame.0, holonomy)
             }
-            // Refused above (`Feature::RecordFlight`).
-            AnySpace::Sl2r(_) => None,
+            AnySpace::Sl2r(_) => crate::trace::sl2r::flight::recorded_sl2r_key(frame.0, holonomy),
         }
     });
     if recorder.unwritten && recorder.last_write.is_none_or(|w| now - w >= 1.0) {

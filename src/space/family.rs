@@ -187,6 +187,7 @@ impl Family {
                 | Feature::ReferencePictures
                 | Feature::TeachingViews
                 | Feature::Flights
+                | Feature::RecordFlight
                 | Feature::Headset,
             ) => return Ok(()),
             (Family::Sl2r, Feature::HolonomyView) => {
@@ -204,7 +205,7 @@ impl Family {
             (Family::Sl2r, _) => {
                 "not written for the SL̃(2,R) family yet (it draws its fibre tubes and metric \
                  balls and walks exactly: `trace`, `info`, `list`, `render`, `walk`, `flight`, \
-                 `walk --replay`, `walk --xr`, `bench`)"
+                 `walk --replay`, `walk --record`, `walk --xr`, `bench`)"
             }
             (Family::Product, Feature::SceneParts) => {
                 "a product scene file's `edges` and `centre_ball` choose the parts"

@@ -231,7 +231,7 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
 
 /// Starts recording the walk to `--record`'s file, if given (a key every
 /// `--record-interval` seconds, in the flight format of the space's family).
-fn record_to(app: &mut App, args: &WalkArgs) -> Result<(), String> {
+pub(super) fn record_to(app: &mut App, args: &WalkArgs) -> Result<(), String> {
     let Some(path) = &args.record else {
         return Ok(());
     };

@@ -2,8 +2,8 @@
 //! player walks with the fibre up (moving along it turns `e`, which the picture shows as the
 //! world turning round the fibre). Without a display it renders one picture instead, as
 //! `walk` does in every family. `--replay FILE` flies a flight file's path instead of the
-//! player. What is not written for the family yet (recording, the headset, lamps, walls) is
-//! refused by the one table.
+//! player, `--record FILE` writes the walk as one, `--xr` walks in a headset. What is not
+//! written for the family yet (lamps, walls) is refused by the one table.
 
 use super::render::{Sl2rChoice, render_command};
 use super::walk::{
@@ -31,7 +31,6 @@ pub(super) fn walk_sl2r(
         (args.view.changes_parts(), Feature::SceneParts),
         (args.view.light.any(), Feature::LampFluence),
         (args.view.walls.walls.is_some(), Feature::Walls),
-        (args.record.is_some(), Feature::RecordFlight),
     ] {
         if asked {
             refuse(feature)?;
@@ -89,10 +88,13 @@ pub(super) fn walk_sl2r(
         },
     );
     if let Some(flight) = flight {
+        use bevy_curved_spaces::space::motion::CoverFlight as _;
+        eprintln!("replaying the flight ({:.1} s, looping)", flight.duration());
         app.insert_resource(bevy_curved_spaces::plugin::flight::Sl2rFlightReplay::new(
             flight, true,
         ));
     }
+    super::walk::record_to(&mut app, args)?;
     if let Some(path) = &args.screenshot {
         app.insert_resource(ScreenshotThenExit {
             path: path.clone(),

@@ -118,3 +118,59 @@ impl CoverFlight for Sl2rFlight {
         Sl2rFlight::cover_frame(self, t)
     }
 }
+
+/// The chart point `[x, y, θ]` of a frame of `UT H²` (the inverse of [`chart_frame`]): the
+/// base point's `x, y`, and the angle of `e` in the frame boosted from the origin's.
+#[must_use]
+pub fn chart_point(frame: &Frame) -> DVec3 {
+    let [e, _, p] = *frame;
+    let at = chart_frame(p[0], p[1], 0.0);
+    let l = crate::space::sl2r::flow::lorentz;
+    DVec3::new(p[0], p[1], l(e, at[1]).atan2(l(e, at[0])))
+}
+
+/// The key of a camera at `frame` in the cell that reached it through `holonomy` (`walk
+/// --record`): its chart point, the point a quarter ahead along its view and the point a
+/// quarter above it (the replay keeps the fibre up), carried back into `UT H²` by the inverse
+/// of the surface group's element the crossings applied. `None` where a key cannot hold them
+/// (a base point beyond [`MAX_KEY_CHART`]).
+#[must_use]
+pub fn recorded_sl2r_key(
+    frame: DMat4,
+    holonomy: &crate::space::Holonomy,
+) -> Option<(DVec3, DVec3, DVec3)> {
+    // The 3×3 element (rows and columns 0, 1, 3 of the holonomy's matrix, as the crossings
+    // recorded it) and its inverse J Mᵀ J.
+    let idx = [0, 1, 3];
+    let m = holonomy.matrix;
+    let sign = [1.0, 1.0, -1.0];
+    let inverse: [[f64; 3]; 3] =
+        [0, 1, 2].map(|r| [0, 1, 2].map(|c| sign[r] * sign[c] * m.col(idx[r])[idx[c]]));
+    let apply = |v: [f64; 3]| {
+        [0, 1, 2].map(|r| inverse[r][0] * v[0] + inverse[r][1] * v[1] + inverse[r][2] * v[2])
+    };
+    let p = frame.w_axis.truncate().to_array();
+    let e = [frame.x_axis.w, frame.y_axis.w, frame.z_axis.w];
+    let (p, e) = (apply(p), apply(e));
+    let cover = [e, crate::space::sl2r::flow::perp(p, e), p];
+    let moved = |axis: glam::DVec4| {
+        let v = axis.truncate().normalize().to_array();
+        chart_point(
+            &flow(
+                &Sl2rRay {
+                    frame: cover,
+                    velocity: v,
+                },
+                0.25,
+            )
+            .frame,
+        )
+    };
+    let at = chart_point(&cover);
+    let ahead = moved(-frame.z_axis);
+    let above = moved(frame.y_axis);
+    [at, ahead, above]
+        .iter()
+        .all(|k| k.is_finite() && k.truncate().length() <= MAX_KEY_CHART)
+        .then_some((at, ahead, above))
+}
