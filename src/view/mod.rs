@@ -205,6 +205,20 @@ impl ViewLayout {
         }
     }
 
+    /// A mono view from one camera `frame` with a vertical field of view of `fov_y_degrees`
+    /// (the default lens): what a still picture or a flight's frame draws.
+    #[must_use]
+    pub fn camera(frame: DMat4, fov_y_degrees: f64, width: u32, height: u32) -> Self {
+        Self::new(
+            StereoMode::Mono,
+            false,
+            [frame; 2],
+            fov_y_degrees,
+            width,
+            height,
+        )
+    }
+
     /// A mono view with its own frustum (an XR eye).
     #[must_use]
     pub fn mono(frame: DMat4, lens: Lens, width: u32, height: u32) -> Self {

@@ -67,6 +67,24 @@ fn every_example_flight_file_flies_inside_its_cell() {
             n += 1;
             continue;
         }
+        // An SL̃(2,R) space's flight: `Sl2rFlight`, inside its cell with orthonormal frames.
+        if let Some(Ok(space)) = bevy_curved_spaces::space::sl2r::sl2r_space(id) {
+            use bevy_curved_spaces::space::FrameSpace;
+            use bevy_curved_spaces::space::motion::CoverFlight;
+            let flight = bevy_curved_spaces::trace::sl2r::flight::Sl2rFlight::new(&file)
+                .unwrap_or_else(|e| panic!("{e}"));
+            for k in 0..flight.frame_count(10.0) {
+                let f = flight.camera(&space, k as f64 / 10.0).frame;
+                assert!(
+                    space.outside_by(f.w_axis) <= 1e-9,
+                    "{}: frame {k}",
+                    path.display()
+                );
+                assert!(space.frame_defect(f) < 1e-9);
+            }
+            n += 1;
+            continue;
+        }
         let space = seed_space(id).unwrap();
         let flight = Flight::new(&space, &file).unwrap_or_else(|e| panic!("{e}"));
         for k in 0..flight.frame_count(10.0) {
@@ -80,7 +98,7 @@ fn every_example_flight_file_flies_inside_its_cell() {
         }
         n += 1;
     }
-    assert!(n >= 3, "the shipped flights: {n}");
+    assert!(n >= 4, "the shipped flights: {n}");
 }
 
 #[test]

@@ -33,6 +33,7 @@ use bevy_curved_spaces::plugin::xr::{
     xr_plugins,
 };
 use bevy_curved_spaces::scene::{CurvedScene, SceneParts, Shading};
+use bevy_curved_spaces::space::AnySpace;
 use bevy_curved_spaces::trace::{RenderSettings, render_view};
 use bevy_curved_spaces::view::headset::{RoomPose, local_motion};
 use bevy_curved_spaces::view::{Lens, ViewLayout};
@@ -430,7 +431,9 @@ fn a_headset_session_runs_traces_both_eyes_and_walks_through_faces() {
     // 6b. A product space (H²×R), after the timing (its frames are slower on a software
     //     rasteriser): the head walks along the product's geodesics and stays in the cell,
     //     and both eyes are traced (compared with the CPU reference below).
-    let (product, product_eyes) = product_walk(&mut app);
+    let (product, product_eyes) = family_walk(&mut app, "bitorus-circle", product_settings());
+    // 6c. An SL̃(2,R) space (the unit tangent bundle of the bitorus) likewise.
+    let (sl2r, sl2r_eyes) = family_walk(&mut app, "unit-tangent-bitorus", product_settings());
     // The session is done with; dropping the app ends it.
     drop(app);
 
@@ -470,6 +473,21 @@ fn a_headset_session_runs_traces_both_eyes_and_walks_through_faces() {
             CROSSINGS as usize,
         );
         judge_eye(&format!("product-eye{}", eye.index), gpu, &cpu, &out);
+    }
+    // The SL̃(2,R) space's eyes against its CPU reference (balls and tubes met exactly).
+    let AnySpace::Sl2r(space) = &sl2r.space else {
+        panic!("an SL̃(2,R) space");
+    };
+    let scene = bevy_curved_spaces::plugin::sl2r::sl2r_scene(space, &product_settings(), None);
+    for (eye, gpu) in &sl2r_eyes {
+        let layout = ViewLayout::mono(eye.frame, eye.lens, w, h);
+        let cpu = bevy_curved_spaces::trace::sl2r::render_sl2r_view(
+            space,
+            &scene,
+            &layout,
+            CROSSINGS as usize,
+        );
+        judge_eye(&format!("sl2r-eye{}", eye.index), gpu, &cpu, &out);
     }
     let (left, right) = (&eyes[0].1, &eyes[1].1);
     let between = common::differing_fraction(left, right, TOLERANCE);
@@ -520,24 +538,26 @@ fn walk_forward(app: &mut App, updates: usize) {
     app.world_mut().resource_mut::<PushedSticks>().0 = Some(XrSticks::default());
 }
 
-/// Switches to a product space (the bitorus times a circle) and walks the head forward with
-/// the left stick: it moves along the product's geodesic, stays in the cell with an
-/// orthonormal frame (in the product metric), and its eyes are product frames about the
-/// eye distance apart. Returns the space and both eyes, read back.
-fn product_walk(app: &mut App) -> (ActiveSpace, Vec<(EyeShot, RgbImage)>) {
-    use bevy_curved_spaces::space::FrameSpace;
-    app.insert_resource(ActiveSpace::named("bitorus-circle").expect("a product space"))
-        .insert_resource(product_settings());
+/// Switches the session to the space `id` of another family (with `settings`), walks the
+/// head forward with the left stick, and reads back both eyes: the head moves, stays in the
+/// cell with an orthonormal frame, and the two eyes differ.
+fn family_walk(
+    app: &mut App,
+    id: &str,
+    settings: TracerSettings,
+) -> (ActiveSpace, Vec<(EyeShot, RgbImage)>) {
+    app.insert_resource(ActiveSpace::named(id).expect("a space"))
+        .insert_resource(settings);
     for _ in 0..3 {
         app.update();
     }
     let active = app.world().resource::<ActiveSpace>().clone();
-    let space = active.product().expect("a product space").clone();
+    let space = active.space.frames();
     let margin = head(app).wrap_margin;
     let before = head(app).frame;
     assert!(
         space.outside_by(before.w_axis) <= 2.0 * margin,
-        "the head starts in the product cell"
+        "the head starts in the cell of {id}"
     );
     walk_forward(app, 20);
     let after = head(app).frame;
@@ -547,10 +567,7 @@ fn product_walk(app: &mut App) -> (ActiveSpace, Vec<(EyeShot, RgbImage)>) {
         active.id,
         head(app).holonomy.crossings
     );
-    assert!(
-        moved > 1e-3,
-        "the stick walks the head in the product space"
-    );
+    assert!(moved > 1e-3, "the stick walks the head in {id}");
     assert!(space.outside_by(after.w_axis) <= 2.0 * margin);
     assert!(
         space.frame_defect(after) < 1e-9,
@@ -568,10 +585,10 @@ fn product_walk(app: &mut App) -> (ActiveSpace, Vec<(EyeShot, RgbImage)>) {
     }
     let between = common::differing_fraction(&eyes[0].1, &eyes[1].1, TOLERANCE);
     println!(
-        "the product eyes differ in {:.2} % of pixels",
+        "the eyes in {id} differ in {:.2} % of pixels",
         100.0 * between
     );
-    assert!(between > 0.01, "the two product eyes show the same picture");
+    assert!(between > 0.01, "the two eyes in {id} show the same picture");
     (active, eyes)
 }
 

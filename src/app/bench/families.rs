@@ -137,7 +137,7 @@ pub(super) fn family_row(
     let (w, h) = config.middle_size();
     let gpu = family.gpu()?;
     let (frame, fov) = family.camera();
-    let layout = |(w, h)| ViewLayout::new(Default::default(), false, [frame; 2], fov, w, h);
+    let layout = |(w, h)| ViewLayout::camera(frame, fov, w, h);
     let (ratio, tracer_ms, reference_ms) = timing::against_reference(
         harness,
         config,

@@ -194,16 +194,7 @@ pub(super) fn product_rows(
             error,
         })?;
         let frame = crate::space::product::motion::camera_frame(camera.point, camera.frame);
-        let layout = |(w, h)| {
-            ViewLayout::new(
-                Default::default(),
-                false,
-                [frame; 2],
-                camera.fov_y_degrees,
-                w,
-                h,
-            )
-        };
+        let layout = |(w, h)| ViewLayout::camera(frame, camera.fov_y_degrees, w, h);
         let (ratio, tracer_ms, reference_ms) = timing::against_reference(
             harness,
             config,

@@ -65,60 +65,32 @@ pub(super) fn bench(args: &BenchArgs) -> Result<(), String> {
             "note: this is a debug build; for representative timings run `cargo run --release -- bench`"
         );
     }
-    if let Some(products) = &args.products {
-        eprintln!(
-            "benchmarking product spaces {products:?} at {:?} against {}…",
-            config.sizes,
-            bevy_curved_spaces::bench::PRODUCT_REFERENCE_SPACE
-        );
-    } else if let Some(scene) = &args.scene {
-        eprintln!(
-            "benchmarking the start view of {} at {} size(s), budgets {:?}…",
-            scene.display(),
-            config.sizes.len(),
-            config.budgets
-        );
-    } else {
-        eprintln!(
-            "benchmarking {} space(s) at {} size(s), budgets {:?}, fog {:?} inradii…",
-            config.spaces.len(),
-            config.sizes.len(),
-            config.budgets,
-            config.fog_factors
-        );
-    }
     let started = Instant::now();
     let progress = indicatif::ProgressBar::new(0);
     if let Some(ks) = &args.nil {
         config.nil.clone_from(ks);
-        eprintln!(
-            "benchmarking Nil spaces {ks:?} at {:?} against {}…",
-            config.sizes,
-            bevy_curved_spaces::bench::PRODUCT_REFERENCE_SPACE
+        let run = bevy_curved_spaces::bench::run_nil;
+        let ids = format!("{ks:?}");
+        return bench_family(
+            &config,
+            (&progress, started, &args.out),
+            ("Nil", &ids),
+            run,
+            |r| (&r.nil, "ε(1 + t²)"),
         );
-        let report =
-            bevy_curved_spaces::bench::run_nil(&config, &progress).map_err(|e| e.to_string())?;
-        say_family_rows(&report.nil, "ε(1 + t²)");
-        let written = bevy_curved_spaces::bench::write_edges_report(&report, &config, &args.out)
-            .map_err(|e| e.to_string())?;
-        say_written(&written, &args.out, started);
-        return Ok(());
     }
     if let Some(ids) = &args.sl2r {
         config.sl2r.clone_from(ids);
         bevy_curved_spaces::bench::check_sl2r(ids).map_err(|e| e.to_string())?;
-        eprintln!(
-            "benchmarking SL̃(2,R) spaces {ids:?} at {:?} against {}…",
-            config.sizes,
-            bevy_curved_spaces::bench::PRODUCT_REFERENCE_SPACE
+        let run = bevy_curved_spaces::bench::run_sl2r;
+        let ids = format!("{ids:?}");
+        return bench_family(
+            &config,
+            (&progress, started, &args.out),
+            ("SL̃(2,R)", &ids),
+            run,
+            |r| (&r.sl2r, "the conditioning limit"),
         );
-        let report =
-            bevy_curved_spaces::bench::run_sl2r(&config, &progress).map_err(|e| e.to_string())?;
-        say_family_rows(&report.sl2r, "the conditioning limit");
-        let written = bevy_curved_spaces::bench::write_edges_report(&report, &config, &args.out)
-            .map_err(|e| e.to_string())?;
-        say_written(&written, &args.out, started);
-        return Ok(());
     }
     if let Some(products) = &args.products {
         eprintln!(
@@ -142,36 +114,27 @@ pub(super) fn bench(args: &BenchArgs) -> Result<(), String> {
             config.fog_factors
         );
     }
-    let started = Instant::now();
-    let progress = indicatif::ProgressBar::new(0);
-    if let Some(ks) = &args.nil {
-        config.nil.clone_from(ks);
+    if let Some(products) = &args.products {
         eprintln!(
-            "benchmarking Nil spaces {ks:?} at {:?} against {}…",
+            "benchmarking product spaces {products:?} at {:?} against {}…",
             config.sizes,
             bevy_curved_spaces::bench::PRODUCT_REFERENCE_SPACE
         );
-        let report =
-            bevy_curved_spaces::bench::run_nil(&config, &progress).map_err(|e| e.to_string())?;
-        for r in &report.nil {
-            say!(
-                "{:<8} {:>8.2} ms, {:.2}× {} ({} objects, budget {}), {:.2} crossings a pixel, {:.2} % of pixels differ from the CPU, walks f64 {:.3} / f32 {:.3} × ε(1 + t²) (median)",
-                r.space,
-                r.tracer_ms,
-                r.ratio,
-                r.reference_space,
-                r.objects,
-                r.budget,
-                r.crossings_per_pixel,
-                100.0 * r.differing_pixels,
-                r.f64_median,
-                r.f32_median
-            );
-        }
-        let written = bevy_curved_spaces::bench::write_edges_report(&report, &config, &args.out)
-            .map_err(|e| e.to_string())?;
-        say_written(&written, &args.out, started);
-        return Ok(());
+    } else if let Some(scene) = &args.scene {
+        eprintln!(
+            "benchmarking the start view of {} at {} size(s), budgets {:?}…",
+            scene.display(),
+            config.sizes.len(),
+            config.budgets
+        );
+    } else {
+        eprintln!(
+            "benchmarking {} space(s) at {} size(s), budgets {:?}, fog {:?} inradii…",
+            config.spaces.len(),
+            config.sizes.len(),
+            config.budgets,
+            config.fog_factors
+        );
     }
     if let Some(products) = &args.products {
         if products.len() == 1 && products[0] == "all" {
@@ -369,9 +332,30 @@ fn say_written(written: &[std::path::PathBuf], out: &std::path::Path, started: I
     );
 }
 
-/// One line a row of a family with its own tracer; `bound` names what its walks' error is
-/// divided by.
-fn say_family_rows(rows: &[bevy_curved_spaces::bench::FamilyRow], bound: &str) {
+/// One family's rows (Nil's, SL̃(2,R)'s): measured by `run`, said a line each (`rows` gives
+/// them and what their walks' error is divided by) and written with the summary.
+fn bench_family(
+    config: &bevy_curved_spaces::bench::BenchConfig,
+    (progress, started, out): (&indicatif::ProgressBar, Instant, &std::path::Path),
+    (family, ids): (&str, &str),
+    run: impl Fn(
+        &bevy_curved_spaces::bench::BenchConfig,
+        &indicatif::ProgressBar,
+    ) -> Result<
+        bevy_curved_spaces::bench::BenchReport,
+        bevy_curved_spaces::bench::BenchError,
+    >,
+    rows: impl Fn(
+        &bevy_curved_spaces::bench::BenchReport,
+    ) -> (&[bevy_curved_spaces::bench::FamilyRow], &'static str),
+) -> Result<(), String> {
+    eprintln!(
+        "benchmarking {family} spaces {ids} at {:?} against {}…",
+        config.sizes,
+        bevy_curved_spaces::bench::PRODUCT_REFERENCE_SPACE
+    );
+    let report = run(config, progress).map_err(|e| e.to_string())?;
+    let (rows, bound) = rows(&report);
     for r in rows {
         say!(
             "{:<8} {:>8.2} ms, {:.2}× {} ({} objects, budget {}), {:.2} crossings and {:.1} root iterations a pixel, {:.2} % of pixels differ from the CPU, walks f64 {:.3} / f32 {:.3} × {bound} (median)",
@@ -388,4 +372,8 @@ fn say_family_rows(rows: &[bevy_curved_spaces::bench::FamilyRow], bound: &str) {
             r.f32_median
         );
     }
+    let written = bevy_curved_spaces::bench::write_edges_report(&report, config, out)
+        .map_err(|e| e.to_string())?;
+    say_written(&written, out, started);
+    Ok(())
 }

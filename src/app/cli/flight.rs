@@ -99,14 +99,8 @@ pub(super) fn flight(args: &FlightArgs) -> Result<(), String> {
                         height: args.size.1,
                         max_crossings: budget,
                     };
-                    let layout = ViewLayout::new(
-                        Default::default(),
-                        false,
-                        [frame; 2],
-                        flight.fov,
-                        settings.width,
-                        settings.height,
-                    );
+                    let layout =
+                        ViewLayout::camera(frame, flight.fov, settings.width, settings.height);
                     render_view(space, &scene, &layout, &settings, |_, _| {})
                 }
                 Some(r) => r
@@ -370,10 +364,8 @@ fn flight_nil(
             let scene = scene_at(t).map_err(|e| format!("frame {n}: {e}"))?;
             let image = match renderer {
                 None => {
-                    let layout = ViewLayout::new(
-                        Default::default(),
-                        false,
-                        [camera.frame; 2],
+                    let layout = ViewLayout::camera(
+                        camera.frame,
                         camera.fov_y_degrees,
                         args.size.0,
                         args.size.1,
@@ -442,10 +434,8 @@ fn flight_sl2r(
             let camera = flight.camera(space, t);
             let image = match renderer {
                 None => {
-                    let layout = ViewLayout::new(
-                        Default::default(),
-                        false,
-                        [camera.frame; 2],
+                    let layout = ViewLayout::camera(
+                        camera.frame,
                         camera.fov_y_degrees,
                         args.size.0,
                         args.size.1,
