@@ -241,6 +241,7 @@ impl Plugin for CurvedSpacesXrPlugin {
         add_head_systems::<crate::space::Space>(app);
         add_head_systems::<crate::space::product::ProductSpace>(app);
         add_head_systems::<crate::space::nil::NilSpace>(app);
+        add_head_systems::<crate::space::sl2r::UnitTangentSpace>(app);
         app.add_systems(
             Update,
             follow_display_rate

@@ -100,6 +100,16 @@ pub trait FrameSpace: Send + Sync + std::fmt::Debug {
     #[must_use]
     fn wrap_frame(&self, frame: DMat4, margin: f64) -> (DMat4, Vec<FrameCrossing>);
 
+    /// The frame with the viewer's axes turned by `rotation` (a rotation of the axes' own
+    /// coordinates: the new axes are the old ones times it), its point kept. By default the
+    /// frame's first three columns are turned as 4-vectors, which serves every family whose
+    /// axes are tangent vectors in the frame's columns; a family that keeps more of its point
+    /// in those columns (SL̃(2,R)'s `e`, in their fourth entries) turns only the axes.
+    #[must_use]
+    fn turn_axes(&self, frame: DMat4, rotation: glam::DMat3) -> DMat4 {
+        frame * DMat4::from_mat3(rotation)
+    }
+
     /// The two eyes of a head `ipd` apart, left first: each half the distance along the
     /// head's right, its frame carried along the geodesic and wrapped into the cell on its
     /// own (no margin).

@@ -100,7 +100,7 @@ pub fn local_motion_in<S: FamilySpace>(
         },
     );
     if rotation != DQuat::IDENTITY && rotation.is_finite() {
-        f *= DMat4::from_quat(rotation.normalize());
+        f = space.turn_axes(f, glam::DMat3::from_quat(rotation.normalize()));
     }
     f
 }

@@ -226,6 +226,13 @@ impl FrameSpace for UnitTangentSpace {
         frame_of(&r, orthonormal(axes))
     }
 
+    fn turn_axes(&self, frame: DMat4, rotation: DMat3) -> DMat4 {
+        frame_of(
+            &point_of(&frame, [0.0; 3]),
+            orthonormal(axes_of(&frame) * rotation),
+        )
+    }
+
     fn step_velocity(&self, frame: DMat4, velocity: &Velocity, dt: f64) -> DMat4 {
         if !velocity.is_finite() || !dt.is_finite() || velocity.is_zero() {
             return frame;

@@ -453,4 +453,21 @@ fn a_headset_walks_sl2r_geodesics_through_the_sides() {
         })
         .fold(0.0, f64::max);
     assert!(gap < 1e-7, "the head ends {gap:e} from the walked ray");
+    // Turning the head as it walks turns only the viewer's axes: `e` and the base point
+    // stay a point of UT H², the axes orthonormal (the frame keeps `e` in the axes' fourth
+    // entries, which a plain product with the rotation would mix).
+    for k in 1..=400 {
+        let s = f64::from(k) / 400.0;
+        let turn = DQuat::from_rotation_y(3.0 * s) * DQuat::from_rotation_x(0.4 * (5.0 * s).sin());
+        head.track(
+            &space,
+            RoomPose::new(DVec3::new(0.3 * s, 0.0, -metres - 2.0 * s), turn),
+        );
+        assert!(
+            space.frame_defect(head.frame) < 1e-9,
+            "{}",
+            space.frame_defect(head.frame)
+        );
+        assert!(space.outside_by(head.frame.w_axis) <= 1e-6 + 1e-12);
+    }
 }
