@@ -1,5 +1,5 @@
 //! The root finding the families' exact methods share — a bracketed root by Newton's steps
-//! safeguarded by bisection ([`bracketed_root`]) — and how much of it they did: counters on
+//! safeguarded by bisection — and how much of it they did: counters on
 //! this thread of the iterations of their root finders (Nil's exits, distances and balls,
 //! SL̃(2,R)'s Newton polish of the closed-form exits, its distances and balls) and of the
 //! safe (Lipschitz) steps towards objects. The bench reads the counters before and after a

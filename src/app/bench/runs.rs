@@ -430,7 +430,7 @@ pub fn run_products(
 
 /// Only the Nil spaces of `config.nil`: each default view timed against
 /// [`products::PRODUCT_REFERENCE_SPACE`]'s in the same rounds, the GPU against the CPU
-/// reference, the walks against the exact geodesic ([`nil::NilRow`]).
+/// reference, the walks against the exact geodesic ([`super::FamilyRow`]).
 pub fn run_nil(config: &BenchConfig, progress: &ProgressBar) -> Result<BenchReport, BenchError> {
     if config.nil.is_empty() || config.sizes.is_empty() {
         return Err(BenchError::Empty("no Nil spaces or sizes were named"));

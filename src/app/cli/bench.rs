@@ -115,28 +115,6 @@ pub(super) fn bench(args: &BenchArgs) -> Result<(), String> {
         );
     }
     if let Some(products) = &args.products {
-        eprintln!(
-            "benchmarking product spaces {products:?} at {:?} against {}…",
-            config.sizes,
-            bevy_curved_spaces::bench::PRODUCT_REFERENCE_SPACE
-        );
-    } else if let Some(scene) = &args.scene {
-        eprintln!(
-            "benchmarking the start view of {} at {} size(s), budgets {:?}…",
-            scene.display(),
-            config.sizes.len(),
-            config.budgets
-        );
-    } else {
-        eprintln!(
-            "benchmarking {} space(s) at {} size(s), budgets {:?}, fog {:?} inradii…",
-            config.spaces.len(),
-            config.sizes.len(),
-            config.budgets,
-            config.fog_factors
-        );
-    }
-    if let Some(products) = &args.products {
         if products.len() == 1 && products[0] == "all" {
             config.products = bevy_curved_spaces::space::product::PRODUCT_ALIASES
                 .iter()

@@ -55,14 +55,15 @@ pub(super) fn sl2r_panel(
                 ),
             );
             for (_, frame, holonomy) in &cameras {
-                let p = frame.0.w_axis;
-                let e = [frame.0.x_axis.w, frame.0.y_axis.w];
+                // The chart point [x, y, θ] that `--eye`, scene files and flights take.
+                let f = frame.0;
+                let p = [f.w_axis.x, f.w_axis.y, f.w_axis.z];
+                let e = [f.x_axis.w, f.y_axis.w, f.z_axis.w];
+                let at =
+                    crate::space::sl2r::chart_point(&[e, crate::space::sl2r::flow::perp(p, e), p]);
                 ui.label(format!(
-                    "base point ({:+.4}, {:+.4}, {:.4}), e at {:+.1}°",
-                    p.x,
-                    p.y,
-                    p.z,
-                    e[1].atan2(e[0]).to_degrees()
+                    "at [x, y, θ] = [{:+.4}, {:+.4}, {:+.4}] (as --eye and flights take it)",
+                    at.x, at.y, at.z
                 ));
                 let last = holonomy
                     .last_face

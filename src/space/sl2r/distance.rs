@@ -5,7 +5,7 @@
 //! **The inverse exponential map.** With `G = F₀⁻¹F₁` (the target seen from the start's
 //! frame), a geodesic of length `t` and unit body velocity `(a, b, c)` reaches it where
 //! `exp(U)·exp(2γR) = G` with `U = tW = αB₁ + βB₂ − γR` and `(α, β, γ) = t(a, b, c)`
-//! ([`super::flow`]). For a given `γ`, `U` is the logarithm of `H(γ) = G·exp(−2γR)`, so the
+//! ([`mod@super::flow`]). For a given `γ`, `U` is the logarithm of `H(γ) = G·exp(−2γR)`, so the
 //! whole problem is one equation in one unknown:
 //!
 //! ```text
@@ -73,7 +73,7 @@ fn sinhc_from(n: f64, c: f64) -> Option<f64> {
 }
 
 /// `(x, y, z)` with `exp(xB₁ + yB₂ + zR) = h` on the principal branch, or `None` (see
-/// [`sinhc_from`]).
+/// `sinhc_from`).
 #[must_use]
 pub fn log(h: &[[f64; 3]; 3]) -> Option<[f64; 3]> {
     // (H − H⁻¹)/2 with H⁻¹ = J Hᵀ J: the B₁, B₂ and R parts of S·U.
@@ -177,7 +177,7 @@ fn secant(g: &[[f64; 3]; 3]) -> Option<(f64, [f64; 3])> {
 /// the secant method from the principal guess is tried first, and where it finds such a
 /// root, that is the answer. Otherwise every geodesic of length `L < π` is a root with
 /// `|γ| ≤ L`, so the roots with `|γ| < bound` are all there is to search: `φ` is scanned
-/// outwards from `γ = 0` in steps of [`SCAN_STEP`], each sign change that is no jump of the
+/// outwards from `γ = 0` in steps of `SCAN_STEP` (⅛), each sign change that is no jump of the
 /// branch is refined, and the scan stops once `|γ|` passes the shortest length found.
 #[must_use]
 pub fn shortest_within(from: &Frame, to: &Frame, bound: f64) -> Option<(f64, [f64; 3])> {

@@ -44,3 +44,13 @@ pub fn chart_frame(x: f64, y: f64, theta: f64) -> [[f64; 3]; 3] {
     let p = [x, y, w];
     [e, flow::perp(p, e), p]
 }
+
+/// The chart point `[x, y, θ]` of a frame of `UT H²` (the inverse of [`chart_frame`]): the
+/// base point's `x, y`, and the angle of `e` in the frame boosted from the origin's.
+#[must_use]
+pub fn chart_point(frame: &[[f64; 3]; 3]) -> glam::DVec3 {
+    let [e, _, p] = *frame;
+    let at = chart_frame(p[0], p[1], 0.0);
+    let l = flow::lorentz;
+    glam::DVec3::new(p[0], p[1], l(e, at[1]).atan2(l(e, at[0])))
+}

@@ -15,7 +15,7 @@
 use crate::scene::flight::FlightFile;
 use crate::space::motion::{CoverFlight, keyed};
 use crate::space::sl2r::distance::{Frame, TRUSTED_LENGTH, shortest};
-use crate::space::sl2r::{Sl2rRay, UnitTangentSpace, chart_frame, flow};
+use crate::space::sl2r::{Sl2rRay, UnitTangentSpace, chart_frame, chart_point, flow};
 use glam::{DMat4, DVec3};
 
 /// The farthest a key's base point may lie from the origin in the chart: `√(x² + y²)` at most
@@ -117,16 +117,6 @@ impl CoverFlight for Sl2rFlight {
     fn cover_frame(&self, t: f64) -> DMat4 {
         Sl2rFlight::cover_frame(self, t)
     }
-}
-
-/// The chart point `[x, y, θ]` of a frame of `UT H²` (the inverse of [`chart_frame`]): the
-/// base point's `x, y`, and the angle of `e` in the frame boosted from the origin's.
-#[must_use]
-pub fn chart_point(frame: &Frame) -> DVec3 {
-    let [e, _, p] = *frame;
-    let at = chart_frame(p[0], p[1], 0.0);
-    let l = crate::space::sl2r::flow::lorentz;
-    DVec3::new(p[0], p[1], l(e, at[1]).atan2(l(e, at[0])))
 }
 
 /// The key of a camera at `frame` in the cell that reached it through `holonomy` (`walk

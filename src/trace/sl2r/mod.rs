@@ -24,6 +24,7 @@
 
 #[cfg(feature = "scene-files")]
 pub mod file;
+#[cfg(feature = "scene-files")]
 pub mod flight;
 
 use crate::space::FrameSpace;
