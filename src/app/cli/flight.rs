@@ -319,16 +319,13 @@ fn flight_nil(
 ) -> Result<(), String> {
     use bevy_curved_spaces::space::{Family, Feature};
     use bevy_curved_spaces::trace::nil::flight::NilFlight;
-    use bevy_curved_spaces::trace::nil::render_nil_view;
-    use bevy_curved_spaces::view::ViewLayout;
+    use bevy_curved_spaces::trace::nil::{NilCamera, render_nil_view};
     let space = &*chosen.space;
     let refuse = |feature| super::spaces::require(Family::Nil, space.name(), feature);
     if args.colour_by == super::ColourByArg::Holonomy {
         refuse(Feature::HolonomyView)?;
     }
     let flight = NilFlight::new(space, file).map_err(|e| format!("{name}: {e}"))?;
-    let total = flight.frame_count(args.fps);
-    let (first, last, todo) = frames_to_do(args, total)?;
     // The scene at a frame's time: its moving balls where they are, the flight's options.
     let walls = args
         .walls
@@ -348,42 +345,31 @@ fn flight_nil(
     let budget = args
         .crossings
         .unwrap_or_else(|| bevy_curved_spaces::plugin::nil::default_nil_budget(space) as usize);
-    let gpu_budget = if args.cpu {
-        0
-    } else {
-        super::render::gpu_budget(budget)?
-    };
-    render_frames(
+    fly_own_tracer(
         args,
         &format!("flight {name}: {} (Nil)", space.name()),
-        (total, flight.duration()),
-        (first, last, &todo),
+        (&flight, space, flight.fov),
         budget,
-        |n, t, renderer| {
-            let camera = flight.camera(space, t);
+        |n, t, layout| {
             let scene = scene_at(t).map_err(|e| format!("frame {n}: {e}"))?;
-            let image = match renderer {
-                None => {
-                    let layout = ViewLayout::camera(
-                        camera.frame,
-                        camera.fov_y_degrees,
-                        args.size.0,
-                        args.size.1,
-                    );
-                    render_nil_view(space, &scene, &layout, budget)
-                }
-                Some(r) => r
-                    .render_nil(
-                        space,
-                        &scene,
-                        &camera,
-                        args.size,
-                        gpu_budget,
-                        Default::default(),
-                    )
-                    .map_err(|e| format!("frame {n}: {e}"))?,
+            Ok(render_nil_view(space, &scene, layout, budget))
+        },
+        |n, t, renderer, frame, gpu_budget| {
+            let scene = scene_at(t).map_err(|e| format!("frame {n}: {e}"))?;
+            let camera = NilCamera {
+                frame,
+                fov_y_degrees: flight.fov,
             };
-            Ok(image)
+            renderer
+                .render_nil(
+                    space,
+                    &scene,
+                    &camera,
+                    args.size,
+                    gpu_budget,
+                    Default::default(),
+                )
+                .map_err(|e| format!("frame {n}: {e}"))
         },
     )
 }
@@ -398,8 +384,7 @@ fn flight_sl2r(
 ) -> Result<(), String> {
     use bevy_curved_spaces::space::{Family, Feature};
     use bevy_curved_spaces::trace::sl2r::flight::Sl2rFlight;
-    use bevy_curved_spaces::trace::sl2r::render_sl2r_view;
-    use bevy_curved_spaces::view::ViewLayout;
+    use bevy_curved_spaces::trace::sl2r::{Sl2rCamera, render_sl2r_view};
     let space = &*chosen.space;
     let refuse = |feature| super::spaces::require(Family::Sl2r, space.name(), feature);
     if args.colour_by == super::ColourByArg::Holonomy {
@@ -412,13 +397,55 @@ fn flight_sl2r(
         refuse(Feature::LampFluence)?;
     }
     let flight = Sl2rFlight::new(file).map_err(|e| format!("{name}: {e}"))?;
-    let total = flight.frame_count(args.fps);
-    let (first, last, todo) = frames_to_do(args, total)?;
     let mut scene = chosen.scene;
     scene.colour_by = args.colour_by.into();
     let budget = args
         .crossings
         .unwrap_or(bevy_curved_spaces::plugin::sl2r::DEFAULT_SL2R_BUDGET as usize);
+    fly_own_tracer(
+        args,
+        &format!("flight {name}: {} (SL̃(2,R))", space.name()),
+        (&flight, space, flight.fov),
+        budget,
+        |_, _, layout| Ok(render_sl2r_view(space, &scene, layout, budget)),
+        |n, _, renderer, frame, gpu_budget| {
+            let camera = Sl2rCamera {
+                frame,
+                fov_y_degrees: flight.fov,
+            };
+            renderer
+                .render_sl2r(
+                    space,
+                    &scene,
+                    &camera,
+                    args.size,
+                    gpu_budget,
+                    Default::default(),
+                )
+                .map_err(|e| format!("frame {n}: {e}"))
+        },
+    )
+}
+
+/// The frames of a flight in a family with its own tracer (Nil, SL̃(2,R)): at each frame's
+/// time the camera's frame in the cell, drawn by `cpu` on the view of that camera
+/// (`--cpu`) or by `gpu` with the renderer and the budget checked for it.
+fn fly_own_tracer<F: CoverFlight>(
+    args: &FlightArgs,
+    what: &str,
+    (flight, space, fov): (&F, &F::Space, f64),
+    budget: usize,
+    cpu: impl Fn(usize, f64, &bevy_curved_spaces::view::ViewLayout) -> Result<image::RgbImage, String>,
+    gpu: impl Fn(
+        usize,
+        f64,
+        &mut OffscreenRenderer,
+        glam::DMat4,
+        u32,
+    ) -> Result<image::RgbImage, String>,
+) -> Result<(), String> {
+    let total = flight.frame_count(args.fps);
+    let (first, last, todo) = frames_to_do(args, total)?;
     let gpu_budget = if args.cpu {
         0
     } else {
@@ -426,34 +453,25 @@ fn flight_sl2r(
     };
     render_frames(
         args,
-        &format!("flight {name}: {} (SL̃(2,R))", space.name()),
+        what,
         (total, flight.duration()),
         (first, last, &todo),
         budget,
         |n, t, renderer| {
-            let camera = flight.camera(space, t);
-            let image = match renderer {
-                None => {
-                    let layout = ViewLayout::camera(
-                        camera.frame,
-                        camera.fov_y_degrees,
+            let frame = flight.frame_in_cell(space, t).0;
+            match renderer {
+                None => cpu(
+                    n,
+                    t,
+                    &bevy_curved_spaces::view::ViewLayout::camera(
+                        frame,
+                        fov,
                         args.size.0,
                         args.size.1,
-                    );
-                    render_sl2r_view(space, &scene, &layout, budget)
-                }
-                Some(r) => r
-                    .render_sl2r(
-                        space,
-                        &scene,
-                        &camera,
-                        args.size,
-                        gpu_budget,
-                        Default::default(),
-                    )
-                    .map_err(|e| format!("frame {n}: {e}"))?,
-            };
-            Ok(image)
+                    ),
+                ),
+                Some(r) => gpu(n, t, r, frame, gpu_budget),
+            }
         },
     )
 }
