@@ -202,6 +202,15 @@ fn hostile_numbers_on_the_command_line() {
             // and angle) and distance.
             tiny_render("unit-tangent-bitorus", &["--fog", value]),
             tiny_render("unit-tangent-bitorus", &["--fov", value]),
+            // A hostile eye and point looked at (the inverse exponential map's input).
+            tiny_render(
+                "unit-tangent-bitorus",
+                &["--eye", &vec3, "--look-at", "0,0.5,0"],
+            ),
+            tiny_render(
+                "unit-tangent-bitorus",
+                &["--eye", "0,0,0", "--look-at", &vec3],
+            ),
             vec![
                 "render",
                 "unit-tangent-abcdABCD",
