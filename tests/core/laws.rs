@@ -266,15 +266,19 @@ impl Sl2r {
 impl LawFamily for Sl2r {
     type Space = UnitTangentSpace;
     fn cases() -> Vec<(String, Self)> {
-        ["abABcdCD", "abcdABCD", "abABcdCDefEF"]
-            .into_iter()
-            .map(|w| {
-                (
-                    format!("unit-tangent-{w}"),
-                    Sl2r(UnitTangentSpace::new(w).expect("a hyperbolic word")),
-                )
-            })
-            .collect()
+        // Each surface's bundle, and a fibre cover (whose walk also counts sheets).
+        [
+            ("abABcdCD", 1),
+            ("abcdABCD", 1),
+            ("abABcdCDefEF", 1),
+            ("abABcdCDefEF", 2),
+        ]
+        .into_iter()
+        .map(|(w, n)| {
+            let space = UnitTangentSpace::cover(w, n).expect("a hyperbolic word");
+            (space.name().to_string(), Sl2r(space))
+        })
+        .collect()
     }
     fn space(&self) -> &UnitTangentSpace {
         &self.0
@@ -287,9 +291,12 @@ impl LawFamily for Sl2r {
         let m = self.0.sides()[face].pairing.map(|r| r.map(|x| x.hi));
         DVec3::from_array(Self::apply(&m, p.truncate().to_array())).extend(0.0)
     }
-    /// The base points' gap (a walk's point also holds `e`'s first entry).
+    /// The base points' gap in `x, y` (`w` follows from them; a walk's point holds the
+    /// sheet and `e`'s first entry in its last two entries).
     fn gap(&self, a: DVec4, b: DVec4) -> f64 {
-        (a.truncate() - b.truncate()).abs().max_element()
+        (a.truncate().truncate() - b.truncate().truncate())
+            .abs()
+            .max_element()
     }
     fn tolerance(&self, d: f64) -> f64 {
         // Hyperbolic spreading, as in H³.

@@ -290,6 +290,8 @@ pub(super) fn sl2r_info(space: &UnitTangentSpace, as_json: bool) -> Result<(), S
     use bevy_curved_spaces::space::FrameSpace;
     let word = space.word();
     let inj = space.injectivity_radius(bevy_curved_spaces::space::family::PRODUCT_GROUP_LIMIT);
+    let h1 = space.homology().to_string();
+    let sheets = space.sheets();
     if as_json {
         let value = serde_json::json!({
             "name": space.name(),
@@ -300,12 +302,14 @@ pub(super) fn sl2r_info(space: &UnitTangentSpace, as_json: bool) -> Result<(), S
             "euler_characteristic": word.euler_characteristic(),
             "faces": space.face_count(),
             "polygon_inradius": space.inradius(),
-            "fibre_length": std::f64::consts::TAU,
+            "sheets": sheets,
+            "fibre_length": std::f64::consts::TAU * f64::from(sheets),
             "volume": space.volume(),
             "orientable": true,
             "manifold": true,
-            "homology": space.homology(),
-            "injectivity_radius": inj,
+            "homology": h1,
+            "injectivity_radius": if sheets == 1 { inj } else { None },
+            "injectivity_radius_at_least": inj,
         });
         say!(
             "{}",
@@ -326,12 +330,20 @@ pub(super) fn sl2r_info(space: &UnitTangentSpace, as_json: bool) -> Result<(), S
         space.face_count(),
         number(space.inradius(), 12)
     );
-    say!("  fibre length        2π");
+    if sheets == 1 {
+        say!("  fibre length        2π");
+    } else {
+        say!("  fibre length        {sheets}·2π (the bundle's fibre unwound {sheets} times)");
+    }
     say!("  volume              {}", number(space.volume(), 12));
     say!("  orientable          true");
     say!("  manifold            true");
-    say!("  first homology      {}", space.homology());
+    say!("  first homology      {h1}");
     match inj {
+        Some(r) if sheets > 1 => say!(
+            "  injectivity radius  at least {} (the bundle's: a cover's loops are no shorter)",
+            number(r, 10)
+        ),
         Some(r) => say!(
             "  injectivity radius  {} (half the surface's systole, at most π)",
             number(r, 10)

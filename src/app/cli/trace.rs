@@ -137,9 +137,9 @@ impl TraceFamily for NilFamily {
 
 /// An SL̃(2,R) space: faces by side, points as the base point `[x, y, w]` on the
 /// hyperboloid; the end adds the whole model point `[p, e]` and the body direction.
-struct Sl2rFamily;
+struct Sl2rFamily<'a>(&'a bevy_curved_spaces::space::sl2r::UnitTangentSpace);
 
-impl TraceFamily for Sl2rFamily {
+impl TraceFamily for Sl2rFamily<'_> {
     fn point_heading(&self) -> &'static str {
         "entry base point (hyperboloid)"
     }
@@ -149,13 +149,24 @@ impl TraceFamily for Sl2rFamily {
     fn face_text(&self, face: usize) -> String {
         format!("side {face}")
     }
+    // A walk's point packs (p_x, p_y, sheet, e_x): the base point's w is derived.
     fn point_json(&self, p: DVec4) -> Map<String, Value> {
         let mut m = Map::new();
-        m.insert("base_point".into(), json!([p.x, p.y, p.z]));
+        let w = (1.0 + p.x * p.x + p.y * p.y).sqrt();
+        m.insert("base_point".into(), json!([p.x, p.y, w]));
+        if self.0.sheets() > 1 {
+            m.insert("sheet".into(), json!(p.z.round()));
+        }
         m
     }
     fn point_text(&self, p: DVec4) -> String {
-        format!("({:+.15}, {:+.15}, {:+.15})", p.x, p.y, p.z)
+        let w = (1.0 + p.x * p.x + p.y * p.y).sqrt();
+        let sheet = if self.0.sheets() > 1 {
+            format!(" on sheet {}", p.z.round())
+        } else {
+            String::new()
+        };
+        format!("({:+.15}, {:+.15}, {:+.15}){sheet}", p.x, p.y, w)
     }
     fn end_json(&self, end: &Ray<DVec4>) -> Map<String, Value> {
         use bevy_curved_spaces::space::sl2r::Sl2rWalker;
@@ -164,6 +175,9 @@ impl TraceFamily for Sl2rFamily {
         let mut m = Map::new();
         m.insert("model".into(), json!([p[0], p[1], p[2], e[0], e[1], e[2]]));
         m.insert("direction".into(), json!(r.velocity));
+        if self.0.sheets() > 1 {
+            m.insert("sheet".into(), json!(Sl2rWalker::<DVec4>::sheet_of(end)));
+        }
         m
     }
 }
@@ -407,6 +421,6 @@ pub(super) fn trace(args: &TraceArgs) -> Result<(), String> {
         AnySpace::Constant(space) => trace_in(args, &*space, space.name(), &ConstantFamily(&space)),
         AnySpace::Product(space) => trace_in(args, &*space, space.name(), &ProductFamily(&space)),
         AnySpace::Nil(space) => trace_in(args, &*space, space.name(), &NilFamily),
-        AnySpace::Sl2r(space) => trace_in(args, &*space, space.name(), &Sl2rFamily),
+        AnySpace::Sl2r(space) => trace_in(args, &*space, space.name(), &Sl2rFamily(&space)),
     }
 }

@@ -3,8 +3,8 @@
 //! A frame of the contract (`DMat4`) holds, for SL̃(2,R), the point `(p, e)` and the
 //! viewer's axes: the columns' first three entries are the right, up and back axes as body
 //! vectors in `(X, Y, V)`, their fourth entries are `e = (e_x, e_y, e_w)`, and the last
-//! column is `(p_x, p_y, p_w, 1)` (so `w_axis` is the base point, as the other families'
-//! positions are). A frame moves along the geodesic of its motion with its axes' body
+//! column is `(p_x, p_y, p_w, 1 + k)` (so `w_axis` is the base point, as the other families'
+//! positions are; `k` is a fibre cover's sheet, 0 in `UT Σ`). A frame moves along the geodesic of its motion with its axes' body
 //! components kept: the motion is the left translation carrying the start to the end, an
 //! isometry, as the gluings are. The chart of `trace --from x,y,θ` is the reference's:
 //! `p = (x, y, √(1 + x² + y²))`, `e = cos θ E₁ + sin θ E₂` with `(E₁, E₂)` the boost of the
@@ -41,14 +41,24 @@ fn axes_of(frame: &DMat4) -> DMat3 {
     )
 }
 
-/// The frame of the point `r` with the viewer's `axes`.
-fn frame_of(r: &Sl2rRay<f64>, axes: DMat3) -> DMat4 {
+/// The fibre cover's sheet of a frame (its last column's fourth entry less 1).
+fn sheet_of(frame: &DMat4) -> u32 {
+    let k = (frame.w_axis.w - 1.0).round();
+    if k >= 0.0 && k < f64::from(u32::MAX) {
+        k as u32
+    } else {
+        0
+    }
+}
+
+/// The frame of the point `r` on `sheet` with the viewer's `axes`.
+fn frame_of(r: &Sl2rRay<f64>, axes: DMat3, sheet: u32) -> DMat4 {
     let [e, _, p] = r.frame;
     DMat4::from_cols(
         axes.x_axis.extend(e[0]),
         axes.y_axis.extend(e[1]),
         axes.z_axis.extend(e[2]),
-        DVec3::from_array(p).extend(1.0),
+        DVec3::from_array(p).extend(1.0 + f64::from(sheet)),
     )
 }
 
@@ -59,17 +69,23 @@ fn orthonormal(axes: DMat3) -> DMat3 {
     DMat3::from_cols(x, y, x.cross(y))
 }
 
-/// The point `r` moved along the body direction `u` (any length) by its length.
-fn moved_along(r: &Sl2rRay<f64>, u: DVec3) -> Sl2rRay<f64> {
+/// The point `r` on `sheet` moved along the body direction `u` (any length) by its length,
+/// with the sheet it reaches in a cover of `sheets`.
+fn moved_along(r: &Sl2rRay<f64>, sheet: u32, sheets: u32, u: DVec3) -> (Sl2rRay<f64>, u32) {
     let length = u.length();
     if !(length > 0.0) || !length.is_finite() {
-        return *r;
+        return (*r, sheet);
     }
     let ray = Sl2rRay {
         frame: r.frame,
         velocity: (u / length).to_array(),
     };
-    on_model(&flow(&ray, length))
+    let end = on_model(&flow(&ray, length));
+    if sheets <= 1 {
+        return (end, sheet);
+    }
+    let climbed = super::cover::sheets_climbed(&ray, length, &end.frame).unwrap_or(0);
+    (end, super::cover::sheet_plus(sheet, climbed, sheets))
 }
 
 /// A 3×3 pairing of `H²` (rows, on `(x, y, w)`) as the 4×4 the holonomy composes, the
@@ -112,24 +128,34 @@ impl UnitTangentSpace {
     /// polygon, up to rounding), its body velocity kept.
     #[must_use]
     pub fn into_cell(&self, r: &Sl2rRay<f64>) -> Sl2rRay<f64> {
-        self.wrap_point(r, 0.0).0
+        self.wrap_point(r, 0, 0.0).0
     }
 
-    /// The point `r` brought into the cell by the sides' pairings once it is past a side by
-    /// more than `margin`, with the sides crossed.
-    fn wrap_point(&self, r: &Sl2rRay<f64>, margin: f64) -> (Sl2rRay<f64>, Vec<usize>) {
+    /// The point `r` on `sheet` brought into the cell by the sides' pairings once it is past
+    /// a side by more than `margin`, with the sheet it is then on and the sides crossed.
+    fn wrap_point(
+        &self,
+        r: &Sl2rRay<f64>,
+        sheet: u32,
+        margin: f64,
+    ) -> (Sl2rRay<f64>, u32, Vec<usize>) {
         let sides = self.sides_f64();
-        let mut r = *r;
+        let (mut r, mut sheet) = (*r, sheet);
         let mut crossed = Vec::new();
         for _ in 0..MAX_WRAPS {
             let (face, past) = self.farthest_past(r.frame[2]);
             if !(past > margin) {
                 break;
             }
-            r = on_model(&moved_by(&sides[face].1, &r));
+            let moved = on_model(&moved_by(&sides[face].1, &r));
+            if self.sheets() > 1 {
+                let climbed = self.sheets_through(face, &r.frame, &moved.frame);
+                sheet = super::cover::sheet_plus(sheet, climbed, self.sheets());
+            }
+            r = moved;
             crossed.push(face);
         }
-        (r, crossed)
+        (r, sheet, crossed)
     }
 }
 
@@ -158,19 +184,24 @@ impl FrameSpace for UnitTangentSpace {
             frame: super::chart_frame(from.x, from.y, from.z),
             velocity: dir.normalize().to_array(),
         });
-        let (inside, _) = self.wrap_point(&start, 0.0);
+        // The chart's angle is the lifted fibre angle: its whole turns are sheets.
+        let turns = ((from.z - super::cover::wrap_angle(from.z)) / std::f64::consts::TAU).round();
+        let sheet = super::cover::sheet_plus(0, turns as i64, self.sheets());
+        let (inside, sheet, _) = self.wrap_point(&start, sheet, 0.0);
         if !(self.farthest_past(inside.frame[2]).1 <= 1e-9) {
             return Err(format!(
                 "the start point {from} is too far to bring into the cell (more than \
                  {MAX_WRAPS} side crossings): start nearer the origin"
             ));
         }
-        Ok(Sl2rWalker::<DVec4>::ray_of(&inside))
+        Ok(Sl2rWalker::<DVec4>::ray_on_sheet(&inside, sheet))
     }
 
-    /// How far the base point `(p.x, p.y, p.z)` lies outside the polygon, in `H²`.
+    /// How far the base point over `(p.x, p.y)` lies outside the polygon, in `H²` (its `w`
+    /// derived: a walk's ray keeps the sheet there, a frame the base point's `w`).
     fn outside_by(&self, p: DVec4) -> f64 {
-        let past = self.farthest_past(p.truncate().to_array()).1;
+        let w = (1.0 + p.x * p.x + p.y * p.y).sqrt();
+        let past = self.farthest_past([p.x, p.y, w]).1;
         if past.is_nan() { f64::INFINITY } else { past }
     }
 
@@ -202,13 +233,14 @@ impl FrameSpace for UnitTangentSpace {
         let d = motion.translation;
         let mut axes = axes_of(&frame);
         let mut r = point_of(&frame, [0.0; 3]);
+        let mut sheet = sheet_of(&frame);
         if d.length() > 0.0 && d.is_finite() {
             let u = if motion.level {
                 crate::space::contract::level_step(axes.x_axis, axes.z_axis, d)
             } else {
                 axes * d
             };
-            r = moved_along(&r, u);
+            (r, sheet) = moved_along(&r, sheet, self.sheets(), u);
         }
         let turn = motion.rotation;
         if motion.level && turn.y != 0.0 && turn.y.is_finite() {
@@ -223,13 +255,14 @@ impl FrameSpace for UnitTangentSpace {
             }
             axes *= DMat3::from_axis_angle(axis, angle);
         }
-        frame_of(&r, orthonormal(axes))
+        frame_of(&r, orthonormal(axes), sheet)
     }
 
     fn turn_axes(&self, frame: DMat4, rotation: DMat3) -> DMat4 {
         frame_of(
             &point_of(&frame, [0.0; 3]),
             orthonormal(axes_of(&frame) * rotation),
+            sheet_of(&frame),
         )
     }
 
@@ -238,18 +271,24 @@ impl FrameSpace for UnitTangentSpace {
             return frame;
         }
         let axes = axes_of(&frame);
-        let r = moved_along(&point_of(&frame, [0.0; 3]), axes * (velocity.linear * dt));
+        let (r, sheet) = moved_along(
+            &point_of(&frame, [0.0; 3]),
+            sheet_of(&frame),
+            self.sheets(),
+            axes * (velocity.linear * dt),
+        );
         let rate = velocity.angular.length();
         let axes = if rate > 0.0 {
             axes * DMat3::from_axis_angle(velocity.angular / rate, rate * dt)
         } else {
             axes
         };
-        frame_of(&r, orthonormal(axes))
+        frame_of(&r, orthonormal(axes), sheet)
     }
 
     fn wrap_frame(&self, frame: DMat4, margin: f64) -> (DMat4, Vec<FrameCrossing>) {
-        let (r, crossed) = self.wrap_point(&point_of(&frame, [0.0; 3]), margin);
+        let (r, sheet, crossed) =
+            self.wrap_point(&point_of(&frame, [0.0; 3]), sheet_of(&frame), margin);
         if crossed.is_empty() {
             return (frame, Vec::new());
         }
@@ -262,6 +301,6 @@ impl FrameSpace for UnitTangentSpace {
                 fibre_shift: 0.0,
             })
             .collect();
-        (frame_of(&r, axes_of(&frame)), crossings)
+        (frame_of(&r, axes_of(&frame), sheet), crossings)
     }
 }

@@ -19,6 +19,7 @@
 
 pub mod accuracy;
 pub mod ball;
+pub mod cover;
 pub mod distance;
 pub mod exit;
 pub mod flow;

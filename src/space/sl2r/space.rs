@@ -40,16 +40,22 @@ pub enum Sl2rError {
         /// The geometry of its unit tangent bundle.
         geometry: &'static str,
     },
-    /// A fibre cover was asked for.
+    /// A fibre cover's degree is not a whole number dividing the Euler characteristic.
     #[error(
-        "unit-tangent-{word}-cover-{n}: the fibre covers (the fibre closing after 2πN, cells \
-         with a top and a bottom) are not built yet; unit-tangent-{word} is"
+        "unit-tangent-{word}-cover-{n}: {why}; the fibre's N-fold covers of this bundle are \
+         N = {divisors} (N divides χ = {chi})"
     )]
     Cover {
         /// The word.
         word: String,
         /// The cover's degree as written.
         n: String,
+        /// What is wrong with it.
+        why: String,
+        /// The degrees there are, listed.
+        divisors: String,
+        /// The surface's Euler characteristic.
+        chi: i64,
     },
     /// The surface is not orientable.
     #[error(
@@ -71,6 +77,7 @@ pub struct UnitTangentSpace {
     word: SurfaceWord,
     polygon: Polygon,
     sides: Vec<Sl2rSide>,
+    sheets: u32,
 }
 
 /// The id's prefix of the unit tangent bundles.
@@ -81,20 +88,61 @@ pub const UNIT_TANGENT_PREFIX: &str = "unit-tangent-";
 /// is but names no such space.
 pub fn sl2r_space(id: &str) -> Option<Result<UnitTangentSpace, Sl2rError>> {
     let rest = id.strip_prefix(UNIT_TANGENT_PREFIX)?;
-    if let Some((word, n)) = rest.split_once("-cover-") {
-        return Some(Err(Sl2rError::Cover {
-            word: word.to_string(),
-            n: n.to_string(),
-        }));
-    }
+    let (rest, cover) = match rest.split_once("-cover-") {
+        Some((word, n)) => (word, Some(n)),
+        None => (rest, None),
+    };
     let word = match rest {
         "bitorus" => "abABcdCD",
         w => w,
     };
-    Some(UnitTangentSpace::new(word).map(|mut s| {
+    let space = match cover {
+        None => UnitTangentSpace::new(word),
+        Some(n) => cover_degree(word, n).and_then(|n| UnitTangentSpace::cover(word, n)),
+    };
+    Some(space.map(|mut s| {
         s.name = id.to_string();
         s
     }))
+}
+
+/// The degree `N` of `unit-tangent-WORD-cover-N` as written, checked against the word's
+/// Euler characteristic (a word that is no hyperbolic surface reports that instead).
+fn cover_degree(word: &str, n: &str) -> Result<u32, Sl2rError> {
+    let surface = UnitTangentSpace::new(word)?;
+    let chi = surface.word.euler_characteristic();
+    let divisors: Vec<String> = (1..=chi.unsigned_abs())
+        .filter(|d| chi.unsigned_abs() % d == 0)
+        .map(|d| d.to_string())
+        .collect();
+    let refuse = |why: String| Sl2rError::Cover {
+        word: word.to_string(),
+        n: n.to_string(),
+        why,
+        divisors: divisors.join(", "),
+        chi,
+    };
+    let degree = match n.parse::<u64>() {
+        Ok(0) => return Err(refuse("N = 0 is no cover".to_string())),
+        Ok(d) => d,
+        Err(_) if n.is_empty() => return Err(refuse("the degree N is missing".to_string())),
+        Err(_) if n.bytes().all(|b| b.is_ascii_digit()) => {
+            return Err(refuse(format!("{n} sheets are far more than χ allows")));
+        }
+        Err(_) => {
+            return Err(refuse(format!(
+                "`{}` is not a whole number of sheets",
+                n.escape_debug()
+            )));
+        }
+    };
+    if chi.unsigned_abs() % degree != 0 {
+        return Err(refuse(format!(
+            "{degree} does not divide χ = {chi}, so the surface group has no lift to the \
+             {degree}-fold cover of the fibre"
+        )));
+    }
+    Ok(degree as u32)
 }
 
 /// The 3×3 part of a product space's pairing that acts on `H²` (`(x, y, w)`: the model's
@@ -154,7 +202,36 @@ impl UnitTangentSpace {
             word,
             polygon,
             sides,
+            sheets: 1,
         })
+    }
+
+    /// The fibre's `N`-fold cover of the unit tangent bundle of `word` (`N` dividing `χ`):
+    /// the fibre closes after `2πN`; the cell is the polygon times `Λ ∈ (−πN, πN]` (see
+    /// [`super::cover`]). `N = 1` is `UT Σ`.
+    pub fn cover(word: &str, sheets: u32) -> Result<Self, Sl2rError> {
+        let mut space = Self::new(word)?;
+        if sheets == 1 {
+            return Ok(space);
+        }
+        cover_degree(word, &sheets.to_string())?;
+        let genus = space.genus();
+        space.name = format!("{UNIT_TANGENT_PREFIX}{}-cover-{sheets}", space.word.word);
+        space.description = format!(
+            "the {sheets}-fold fibre cover of the unit tangent bundle of the genus-{genus} \
+             surface {} (SL̃(2,R)): its {}-gon times the fibre, a circle of length {sheets}·2π \
+             (the cell's top and bottom at ±{sheets}π glued)",
+            space.word.word,
+            space.word.side_count()
+        );
+        space.sheets = sheets;
+        Ok(space)
+    }
+
+    /// The fibre cover's degree `N` (1 for `UT Σ`).
+    #[must_use]
+    pub fn sheets(&self) -> u32 {
+        self.sheets
     }
 
     /// The space's id: `unit-tangent-WORD` (or the alias it was named by).
@@ -169,8 +246,11 @@ impl UnitTangentSpace {
         &self.description
     }
 
-    /// The injectivity radius, `min(π, sys/2)` with `sys` the surface's systole; `None`
-    /// when the surface group is too large to search (more than `limit` elements).
+    /// The injectivity radius of `UT Σ`, `min(π, sys/2)` with `sys` the surface's systole;
+    /// `None` when the surface group is too large to search (more than `limit` elements).
+    /// For a fibre cover it is a lower bound (a geodesic loop of the cover is one of `UT Σ`,
+    /// and the conjugate radius is the same): whether the shortest loop over the systole
+    /// closes in the cover depends on the sheets it climbs.
     ///
     /// Why: the sectional curvature of this metric lies in `[−7/4, 1/4]` (Milnor's formulas
     /// for the structure constants `[B₁, B₂] = −R`, `[R, B₁] = B₂`, `[R, B₂] = −B₁`), so no
@@ -254,17 +334,33 @@ impl UnitTangentSpace {
         ((2 - self.word.euler_characteristic()) / 2) as u64
     }
 
-    /// The volume: the fibre's length `2π` times the surface's area `2π|χ|`.
+    /// The volume: the fibre's length `2πN` times the surface's area `2π|χ|`.
     #[must_use]
     pub fn volume(&self) -> f64 {
-        4.0 * PI * PI * self.word.euler_characteristic().unsigned_abs() as f64
+        4.0 * PI
+            * PI
+            * f64::from(self.sheets)
+            * self.word.euler_characteristic().unsigned_abs() as f64
     }
 
-    /// `H₁(UT Σ_g) = Z^{2g} + Z/(2g − 2)`: the surface's cycles, and the fibre, whose
-    /// `2g − 2` copies bound (the Euler number of the bundle is `χ`).
+    /// `H₁`, from the presentation: the side pairs' generators and the fibre's loop `z`
+    /// (central); the vertex cycle's relation is the surface word (each generator once
+    /// forwards and once backwards, so nothing when abelian) times `z^{−m/N}`, `m` its
+    /// central turn ([`Self::euler_turns`], `±χ`): `Z^{2g} + Z/(|χ|/N)` (`Z/(2g − 2)` for
+    /// `UT Σ_g`).
     #[must_use]
-    pub fn homology(&self) -> String {
-        let g = self.genus();
-        format!("Z^{} + Z/{}", 2 * g, 2 * g - 2)
+    pub fn homology(&self) -> crate::space::homology::Homology {
+        let generators = 2 * self.genus() as usize;
+        let n = i64::from(self.sheets);
+        let relations: Vec<Vec<i128>> = self
+            .euler_turns()
+            .into_iter()
+            .map(|m| {
+                let mut row = vec![0; generators + 1];
+                row[generators] = i128::from(-m / n);
+                row
+            })
+            .collect();
+        crate::space::homology::from_relations(&relations, generators + 1)
     }
 }

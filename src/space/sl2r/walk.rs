@@ -1,10 +1,12 @@
 //! The walk through the cell of `UT Σ`: the polygon times the whole fibre, in any precision,
 //! over the walk contract ([`CellWalk`]).
 //!
-//! A ray of the walk packs the frame `(e, e⊥, p)` and the body velocity `(a, b, c)` into
-//! the contract's two 4-vectors: the point `(p_x, p_y, p_w, e_x)` and the tangent
-//! `(e_y, a, b, c)`; `e_w = (e_x p_x + e_y p_y)/p_w` (`e` is tangent at `p`) and
-//! `e⊥ = J(p × e)` are derived ([`super::flow::on_model`]). Its exit is the first side the
+//! A ray of the walk packs the frame `(e, e⊥, p)`, the body velocity `(a, b, c)` and the
+//! fibre cover's sheet `k` into the contract's two 4-vectors: the point `(p_x, p_y, k, e_x)`
+//! and the tangent `(e_y, a, b, c)`; `p_w = √(1 + p_x² + p_y²)`,
+//! `e_w = (e_x p_x + e_y p_y)/p_w` (`e` is tangent at `p`) and `e⊥ = J(p × e)` are derived
+//! ([`super::flow::on_model`]). In a fibre cover the walk counts the sheets climbed along
+//! each stretch and through each side ([`super::cover`]); in `UT Σ` the sheet stays 0. Its exit is the first side the
 //! base point leaves through ([`super::exit::side_exit`], in closed form); crossing it
 //! applies the side's pairing to the frame (a left translation keeps the body velocity).
 //! No side is skipped after a crossing: the base point moves on a circle, horocycle or
@@ -66,6 +68,8 @@ fn apply_compensated<R: Real>(hi: &[[R; 3]; 3], lo: &[[R; 3]; 3], v: [R; 3]) -> 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Sl2rWalker<V: Vector4> {
     sides: Vec<Side<V::Real>>,
+    /// The space, kept for a fibre cover's sheet counts (`None` for `UT Σ`).
+    cover: Option<Box<UnitTangentSpace>>,
 }
 
 /// A double-double in the precision `R` (the nearest `f64` or `f32` of its sum).
@@ -88,6 +92,53 @@ impl<V: Vector4> Sl2rWalker<V> {
                     partner: s.partner,
                 })
                 .collect(),
+            cover: (space.sheets() > 1).then(|| Box::new(space.clone())),
+        }
+    }
+
+    /// The fibre cover's degree `N` (1 for `UT Σ`).
+    #[must_use]
+    pub fn sheets(&self) -> u32 {
+        self.cover.as_ref().map_or(1, |s| s.sheets())
+    }
+
+    /// The sheet a ray of the walk is on.
+    #[must_use]
+    pub fn sheet_of(ray: &Ray<V>) -> u32 {
+        let k = ray.point.component(2).to_f64().round();
+        if k >= 0.0 && k < f64::from(u32::MAX) {
+            k as u32
+        } else {
+            0
+        }
+    }
+
+    /// A flow ray on the sheet `sheet` as a ray of the walk.
+    #[must_use]
+    pub fn ray_on_sheet(r: &Sl2rRay<V::Real>, sheet: u32) -> Ray<V> {
+        let [e, _, p] = r.frame;
+        let [a, b, c] = r.velocity;
+        Ray {
+            point: V::new(p[0], p[1], V::Real::from_f64(f64::from(sheet)), e[0]),
+            tangent: V::new(e[1], a, b, c),
+        }
+    }
+
+    /// The sheet after `ray` moved `t` along its geodesic to the frame `end`.
+    fn sheet_after(
+        &self,
+        ray: &Ray<V>,
+        r: &Sl2rRay<V::Real>,
+        t: V::Real,
+        end: &Sl2rRay<V::Real>,
+    ) -> u32 {
+        let sheet = Self::sheet_of(ray);
+        match &self.cover {
+            None => sheet,
+            Some(space) => {
+                let climbed = super::cover::sheets_climbed(r, t, &end.frame).unwrap_or(0);
+                super::cover::sheet_plus(sheet, climbed, space.sheets())
+            }
         }
     }
 
@@ -95,7 +146,8 @@ impl<V: Vector4> Sl2rWalker<V> {
     #[must_use]
     pub fn sl2r_ray(ray: &Ray<V>) -> Sl2rRay<V::Real> {
         let c = |v: V, i| v.component(i);
-        let p = [c(ray.point, 0), c(ray.point, 1), c(ray.point, 2)];
+        let (x, y) = (c(ray.point, 0), c(ray.point, 1));
+        let p = [x, y, (V::Real::ONE + x * x + y * y).sqrt()];
         let (ex, ey) = (c(ray.point, 3), c(ray.tangent, 0));
         let e = [ex, ey, tangent_w(p, ex, ey)];
         let f = perp(p, e);
@@ -105,15 +157,10 @@ impl<V: Vector4> Sl2rWalker<V> {
         }
     }
 
-    /// A flow ray as a ray of the walk.
+    /// A flow ray as a ray of the walk, on the first sheet.
     #[must_use]
     pub fn ray_of(r: &Sl2rRay<V::Real>) -> Ray<V> {
-        let [e, _, p] = r.frame;
-        let [a, b, c] = r.velocity;
-        Ray {
-            point: V::new(p[0], p[1], p[2], e[0]),
-            tangent: V::new(e[1], a, b, c),
-        }
+        Self::ray_on_sheet(r, 0)
     }
 
     /// The first exit of `ray` (the side `entered` just crossed into: no exit at its
@@ -141,7 +188,7 @@ impl<V: Vector4> CellWalk<V> for Sl2rWalker<V> {
     type Exit = Sl2rExit<V::Real>;
 
     fn on_model(&self, ray: Ray<V>) -> Ray<V> {
-        Self::ray_of(&on_model(&Self::sl2r_ray(&ray)))
+        Self::ray_on_sheet(&on_model(&Self::sl2r_ray(&ray)), Self::sheet_of(&ray))
     }
 
     fn next_exit(&self, ray: &Ray<V>, skip: Option<usize>, _steps: usize) -> NextExit<Self::Exit> {
@@ -169,20 +216,28 @@ impl<V: Vector4> CellWalk<V> for Sl2rWalker<V> {
     }
 
     fn through(&self, ray: &Ray<V>, exit: &Self::Exit) -> Ray<V> {
-        let at = flow(&Self::sl2r_ray(ray), exit.t);
+        let r = Self::sl2r_ray(ray);
+        let at = flow(&r, exit.t);
         let side = &self.sides[exit.face];
-        let moved = Sl2rRay {
+        let moved = on_model(&Sl2rRay {
             frame: at
                 .frame
                 .map(|v| apply_compensated(&side.pairing, &side.pairing_lo, v)),
             velocity: at.velocity,
-        };
-        Self::ray_of(&on_model(&moved))
+        });
+        let mut sheet = self.sheet_after(ray, &r, exit.t, &at);
+        if let Some(space) = &self.cover {
+            let climbed = space.sheets_through(exit.face, &at.frame, &moved.frame);
+            sheet = super::cover::sheet_plus(sheet, climbed, space.sheets());
+        }
+        Self::ray_on_sheet(&moved, sheet)
     }
 
     fn moved_by(&self, ray: &Ray<V>, t: f64) -> Ray<V> {
-        let at = flow(&Self::sl2r_ray(ray), V::Real::from_f64(t));
-        Self::ray_of(&on_model(&at))
+        let r = Self::sl2r_ray(ray);
+        let t = V::Real::from_f64(t);
+        let at = on_model(&flow(&r, t));
+        Self::ray_on_sheet(&at, self.sheet_after(ray, &r, t, &at))
     }
 
     fn skip_after(&self, exit: &Self::Exit) -> Option<usize> {

@@ -289,6 +289,7 @@ fn build_object(space: &UnitTangentSpace, spec: &ObjectSpec) -> Result<Built, St
         .chart_ray(point, DVec3::X)
         .map_err(|m| format!("the object's position: {m}"))?;
     let frame = Sl2rWalker::<DVec4>::sl2r_ray(&ray).frame;
+    let sheet = Sl2rWalker::<DVec4>::sheet_of(&ray);
     let colour = colour(c)?.min(DVec3::ONE);
     Ok(match spec {
         ObjectSpec::Tube { .. } => Built::Tube(FibreTube {
@@ -300,6 +301,7 @@ fn build_object(space: &UnitTangentSpace, spec: &ObjectSpec) -> Result<Built, St
             centre: frame,
             radius,
             colour,
+            sheet,
         }),
     })
 }

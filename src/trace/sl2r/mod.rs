@@ -56,6 +56,9 @@ pub struct Sl2rBall {
     pub radius: f64,
     /// Its colour, linear RGB.
     pub colour: DVec3,
+    /// The fibre cover's sheet it sits on (0 in `UT Σ`): its lifted fibre angle is its
+    /// frame's angle plus `2π·sheet` ([`crate::space::sl2r::cover`]).
+    pub sheet: u32,
 }
 
 /// What a ray meets: a tube or a ball of the scene.
@@ -120,11 +123,22 @@ impl Sl2rScene {
     /// within the polygon's circumradius plus the radius of the centre: the base point of
     /// every point of a ball is within its radius of the centre's).
     pub fn add_ball_with_images(&mut self, space: &UnitTangentSpace, ball: Sl2rBall) {
+        use crate::space::sl2r::cover::{fibre_angle, sheet_plus};
         let reach = (space.circumradius() + ball.radius).cosh();
-        for m in group_elements(space, ball.centre[2]) {
+        let angle = fibre_angle(&ball.centre);
+        for (m, turn) in group_elements_turning(space, ball.centre[2]) {
             let centre = ball.centre.map(|c| apply(&m, c));
             if centre[2][2] <= reach * (1.0 + 1e-12) {
-                self.balls.push(Sl2rBall { centre, ..ball });
+                // The image's lifted angle is the centre's plus the element's turn: the
+                // whole turns between that and the image's own angle are sheets climbed.
+                let climbed =
+                    ((angle + turn - fibre_angle(&centre)) / std::f64::consts::TAU).round();
+                let sheet = sheet_plus(ball.sheet, climbed as i64, space.sheets());
+                self.balls.push(Sl2rBall {
+                    centre,
+                    sheet,
+                    ..ball
+                });
             }
         }
     }
@@ -139,6 +153,17 @@ fn apply(m: &[[f64; 3]; 3], v: [f64; 3]) -> [f64; 3] {
 /// image of the base point `q` (enough for every polygon that shares a vertex with the
 /// cell; the group is torsion-free, so distinct elements move `q` apart).
 fn group_elements(space: &UnitTangentSpace, q: [f64; 3]) -> Vec<[[f64; 3]; 3]> {
+    group_elements_turning(space, q)
+        .into_iter()
+        .map(|(m, _)| m)
+        .collect()
+}
+
+/// [`group_elements`] with what each adds to the lifted fibre angle of a point over `q`
+/// (the sum of its pairings' turns along the word, [`UnitTangentSpace::side_turn`]; 0 in
+/// `UT Σ`, whose sheet is always the first).
+fn group_elements_turning(space: &UnitTangentSpace, q: [f64; 3]) -> Vec<([[f64; 3]; 3], f64)> {
+    let covering = space.sheets() > 1;
     let pairings: Vec<[[f64; 3]; 3]> = space
         .sides()
         .iter()
@@ -148,26 +173,31 @@ fn group_elements(space: &UnitTangentSpace, q: [f64; 3]) -> Vec<[[f64; 3]; 3]> {
         [0, 1, 2].map(|i| [0, 1, 2].map(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum::<f64>()))
     };
     let identity = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
-    let mut seen = vec![(identity, q)];
-    let mut frontier = vec![identity];
+    let mut seen = vec![(identity, q, 0.0)];
+    let mut frontier = vec![(identity, q, 0.0)];
     for _ in 0..4 {
         let mut next = Vec::new();
-        for g in &frontier {
-            for m in &pairings {
-                let element = times(m, g);
+        for &(g, at, turned) in &frontier {
+            for (face, m) in pairings.iter().enumerate() {
+                let element = times(m, &g);
                 let image = apply(&element, q);
-                let new = seen.iter().all(|(_, s)| {
+                let new = seen.iter().all(|(_, s, _)| {
                     (0..3).map(|i| (s[i] - image[i]).abs()).fold(0.0, f64::max) > 1e-9 * image[2]
                 });
                 if new {
-                    seen.push((element, image));
-                    next.push(element);
+                    let turn = if covering {
+                        turned + space.side_turn(face, at)
+                    } else {
+                        0.0
+                    };
+                    seen.push((element, image, turn));
+                    next.push((element, image, turn));
                 }
             }
         }
         frontier = next;
     }
-    seen.into_iter().map(|(m, _)| m).collect()
+    seen.into_iter().map(|(m, _, turn)| (m, turn)).collect()
 }
 
 /// The base point at distance `r` from the polygon's centre in the direction `angle`.
@@ -263,6 +293,8 @@ pub fn scene_with_parts(space: &UnitTangentSpace, parts: Sl2rParts) -> Sl2rScene
                     centre: crate::space::sl2r::chart_frame(x, y, theta),
                     radius: (0.22 * rho).min(MAX_SL2R_BALL_RADIUS),
                     colour,
+                    // In a fibre cover the stack is on the first sheet only.
+                    sheet: 0,
                 },
             );
         }
@@ -326,12 +358,13 @@ impl Sl2rCamera {
         }
         let ray = space.chart_ray(point, DVec3::X)?;
         let r = Sl2rWalker::<DVec4>::sl2r_ray(&ray);
+        let sheet = Sl2rWalker::<DVec4>::sheet_of(&ray);
         let [e, _, p] = r.frame;
         let frame = DMat4::from_cols(
             DVec4::new(1.0, 0.0, 0.0, e[0]),
             DVec4::new(0.0, 1.0, 0.0, e[1]),
             DVec4::new(0.0, 0.0, 1.0, e[2]),
-            DVec3::from_array(p).extend(1.0),
+            DVec3::from_array(p).extend(1.0 + f64::from(sheet)),
         );
         Ok(Self {
             frame: looking_along_e(frame),
@@ -434,6 +467,18 @@ pub fn default_camera(space: &UnitTangentSpace) -> Sl2rCamera {
     }
 }
 
+/// The fibre cover's sheet of a frame: its last column's fourth entry is `1 + sheet` (1 in
+/// `UT Σ`).
+#[must_use]
+pub fn camera_sheet(frame: &DMat4) -> u32 {
+    let k = (frame.w_axis.w - 1.0).round();
+    if k >= 0.0 && k < f64::from(u32::MAX) {
+        k as u32
+    } else {
+        0
+    }
+}
+
 /// The camera ray of a frame through the lens point `(x, y)`: its point, and the body
 /// direction `x·right + y·up − back`, normalised.
 #[must_use]
@@ -453,6 +498,8 @@ pub fn camera_ray(frame: &DMat4, x: f64, y: f64) -> Sl2rRay<f64> {
 fn first_object<'a>(
     scene: &'a Sl2rScene,
     ray: &Sl2rRay<f64>,
+    sheet: u32,
+    sheets: u32,
     t_max: f64,
 ) -> Option<(f64, Sl2rObject<'a>)> {
     let mut best: Option<(f64, Sl2rObject<'a>)> = None;
@@ -468,13 +515,50 @@ fn first_object<'a>(
     }
     for ball in &scene.balls {
         let reach = best.map_or(t_max, |(b, _)| b);
-        if let Some(t) = ball_hit(ray, &ball.centre, ball.radius, reach)
+        if let Some(t) = ball_hit_on_sheet(ray, sheet, sheets, ball, reach)
             && t <= reach
         {
             best = Some((t, Sl2rObject::Ball(ball)));
         }
     }
     best
+}
+
+/// Where `ray` (on `sheet` of a cover of `sheets` sheets) first meets `ball` within `t_max`.
+/// In `UT H²` (one sheet) the ball's hit; in a cover the ball there is one of the `N` lifts of
+/// that ball, `2π` apart along the fibre: a hit counts where the ray's lifted angle is within
+/// `π` of the ball's (the shortest geodesic from the centre, at most `r ≤ ½` long, turns it
+/// by less than `√2·r`); else the ray passes through that lift (a chord at most `2r`) and
+/// the search goes on past it.
+fn ball_hit_on_sheet(
+    ray: &Sl2rRay<f64>,
+    sheet: u32,
+    sheets: u32,
+    ball: &Sl2rBall,
+    t_max: f64,
+) -> Option<f64> {
+    use crate::space::sl2r::cover::{fibre_angle, sheets_climbed};
+    use std::f64::consts::TAU;
+    if sheets <= 1 {
+        return ball_hit(ray, &ball.centre, ball.radius, t_max);
+    }
+    let mut from = 0.0;
+    while from <= t_max {
+        let start = flow(ray, from);
+        let t = from + ball_hit(&start, &ball.centre, ball.radius, t_max - from)?;
+        let at = flow(ray, t);
+        let climbed = sheets_climbed(ray, t, &at.frame)?;
+        let turns =
+            (i64::from(sheet) + climbed - i64::from(ball.sheet)).rem_euclid(i64::from(sheets));
+        let apart = fibre_angle(&at.frame) - fibre_angle(&ball.centre) + TAU * turns as f64;
+        // The lifted angles' difference modulo 2πN, nearest 0.
+        let apart = apart - TAU * f64::from(sheets) * (apart / (TAU * f64::from(sheets))).round();
+        if apart.abs() < std::f64::consts::PI {
+            return Some(t);
+        }
+        from = t + 2.0 * ball.radius + 1e-9;
+    }
+    None
 }
 
 /// The colour of `object` where `ray` meets it at `t`, seen along the ray.
@@ -524,8 +608,21 @@ pub fn first_hit<'a>(
     ray: Sl2rRay<f64>,
     max_crossings: usize,
 ) -> Option<Sl2rHit<'a>> {
+    first_hit_on_sheet(walker, scene, ray, 0, max_crossings)
+}
+
+/// [`first_hit`] from a point on the fibre cover's sheet `sheet`.
+#[must_use]
+pub fn first_hit_on_sheet<'a>(
+    walker: &Sl2rWalker<DVec4>,
+    scene: &'a Sl2rScene,
+    ray: Sl2rRay<f64>,
+    sheet: u32,
+    max_crossings: usize,
+) -> Option<Sl2rHit<'a>> {
     let cutoff = scene.cutoff_distance();
-    let mut ray = Sl2rWalker::<DVec4>::ray_of(&ray);
+    let sheets = walker.sheets();
+    let mut ray = Sl2rWalker::<DVec4>::ray_on_sheet(&ray, sheet);
     let mut walked = 0.0;
     let mut entered = None;
     let mut last_face = None;
@@ -537,7 +634,8 @@ pub fn first_hit<'a>(
             NextExit::Degenerate => return None,
         };
         let within = segment.min(cutoff - walked);
-        if let Some((t, object)) = first_object(scene, &r, within) {
+        let on = Sl2rWalker::<DVec4>::sheet_of(&ray);
+        if let Some((t, object)) = first_object(scene, &r, on, sheets, within) {
             return Some(Sl2rHit {
                 distance: walked + t,
                 object,
@@ -565,9 +663,10 @@ pub fn trace_sl2r_pixel(
     walker: &Sl2rWalker<DVec4>,
     scene: &Sl2rScene,
     ray: Sl2rRay<f64>,
+    sheet: u32,
     max_crossings: usize,
 ) -> DVec3 {
-    match first_hit(walker, scene, ray, max_crossings) {
+    match first_hit_on_sheet(walker, scene, ray, sheet, max_crossings) {
         Some(hit) => {
             let fade = (-hit.distance / scene.fog_distance).exp();
             let mut surface = shade(scene, hit.object, &hit.segment, hit.t);
@@ -602,6 +701,7 @@ pub fn render_sl2r_view(
             &walker,
             scene,
             camera_ray(&layout.frames[eye], x, y),
+            camera_sheet(&layout.frames[eye]),
             max_crossings,
         )
     })

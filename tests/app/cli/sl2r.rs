@@ -9,31 +9,55 @@ fn lorentz(u: &[f64], v: &[f64]) -> f64 {
     u[0] * v[0] + u[1] * v[1] - u[2] * v[2]
 }
 
+/// `Z/d + Z + … + Z` (SnapPy's order), `d` left out where it is 1.
+fn homology_text(rank: i64, torsion: i64) -> String {
+    let mut parts: Vec<String> = Vec::new();
+    if torsion > 1 {
+        parts.push(format!("Z/{torsion}"));
+    }
+    parts.extend((0..rank).map(|_| "Z".to_string()));
+    parts.join(" + ")
+}
+
 #[test]
 fn info_gives_the_unit_tangent_bundles_invariants() {
-    for (id, word, genus) in [
-        ("unit-tangent-bitorus", "abABcdCD", 2i64),
-        ("unit-tangent-abcdABCD", "abcdABCD", 2),
-        ("unit-tangent-abABcdCDefEF", "abABcdCDefEF", 3),
+    for (id, word, genus, sheets) in [
+        ("unit-tangent-bitorus", "abABcdCD", 2i64, 1i64),
+        ("unit-tangent-abcdABCD", "abcdABCD", 2, 1),
+        ("unit-tangent-abABcdCDefEF", "abABcdCDefEF", 3, 1),
+        ("unit-tangent-bitorus-cover-2", "abABcdCD", 2, 2),
+        ("unit-tangent-abABcdCDefEF-cover-2", "abABcdCDefEF", 3, 2),
+        ("unit-tangent-abABcdCDefEF-cover-4", "abABcdCDefEF", 3, 4),
     ] {
         let v = json(&["info", id, "--json"]);
         assert_eq!(v["geometry"], "SL2R");
         assert_eq!(v["name"], id);
         assert_eq!(v["word"], word);
         assert_eq!(v["genus"], genus);
+        assert_eq!(v["sheets"], sheets);
         let chi = 2 - 2 * genus;
         assert_eq!(v["euler_characteristic"], chi);
-        // The fibre 2π times the area 2π|χ|.
-        let volume = 4.0 * std::f64::consts::PI.powi(2) * chi.abs() as f64;
+        // The fibre 2πN times the area 2π|χ|.
+        let volume = 4.0 * std::f64::consts::PI.powi(2) * (sheets * chi.abs()) as f64;
         assert!((v["volume"].as_f64().unwrap() - volume).abs() < 1e-12 * volume);
+        // The Euler number of the N-fold cover is χ/N: the fibre's order in H₁.
         assert_eq!(
             v["homology"],
-            format!("Z^{} + Z/{}", 2 * genus, 2 * genus - 2)
+            homology_text(2 * genus, chi.abs() / sheets),
+            "{id}"
         );
         assert_eq!(v["faces"], 4 * genus);
         assert_eq!(v["orientable"], true);
-        let inj = v["injectivity_radius"].as_f64().unwrap();
+        let inj = v["injectivity_radius_at_least"].as_f64().unwrap();
         assert!(inj > 0.5 && inj <= std::f64::consts::PI, "{id}: {inj}");
+        if sheets == 1 {
+            assert_eq!(v["injectivity_radius"].as_f64(), Some(inj));
+        } else {
+            assert!(
+                v["injectivity_radius"].is_null(),
+                "{id}: a cover's is a bound"
+            );
+        }
     }
 }
 
@@ -130,7 +154,20 @@ fn words_and_commands_it_cannot_take_are_refused_with_the_reason() {
     fails_with(&["info", "unit-tangent-abAB"], "flat");
     fails_with(&["info", "unit-tangent-aA"], "spherical");
     fails_with(&["info", "unit-tangent-aabb"], "non-orientable");
-    fails_with(&["info", "unit-tangent-abABcdCD-cover-2"], "not built yet");
+    fails_with(
+        &["info", "unit-tangent-abABcdCD-cover-3"],
+        "3 does not divide χ = -2",
+    );
+    fails_with(
+        &["info", "unit-tangent-abABcdCD-cover-0"],
+        "N = 0 is no cover",
+    );
+    fails_with(&["info", "unit-tangent-abAB-cover-2"], "flat");
+    // The GPU does not count sheets yet: refused with the way to a picture.
+    fails_with(
+        &["render", "unit-tangent-abABcdCD-cover-2", "--size", "16x9"],
+        "render --cpu",
+    );
     fails_with(&["info", "unit-tangent-ab"], "");
     // walk refuses by the table what it cannot do (before it would open a window).
     fails_with(

@@ -8,6 +8,7 @@
 //! close as any method can get from a rounded start. Along a hypercycle the frame's entries
 //! grow like `e^{ωt}` and so do the errors of any start; along a circle they stay bounded.
 
+mod covers;
 mod distance;
 #[cfg(feature = "scene-files")]
 mod files;

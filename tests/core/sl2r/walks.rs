@@ -206,7 +206,7 @@ fn words_without_an_sl2r_bundle_are_refused_with_the_reason() {
     }
     let bitorus = UnitTangentSpace::new("abABcdCD").unwrap();
     assert_eq!(bitorus.name(), "unit-tangent-abABcdCD");
-    assert_eq!(bitorus.homology(), "Z^4 + Z/2");
+    assert_eq!(bitorus.homology().to_string(), "Z/2 + Z + Z + Z + Z");
     assert!((bitorus.volume() - 8.0 * std::f64::consts::PI.powi(2)).abs() < 1e-12);
 }
 

@@ -30,6 +30,9 @@ impl GpuScene {
         max_crossings: u32,
     ) -> Result<Self, GpuSceneError> {
         super::check_budget(max_crossings)?;
+        if space.sheets() > 1 {
+            return Err(GpuSceneError::Sl2rCover(space.sheets()));
+        }
         let sides = space.sides();
         let key = ShaderKey {
             sl2r: true,
