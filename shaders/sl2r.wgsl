@@ -8,6 +8,10 @@
 // then (SL2R_BALLS) the metric balls: the distance by the inverse exponential map (one
 // unknown γ, the logarithm of SO(2,1) in closed form, scanned and refined by the Illinois
 // method), safe steps by it and by its root-free floor, Newton's steps near the sphere.
+// (SL2R_COVER) a fibre cover: the walk counts the sheet it is on as the CPU's
+// space::sl2r::cover does — the fibre angle's wrapped change over pieces too short to turn
+// it by π, and each side's turn (its lift at the side's midpoint beside the covector) — and a
+// ball is met only on its own sheet.
 #define_import_path curved_spaces::sl2r
 
 #import curved_spaces::layout::{space}
@@ -216,6 +220,61 @@ fn sl2r_paired(face: u32, v: vec3<f32>) -> vec3<f32> {
     return (space.pairings[face] * x + space.pairings_lo[face] * x).xyz;
 }
 
+#ifdef SL2R_COVER
+const SL2R_TAU: f32 = 6.28318530717959;
+const SL2R_BALL_VECS: u32 = 4u;
+
+// The fibre angle of e at p: from the radially parallel field (the boost of the origin's
+// (1, 0, 0) to p), as the chart's θ.
+fn sl2r_fibre_angle(e: vec3<f32>, p: vec3<f32>) -> f32 {
+    let k = 1.0 / (1.0 + p.z);
+    let e1 = vec3<f32>(1.0 + p.x * p.x * k, p.x * p.y * k, p.x);
+    let e2 = vec3<f32>(p.x * p.y * k, 1.0 + p.y * p.y * k, p.y);
+    return atan2(sl2r_lorentz(e, e2), sl2r_lorentz(e, e1));
+}
+
+// The sheets r climbs over [0, t] to the frame `end`: the angle turns by less than π over a
+// piece of length 2 (|dθ/dt| ≤ √2), so each piece's wrapped change is its change.
+fn sl2r_climbed(r: Sl2rRay, t: f32, end: Sl2rRay) -> f32 {
+    let pieces = u32(clamp(ceil(t / 2.0), 1.0, 64.0));
+    var previous = sl2r_fibre_angle(r.e, r.p);
+    var climbed = 0.0;
+    for (var i = 1u; i <= pieces; i += 1u) {
+        var at = end;
+        if i < pieces {
+            at = sl2r_flow(r, t * f32(i) / f32(pieces));
+        }
+        let angle = sl2r_fibre_angle(at.e, at.p);
+        climbed -= round((angle - previous) / SL2R_TAU);
+        previous = angle;
+    }
+    return climbed;
+}
+
+// `sheet + by` among the cover's sheets.
+fn sl2r_sheet_plus(sheet: f32, by: f32) -> f32 {
+    let n = space.sl2r.z;
+    let k = sheet + by;
+    return k - n * floor(k / n);
+}
+#else
+const SL2R_BALL_VECS: u32 = 3u;
+#endif
+
+#ifdef SL2R_COVER
+// The sheets a crossing of side `face` climbs, from the frame `at` on the side to `moved`:
+// the pairing adds its turn (the lift at the midpoint plus the wrapped change from there).
+fn sl2r_sheets_through(face: u32, at: Sl2rRay, moved: Sl2rRay) -> f32 {
+    let k = 1.0 / (1.0 + at.p.z);
+    let e1 = vec3<f32>(1.0 + at.p.x * at.p.x * k, at.p.x * at.p.y * k, at.p.x);
+    let raw = sl2r_fibre_angle(sl2r_paired(face, e1), sl2r_paired(face, at.p));
+    let d = raw - space.covectors[face].w;
+    let turn = space.pairings_lo[face][3][3] + d - SL2R_TAU * round(d / SL2R_TAU);
+    let lifted = sl2r_fibre_angle(at.e, at.p) + turn;
+    return round((lifted - sl2r_fibre_angle(moved.e, moved.p)) / SL2R_TAU);
+}
+#endif
+
 #ifdef SL2R_BALLS
 // Beyond this gap over the radius the distance's floor alone gives the step.
 const SL2R_BALL_FAR: f32 = 0.5;
@@ -423,6 +482,37 @@ fn sl2r_ball_hit(base: u32, r: Sl2rRay, t_max: f32) -> f32 {
     return SL2R_NONE;
 }
 
+#ifdef SL2R_COVER
+// The first hit of the ball at `base` (sheet and fibre angle in its fourth vec4) by r, on
+// `sheet`, from its first hit `first` of any lift: a hit on another lift (2π apart along the
+// fibre) is passed — a chord of at most 2r — and the search goes on beyond it.
+fn sl2r_ball_on_sheet(base: u32, r: Sl2rRay, sheet: f32, first: f32, t_max: f32) -> f32 {
+    let radius = space.sl2r_objects[base].w;
+    let own = space.sl2r_objects[base + 3u];
+    let whole = SL2R_TAU * space.sl2r.z;
+    var t = first;
+    for (var i = 0u; i < 8u; i += 1u) {
+        if t < 0.0 {
+            return SL2R_NONE;
+        }
+        let at = sl2r_flow(r, t);
+        let on = sheet + sl2r_climbed(r, t, at);
+        var apart = sl2r_fibre_angle(at.e, at.p) - own.y + SL2R_TAU * (on - own.x);
+        apart -= whole * round(apart / whole);
+        if abs(apart) < SL2R_PI {
+            return t;
+        }
+        let past = t + 2.0 * radius + 1e-4;
+        if past > t_max {
+            return SL2R_NONE;
+        }
+        let next = sl2r_ball_hit(base, sl2r_flow(r, past), t_max - past);
+        t = select(past + next, SL2R_NONE, next < 0.0);
+    }
+    return SL2R_NONE;
+}
+#endif
+
 // The colour of the ball at `base` met by r at t, lit from the eye.
 fn sl2r_shade_ball(base: u32, r: Sl2rRay, t: f32) -> vec3<f32> {
     let at = sl2r_flow(r, t);
@@ -463,6 +553,10 @@ fn sl2r_eye_colour(frame: mat4x4<f32>, px: f32, py: f32) -> vec3<f32> {
     let p = frame[3].xyz;
     let e = vec3<f32>(frame[0].w, frame[1].w, frame[2].w);
     var r = Sl2rRay(e, sl2r_perp(p, e), p, d);
+#ifdef SL2R_COVER
+    // The eye's sheet rides in the frame's last entry (1 + sheet).
+    var sheet = round(frame[3].w - 1.0);
+#endif
     let shading = space.shading;
     let cutoff = shading.params.y;
     let budget = u32(shading.params.w);
@@ -506,17 +600,21 @@ fn sl2r_eye_colour(frame: mat4x4<f32>, px: f32, py: f32) -> vec3<f32> {
         let cosh_reach = cosh(reach);
         let sinh_reach = sinh(reach);
         for (var j = 0u; j < u32(space.sl2r.y); j += 1u) {
-            let centre = space.sl2r_objects[balls_at + 3u * j];
+            let base = balls_at + SL2R_BALL_VECS * j;
+            let centre = space.sl2r_objects[base];
             // cosh(reach + r) by the sum formula (cosh r and sinh r are packed with the ball).
-            let far = cosh_reach * space.sl2r_objects[balls_at + 3u * j + 1u].w
-                + sinh_reach * space.sl2r_objects[balls_at + 3u * j + 2u].w;
+            let far = cosh_reach * space.sl2r_objects[base + 1u].w
+                + sinh_reach * space.sl2r_objects[base + 2u].w;
             if -sl2r_lorentz(r.p, centre.xyz) > far {
                 continue;
             }
-            let t = sl2r_ball_hit(balls_at + 3u * j, r, reach);
+            var t = sl2r_ball_hit(base, r, reach);
+#ifdef SL2R_COVER
+            t = sl2r_ball_on_sheet(base, r, sheet, t, reach);
+#endif
             if t >= 0.0 && t < hit_t {
                 hit_t = t;
-                hit = balls_at + 3u * j;
+                hit = base;
                 hit_ball = true;
             }
         }
@@ -547,12 +645,19 @@ fn sl2r_eye_colour(frame: mat4x4<f32>, px: f32, py: f32) -> vec3<f32> {
             break;
         }
         let at = sl2r_flow(r, exit_t);
-        r = sl2r_on_model(Sl2rRay(
+        let moved = sl2r_on_model(Sl2rRay(
             sl2r_paired(exit_face, at.e),
             sl2r_paired(exit_face, at.f),
             sl2r_paired(exit_face, at.p),
             at.v,
         ));
+#ifdef SL2R_COVER
+        sheet = sl2r_sheet_plus(
+            sheet,
+            sl2r_climbed(r, exit_t, at) + sl2r_sheets_through(exit_face, at, moved),
+        );
+#endif
+        r = moved;
         entered = sl2r_partner(exit_face);
         last_face = exit_face;
     }

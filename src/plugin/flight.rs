@@ -246,7 +246,9 @@ pub fn record_flight(
             AnySpace::Nil(space) => {
                 crate::trace::nil::flight::recorded_nil_key(space, frame.0, holonomy)
             }
-            AnySpace::Sl2r(_) => crate::trace::sl2r::flight::recorded_sl2r_key(frame.0, holonomy),
+            AnySpace::Sl2r(space) => {
+                crate::trace::sl2r::flight::recorded_sl2r_key(space, frame.0, holonomy)
+            }
         }
     });
     if recorder.unwritten && recorder.last_write.is_none_or(|w| now - w >= 1.0) {

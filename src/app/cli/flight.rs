@@ -396,7 +396,9 @@ fn flight_sl2r(
     if args.light.any() {
         refuse(Feature::LampFluence)?;
     }
-    let flight = Sl2rFlight::new(file).map_err(|e| format!("{name}: {e}"))?;
+    let flight = Sl2rFlight::new(file)
+        .map_err(|e| format!("{name}: {e}"))?
+        .in_space(space);
     let mut scene = chosen.scene;
     scene.colour_by = args.colour_by.into();
     let budget = args

@@ -35,12 +35,6 @@ pub(super) fn render_sl2r_command(args: &RenderArgs, chosen: Sl2rChoice) -> Resu
     if args.view.light.any() {
         refuse(Feature::LampFluence)?;
     }
-    if !args.cpu && space.sheets() > 1 {
-        return Err(format!(
-            "{name}: {}",
-            bevy_curved_spaces::plugin::render::gpu::GpuSceneError::Sl2rCover(space.sheets())
-        ));
-    }
     let mut scene = chosen.scene;
     let mut camera = chosen.camera;
     if let (Some(eye), Some(target)) = (args.eye, args.look_at) {

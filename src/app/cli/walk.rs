@@ -132,9 +132,10 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
         Choice::Constant(chosen) => chosen,
         Choice::Sl2r(chosen) => {
             let flight = match &replay {
-                Some(file) => Some(bevy_curved_spaces::trace::sl2r::flight::Sl2rFlight::new(
-                    file,
-                )?),
+                Some(file) => Some(
+                    bevy_curved_spaces::trace::sl2r::flight::Sl2rFlight::new(file)?
+                        .in_space(&chosen.space),
+                ),
                 None => None,
             };
             return super::walk_sl2r::walk_sl2r(args, chosen, flight);

@@ -36,14 +36,6 @@ pub(super) fn walk_sl2r(
             refuse(feature)?;
         }
     }
-    if space.sheets() > 1 {
-        return Err(format!(
-            "{}: {}; `render {} --cpu` draws it",
-            space.name(),
-            bevy_curved_spaces::plugin::render::gpu::GpuSceneError::Sl2rCover(space.sheets()),
-            space.name()
-        ));
-    }
     let mut stereo_args = args.stereo;
     if args.xr
         && let Some(done) = super::walk::headset_or_desktop(&mut stereo_args, || {

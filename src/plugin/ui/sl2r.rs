@@ -61,10 +61,21 @@ pub(super) fn sl2r_panel(
                 let e = [f.x_axis.w, f.y_axis.w, f.z_axis.w];
                 let at =
                     crate::space::sl2r::chart_point(&[e, crate::space::sl2r::flow::perp(p, e), p]);
+                // In a fibre cover the angle is lifted by the sheet (2π a sheet).
+                let sheet = crate::trace::sl2r::camera_sheet(&f);
+                let theta = at.z + std::f64::consts::TAU * f64::from(sheet);
                 ui.label(format!(
-                    "at [x, y, θ] = [{:+.4}, {:+.4}, {:+.4}] (as --eye and flights take it)",
-                    at.x, at.y, at.z
+                    "at [x, y, θ] = [{:+.4}, {:+.4}, {theta:+.4}] (as --eye and flights take it)",
+                    at.x, at.y
                 ));
+                if space.sheets() > 1 {
+                    ui.label(format!(
+                        "sheet {} of {} (the fibre closes after {}·2π)",
+                        sheet + 1,
+                        space.sheets(),
+                        space.sheets()
+                    ));
+                }
                 let last = holonomy
                     .last_face
                     .map_or_else(|| "none".to_string(), |f| format!("side {f}"));

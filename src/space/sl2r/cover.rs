@@ -163,6 +163,15 @@ impl UnitTangentSpace {
         }
     }
 
+    /// Side `face`'s turn at its midpoint, wrapped and lifted: `δ_f(p)` near the side is the
+    /// lift plus the wrapped difference of the raw turn at `p` from the wrapped one (the GPU
+    /// tracer's form: the turn changes by less than `π` along a side).
+    #[must_use]
+    pub fn side_turn_reference(&self, face: usize) -> (f64, f64) {
+        let m = self.side_midpoint(face);
+        (self.raw_side_turn(face, m), self.side_turn(face, m))
+    }
+
     /// The sheets a crossing of side `face` climbs: `before` the frame at the exit (on the
     /// side), `after` the same point moved by the pairing.
     #[must_use]

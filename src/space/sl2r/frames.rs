@@ -131,6 +131,19 @@ impl UnitTangentSpace {
         self.wrap_point(r, 0, 0.0).0
     }
 
+    /// The sheets a point of `UT H²` climbs as the sides' pairings bring it into the cell
+    /// (modulo the cover's `N`): a frame of `UT H²` on sheet `k` is on sheet `k` plus this once
+    /// in the cell, whichever sides bring it there (the lifted pairings compose consistently,
+    /// [`UnitTangentSpace::euler_turns`]).
+    #[must_use]
+    pub fn sheets_into_cell(&self, frame: &[[f64; 3]; 3]) -> u32 {
+        let r = Sl2rRay {
+            frame: *frame,
+            velocity: [0.0; 3],
+        };
+        self.wrap_point(&r, 0, 0.0).1
+    }
+
     /// The point `r` on `sheet` brought into the cell by the sides' pairings once it is past
     /// a side by more than `margin`, with the sheet it is then on and the sides crossed.
     fn wrap_point(

@@ -10,7 +10,9 @@
 //! radius `π` of `UT H²`), so consecutive keys, and each key's position and target, must lie
 //! within that of each other (add keys between farther ones); between keys, where the target
 //! passes farther than that from the eye, the camera looks along its `e`. The keys' `up` is
-//! not used (the fibre is up).
+//! not used (the fibre is up). In a fibre cover a key's `θ` is the lifted angle (its whole
+//! turns are sheets), and the camera's sheet between keys follows the geodesic from the key
+//! before ([`crate::space::sl2r::cover`]).
 
 use crate::scene::flight::FlightFile;
 use crate::space::motion::{CoverFlight, keyed};
@@ -27,6 +29,10 @@ pub const MAX_KEY_CHART: f64 = 100.0;
 pub struct Sl2rFlight {
     /// Time, position and target of each key.
     keys: Vec<(f64, Frame, Frame)>,
+    /// The whole turns of each key position's lifted angle.
+    turns: Vec<i64>,
+    /// The sheets of the space flown (1 until [`Sl2rFlight::in_space`]).
+    sheets: u32,
     /// Vertical field of view in degrees.
     pub fov: f64,
 }
@@ -69,6 +75,14 @@ impl Sl2rFlight {
     /// The flight of a file's keys.
     pub fn new(file: &FlightFile) -> Result<Self, String> {
         let mut keys: Vec<(f64, Frame, Frame)> = Vec::with_capacity(file.keys.len());
+        let turns = file
+            .keys
+            .iter()
+            .map(|k| {
+                let lifted = k.1.z - crate::space::sl2r::cover::wrap_angle(k.1.z);
+                (lifted / std::f64::consts::TAU).round() as i64
+            })
+            .collect();
         for (i, &(time, position, target)) in file.keys.iter().enumerate() {
             let n = i + 1;
             let p = key_frame(position, &format!("key {n}: position"))?;
@@ -82,15 +96,49 @@ impl Sl2rFlight {
         }
         Ok(Self {
             keys,
+            turns,
+            sheets: 1,
             fov: file.fov,
         })
+    }
+
+    /// The flight in `space` (a fibre cover's keys name sheets).
+    #[must_use]
+    pub fn in_space(mut self, space: &UnitTangentSpace) -> Self {
+        self.sheets = space.sheets();
+        self
+    }
+
+    /// The camera's sheet at time `t`: the key before's, climbed along the geodesic from it.
+    fn sheet_at(&self, t: f64, position: &Frame) -> u32 {
+        use crate::space::sl2r::cover::{sheet_plus, sheets_climbed};
+        if self.sheets <= 1 || self.keys.is_empty() {
+            return 0;
+        }
+        let i = self.keys.partition_point(|k| k.0 <= t).max(1) - 1;
+        let from = self.keys[i].1;
+        let climbed = match shortest(&from, position) {
+            Some((length, velocity)) if length > 0.0 => sheets_climbed(
+                &Sl2rRay {
+                    frame: from,
+                    velocity,
+                },
+                length,
+                position,
+            )
+            .unwrap_or(0),
+            _ => 0,
+        };
+        let start = sheet_plus(0, self.turns[i], self.sheets);
+        sheet_plus(start, climbed, self.sheets)
     }
 
     /// The camera frame at time `t` in `UT H²` (before wrapping).
     #[must_use]
     pub fn cover_frame(&self, t: f64) -> DMat4 {
         let (p, target) = keyed(&self.keys, t, between);
-        let eye = super::frame_at(&p);
+        let mut eye = super::frame_at(&p);
+        eye.w_axis.w = 1.0 + f64::from(self.sheet_at(t, &p));
         match shortest(&p, &target) {
             Some((length, v)) if length > 0.0 => super::looking_along(eye, v),
             _ => eye,
@@ -126,6 +174,7 @@ impl CoverFlight for Sl2rFlight {
 /// (a base point beyond [`MAX_KEY_CHART`]).
 #[must_use]
 pub fn recorded_sl2r_key(
+    space: &UnitTangentSpace,
     frame: DMat4,
     holonomy: &crate::space::Holonomy,
 ) -> Option<(DVec3, DVec3, DVec3)> {
@@ -156,9 +205,21 @@ pub fn recorded_sl2r_key(
             .frame,
         )
     };
-    let at = chart_point(&cover);
-    let ahead = moved(-frame.z_axis);
-    let above = moved(frame.y_axis);
+    // In a fibre cover the chart's angle is lifted: the sheet of `UT H²` whose frame the
+    // sides' pairings bring to the walker's frame on its sheet (as the replay brings it in).
+    let mut at = chart_point(&cover);
+    if space.sheets() > 1 {
+        let climbed = space.sheets_into_cell(&cover);
+        let sheet = i64::from(super::camera_sheet(&frame)) - i64::from(climbed);
+        let sheet = sheet.rem_euclid(i64::from(space.sheets()));
+        at.z += std::f64::consts::TAU * sheet as f64;
+    }
+    let follow = |k: DVec3| {
+        let d = crate::space::sl2r::cover::wrap_angle(k.z - at.z);
+        DVec3::new(k.x, k.y, at.z + d)
+    };
+    let ahead = follow(moved(-frame.z_axis));
+    let above = follow(moved(frame.y_axis));
     [at, ahead, above]
         .iter()
         .all(|k| k.is_finite() && k.truncate().length() <= MAX_KEY_CHART)

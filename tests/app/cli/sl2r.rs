@@ -163,11 +163,6 @@ fn words_and_commands_it_cannot_take_are_refused_with_the_reason() {
         "N = 0 is no cover",
     );
     fails_with(&["info", "unit-tangent-abAB-cover-2"], "flat");
-    // The GPU does not count sheets yet: refused with the way to a picture.
-    fails_with(
-        &["render", "unit-tangent-abABcdCD-cover-2", "--size", "16x9"],
-        "render --cpu",
-    );
     fails_with(&["info", "unit-tangent-ab"], "");
     // walk refuses by the table what it cannot do (before it would open a window).
     fails_with(

@@ -1,7 +1,8 @@
 //! SL̃(2,R) on the GPU against the f64 CPU reference: the default scenes of the bitorus's
 //! and the genus-3 surface's unit tangent bundles, from the default view, from one looking
 //! up the fibre (its rays wind round their own fibre) and one looking down at a slant, in
-//! the teaching views, and the example scene file in stereo.
+//! the teaching views, the bitorus bundle's double cover (a ball on one sheet), and the
+//! example scene file in stereo.
 
 use super::{judge, *};
 use bevy_curved_spaces::plugin::components::StereoSettings;
@@ -122,6 +123,44 @@ fn sl2r_spaces_render_on_the_gpu_like_the_cpu_reference() {
             );
         }
     }
+    // The bitorus bundle's double cover: the default view in the crossings view, and from the
+    // stack's fibre half a turn from it, up (the second sheet: no ball where UT Σ shows the
+    // violet one) and down (the white one).
+    let space = UnitTangentSpace::cover("abABcdCD", 2).unwrap();
+    let scene = default_scene(&space);
+    let stack = glam::DVec3::new(0.0, (0.5 * space.inradius()).sinh(), std::f64::consts::PI);
+    let along = |turn: f64| {
+        Sl2rCamera::looking_at(&space, stack, stack + glam::DVec3::Z * turn, 60.0)
+            .expect("a view along the fibre")
+    };
+    let crossings = Sl2rScene {
+        colour_by: ColourBy::Crossings,
+        ..scene.clone()
+    };
+    for (view, scene, camera) in [
+        ("crossings", &crossings, default_camera(&space)),
+        ("stack-up", &scene, along(1.0)),
+        ("stack-down", &scene, along(-1.0)),
+    ] {
+        let reference = cpu(&space, scene, &camera, size, StereoSettings::default());
+        let gpu = renderer
+            .render_sl2r(
+                &space,
+                scene,
+                &camera,
+                size,
+                BUDGET,
+                StereoSettings::default(),
+            )
+            .unwrap_or_else(|e| panic!("the cover: {e}"));
+        judge(
+            &format!("sl2r-cover-2-{view}"),
+            &gpu,
+            &reference,
+            &out,
+            &mut failures,
+        );
+    }
     // The example scene file, side by side in stereo.
     let file = bevy_curved_spaces::trace::sl2r::file::load_sl2r_scene_file(
         &PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/unit_tangent_ring.toml"),
@@ -148,18 +187,25 @@ fn sl2r_spaces_render_on_the_gpu_like_the_cpu_reference() {
 }
 
 /// The SL2R variant validates for three surfaces' default scenes, in the teaching views,
-/// with balls and no tube and with no object at all, and the packer writes exactly the
-/// layout naga computes.
+/// with balls and no tube and with no object at all, and in fibre covers, and the packer
+/// writes exactly the layout naga computes.
 #[test]
 fn sl2r_variants_validate_and_match_the_packed_layout() {
     use bevy_curved_spaces::plugin::render::gpu::{GpuScene, VIEW_WORDS};
-    for word in ["abABcdCD", "abcdABCD", "abABcdCDefEF"] {
-        let space = UnitTangentSpace::new(word).unwrap();
+    for (word, sheets) in [
+        ("abABcdCD", 1),
+        ("abcdABCD", 1),
+        ("abABcdCDefEF", 1),
+        ("abABcdCD", 2),
+        ("abABcdCDefEF", 4),
+    ] {
+        let space = UnitTangentSpace::cover(word, sheets).unwrap();
         let mut scene = default_scene(&space);
         for colour_by in [ColourBy::Shading, ColourBy::Crossings, ColourBy::Face] {
             scene.colour_by = colour_by;
             let gpu = GpuScene::sl2r(&space, &scene, BUDGET).expect("packs");
             assert!(gpu.key.sl2r && gpu.key.faces as usize == space.sides().len());
+            assert_eq!(gpu.key.sl2r_cover, sheets > 1);
             let bytes = crate::shaders::validate(&gpu.key);
             assert_eq!(bytes, gpu.key.uniform_bytes(), "{word}");
             assert_eq!((gpu.words.len() + VIEW_WORDS) * 4, bytes, "{word}");

@@ -94,6 +94,9 @@ pub struct ShaderKey {
     /// the tubes; shader def `SL2R_BALLS` where there are any, so that a scene without them
     /// compiles no distance solver).
     pub sl2r_balls: u32,
+    /// A fibre cover of a unit tangent bundle (shader def `SL2R_COVER`): the walk counts
+    /// sheets, and each ball has a fourth vec4 (its sheet and fibre angle).
+    pub sl2r_cover: bool,
 }
 
 /// The vec4s of one Nil object in the uniform (shape, info, colour, its chart box).
@@ -106,10 +109,17 @@ pub const PRODUCT_OBJECT_VEC4S: usize = 6;
 pub const GENERAL_CAPACITY: (u32, u32, u32) = (crate::space::MAX_FACES as u32, 256, 256);
 
 impl ShaderKey {
-    /// The vec4s of an SL̃(2,R) scene's objects: two a tube, three a ball (at least two).
+    /// The vec4s of an SL̃(2,R) scene's objects: two a tube, three a ball (four in a fibre
+    /// cover), at least two.
     #[must_use]
     pub fn sl2r_object_vecs(&self) -> u32 {
-        (2 * self.sl2r_tubes + 3 * self.sl2r_balls).max(2)
+        (2 * self.sl2r_tubes + self.sl2r_ball_vecs() * self.sl2r_balls).max(2)
+    }
+
+    /// The vec4s of one SL̃(2,R) ball: three, and a fourth in a fibre cover.
+    #[must_use]
+    pub fn sl2r_ball_vecs(&self) -> u32 {
+        if self.sl2r_cover { 4 } else { 3 }
     }
 
     /// The key of an empty scene in `geometry` (no faces, objects or lights): a start for
@@ -150,6 +160,7 @@ impl ShaderKey {
             sl2r: false,
             sl2r_tubes: 0,
             sl2r_balls: 0,
+            sl2r_cover: false,
         }
     }
 
@@ -214,6 +225,9 @@ impl ShaderKey {
             ));
             if self.sl2r_balls > 0 {
                 defs.push("SL2R_BALLS".into());
+            }
+            if self.sl2r_cover {
+                defs.push("SL2R_COVER".into());
             }
         }
         if self.straightforward {

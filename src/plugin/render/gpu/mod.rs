@@ -167,13 +167,6 @@ pub enum GpuSceneError {
         limit: usize,
         triangles: usize,
     },
-    /// A fibre cover of a unit tangent bundle (its degree attached): the GPU tracer does not
-    /// count the sheets yet.
-    #[error(
-        "the GPU tracer does not draw the fibre covers of the unit tangent bundles yet (this one \
-         has {0} sheets): `render --cpu` draws them with the f64 CPU reference"
-    )]
-    Sl2rCover(u32),
     /// The crossing budget must be at least 1 (the budget given is attached).
     #[error("the crossing budget must be at least 1, got {0}")]
     NoCrossings(u32),

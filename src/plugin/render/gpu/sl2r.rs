@@ -2,7 +2,11 @@
 //! (`shaders/sl2r.wgsl`): the shading, the polygon's sides as the face arrays (covectors,
 //! 3×3 pairings in a mat4 with what rounding to f32 left out, partners), then the tubes
 //! (base point and radius; colour and `cosh` of the radius) and the balls (the centre's
-//! base point and radius; its `e` and `cosh` of the radius; colour and `sinh` of the radius).
+//! base point and radius; its `e` and `cosh` of the radius; colour and `sinh` of the radius;
+//! in a fibre cover its sheet and fibre angle). A cover's side turns
+//! ([`UnitTangentSpace::side_turn_reference`]) ride in the covectors' fourth entries (the raw
+//! turn at the midpoint) and the rests' unused corner (its lift); the header's third entry is
+//! the number of sheets.
 
 use super::VIEW_WORDS;
 use super::{DataSources, GpuScene, GpuSceneError, MAX_UNIFORM_BYTES, ShaderKey};
@@ -30,14 +34,12 @@ impl GpuScene {
         max_crossings: u32,
     ) -> Result<Self, GpuSceneError> {
         super::check_budget(max_crossings)?;
-        if space.sheets() > 1 {
-            return Err(GpuSceneError::Sl2rCover(space.sheets()));
-        }
         let sides = space.sides();
         let key = ShaderKey {
             sl2r: true,
             sl2r_tubes: scene.tubes.len() as u32,
             sl2r_balls: scene.balls.len() as u32,
+            sl2r_cover: space.sheets() > 1,
             faces: sides.len() as u32,
             colour_by: scene.colour_by.index(),
             ..ShaderKey::empty(Geometry::Hyperbolic)
@@ -61,13 +63,24 @@ impl GpuScene {
         ));
         // No scene data: the offsets are unused.
         out.push(&[0u32; 4]);
-        for s in sides {
+        // A cover's side turns: the raw turn at the side's midpoint beside the covector,
+        // its lift in the rests' unused corner.
+        let turns: Vec<(f64, f64)> = (0..sides.len())
+            .map(|f| {
+                if key.sl2r_cover {
+                    space.side_turn_reference(f)
+                } else {
+                    (0.0, 0.0)
+                }
+            })
+            .collect();
+        for (s, turn) in sides.iter().zip(&turns) {
             let n = s.normal.map(|x| split(x).0);
-            out.push(&[n[0], n[1], n[2], 0.0f32]);
+            out.push(&[n[0], n[1], n[2], turn.0 as f32]);
         }
         // The pairings as mat4 columns (column j holds the 3×3's column j), then the rests.
         for part in [0usize, 1] {
-            for s in sides {
+            for (s, turn) in sides.iter().zip(&turns) {
                 let mut m = [[0.0f32; 4]; 4];
                 for (j, column) in m.iter_mut().enumerate().take(3) {
                     for (r, x) in column.iter_mut().enumerate().take(3) {
@@ -75,9 +88,7 @@ impl GpuScene {
                         *x = if part == 0 { hi } else { lo };
                     }
                 }
-                if part == 0 {
-                    m[3][3] = 1.0;
-                }
+                m[3][3] = if part == 0 { 1.0 } else { turn.1 as f32 };
                 out.push(&m);
             }
         }
@@ -87,7 +98,7 @@ impl GpuScene {
         out.push(&vec4(DVec4::new(
             scene.tubes.len() as f64,
             scene.balls.len() as f64,
-            0.0,
+            f64::from(space.sheets()),
             0.0,
         )));
         for t in &scene.tubes {
@@ -99,6 +110,10 @@ impl GpuScene {
             out.push(&vec4(DVec4::new(p[0], p[1], p[2], b.radius)));
             out.push(&vec4(DVec4::new(e[0], e[1], e[2], b.radius.cosh())));
             out.push(&colour(b.colour, b.radius.sinh()));
+            if key.sl2r_cover {
+                let angle = crate::space::sl2r::cover::fibre_angle(&b.centre);
+                out.push(&vec4(DVec4::new(f64::from(b.sheet), angle, 0.0, 0.0)));
+            }
         }
         if scene.tubes.is_empty() && scene.balls.is_empty() {
             out.push(&[[0.0f32; 4]; 2]);
