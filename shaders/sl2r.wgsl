@@ -451,14 +451,14 @@ fn sl2r_ball_gap(base: u32, at: Sl2rRay) -> vec2<f32> {
     return vec2<f32>(geo.x - radius, dot(n, at.v));
 }
 
-// The first t in [0, t_max] at which r comes within ball j's radius (SL2R_NONE: never):
+// The first t in [start, t_max] at which r comes within ball j's radius (SL2R_NONE: never):
 // safe steps by the floor's gap far away, Newton's steps near (safe by convexity).
-fn sl2r_ball_hit(base: u32, r: Sl2rRay, t_max: f32) -> f32 {
-    var t = 0.0;
+fn sl2r_ball_hit(base: u32, r: Sl2rRay, start: f32, t_max: f32) -> f32 {
+    var t = start;
     for (var i = 0u; i < 64u; i += 1u) {
         // The segment's start is the ray itself: no flow (most balls end at the first step).
         var at = r;
-        if i > 0u {
+        if t > 0.0 {
             at = sl2r_flow(r, t);
         }
         let g = sl2r_ball_gap(base, at);
@@ -483,33 +483,18 @@ fn sl2r_ball_hit(base: u32, r: Sl2rRay, t_max: f32) -> f32 {
 }
 
 #ifdef SL2R_COVER
-// The first hit of the ball at `base` (sheet and fibre angle in its fourth vec4) by r, on
-// `sheet`, from its first hit `first` of any lift: a hit on another lift (2π apart along the
-// fibre) is passed — a chord of at most 2r — and the search goes on beyond it.
-fn sl2r_ball_on_sheet(base: u32, r: Sl2rRay, sheet: f32, first: f32, t_max: f32) -> f32 {
-    let radius = space.sl2r_objects[base].w;
+// Whether r (on `sheet`) at t is on the sheet of the ball at `base` (its sheet and fibre
+// angle in its fourth vec4): the lifted angles within π of each other, modulo 2πN (the lifts
+// of one ball are 2π apart along the fibre; the shortest geodesic from the centre to a point
+// of the ball turns the angle by less than √2·r).
+fn sl2r_on_ball_sheet(base: u32, r: Sl2rRay, sheet: f32, t: f32) -> bool {
     let own = space.sl2r_objects[base + 3u];
     let whole = SL2R_TAU * space.sl2r.z;
-    var t = first;
-    for (var i = 0u; i < 8u; i += 1u) {
-        if t < 0.0 {
-            return SL2R_NONE;
-        }
-        let at = sl2r_flow(r, t);
-        let on = sheet + sl2r_climbed(r, t, at);
-        var apart = sl2r_fibre_angle(at.e, at.p) - own.y + SL2R_TAU * (on - own.x);
-        apart -= whole * round(apart / whole);
-        if abs(apart) < SL2R_PI {
-            return t;
-        }
-        let past = t + 2.0 * radius + 1e-4;
-        if past > t_max {
-            return SL2R_NONE;
-        }
-        let next = sl2r_ball_hit(base, sl2r_flow(r, past), t_max - past);
-        t = select(past + next, SL2R_NONE, next < 0.0);
-    }
-    return SL2R_NONE;
+    let at = sl2r_flow(r, t);
+    let on = sheet + sl2r_climbed(r, t, at);
+    var apart = sl2r_fibre_angle(at.e, at.p) - own.y + SL2R_TAU * (on - own.x);
+    apart -= whole * round(apart / whole);
+    return abs(apart) < SL2R_PI;
 }
 #endif
 
@@ -608,9 +593,21 @@ fn sl2r_eye_colour(frame: mat4x4<f32>, px: f32, py: f32) -> vec3<f32> {
             if -sl2r_lorentz(r.p, centre.xyz) > far {
                 continue;
             }
-            var t = sl2r_ball_hit(base, r, reach);
 #ifdef SL2R_COVER
-            t = sl2r_ball_on_sheet(base, r, sheet, t, reach);
+            // A hit of another sheet's lift is passed (a chord of at most 2r) and the search
+            // goes on beyond it.
+            var t = SL2R_NONE;
+            var past = 0.0;
+            for (var k = 0u; k < 8u; k += 1u) {
+                t = sl2r_ball_hit(base, r, past, reach);
+                if t < 0.0 || sl2r_on_ball_sheet(base, r, sheet, t) {
+                    break;
+                }
+                past = t + 2.0 * centre.w + 1e-4;
+                t = SL2R_NONE;
+            }
+#else
+            let t = sl2r_ball_hit(base, r, 0.0, reach);
 #endif
             if t >= 0.0 && t < hit_t {
                 hit_t = t;
