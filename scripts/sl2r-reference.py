@@ -161,6 +161,8 @@ def geodesic(start, u, times):
         out.append(
             {
                 "t": str(t),
+                # The chart's θ integrated with the rest: the lifted fibre angle (no wrap).
+                "theta": mp.nstr(pos[2], 40),
                 "model": strings(m),
                 "velocity": strings(b),
                 "model_dd": [pair(c) for c in m],
@@ -191,7 +193,8 @@ def main():
         "(p = (x, y, sqrt(1 + x² + y²)), e = cos θ E1 + sin θ E2, (E1, E2) the boost of the "
         "origin's frame), integrated by mpmath's Taylor ODE solver at 45 digits from the "
         "Christoffel symbols of the metric sympy derived from ⟨dp, dp⟩ + ⟨De, De⟩; points as "
-        "model = [px, py, pw, ex, ey, ew], velocities in the frame (X, Y, V), 40 digits. "
+        "model = [px, py, pw, ex, ey, ew], velocities in the frame (X, Y, V), theta the chart's "
+        "angle as integrated (the lifted fibre angle, not wrapped), 40 digits. "
         "Written by scripts/sl2r-reference.py (mpmath " + mp.__version__ + ").",
         "cases": [],
     }
@@ -201,6 +204,7 @@ def main():
         out["cases"].append(
             {
                 "name": name,
+                "theta": mp.nstr(mp.mpf(start[2]), 40),
                 "model": strings(m),
                 "model_dd": [pair(c) for c in m],
                 "velocity": strings(unit),

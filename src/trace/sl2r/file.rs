@@ -19,6 +19,7 @@
 //!
 //! [start]
 //! position = [-0.8, 0.0, 0.0]
+//! look_at = [-0.8, 0.0, 1.0]   # optional: along the shortest geodesic to it (here up the fibre)
 //! fov = 70
 //!
 //! [[object]]
@@ -84,6 +85,7 @@ const KEYS: &[&str] = &[
     "start",
     "object",
     "position",
+    "look_at",
     "fov",
     "type",
     "radius",
@@ -125,6 +127,7 @@ struct FileSpec {
 #[serde(deny_unknown_fields)]
 struct StartSpec {
     position: [f64; 3],
+    look_at: Option<[f64; 3]>,
     fov: Option<f64>,
 }
 
@@ -234,8 +237,12 @@ pub fn parse_sl2r_scene(text: &str, file: &str) -> Result<Sl2rSceneFile, SceneFi
             let fov = st
                 .fov
                 .unwrap_or_else(|| default_camera(&space).fov_y_degrees);
-            Sl2rCamera::at(&space, DVec3::from_array(st.position), fov)
-                .map_err(|m| fail(Some(s.span()), format!("start: {m}")))?
+            let eye = DVec3::from_array(st.position);
+            match st.look_at {
+                Some(target) => Sl2rCamera::looking_at(&space, eye, DVec3::from_array(target), fov),
+                None => Sl2rCamera::at(&space, eye, fov),
+            }
+            .map_err(|m| fail(Some(s.span()), format!("start: {m}")))?
         }
         None => default_camera(&space),
     };

@@ -195,3 +195,35 @@ fn a_cover_shows_the_stack_on_its_own_sheet_only() {
         );
     }
 }
+
+/// The sheets climbed along a geodesic against the 45-digit reference, which integrates the
+/// chart's angle with the rest of the geodesic equations (so never wraps it): the sheet of a
+/// lifted angle `Λ` is the number of cuts `π + 2πk` below it.
+#[test]
+fn the_sheets_climbed_are_the_references_lifted_angle() {
+    let sheet = |lifted: f64| ((lifted - PI) / TAU).ceil() as i64;
+    let mut climbing = 0;
+    for s in super::reference() {
+        let start = super::round_ray::<f64>(&s.start);
+        let end = flow(&start, s.t).frame;
+        let (from, to) = s.theta;
+        // The chart's angle of the closed form's end is the reference's, wrapped.
+        let off = (fibre_angle(&end) - to).rem_euclid(TAU);
+        assert!(
+            off.min(TAU - off) < 1e-12,
+            "{} at {}: θ off by {off:e}",
+            s.case,
+            s.t
+        );
+        let climbed = sheets_climbed(&start, s.t, &end).expect("a count");
+        assert_eq!(
+            climbed,
+            sheet(to) - sheet(from),
+            "{} at t = {}",
+            s.case,
+            s.t
+        );
+        climbing += usize::from(climbed != 0);
+    }
+    assert!(climbing >= 3, "only {climbing} samples climbed a sheet");
+}

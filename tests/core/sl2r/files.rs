@@ -92,6 +92,16 @@ fn what_is_not_written_yet_and_bad_values_are_refused_with_the_line() {
             3,
         ),
         ("[start]\nposition = [1e200, 0, 0]\n", "too far", 3),
+        (
+            "[start]\nposition = [0, 0, 0]\nlook_at = [20, 0, 0]\n",
+            "3 or more from the eye",
+            3,
+        ),
+        (
+            "[start]\nposition = [0, 0, 0]\nlook_at = [0, 0, 0]\n",
+            "its own position",
+            3,
+        ),
         ("colour_fog = [1, 1, 1]\n", "fog_colour", 3),
     ] {
         let text = format!("{HEAD}{body}");

@@ -55,6 +55,9 @@ struct Sample {
     start: Sl2rRay<DoubleDouble>,
     t: f64,
     end: Sl2rRay<DoubleDouble>,
+    /// The chart's angle at the start and at `t` as the reference integrated it (lifted:
+    /// never wrapped).
+    theta: (f64, f64),
 }
 
 fn reference() -> Vec<Sample> {
@@ -66,12 +69,15 @@ fn reference() -> Vec<Sample> {
     let mut out = Vec::new();
     for case in doc["cases"].as_array().expect("cases") {
         let start = ray_of(&list(&case["model_dd"]), &list(&case["velocity_dd"]));
+        let number =
+            |v: &Value| -> f64 { v.as_str().expect("a number").parse().expect("a number") };
         for s in case["samples"].as_array().expect("samples") {
             out.push(Sample {
                 case: case["name"].as_str().expect("name").to_string(),
                 start,
                 t: s["t"].as_str().expect("t").parse().expect("a time"),
                 end: ray_of(&list(&s["model_dd"]), &list(&s["velocity_dd"])),
+                theta: (number(&case["theta"]), number(&s["theta"])),
             });
         }
     }
