@@ -11,7 +11,8 @@
 // (SL2R_COVER) a fibre cover: the walk counts the sheet it is on as the CPU's
 // space::sl2r::cover does — the fibre angle's wrapped change over pieces too short to turn
 // it by π, and each side's turn (its lift at the side's midpoint beside the covector) — and a
-// ball is met only on its own sheet.
+// ball is met only on its own sheet. (WALLS) the sides drawn as walls with windows, met where
+// the walk crosses them (Rust: trace::sl2r::walls).
 #define_import_path curved_spaces::sl2r
 
 #import curved_spaces::layout::{space}
@@ -531,6 +532,41 @@ fn sl2r_shade(j: u32, r: Sl2rRay, t: f32) -> vec3<f32> {
     return space.sl2r_objects[2u * j + 1u].rgb * (ambient + (1.0 - ambient) * facing);
 }
 
+#ifdef WALLS
+// What the walls crossed so far added and let through (Rust: `scene::walls::Veil`).
+var<private> sl2r_veil_colour: vec3<f32>;
+var<private> sl2r_veil_through: f32;
+
+// The wall a ray meets crossing side `face` at `at`, `d` from the eye, added to the veil
+// (Rust: `Sl2rWalls::cross`): on the panel where the base point is farther along the side
+// from its midpoint than the window reaches (asinh ⟨p, t⟩, t the side's direction there),
+// lit by the angle to the side's normal. Whether enough light still gets through.
+fn sl2r_wall(face: u32, at: Sl2rRay, d: f32) -> bool {
+    let along = asinh(sl2r_lorentz(at.p, space.wall_units[face].xyz));
+    if abs(along) > space.wall_colours[face].w {
+        let looks = space.wall_looks[face];
+        let n = looks.yzw;
+        let normal = vec3<f32>(sl2r_lorentz(n, at.e), sl2r_lorentz(n, at.f), 0.0);
+        let facing = min(abs(dot(normal, at.v)), 1.0);
+        let lit = min(space.wall_colours[face].rgb * (0.55 + 0.45 * facing), vec3<f32>(1.0));
+        let w = exp(-d / space.shading.params.x);
+        let seen = w * lit + (1.0 - w) * space.shading.fog.rgb;
+        sl2r_veil_colour += sl2r_veil_through * looks.x * seen;
+        sl2r_veil_through *= 1.0 - looks.x;
+    }
+    return sl2r_veil_through >= space.wall_style.x;
+}
+#endif
+
+// What lies behind the walls crossed, seen through them.
+fn sl2r_behind_walls(c: vec3<f32>) -> vec3<f32> {
+#ifdef WALLS
+    return sl2r_veil_colour + sl2r_veil_through * c;
+#else
+    return c;
+#endif
+}
+
 // The colour seen from the eye frame f (the viewer's axes as body vectors with e in their
 // fourth entries, the base point in the last column) through the lens point (px, py).
 fn sl2r_eye_colour(frame: mat4x4<f32>, px: f32, py: f32) -> vec3<f32> {
@@ -548,6 +584,10 @@ fn sl2r_eye_colour(frame: mat4x4<f32>, px: f32, py: f32) -> vec3<f32> {
     var walked = 0.0;
     var entered = 0xffffffffu;
     var last_face = 0xffffffffu;
+#ifdef WALLS
+    sl2r_veil_colour = vec3<f32>(0.0);
+    sl2r_veil_through = 1.0;
+#endif
     for (var crossings = 0u; crossings <= budget; crossings += 1u) {
         // The side left first.
         var exit_t = 1e30;
@@ -635,13 +675,18 @@ fn sl2r_eye_colour(frame: mat4x4<f32>, px: f32, py: f32) -> vec3<f32> {
             surface = recolour(colour_by_tint(crossings, last_face, unturned), surface);
 #endif
             let w = exp(-(walked + hit_t) / shading.params.x);
-            return w * surface + (1.0 - w) * shading.fog.rgb;
+            return sl2r_behind_walls(w * surface + (1.0 - w) * shading.fog.rgb);
         }
         walked += segment;
         if exit_face == 0xffffffffu || walked >= cutoff {
             break;
         }
         let at = sl2r_flow(r, exit_t);
+#ifdef WALLS
+        if !sl2r_wall(exit_face, at, walked) {
+            break;
+        }
+#endif
         let moved = sl2r_on_model(Sl2rRay(
             sl2r_paired(exit_face, at.e),
             sl2r_paired(exit_face, at.f),
@@ -658,5 +703,5 @@ fn sl2r_eye_colour(frame: mat4x4<f32>, px: f32, py: f32) -> vec3<f32> {
         entered = sl2r_partner(exit_face);
         last_face = exit_face;
     }
-    return shading.fog.rgb;
+    return sl2r_behind_walls(shading.fog.rgb);
 }

@@ -32,6 +32,8 @@ pub fn sl2r_scene(
     if settings.colour_by != crate::scene::ColourBy::Holonomy {
         scene.colour_by = settings.colour_by;
     }
+    // The walls set here, else the base scene's own; an opening of 1 turns them off.
+    scene.walls = settings.walls.or(scene.walls).filter(|w| w.opening < 1.0);
     scene
 }
 
@@ -42,6 +44,7 @@ pub(crate) struct Sl2rKey {
     fog: Option<f64>,
     max_crossings: Option<u32>,
     colour_by: crate::scene::ColourBy,
+    walls: Option<crate::scene::WallStyle>,
 }
 
 /// Packs the SL̃(2,R) scene for the GPU when the space, the base scene or the settings
@@ -63,6 +66,7 @@ pub(crate) fn upload_sl2r_scene(
         fog: settings.fog_distance,
         max_crossings: settings.max_crossings,
         colour_by: settings.colour_by,
+        walls: settings.walls,
     };
     let base_changed = base.as_ref().is_some_and(|b| b.is_changed());
     if prepared.is_some() && !active.is_changed() && !base_changed && last.as_ref() == Some(&key) {

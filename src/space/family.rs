@@ -188,7 +188,8 @@ impl Family {
                 | Feature::TeachingViews
                 | Feature::Flights
                 | Feature::RecordFlight
-                | Feature::Headset,
+                | Feature::Headset
+                | Feature::Walls,
             ) => return Ok(()),
             (Family::Sl2r, Feature::HolonomyView) => {
                 "the holonomy view is not written for SL̃(2,R) yet; `--colour-by crossings` or \

@@ -390,9 +390,6 @@ fn flight_sl2r(
     if args.colour_by == super::ColourByArg::Holonomy {
         refuse(Feature::HolonomyView)?;
     }
-    if args.walls.walls.is_some() {
-        refuse(Feature::Walls)?;
-    }
     if args.light.any() {
         refuse(Feature::LampFluence)?;
     }
@@ -401,6 +398,7 @@ fn flight_sl2r(
         .in_space(space);
     let mut scene = chosen.scene;
     scene.colour_by = args.colour_by.into();
+    scene.walls = args.walls.style(scene.walls)?.filter(|w| w.opening < 1.0);
     let budget = args
         .crossings
         .unwrap_or(bevy_curved_spaces::plugin::sl2r::DEFAULT_SL2R_BUDGET as usize);

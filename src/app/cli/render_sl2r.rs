@@ -29,9 +29,6 @@ pub(super) fn render_sl2r_command(args: &RenderArgs, chosen: Sl2rChoice) -> Resu
     if args.view.colour_by == super::ColourByArg::Holonomy {
         refuse(Feature::HolonomyView)?;
     }
-    if args.view.walls.walls.is_some() {
-        refuse(Feature::Walls)?;
-    }
     if args.view.light.any() {
         refuse(Feature::LampFluence)?;
     }
@@ -53,6 +50,11 @@ pub(super) fn render_sl2r_command(args: &RenderArgs, chosen: Sl2rChoice) -> Resu
         camera.fov_y_degrees = fov;
     }
     scene.colour_by = args.view.colour_by.into();
+    scene.walls = args
+        .view
+        .walls
+        .style(scene.walls)?
+        .filter(|w| w.opening < 1.0);
     let budget = args.crossings.unwrap_or(DEFAULT_BUDGET);
     let stereo = args.stereo.settings_for(space.scale())?;
     say!(

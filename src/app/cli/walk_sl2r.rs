@@ -30,7 +30,6 @@ pub(super) fn walk_sl2r(
         ),
         (args.view.changes_parts(), Feature::SceneParts),
         (args.view.light.any(), Feature::LampFluence),
-        (args.view.walls.walls.is_some(), Feature::Walls),
     ] {
         if asked {
             refuse(feature)?;
@@ -45,7 +44,8 @@ pub(super) fn walk_sl2r(
                 scene: chosen.scene.clone(),
                 start: Some(chosen.camera),
             };
-            super::walk::run_xr(args, active, (stereo, None, None), move |app| {
+            let walls = args.view.walls.style(chosen.scene.walls)?;
+            super::walk::run_xr(args, active, (stereo, walls, None), move |app| {
                 app.insert_resource(base);
             })
         })
@@ -58,6 +58,7 @@ pub(super) fn walk_sl2r(
         render.fog = args.fog;
         render.crossings = args.crossings.map(|c| c as usize);
         render.view.colour_by = args.view.colour_by;
+        render.view.walls = args.view.walls;
         render.scene = args.scene.clone();
         render.stereo = stereo_args;
         if !gpu_available() {
@@ -81,7 +82,8 @@ pub(super) fn walk_sl2r(
             scene: chosen.scene.clone(),
             start: Some(chosen.camera),
         });
-    add_walk_plugins(&mut app, args, stereo, None, None).add_systems(
+    let walls = args.view.walls.style(chosen.scene.walls)?;
+    add_walk_plugins(&mut app, args, stereo, walls, None).add_systems(
         Startup,
         |mut commands: Commands| {
             commands.spawn((Camera3d::default(), CurvedSpaceCamera::default()));

@@ -35,15 +35,16 @@
 //! colour = [0.3, 0.6, 0.95]
 //! ```
 //!
-//! SL̃(2,R) scenes have no lamps, walls or moving objects yet: such keys are refused by
-//! name. An error names the file and the line.
+//! `walls = OPENING` and `wall_opacity = A` draw the cell's sides as walls with windows
+//! ([`super::walls`]). SL̃(2,R) scenes have no lamps or moving objects yet: such keys are
+//! refused by name. An error names the file and the line.
 
 use super::{
     FibreTube, Sl2rBall, Sl2rCamera, Sl2rParts, Sl2rScene, default_camera, scene_with_parts,
 };
 use crate::scene::file::SceneFileError;
 use crate::scene::file_support::{
-    colour, failing, fog_keys, load_family_scene, parse_toml, space_key,
+    colour, failing, fog_keys, load_family_scene, parse_toml, space_key, walls_of,
 };
 use crate::space::FrameSpace;
 use crate::space::sl2r::ball::MAX_SL2R_BALL_RADIUS;
@@ -93,6 +94,7 @@ const KEYS: &[&str] = &[
     "light",
     "lighting",
     "walls",
+    "wall_opacity",
 ];
 
 fn default_true() -> bool {
@@ -114,13 +116,14 @@ struct FileSpec {
     centre_pillar: bool,
     ambient: Option<Spanned<f64>>,
     fog_colour: Option<Spanned<[f64; 3]>>,
+    walls: Option<Spanned<f64>>,
+    wall_opacity: Option<Spanned<f64>>,
     start: Option<Spanned<StartSpec>>,
     #[serde(default, rename = "object")]
     objects: Vec<Spanned<ObjectSpec>>,
     // Known, and refused by name: not written for SL̃(2,R) yet.
     light: Option<Spanned<toml::Value>>,
     lighting: Option<Spanned<toml::Value>>,
-    walls: Option<Spanned<toml::Value>>,
 }
 
 #[derive(Deserialize)]
@@ -176,17 +179,13 @@ pub fn parse_sl2r_scene(text: &str, file: &str) -> Result<Sl2rSceneFile, SceneFi
             ));
         }
     };
-    for (key, value) in [
-        ("light", &spec.light),
-        ("lighting", &spec.lighting),
-        ("walls", &spec.walls),
-    ] {
+    for (key, value) in [("light", &spec.light), ("lighting", &spec.lighting)] {
         if let Some(v) = value {
             return Err(fail(
                 Some(v.span()),
                 format!(
                     "`{key}` is not written for SL̃(2,R) scenes yet: their surfaces are lit \
-                     from the eye, without lamps or walls"
+                     from the eye, without lamps"
                 ),
             ));
         }
@@ -210,6 +209,9 @@ pub fn parse_sl2r_scene(text: &str, file: &str) -> Result<Sl2rSceneFile, SceneFi
     scene.fog_distance = fog.fog.unwrap_or(scene.fog_distance);
     scene.ambient = fog.ambient.unwrap_or(scene.ambient);
     scene.fog_colour = fog.fog_colour.unwrap_or(scene.fog_colour);
+    scene.walls = walls_of(spec.walls.as_ref(), spec.wall_opacity.as_ref())
+        .map_err(|(s, m)| fail(Some(s), m))?
+        .filter(|w| w.opening < 1.0);
     for object in &spec.objects {
         let at = |m: String| fail(Some(object.span()), m);
         match build_object(&space, object.get_ref()).map_err(at)? {

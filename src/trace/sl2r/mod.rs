@@ -20,12 +20,14 @@
 //! Shading is by the view: a tube's surface is lit as if by a lamp at the eye (its colour
 //! times `ambient + (1 − ambient)·cos`, the cosine between its outward normal — horizontal,
 //! away from `q` — and the ray), then faded into the fog by `e^{−t/λ}` over the distance
-//! walked. No lamp, shadows or mirrors yet.
+//! walked. The cell's sides may be drawn as walls with windows ([`walls`]). No lamp, shadows
+//! or mirrors yet.
 
 #[cfg(feature = "scene-files")]
 pub mod file;
 #[cfg(feature = "scene-files")]
 pub mod flight;
+pub mod walls;
 
 use crate::space::FrameSpace;
 use crate::space::sl2r::ball::{MAX_SL2R_BALL_RADIUS, ball_hit};
@@ -98,6 +100,8 @@ pub struct Sl2rScene {
     /// The teaching view: surfaces tinted by the crossings or the last face crossed
     /// ([`crate::scene::ColourBy`]; the holonomy view is not written for this family).
     pub colour_by: crate::scene::ColourBy,
+    /// The cell's walls with windows, if drawn ([`walls`]).
+    pub walls: Option<crate::scene::walls::WallStyle>,
 }
 
 impl Sl2rScene {
@@ -253,6 +257,7 @@ pub fn scene_with_parts(space: &UnitTangentSpace, parts: Sl2rParts) -> Sl2rScene
         fog_distance: default_fog_distance(space),
         ambient: 0.3,
         colour_by: crate::scene::ColourBy::Shading,
+        walls: None,
     };
     if parts.edges {
         for v in space.vertices() {
@@ -620,6 +625,19 @@ pub fn first_hit_on_sheet<'a>(
     sheet: u32,
     max_crossings: usize,
 ) -> Option<Sl2rHit<'a>> {
+    first_hit_past_walls(walker, scene, (ray, sheet), max_crossings, None)
+}
+
+/// [`first_hit_on_sheet`] seen through `walls`: each panel crossed is added to the veil,
+/// and the walk ends (no hit) once too little light gets through.
+#[must_use]
+pub fn first_hit_past_walls<'a>(
+    walker: &Sl2rWalker<DVec4>,
+    scene: &'a Sl2rScene,
+    (ray, sheet): (Sl2rRay<f64>, u32),
+    max_crossings: usize,
+    mut walls: Option<(&walls::Sl2rWalls, &mut crate::scene::walls::Veil)>,
+) -> Option<Sl2rHit<'a>> {
     let cutoff = scene.cutoff_distance();
     let sheets = walker.sheets();
     let mut ray = Sl2rWalker::<DVec4>::ray_on_sheet(&ray, sheet);
@@ -650,6 +668,11 @@ pub fn first_hit_on_sheet<'a>(
         if walked >= cutoff {
             return None;
         }
+        if let Some((walls, veil)) = walls.as_mut()
+            && !walls.cross(veil, scene, exit.face, &flow(&r, exit.t), walked)
+        {
+            return None;
+        }
         ray = walker.through(&ray, &exit);
         entered = walker.skip_after(&exit);
         last_face = Some(exit.face);
@@ -660,13 +683,21 @@ pub fn first_hit_on_sheet<'a>(
 /// The colour seen along the camera ray `ray`, walking at most `max_crossings` crossings.
 #[must_use]
 pub fn trace_sl2r_pixel(
-    walker: &Sl2rWalker<DVec4>,
+    (walker, walls): (&Sl2rWalker<DVec4>, Option<&walls::Sl2rWalls>),
     scene: &Sl2rScene,
     ray: Sl2rRay<f64>,
     sheet: u32,
     max_crossings: usize,
 ) -> DVec3 {
-    match first_hit_on_sheet(walker, scene, ray, sheet, max_crossings) {
+    let mut veil = crate::scene::walls::Veil::CLEAR;
+    let hit = first_hit_past_walls(
+        walker,
+        scene,
+        (ray, sheet),
+        max_crossings,
+        walls.map(|w| (w, &mut veil)),
+    );
+    veil.over(match hit {
         Some(hit) => {
             let fade = (-hit.distance / scene.fog_distance).exp();
             let mut surface = shade(scene, hit.object, &hit.segment, hit.t);
@@ -683,7 +714,7 @@ pub fn trace_sl2r_pixel(
             scene.fog_colour.lerp(surface, fade)
         }
         None => scene.fog_colour,
-    }
+    })
 }
 
 /// Renders a view (mono or stereo) of `space` with the f64 reference.
@@ -695,10 +726,13 @@ pub fn render_sl2r_view(
     max_crossings: usize,
 ) -> RgbImage {
     let walker = Sl2rWalker::<DVec4>::new(space);
+    let walls = scene
+        .walls
+        .and_then(|style| walls::Sl2rWalls::new(space, style, crate::scene::DEFAULT_CUTOFF_WEIGHT));
     super::render_layout_by_eye(layout, |eye, u, v| {
         let (x, y) = layout.lens.at(u, v);
         trace_sl2r_pixel(
-            &walker,
+            (&walker, walls.as_ref()),
             scene,
             camera_ray(&layout.frames[eye], x, y),
             camera_sheet(&layout.frames[eye]),

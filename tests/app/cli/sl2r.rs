@@ -166,14 +166,10 @@ fn words_and_commands_it_cannot_take_are_refused_with_the_reason() {
     fails_with(&["info", "unit-tangent-ab"], "");
     // walk refuses by the table what it cannot do (before it would open a window).
     fails_with(
-        &["walk", "unit-tangent-bitorus", "--walls", "0.5"],
+        &["walk", "unit-tangent-bitorus", "--colour-by", "holonomy"],
         "not in the SL̃(2,R) spaces",
     );
-    for extra in [
-        &["--walls", "0.5"][..],
-        &["--colour-by", "holonomy"],
-        &["--time", "1"],
-    ] {
+    for extra in [&["--colour-by", "holonomy"][..], &["--time", "1"]] {
         let mut args = vec!["render", "unit-tangent-bitorus", "--cpu", "--size", "16x9"];
         args.extend_from_slice(extra);
         fails_with(&args, "SL̃(2,R)");
@@ -440,4 +436,34 @@ fn the_headset_mode_takes_unit_tangent_bundles() {
     let (w, h) = picture.dimensions();
     let half = |x0: u32| image::imageops::crop_imm(&picture, x0, 0, w / 2, h).to_image();
     assert_ne!(half(0), half(w / 2), "{said}");
+}
+
+/// `--walls` draws the sides: solid opaque walls hide every copy past the first side, so the
+/// picture changes wherever a ray left the cell before meeting a tube.
+#[test]
+fn render_walls_hide_what_lies_past_the_sides() {
+    let dir = temp_dir("sl2r-walls");
+    let picture = |name: &str, extra: &[&str]| {
+        let out = dir.join(name);
+        let mut args = vec!["render", "unit-tangent-bitorus", "--cpu", "--size", "48x27"];
+        args.extend_from_slice(extra);
+        args.extend_from_slice(&["--out", out.to_str().unwrap()]);
+        let done = run(&args);
+        assert!(
+            done.status.success(),
+            "{}",
+            String::from_utf8_lossy(&done.stderr)
+        );
+        image::open(&out).expect("a PNG").to_rgb8()
+    };
+    let open = picture("open.png", &[]);
+    let walled = picture("walled.png", &["--walls", "0", "--wall-opacity", "1"]);
+    let changed = open
+        .pixels()
+        .zip(walled.pixels())
+        .filter(|(a, b)| a != b)
+        .count();
+    assert!(changed > 48 * 27 / 5, "only {changed} pixels changed");
+    // The centre's pillar stands inside the cell: no wall before it.
+    assert_eq!(open.get_pixel(24, 13), walled.get_pixel(24, 13));
 }

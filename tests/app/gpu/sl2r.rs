@@ -1,8 +1,8 @@
 //! SL̃(2,R) on the GPU against the f64 CPU reference: the default scenes of the bitorus's
 //! and the genus-3 surface's unit tangent bundles, from the default view, from one looking
 //! up the fibre (its rays wind round their own fibre) and one looking down at a slant, in
-//! the teaching views, the bitorus bundle's double cover (a ball on one sheet), and the
-//! example scene file in stereo.
+//! the teaching views, the bitorus bundle's double cover (a ball on one sheet, and with
+//! walls), and the example scene file in stereo.
 
 use super::{judge, *};
 use bevy_curved_spaces::plugin::components::StereoSettings;
@@ -137,8 +137,16 @@ fn sl2r_spaces_render_on_the_gpu_like_the_cpu_reference() {
         colour_by: ColourBy::Crossings,
         ..scene.clone()
     };
+    let walled = Sl2rScene {
+        walls: Some(bevy_curved_spaces::scene::walls::WallStyle {
+            opening: 0.5,
+            opacity: 0.45,
+        }),
+        ..scene.clone()
+    };
     for (view, scene, camera) in [
         ("crossings", &crossings, default_camera(&space)),
+        ("walls", &walled, default_camera(&space)),
         ("stack-up", &scene, along(1.0)),
         ("stack-down", &scene, along(-1.0)),
     ] {

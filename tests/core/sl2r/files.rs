@@ -64,7 +64,7 @@ fn what_is_not_written_yet_and_bad_values_are_refused_with_the_line() {
             "`light` is not written",
             3,
         ),
-        ("walls = 0.5\n", "`walls` is not written", 3),
+        ("walls = 2\n", "between 0 (solid walls) and 1", 3),
         (
             "[[object]]\ntype = \"tube\"\nposition = [0, 0]\nradius = 5\n",
             "at most",

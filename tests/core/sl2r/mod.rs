@@ -14,6 +14,7 @@ mod distance;
 mod files;
 mod pictures;
 mod walks;
+mod walls;
 
 use bevy_curved_spaces::geometry::{DoubleDouble, Real};
 use bevy_curved_spaces::space::sl2r::{Sl2rRay, flow};

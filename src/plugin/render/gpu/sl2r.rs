@@ -6,7 +6,8 @@
 //! in a fibre cover its sheet and fibre angle). A cover's side turns
 //! ([`UnitTangentSpace::side_turn_reference`]) ride in the covectors' fourth entries (the raw
 //! turn at the midpoint) and the rests' unused corner (its lift); the header's third entry is
-//! the number of sheets.
+//! the number of sheets. With walls, the layout's wall arrays follow: per side its direction
+//! at the midpoint, its colour and the window's reach, its opacity and normal.
 
 use super::VIEW_WORDS;
 use super::{DataSources, GpuScene, GpuSceneError, MAX_UNIFORM_BYTES, ShaderKey};
@@ -35,8 +36,16 @@ impl GpuScene {
     ) -> Result<Self, GpuSceneError> {
         super::check_budget(max_crossings)?;
         let sides = space.sides();
+        let walls = scene.walls.and_then(|style| {
+            crate::trace::sl2r::walls::Sl2rWalls::new(
+                space,
+                style,
+                crate::scene::DEFAULT_CUTOFF_WEIGHT,
+            )
+        });
         let key = ShaderKey {
             sl2r: true,
+            walls: walls.is_some(),
             sl2r_tubes: scene.tubes.len() as u32,
             sl2r_balls: scene.balls.len() as u32,
             sl2r_cover: space.sheets() > 1,
@@ -117,6 +126,21 @@ impl GpuScene {
         }
         if scene.tubes.is_empty() && scene.balls.is_empty() {
             out.push(&[[0.0f32; 4]; 2]);
+        }
+        // The walls: per side its direction at the midpoint; its pair's colour and how far
+        // along it the window reaches (−1: solid); the opacity and the side's normal; then
+        // the share of light below which a ray stops.
+        if let Some(walls) = &walls {
+            for t in &walls.along {
+                out.push(&vec4(DVec4::new(t[0], t[1], t[2], 0.0)));
+            }
+            for c in &walls.colours {
+                out.push(&colour(*c, walls.window));
+            }
+            for n in &walls.normals {
+                out.push(&vec4(DVec4::new(walls.opacity, n[0], n[1], n[2])));
+            }
+            out.push(&vec4(DVec4::new(walls.stop_below, 0.0, 0.0, 0.0)));
         }
         let words = out.words;
         debug_assert_eq!(words.len() * 4 + VIEW_WORDS * 4, bytes);
