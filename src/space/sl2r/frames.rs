@@ -42,7 +42,8 @@ fn axes_of(frame: &DMat4) -> DMat3 {
 }
 
 /// The fibre cover's sheet of a frame (its last column's fourth entry less 1).
-fn sheet_of(frame: &DMat4) -> u32 {
+#[must_use]
+pub fn frame_sheet(frame: &DMat4) -> u32 {
     let k = (frame.w_axis.w - 1.0).round();
     if k >= 0.0 && k < f64::from(u32::MAX) {
         k as u32
@@ -246,7 +247,7 @@ impl FrameSpace for UnitTangentSpace {
         let d = motion.translation;
         let mut axes = axes_of(&frame);
         let mut r = point_of(&frame, [0.0; 3]);
-        let mut sheet = sheet_of(&frame);
+        let mut sheet = frame_sheet(&frame);
         if d.length() > 0.0 && d.is_finite() {
             let u = if motion.level {
                 crate::space::contract::level_step(axes.x_axis, axes.z_axis, d)
@@ -275,7 +276,7 @@ impl FrameSpace for UnitTangentSpace {
         frame_of(
             &point_of(&frame, [0.0; 3]),
             orthonormal(axes_of(&frame) * rotation),
-            sheet_of(&frame),
+            frame_sheet(&frame),
         )
     }
 
@@ -286,7 +287,7 @@ impl FrameSpace for UnitTangentSpace {
         let axes = axes_of(&frame);
         let (r, sheet) = moved_along(
             &point_of(&frame, [0.0; 3]),
-            sheet_of(&frame),
+            frame_sheet(&frame),
             self.sheets(),
             axes * (velocity.linear * dt),
         );
@@ -301,7 +302,7 @@ impl FrameSpace for UnitTangentSpace {
 
     fn wrap_frame(&self, frame: DMat4, margin: f64) -> (DMat4, Vec<FrameCrossing>) {
         let (r, sheet, crossed) =
-            self.wrap_point(&point_of(&frame, [0.0; 3]), sheet_of(&frame), margin);
+            self.wrap_point(&point_of(&frame, [0.0; 3]), frame_sheet(&frame), margin);
         if crossed.is_empty() {
             return (frame, Vec::new());
         }

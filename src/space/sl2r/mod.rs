@@ -24,6 +24,7 @@ pub mod distance;
 pub mod exit;
 pub mod flow;
 mod frames;
+pub use frames::frame_sheet;
 mod space;
 pub mod walk;
 

@@ -476,12 +476,7 @@ pub fn default_camera(space: &UnitTangentSpace) -> Sl2rCamera {
 /// `UT Σ`).
 #[must_use]
 pub fn camera_sheet(frame: &DMat4) -> u32 {
-    let k = (frame.w_axis.w - 1.0).round();
-    if k >= 0.0 && k < f64::from(u32::MAX) {
-        k as u32
-    } else {
-        0
-    }
+    crate::space::sl2r::frame_sheet(frame)
 }
 
 /// The camera ray of a frame through the lens point `(x, y)`: its point, and the body
