@@ -190,6 +190,14 @@ struct SpaceUniform {
     // per ball: its centre's base point (xyz) and radius; its e (xyz) and cosh(radius); its
     // colour (rgb) and sinh(radius).
     sl2r_objects: array<vec4<f32>, #{SL2R_OBJECT_VECS}>,
+    // The lamp's power, the falloff's floor (the lamp's size squared), the reach, the
+    // images shadowed (Rust: `trace::sl2r::light::gather`).
+    sl2r_light: vec4<f32>,
+    // The images summed, the tail's light (¼ of its fluence; 0 without it), unused ×2.
+    sl2r_lighting: vec4<f32>,
+    // Per image of the lamp (nearest the cell's centre first; the lamp itself for the
+    // nearest path): its f (xyz) and sheet; its base point q (xyz), unused.
+    sl2r_images: array<vec4<f32>, #{SL2R_IMAGE_VECS}>,
 #endif
 #ifdef WALLS
     // Per face: the covector scaled to a unit normal (N̂·X̂ = S(signed distance)).

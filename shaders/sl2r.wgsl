@@ -276,7 +276,6 @@ fn sl2r_sheets_through(face: u32, at: Sl2rRay, moved: Sl2rRay) -> f32 {
 }
 #endif
 
-#ifdef SL2R_BALLS
 // Beyond this gap over the radius the distance's floor alone gives the step.
 const SL2R_BALL_FAR: f32 = 0.5;
 const SL2R_SCAN_STEP: f32 = 0.125;
@@ -433,6 +432,7 @@ fn sl2r_floor(ec: vec3<f32>, pc: vec3<f32>, at: Sl2rRay) -> f32 {
     return max(rho, 2.0 * psi / (1.0 + sqrt(1.0 + 4.0 * psi / SL2R_PI)));
 }
 
+#ifdef SL2R_BALLS
 // Ball j's gap d − r at `at` and the rate along at's velocity (2, no cosine, where only a
 // floor is known).
 fn sl2r_ball_gap(base: u32, at: Sl2rRay) -> vec2<f32> {
@@ -499,37 +499,125 @@ fn sl2r_on_ball_sheet(base: u32, r: Sl2rRay, sheet: f32, t: f32) -> bool {
 }
 #endif
 
-// The colour of the ball at `base` met by r at t, lit from the eye.
-fn sl2r_shade_ball(base: u32, r: Sl2rRay, t: f32) -> vec3<f32> {
-    let at = sl2r_flow(r, t);
+// The outward normal of the ball at `base` at `at`, in at's body frame (the distance's
+// gradient: minus the shortest geodesic's end velocity from the centre), or 0 where the
+// solver finds none.
+fn sl2r_ball_normal(base: u32, at: Sl2rRay) -> vec3<f32> {
     let pc = space.sl2r_objects[base].xyz;
     let radius = space.sl2r_objects[base].w;
     let ec = space.sl2r_objects[base + 1u].xyz;
     let fc = sl2r_perp(pc, ec);
     let geo = sl2r_shortest(ec, fc, pc, at, radius + SL2R_BALL_FAR);
-    var facing = 1.0;
-    if geo.x >= 0.0 {
-        let n = sl2r_flow(Sl2rRay(ec, fc, pc, geo.yzw), geo.x).v;
-        facing = max(-dot(n, at.v), 0.0);
+    if geo.x < 0.0 {
+        return vec3<f32>(0.0);
     }
-    let ambient = space.shading.fog.w;
-    return space.sl2r_objects[base + 2u].rgb * (ambient + (1.0 - ambient) * facing);
+    return sl2r_flow(Sl2rRay(ec, fc, pc, geo.yzw), geo.x).v;
 }
 #endif
 
-// The colour of tube `j` met by r at t, lit from the eye.
-fn sl2r_shade(j: u32, r: Sl2rRay, t: f32) -> vec3<f32> {
-    let at = sl2r_flow(r, t);
+// The outward normal of tube j at `at`, in at's body frame (horizontal, away from its
+// fibre), or 0 on the fibre itself.
+fn sl2r_tube_normal(j: u32, at: Sl2rRay) -> vec3<f32> {
     let q = space.sl2r_objects[2u * j].xyz;
     let u = -(q + sl2r_lorentz(q, at.p) * at.p);
     let len = sqrt(max(sl2r_lorentz(u, u), 0.0));
-    var facing = 1.0;
-    if len > 0.0 {
-        let normal = vec3<f32>(sl2r_lorentz(u, at.e) / len, sl2r_lorentz(u, at.f) / len, 0.0);
-        facing = max(-dot(normal, at.v), 0.0);
+    if len <= 0.0 {
+        return vec3<f32>(0.0);
     }
+    return vec3<f32>(sl2r_lorentz(u, at.e) / len, sl2r_lorentz(u, at.f) / len, 0.0);
+}
+
+// The area of the geodesic sphere of radius r per solid angle, at the end of a geodesic of
+// vertical velocity c (Rust: `trace::sl2r::light::area_density`): r·S + (r·S − 2K)/ω² with
+// ω² = 1 − 2c², the series in x = ω²r² near 0.
+fn sl2r_area_density(r: f32, c: f32) -> f32 {
+    let w2 = 1.0 - 2.0 * c * c;
+    let x = w2 * r * r;
+    var a = 0.0;
+    if abs(x) < 0.5 {
+        var s = 0.0;
+        var p = 0.0;
+        var term_s = 1.0;
+        var term_p = 2.0 / 24.0;
+        for (var k = 0u; k < 6u; k += 1u) {
+            s += term_s;
+            p += term_p;
+            let kf = f32(k);
+            term_s *= x / ((2.0 * kf + 2.0) * (2.0 * kf + 3.0));
+            term_p *= x * (kf + 2.0) / ((kf + 1.0) * (2.0 * kf + 5.0) * (2.0 * kf + 6.0));
+        }
+        a = r * r * s + r * r * r * r * p;
+    } else if w2 > 0.0 {
+        let w = sqrt(w2);
+        let sh = sinh(w * r) / w;
+        let k = (cosh(w * r) - 1.0) / w2;
+        a = r * sh + (r * sh - 2.0 * k) / w2;
+    } else {
+        let w = sqrt(-w2);
+        let sh = sin(w * r) / w;
+        let k = (1.0 - cos(w * r)) / -w2;
+        a = r * sh + (r * sh - 2.0 * k) / w2;
+    }
+    return abs(a);
+}
+
+// The light reaching the point `at` (on `sheet`) of a surface with outward normal `normal`
+// (Rust: `trace::sl2r::light::gather`): along the shortest geodesic to each image of the
+// lamp within the reach that ends on the image's sheet, shadowed for the nearest ones, and
+// the tail.
+fn sl2r_gather(at: Sl2rRay, sheet: f32, normal: vec3<f32>) -> f32 {
+    let light = space.sl2r_light;
+    let lighting = space.sl2r_lighting;
+    let reach = light.z;
+    var sum = 0.0;
+    for (var k = 0u; k < u32(lighting.x); k += 1u) {
+        let fi = space.sl2r_images[2u * k];
+        let qi = space.sl2r_images[2u * k + 1u].xyz;
+        let image = Sl2rRay(fi.xyz, sl2r_perp(qi, fi.xyz), qi, vec3<f32>(0.0));
+        if sl2r_floor(fi.xyz, qi, at) > reach {
+            continue;
+        }
+        let path = sl2r_shortest(at.e, at.f, at.p, image, reach);
+        if path.x < 0.0 {
+            continue;
+        }
+        let cos_l = dot(normal, path.yzw);
+        if !(cos_l > 0.0 && path.x > 0.0) {
+            continue;
+        }
+        let ray = Sl2rRay(at.e, at.f, at.p, path.yzw);
+#ifdef SL2R_COVER
+        if sl2r_sheet_plus(sheet, sl2r_climbed(ray, path.x, image)) != fi.w {
+            continue;
+        }
+#endif
+#ifdef SL2R_SHADOWS
+        if f32(k) < light.w && path.x > 1.0e-3 {
+            let start = sl2r_on_model(sl2r_flow(ray, 1.0e-3));
+            var on = 0.0;
+#ifdef SL2R_COVER
+            on = sl2r_sheet_plus(sheet, sl2r_climbed(ray, 1.0e-3, start));
+#endif
+            let budget = u32(space.shading.params.w);
+            if sl2r_walk(start, on, path.x - 1.0e-3, budget, false).hit != SL2R_MISS {
+                continue;
+            }
+        }
+#endif
+        sum += cos_l * exp(-path.x / space.shading.params.x) / max(sl2r_area_density(path.x, path.w), light.y);
+    }
+    return sum + lighting.y;
+}
+
+// `colour` lit at `at` (on `sheet`) with outward normal `normal` (0: none found, ambient
+// only).
+fn sl2r_lit(colour: vec3<f32>, at: Sl2rRay, sheet: f32, normal: vec3<f32>) -> vec3<f32> {
     let ambient = space.shading.fog.w;
-    return space.sl2r_objects[2u * j + 1u].rgb * (ambient + (1.0 - ambient) * facing);
+    if dot(normal, normal) == 0.0 {
+        return colour * ambient;
+    }
+    let light = sl2r_gather(at, sheet, normal);
+    return min(colour * (ambient + (1.0 - ambient) * space.sl2r_light.x * light), vec3<f32>(1.0));
 }
 
 #ifdef WALLS
@@ -567,31 +655,35 @@ fn sl2r_behind_walls(c: vec3<f32>) -> vec3<f32> {
 #endif
 }
 
-// The colour seen from the eye frame f (the viewer's axes as body vectors with e in their
-// fourth entries, the base point in the last column) through the lens point (px, py).
-fn sl2r_eye_colour(frame: mat4x4<f32>, px: f32, py: f32) -> vec3<f32> {
-    let d = normalize(px * frame[0].xyz + py * frame[1].xyz - frame[2].xyz);
-    let p = frame[3].xyz;
-    let e = vec3<f32>(frame[0].w, frame[1].w, frame[2].w);
-    var r = Sl2rRay(e, sl2r_perp(p, e), p, d);
-#ifdef SL2R_COVER
-    // The eye's sheet rides in the frame's last entry (1 + sheet).
-    var sheet = round(frame[3].w - 1.0);
-#endif
-    let shading = space.shading;
-    let cutoff = shading.params.y;
-    let budget = u32(shading.params.w);
+// Where a walk ended: the object met (tube j, or a ball's first vec4; SL2R_MISS: none), the
+// segment it is met in (its start ray, the sheet there, the distance walked to it) and the
+// time along it, the crossings and the last face crossed.
+const SL2R_MISS: u32 = 0xffffffffu;
+
+struct Sl2rEnd {
+    hit: u32,
+    ball: bool,
+    r: Sl2rRay,
+    sheet: f32,
+    walked: f32,
+    t: f32,
+    crossings: u32,
+    last_face: u32,
+}
+
+// Walks r (on `sheet`) through the sides for `length` and at most `budget` crossings to the
+// first object it meets (Rust: `trace::sl2r::walk_to_object`); through the walls where
+// `veiled` (the camera's rays; a shadow ray passes them).
+fn sl2r_walk(start: Sl2rRay, start_sheet: f32, length: f32, budget: u32, veiled: bool) -> Sl2rEnd {
+    var r = start;
+    var sheet = start_sheet;
     var walked = 0.0;
-    var entered = 0xffffffffu;
-    var last_face = 0xffffffffu;
-#ifdef WALLS
-    sl2r_veil_colour = vec3<f32>(0.0);
-    sl2r_veil_through = 1.0;
-#endif
+    var entered = SL2R_MISS;
+    var last_face = SL2R_MISS;
     for (var crossings = 0u; crossings <= budget; crossings += 1u) {
         // The side left first.
         var exit_t = 1e30;
-        var exit_face = 0xffffffffu;
+        var exit_face = SL2R_MISS;
         for (var i = 0u; i < #{FACE_COUNT}u; i += 1u) {
             let t = sl2r_crossing(r, space.covectors[i].xyz, 0.0);
             if t < 0.0 || (i == entered && t == 0.0) {
@@ -602,11 +694,11 @@ fn sl2r_eye_colour(frame: mat4x4<f32>, px: f32, py: f32) -> vec3<f32> {
                 exit_face = i;
             }
         }
-        let segment = select(cutoff - walked, exit_t, exit_face != 0xffffffffu);
-        let within = min(segment, cutoff - walked);
+        let segment = select(length - walked, exit_t, exit_face != SL2R_MISS);
+        let within = min(segment, length - walked);
         // The nearest tube within it.
         var hit_t = 1e30;
-        var hit = 0xffffffffu;
+        var hit = SL2R_MISS;
         for (var j = 0u; j < u32(space.sl2r.x); j += 1u) {
             let q = space.sl2r_objects[2u * j];
             let t = sl2r_crossing(r, vec3<f32>(q.x, q.y, -q.z), space.sl2r_objects[2u * j + 1u].w);
@@ -656,34 +748,16 @@ fn sl2r_eye_colour(frame: mat4x4<f32>, px: f32, py: f32) -> vec3<f32> {
             }
         }
 #endif
-        if hit != 0xffffffffu {
-            var surface = vec3<f32>(0.0);
-            if hit_ball {
-#ifdef SL2R_BALLS
-                surface = sl2r_shade_ball(hit, r, hit_t);
-#endif
-            } else {
-                surface = sl2r_shade(hit, r, hit_t);
-            }
-#ifdef COLOUR_BY
-            let unturned = mat4x4<f32>(
-                vec4<f32>(1.0, 0.0, 0.0, 0.0),
-                vec4<f32>(0.0, 1.0, 0.0, 0.0),
-                vec4<f32>(0.0, 0.0, 1.0, 0.0),
-                vec4<f32>(0.0, 0.0, 0.0, 1.0),
-            );
-            surface = recolour(colour_by_tint(crossings, last_face, unturned), surface);
-#endif
-            let w = exp(-(walked + hit_t) / shading.params.x);
-            return sl2r_behind_walls(w * surface + (1.0 - w) * shading.fog.rgb);
+        if hit != SL2R_MISS {
+            return Sl2rEnd(hit, hit_ball, r, sheet, walked, hit_t, crossings, last_face);
         }
         walked += segment;
-        if exit_face == 0xffffffffu || walked >= cutoff {
+        if exit_face == SL2R_MISS || walked >= length {
             break;
         }
         let at = sl2r_flow(r, exit_t);
 #ifdef WALLS
-        if !sl2r_wall(exit_face, at, walked) {
+        if veiled && !sl2r_wall(exit_face, at, walked) {
             break;
         }
 #endif
@@ -703,5 +777,53 @@ fn sl2r_eye_colour(frame: mat4x4<f32>, px: f32, py: f32) -> vec3<f32> {
         entered = sl2r_partner(exit_face);
         last_face = exit_face;
     }
-    return sl2r_behind_walls(shading.fog.rgb);
+    return Sl2rEnd(SL2R_MISS, false, r, sheet, walked, 0.0, 0u, last_face);
+}
+
+// The colour seen from the eye frame f (the viewer's axes as body vectors with e in their
+// fourth entries, the base point in the last column) through the lens point (px, py): the
+// first object met, lit by the lamp and fogged, else the fog.
+fn sl2r_eye_colour(frame: mat4x4<f32>, px: f32, py: f32) -> vec3<f32> {
+    let d = normalize(px * frame[0].xyz + py * frame[1].xyz - frame[2].xyz);
+    let p = frame[3].xyz;
+    let e = vec3<f32>(frame[0].w, frame[1].w, frame[2].w);
+    let r = Sl2rRay(e, sl2r_perp(p, e), p, d);
+    var sheet = 0.0;
+#ifdef SL2R_COVER
+    // The eye's sheet rides in the frame's last entry (1 + sheet).
+    sheet = round(frame[3].w - 1.0);
+#endif
+    let shading = space.shading;
+#ifdef WALLS
+    sl2r_veil_colour = vec3<f32>(0.0);
+    sl2r_veil_through = 1.0;
+#endif
+    let end = sl2r_walk(r, sheet, shading.params.y, u32(shading.params.w), true);
+    if end.hit == SL2R_MISS {
+        return sl2r_behind_walls(shading.fog.rgb);
+    }
+    let at = sl2r_flow(end.r, end.t);
+    var on = end.sheet;
+#ifdef SL2R_COVER
+    on = sl2r_sheet_plus(on, sl2r_climbed(end.r, end.t, at));
+#endif
+    var surface = vec3<f32>(0.0);
+    if end.ball {
+#ifdef SL2R_BALLS
+        surface = sl2r_lit(space.sl2r_objects[end.hit + 2u].rgb, at, on, sl2r_ball_normal(end.hit, at));
+#endif
+    } else {
+        surface = sl2r_lit(space.sl2r_objects[2u * end.hit + 1u].rgb, at, on, sl2r_tube_normal(end.hit, at));
+    }
+#ifdef COLOUR_BY
+    let unturned = mat4x4<f32>(
+        vec4<f32>(1.0, 0.0, 0.0, 0.0),
+        vec4<f32>(0.0, 1.0, 0.0, 0.0),
+        vec4<f32>(0.0, 0.0, 1.0, 0.0),
+        vec4<f32>(0.0, 0.0, 0.0, 1.0),
+    );
+    surface = recolour(colour_by_tint(end.crossings, end.last_face, unturned), surface);
+#endif
+    let w = exp(-(end.walked + end.t) / shading.params.x);
+    return sl2r_behind_walls(w * surface + (1.0 - w) * shading.fog.rgb);
 }

@@ -130,6 +130,38 @@ pub enum OffscreenError {
     Format(String),
 }
 
+/// The graphics APIs the app, the offscreen renderer and the benchmark ask wgpu for: the
+/// primary ones (Vulkan, Metal, DX12), or those `WGPU_BACKEND` names.
+///
+/// wgpu is built with its GL backend too (the OpenXR backend asks for it), and a machine
+/// with no GPU has a software driver for both Vulkan (lavapipe) and GL (llvmpipe): this
+/// keeps the choice on the API the tracer is tested on.
+#[must_use]
+pub fn gpu_backends() -> wgpu::Backends {
+    wgpu::Backends::from_env().unwrap_or(wgpu::Backends::PRIMARY)
+}
+
+/// Bevy's render plugin asking for [`gpu_backends`]: `DefaultPlugins.set(render_plugin())`.
+#[must_use]
+pub fn render_plugin() -> bevy::render::RenderPlugin {
+    bevy::render::RenderPlugin {
+        render_creation: bevy::render::settings::WgpuSettings {
+            backends: Some(gpu_backends()),
+            ..default()
+        }
+        .into(),
+        ..default()
+    }
+}
+
+/// wgpu's instance options asking for [`gpu_backends`].
+#[must_use]
+pub fn instance_descriptor() -> wgpu::InstanceDescriptor {
+    let mut descriptor = wgpu::InstanceDescriptor::new_without_display_handle();
+    descriptor.backends = gpu_backends();
+    descriptor
+}
+
 /// Whether wgpu finds any adapter (a GPU or a software driver such as lavapipe).
 ///
 /// The instance it asks is kept for the rest of the process, and with it the Vulkan driver
@@ -140,10 +172,9 @@ pub enum OffscreenError {
 #[must_use]
 pub fn gpu_available() -> bool {
     use std::sync::OnceLock;
-    use wgpu::{Instance, InstanceDescriptor, RequestAdapterOptions};
+    use wgpu::{Instance, RequestAdapterOptions};
     static INSTANCE: OnceLock<Instance> = OnceLock::new();
-    let instance =
-        INSTANCE.get_or_init(|| Instance::new(InstanceDescriptor::new_without_display_handle()));
+    let instance = INSTANCE.get_or_init(|| Instance::new(instance_descriptor()));
     bevy::tasks::block_on(instance.request_adapter(&RequestAdapterOptions::default())).is_ok()
 }
 
@@ -169,11 +200,13 @@ impl OffscreenRenderer {
             return Err(OffscreenError::NoAdapter);
         }
         let mut app = App::new();
-        let plugins = DefaultPlugins.set(WindowPlugin {
-            primary_window: None,
-            exit_condition: ExitCondition::DontExit,
-            ..default()
-        });
+        let plugins = DefaultPlugins
+            .set(WindowPlugin {
+                primary_window: None,
+                exit_condition: ExitCondition::DontExit,
+                ..default()
+            })
+            .set(render_plugin());
         // No window and no event loop: the app is driven by `update` below.
         #[cfg(feature = "window")]
         let plugins = plugins.disable::<bevy::winit::WinitPlugin>();

@@ -17,8 +17,8 @@ use std::sync::Arc;
 /// The crossing budget of an SL̃(2,R) view where none is set.
 pub const DEFAULT_SL2R_BUDGET: u32 = 24;
 
-/// The scene shown: the base scene or the default one, with the fog and the teaching view
-/// set in the settings.
+/// The scene shown: the base scene or the default one, with the fog, the teaching view, the
+/// walls and the lighting set in the settings.
 #[must_use]
 pub fn sl2r_scene(
     space: &UnitTangentSpace,
@@ -34,6 +34,15 @@ pub fn sl2r_scene(
     }
     // The walls set here, else the base scene's own; an opening of 1 turns them off.
     scene.walls = settings.walls.or(scene.walls).filter(|w| w.opening < 1.0);
+    // The lighting set here (the lamp stays where the scene has it, a point).
+    if let Some(mut lighting) = settings.lighting {
+        lighting.shadows = lighting.shadows.min(settings.quality.max_shadows());
+        lighting.lamp_radius_inradii = 0.0;
+        let light = (scene.light, scene.light_sheet);
+        if let Err(e) = scene.set_lighting(space, light, lighting) {
+            bevy::log::warn!("lighting: {e}");
+        }
+    }
     scene
 }
 
@@ -45,6 +54,8 @@ pub(crate) struct Sl2rKey {
     max_crossings: Option<u32>,
     colour_by: crate::scene::ColourBy,
     walls: Option<crate::scene::WallStyle>,
+    quality: crate::plugin::components::Quality,
+    lighting: Option<crate::scene::lighting::Lighting>,
 }
 
 /// Packs the SL̃(2,R) scene for the GPU when the space, the base scene or the settings
@@ -67,6 +78,8 @@ pub(crate) fn upload_sl2r_scene(
         max_crossings: settings.max_crossings,
         colour_by: settings.colour_by,
         walls: settings.walls,
+        quality: settings.quality,
+        lighting: settings.lighting,
     };
     let base_changed = base.as_ref().is_some_and(|b| b.is_changed());
     if prepared.is_some() && !active.is_changed() && !base_changed && last.as_ref() == Some(&key) {

@@ -189,8 +189,10 @@ impl Family {
                 | Feature::Flights
                 | Feature::RecordFlight
                 | Feature::Headset
-                | Feature::Walls,
+                | Feature::Walls
+                | Feature::LampFluence,
             ) => return Ok(()),
+            (Family::Sl2r, Feature::SoftShadows) => "an SL̃(2,R) lamp is a point",
             (Family::Sl2r, Feature::HolonomyView) => {
                 "the holonomy view is not written for SL̃(2,R) yet; `--colour-by crossings` or \
                  `face` tell the copies apart"
@@ -205,8 +207,9 @@ impl Family {
             }
             (Family::Sl2r, _) => {
                 "not written for the SL̃(2,R) family yet (it draws its fibre tubes and metric \
-                 balls and walks exactly: `trace`, `info`, `list`, `render`, `walk`, `flight`, \
-                 `walk --replay`, `walk --record`, `walk --xr`, `bench`)"
+                 balls lit by a lamp and walks exactly: `trace`, `info`, `list`, `render`, \
+                 `walk`, `flight`, `walk --replay`, `walk --record`, `walk --xr`, `light`, \
+                 `bench`)"
             }
             (Family::Product, Feature::SceneParts) => {
                 "a product scene file's `edges` and `centre_ball` choose the parts"

@@ -110,7 +110,7 @@ pub struct Frame {
 impl Harness {
     /// Opens the first adapter wgpu finds (a GPU, or lavapipe).
     pub fn new() -> Result<Self, HarnessError> {
-        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle());
+        let instance = wgpu::Instance::new(crate::plugin::offscreen::instance_descriptor());
         let adapter = pollster_block(instance.request_adapter(&wgpu::RequestAdapterOptions {
             power_preference: wgpu::PowerPreference::HighPerformance,
             ..Default::default()

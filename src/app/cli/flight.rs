@@ -390,13 +390,17 @@ fn flight_sl2r(
     if args.colour_by == super::ColourByArg::Holonomy {
         refuse(Feature::HolonomyView)?;
     }
-    if args.light.any() {
-        refuse(Feature::LampFluence)?;
-    }
     let flight = Sl2rFlight::new(file)
         .map_err(|e| format!("{name}: {e}"))?
         .in_space(space);
     let mut scene = chosen.scene;
+    if args.light.any() {
+        let lighting = args.light.lighting(scene.lighting);
+        let light = (scene.light, scene.light_sheet);
+        scene
+            .set_lighting(space, light, lighting)
+            .map_err(|e| format!("{name}: {e}"))?;
+    }
     scene.colour_by = args.colour_by.into();
     scene.walls = args.walls.style(scene.walls)?.filter(|w| w.opening < 1.0);
     let budget = args

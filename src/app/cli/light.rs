@@ -16,9 +16,7 @@ pub(super) fn light(args: &LightArgs) -> Result<(), String> {
         .supports(bevy_curved_spaces::space::Feature::LampFluence)
         .map_err(|e| format!("{}: {e}", args.space))?;
     let space = match named {
-        AnySpace::Sl2r(space) => {
-            return Err(format!("{}: no lamp's light in SL̃(2,R) yet", space.name()));
-        }
+        AnySpace::Sl2r(space) => return light_sl2r(args, &space),
         AnySpace::Constant(space) => space,
         AnySpace::Product(space) => return light_product(args, &space),
         AnySpace::Nil(space) => return light_nil(args, &space),
@@ -182,8 +180,11 @@ fn light_product(
             let (paths, exact, tail, covered) = product_fluence(space, lamp, at, fog, r);
             (covered, paths, exact, tail)
         },
-        "the product geometries have no error bound for the rest yet: --check R measures the \
-         shortcut's real error",
+        (
+            "the product geometries have no error bound for the rest yet: --check R measures \
+             the shortcut's real error",
+            None,
+        ),
     )
 }
 
@@ -218,8 +219,70 @@ fn light_nil(
             let (paths, exact, tail, covered) = nil_fluence(space, lamp, at, fog, r);
             (covered, paths, exact, tail)
         },
-        "the sum follows the shortest geodesic to each image (as the tracer does), and Nil has \
-         no error bound for the rest yet: --check R measures the shortcut's real error",
+        (
+            "the sum follows the shortest geodesic to each image (as the tracer does), and Nil \
+             has no error bound for the rest yet: --check R measures the shortcut's real error",
+            None,
+        ),
+    )
+}
+
+/// `light` in an SL̃(2,R) space: the sum over the lamp's images along the shortest geodesic
+/// to each (as the tracer lights), each with SL̃(2,R)'s falloff (the geodesic sphere's
+/// area), and the rest by its mean. Points are chart points `[x, y, θ]` (the base point and
+/// the fibre angle), brought into the cell by the surface group; the lamp is a point, and
+/// the reach is below the injectivity radius of `UT H²` (each image has one lift there).
+fn light_sl2r(
+    args: &LightArgs,
+    space: &bevy_curved_spaces::space::sl2r::UnitTangentSpace,
+) -> Result<(), String> {
+    use bevy_curved_spaces::scene::Lighting;
+    use bevy_curved_spaces::space::FrameSpace;
+    use bevy_curved_spaces::space::sl2r::Sl2rWalker;
+    use bevy_curved_spaces::trace::sl2r::light::{LampImage, MAX_LIGHT_REACH, reach, sl2r_fluence};
+    refuse_radius(args, Family::Sl2r, space.name())?;
+    for (flag, value) in [("--reach", args.reach), ("--check", args.check)] {
+        if let Some(r) = value.filter(|r| *r > MAX_LIGHT_REACH) {
+            return Err(format!(
+                "{flag} {r}: an SL̃(2,R) lamp's images are summed within {MAX_LIGHT_REACH} at \
+                 most (below the injectivity radius π of UT H², where the shortest geodesic to \
+                 each image is the one the inverse exponential map finds); the rest is their mean"
+            ));
+        }
+    }
+    let point = |x: DVec3, what: &str| -> Result<LampImage, String> {
+        let ray = space
+            .chart_ray(x, DVec3::X)
+            .map_err(|m| format!("{what}: {m}"))?;
+        Ok(LampImage {
+            frame: Sl2rWalker::<glam::DVec4>::sl2r_ray(&ray).frame,
+            sheet: Sl2rWalker::<glam::DVec4>::sheet_of(&ray),
+        })
+    };
+    let lamp = point(args.light, "--light")?;
+    let at = point(args.at, "--at")?;
+    let fog = args
+        .fog
+        .unwrap_or_else(|| bevy_curved_spaces::trace::sl2r::default_fog_distance(space));
+    let wanted = args
+        .reach
+        .unwrap_or_else(|| reach(space, &Lighting::default()));
+    open_light(
+        args,
+        (space.name(), "SL2R"),
+        fog,
+        wanted,
+        |r| {
+            let (paths, exact, tail, covered) =
+                sl2r_fluence(space, lamp, (&at.frame, at.sheet), fog, r);
+            (covered, paths, exact, tail)
+        },
+        (
+            "the sum follows the shortest geodesic to each image (as the tracer does) within the \
+             injectivity radius, and SL̃(2,R) has no error bound for the rest yet: --check R (at \
+             most 3) measures the shortcut's real error",
+            Some("the reach of 3 the sum is held within (below the injectivity radius)"),
+        ),
     )
 }
 
@@ -246,8 +309,13 @@ fn open_light(
     fog: f64,
     wanted: f64,
     sum: impl Fn(f64) -> (f64, usize, f64, f64),
-    no_bound: &str,
+    (no_bound, limit): (&str, Option<&str>),
 ) -> Result<(), String> {
+    let gathered = format!(
+        "the {} the sum gathers (the tracer's limit)",
+        bevy_curved_spaces::scene::lighting::MAX_LAMP_IMAGES
+    );
+    let limit = limit.unwrap_or(&gathered);
     if !(fog > 0.0 && fog.is_finite()) {
         return Err(format!(
             "the fog distance must be a positive, finite number, got {fog} (without fog the sum \
@@ -280,10 +348,8 @@ fn open_light(
     let tail_note = (args.reach.is_none() && tail > DEFAULT_BOUND_FRACTION * total).then(|| {
         format!(
             "the mean of the rest is {:.1} % of the total, not within 1 %: its images lie past \
-             the {} the sum gathers (the tracer's limit), and the fog of {fog:.3} absorbs them \
-             slowly",
+             {limit}, and the fog of {fog:.3} absorbs them slowly",
             100.0 * tail / total,
-            bevy_curved_spaces::scene::lighting::MAX_LAMP_IMAGES
         )
     });
     if !total.is_finite() {

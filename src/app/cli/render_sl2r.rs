@@ -29,10 +29,14 @@ pub(super) fn render_sl2r_command(args: &RenderArgs, chosen: Sl2rChoice) -> Resu
     if args.view.colour_by == super::ColourByArg::Holonomy {
         refuse(Feature::HolonomyView)?;
     }
-    if args.view.light.any() {
-        refuse(Feature::LampFluence)?;
-    }
     let mut scene = chosen.scene;
+    if args.view.light.any() {
+        let lighting = args.view.light.lighting(scene.lighting);
+        let light = (scene.light, scene.light_sheet);
+        scene
+            .set_lighting(space, light, lighting)
+            .map_err(|e| format!("{name}: {e}"))?;
+    }
     let mut camera = chosen.camera;
     if let (Some(eye), Some(target)) = (args.eye, args.look_at) {
         camera = bevy_curved_spaces::trace::sl2r::Sl2rCamera::looking_at(

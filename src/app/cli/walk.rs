@@ -197,10 +197,10 @@ pub(super) fn walk(args: &WalkArgs) -> Result<(), String> {
         active.space.name()
     );
     let mut app = App::new();
-    app.add_plugins(DefaultPlugins.set(window_titled(format!(
+    app.add_plugins(window_plugins(format!(
         "curved spaces: {}",
         active.space.name()
-    ))));
+    )));
     app.insert_resource(chosen.base.clone())
         .insert_resource(active);
     add_walk_plugins(&mut app, args, stereo, walls, lighting).add_systems(
@@ -293,6 +293,14 @@ pub(super) fn window_titled(title: String) -> WindowPlugin {
         primary_window: Some(Window { title, ..default() }),
         ..default()
     }
+}
+
+/// Bevy's default plugins for a walk in a window with this title, on the GPU APIs the
+/// tracer is tested on ([`render_plugin`](bevy_curved_spaces::plugin::offscreen::render_plugin)).
+pub(super) fn window_plugins(title: String) -> bevy::app::PluginGroupBuilder {
+    DefaultPlugins
+        .set(window_titled(title))
+        .set(bevy_curved_spaces::plugin::offscreen::render_plugin())
 }
 
 /// The plugin with `walk`'s options and the panel's visibility (the space is inserted
@@ -547,10 +555,10 @@ fn walk_product(
         active.space.geometry_name()
     );
     let mut app = App::new();
-    app.add_plugins(DefaultPlugins.set(window_titled(format!(
+    app.add_plugins(window_plugins(format!(
         "curved spaces: {}",
         active.space.name()
-    ))));
+    )));
     app.insert_resource(active);
     if let Some(base) = chosen.base {
         app.insert_resource(base);
@@ -647,7 +655,7 @@ fn walk_nil(
         space.name()
     );
     let mut app = App::new();
-    app.add_plugins(DefaultPlugins.set(window_titled(format!("curved spaces: {}", space.name()))));
+    app.add_plugins(window_plugins(format!("curved spaces: {}", space.name())));
     app.insert_resource(active);
     if let Some(base) = chosen.base.clone() {
         app.insert_resource(base);

@@ -8,7 +8,7 @@
 use super::render::{Sl2rChoice, render_command};
 use super::walk::{
     ScreenshotThenExit, add_walk_plugins, display_available, exit_result, say_no_display,
-    screenshot_then_exit, window_titled,
+    screenshot_then_exit, window_plugins,
 };
 use super::*;
 use bevy::prelude::*;
@@ -29,12 +29,21 @@ pub(super) fn walk_sl2r(
             Feature::HolonomyView,
         ),
         (args.view.changes_parts(), Feature::SceneParts),
-        (args.view.light.any(), Feature::LampFluence),
     ] {
         if asked {
             refuse(feature)?;
         }
     }
+    // The light switches over the scene's own lighting, checked before anything starts.
+    let lighting = if args.view.light.any() {
+        let lighting = args.view.light.lighting(chosen.scene.lighting);
+        let mut lit = chosen.scene.clone();
+        lit.set_lighting(space, (lit.light, lit.light_sheet), lighting)
+            .map_err(|e| format!("{}: {e}", space.name()))?;
+        Some(lighting)
+    } else {
+        None
+    };
     let mut stereo_args = args.stereo;
     if args.xr
         && let Some(done) = super::walk::headset_or_desktop(&mut stereo_args, || {
@@ -45,7 +54,7 @@ pub(super) fn walk_sl2r(
                 start: Some(chosen.camera),
             };
             let walls = args.view.walls.style(chosen.scene.walls)?;
-            super::walk::run_xr(args, active, (stereo, walls, None), move |app| {
+            super::walk::run_xr(args, active, (stereo, walls, lighting), move |app| {
                 app.insert_resource(base);
             })
         })
@@ -59,6 +68,7 @@ pub(super) fn walk_sl2r(
         render.crossings = args.crossings.map(|c| c as usize);
         render.view.colour_by = args.view.colour_by;
         render.view.walls = args.view.walls;
+        render.view.light = args.view.light;
         render.scene = args.scene.clone();
         render.stereo = stereo_args;
         if !gpu_available() {
@@ -76,14 +86,14 @@ pub(super) fn walk_sl2r(
         space.name()
     );
     let mut app = App::new();
-    app.add_plugins(DefaultPlugins.set(window_titled(format!("curved spaces: {}", space.name()))));
+    app.add_plugins(window_plugins(format!("curved spaces: {}", space.name())));
     app.insert_resource(active)
         .insert_resource(bevy_curved_spaces::plugin::sl2r::BaseSl2rScene {
             scene: chosen.scene.clone(),
             start: Some(chosen.camera),
         });
     let walls = args.view.walls.style(chosen.scene.walls)?;
-    add_walk_plugins(&mut app, args, stereo, walls, None).add_systems(
+    add_walk_plugins(&mut app, args, stereo, walls, lighting).add_systems(
         Startup,
         |mut commands: Commands| {
             commands.spawn((Camera3d::default(), CurvedSpaceCamera::default()));

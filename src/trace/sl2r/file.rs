@@ -35,16 +35,29 @@
 //! colour = [0.3, 0.6, 0.95]
 //! ```
 //!
-//! `walls = OPENING` and `wall_opacity = A` draw the cell's sides as walls with windows
-//! ([`super::walls`]). SL̃(2,R) scenes have no lamps or moving objects yet: such keys are
-//! refused by name. An error names the file and the line.
+//! One `[[light]]` puts the lamp at `position = [x, y, θ]` (a point of the space: the base
+//! point and the fibre angle, brought into the cell like an object; the default scene's lamp
+//! where there is none), and `[lighting]` is as in the other files (`paths`, `reach` in
+//! inradii — held below 3, under the injectivity radius —, `tail`, `shadows`; the lamp is a
+//! point). `walls = OPENING` and `wall_opacity = A` draw the cell's sides as walls with
+//! windows ([`super::walls`]). SL̃(2,R) scenes have no moving objects yet. An error names the
+//! file and the line.
+//!
+//! ```toml
+//! [[light]]
+//! position = [-0.3, 0.4, 0.3]
+//!
+//! [lighting]
+//! shadows = 2
+//! ```
 
 use super::{
     FibreTube, Sl2rBall, Sl2rCamera, Sl2rParts, Sl2rScene, default_camera, scene_with_parts,
 };
 use crate::scene::file::SceneFileError;
 use crate::scene::file_support::{
-    colour, failing, fog_keys, load_family_scene, parse_toml, space_key, walls_of,
+    LightingSpec, PointLightSpec, colour, failing, fog_keys, lighting_of, load_family_scene,
+    one_light, parse_toml, space_key, walls_of,
 };
 use crate::space::FrameSpace;
 use crate::space::sl2r::ball::MAX_SL2R_BALL_RADIUS;
@@ -121,9 +134,9 @@ struct FileSpec {
     start: Option<Spanned<StartSpec>>,
     #[serde(default, rename = "object")]
     objects: Vec<Spanned<ObjectSpec>>,
-    // Known, and refused by name: not written for SL̃(2,R) yet.
-    light: Option<Spanned<toml::Value>>,
-    lighting: Option<Spanned<toml::Value>>,
+    #[serde(default, rename = "light")]
+    lights: Vec<Spanned<PointLightSpec>>,
+    lighting: Option<Spanned<LightingSpec>>,
 }
 
 #[derive(Deserialize)]
@@ -179,17 +192,6 @@ pub fn parse_sl2r_scene(text: &str, file: &str) -> Result<Sl2rSceneFile, SceneFi
             ));
         }
     };
-    for (key, value) in [("light", &spec.light), ("lighting", &spec.lighting)] {
-        if let Some(v) = value {
-            return Err(fail(
-                Some(v.span()),
-                format!(
-                    "`{key}` is not written for SL̃(2,R) scenes yet: their surfaces are lit \
-                     from the eye, without lamps"
-                ),
-            ));
-        }
-    }
     let mut scene = scene_with_parts(
         &space,
         Sl2rParts {
@@ -206,7 +208,10 @@ pub fn parse_sl2r_scene(text: &str, file: &str) -> Result<Sl2rSceneFile, SceneFi
         "",
     )
     .map_err(|(s, m)| fail(Some(s), m))?;
-    scene.fog_distance = fog.fog.unwrap_or(scene.fog_distance);
+    if let Some(f) = fog.fog {
+        scene.fog_distance = f;
+        scene.power = super::default_power(&space, f);
+    }
     scene.ambient = fog.ambient.unwrap_or(scene.ambient);
     scene.fog_colour = fog.fog_colour.unwrap_or(scene.fog_colour);
     scene.walls = walls_of(spec.walls.as_ref(), spec.wall_opacity.as_ref())
@@ -233,6 +238,25 @@ pub fn parse_sl2r_scene(text: &str, file: &str) -> Result<Sl2rSceneFile, SceneFi
             )));
         }
     }
+    let mut light = (scene.light, scene.light_sheet);
+    if let Some((position, span)) =
+        one_light(&spec.lights, "an SL̃(2,R) scene").map_err(|(s, m)| fail(Some(s), m))?
+    {
+        let ray = space
+            .chart_ray(DVec3::from_array(position), DVec3::X)
+            .map_err(|m| fail(Some(span), format!("the light's position: {m}")))?;
+        light = (
+            Sl2rWalker::<DVec4>::sl2r_ray(&ray).frame,
+            Sl2rWalker::<DVec4>::sheet_of(&ray),
+        );
+    }
+    let lighting = match &spec.lighting {
+        Some(l) => lighting_of(l).map_err(|(s, m)| fail(Some(s), m))?,
+        None => scene.lighting,
+    };
+    scene
+        .set_lighting(&space, light, lighting)
+        .map_err(|m| fail(spec.lighting.as_ref().map(Spanned::span), m))?;
     let start = match &spec.start {
         Some(s) => {
             let st = s.get_ref();

@@ -17,16 +17,18 @@
 //! pairings turn `e` as they move `p`, the copies of a stack of balls along one fibre come
 //! back turned: that is the bundle's twist, seen.
 //!
-//! Shading is by the view: a tube's surface is lit as if by a lamp at the eye (its colour
-//! times `ambient + (1 − ambient)·cos`, the cosine between its outward normal — horizontal,
-//! away from `q` — and the ray), then faded into the fog by `e^{−t/λ}` over the distance
-//! walked. The cell's sides may be drawn as walls with windows ([`walls`]). No lamp, shadows
-//! or mirrors yet.
+//! Shading is by a lamp ([`light`]): a surface's colour times `ambient + (1 − ambient)·P·L`,
+//! `L` the light along the shortest geodesic to every image of the lamp within reach
+//! (Lambert's cosine against the outward normal — for a tube horizontal, away from `q` —,
+//! the fog along the way and the geodesic sphere's area), shadows walked through the faces
+//! for the nearest images; then faded into the fog by `e^{−t/λ}` over the distance walked.
+//! The cell's sides may be drawn as walls with windows ([`walls`]). No mirrors yet.
 
 #[cfg(feature = "scene-files")]
 pub mod file;
 #[cfg(feature = "scene-files")]
 pub mod flight;
+pub mod light;
 pub mod walls;
 
 use crate::space::FrameSpace;
@@ -102,9 +104,80 @@ pub struct Sl2rScene {
     pub colour_by: crate::scene::ColourBy,
     /// The cell's walls with windows, if drawn ([`walls`]).
     pub walls: Option<crate::scene::walls::WallStyle>,
+    /// The lamp's frame (columns `f`, `f⊥`, `q`), in the cell.
+    pub light: [[f64; 3]; 3],
+    /// The fibre cover's sheet the lamp sits on (0 in `UT Σ`).
+    pub light_sheet: u32,
+    /// How the light is gathered; set with [`Sl2rScene::set_lighting`].
+    pub lighting: crate::scene::lighting::Lighting,
+    /// The lamp's images within the reach.
+    pub lamp: light::Sl2rLamp,
+    /// The lamp's power: the light a surface facing it gets from one image at distance 1
+    /// in a flat space (`A = 1`).
+    pub power: f64,
+    /// The distance within which the falloff stops growing (a lamp of that size).
+    pub near_light: f64,
 }
 
 impl Sl2rScene {
+    /// Lights the scene as `lighting` says, the lamp at the frame `light` on `sheet` (brought
+    /// into the cell): finds the lamp's images again. The message names a setting out of
+    /// range, a lamp of a radius, or a lamp that is no frame of `UT H²`.
+    pub fn set_lighting(
+        &mut self,
+        space: &UnitTangentSpace,
+        (light, sheet): ([[f64; 3]; 3], u32),
+        lighting: crate::scene::lighting::Lighting,
+    ) -> Result<(), String> {
+        lighting.check()?;
+        if lighting.lamp_radius_inradii > 0.0 {
+            use crate::space::{Family, Feature};
+            Family::Sl2r
+                .supports(Feature::SoftShadows)
+                .map_err(|e| format!("{e}; got a radius of {}", lighting.lamp_radius_inradii))?;
+        }
+        let [f, g, q] = light;
+        let frame_defect = (lorentz(q, q) + 1.0)
+            .abs()
+            .max((lorentz(f, f) - 1.0).abs())
+            .max((lorentz(g, g) - 1.0).abs())
+            .max(lorentz(f, q).abs())
+            .max(lorentz(g, q).abs())
+            .max(lorentz(f, g).abs());
+        if !(frame_defect < 1e-6 && q[2] > 0.0) {
+            return Err(format!(
+                "the lamp's position {:?} is no point of the space",
+                crate::space::sl2r::chart_point(&light).to_array()
+            ));
+        }
+        if sheet >= space.sheets() {
+            return Err(format!(
+                "the lamp's sheet {sheet} is not one of the cover's {} sheets",
+                space.sheets()
+            ));
+        }
+        let at = Sl2rRay {
+            frame: light,
+            velocity: [1.0, 0.0, 0.0],
+        };
+        self.light = space.into_cell(&at).frame;
+        self.light_sheet = crate::space::sl2r::cover::sheet_plus(
+            sheet,
+            i64::from(space.sheets_into_cell(&light)),
+            space.sheets(),
+        );
+        self.lighting = lighting;
+        self.lamp = light::Sl2rLamp::new(
+            space,
+            light::LampImage {
+                frame: self.light,
+                sheet: self.light_sheet,
+            },
+            &lighting,
+        );
+        Ok(())
+    }
+
     /// Where the fog has left less than half a grey level (`λ ln 510`): rays stop there.
     #[must_use]
     pub fn cutoff_distance(&self) -> f64 {
@@ -204,6 +277,68 @@ fn group_elements_turning(space: &UnitTangentSpace, q: [f64; 3]) -> Vec<([[f64; 
     seen.into_iter().map(|(m, _, turn)| (m, turn)).collect()
 }
 
+/// The elements `γ` of the surface group whose tile `γ·P` may hold a point within `radius`
+/// of the polygon's centre, with what each adds to the lifted fibre angle of a point over
+/// `q` (as [`group_elements_turning`]): a search over the tiles through their sides (right
+/// multiplication by the pairings), keeping each tile whose centre is within
+/// `radius + ρ` (`ρ` the circumradius): every tile that meets the disc, and the tiles that
+/// meet it are joined through their sides.
+fn elements_within(
+    space: &UnitTangentSpace,
+    q: [f64; 3],
+    radius: f64,
+) -> Vec<([[f64; 3]; 3], f64)> {
+    let covering = space.sheets() > 1;
+    let pairings: Vec<[[f64; 3]; 3]> = space
+        .sides()
+        .iter()
+        .map(|s| s.pairing.map(|r| r.map(|x| x.hi)))
+        .collect();
+    let times = |a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]| {
+        [0, 1, 2].map(|i| [0, 1, 2].map(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum::<f64>()))
+    };
+    // The turn of the word m_{w₀}·…·m_{wₖ₋₁} at q: each pairing's at the point the pairings
+    // after it have moved q to.
+    let word_turn = |word: &[usize]| {
+        let mut at = q;
+        let mut turn = 0.0;
+        for &face in word.iter().rev() {
+            turn += space.side_turn(face, at);
+            at = apply(&pairings[face], at);
+        }
+        turn
+    };
+    let bound = (radius + space.circumradius()).cosh() * (1.0 + 1e-12);
+    let identity = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    let mut centres = vec![[0.0, 0.0, 1.0]];
+    let mut out = vec![(identity, 0.0)];
+    let mut frontier: Vec<([[f64; 3]; 3], Vec<usize>)> = vec![(identity, Vec::new())];
+    while !frontier.is_empty() {
+        let mut next = Vec::new();
+        for (g, word) in &frontier {
+            for (face, m) in pairings.iter().enumerate() {
+                let element = times(g, m);
+                let centre = [element[0][2], element[1][2], element[2][2]];
+                let new = centre[2] <= bound
+                    && centres.iter().all(|c: &[f64; 3]| {
+                        (0..3).map(|i| (c[i] - centre[i]).abs()).fold(0.0, f64::max)
+                            > 1e-9 * centre[2]
+                    });
+                if new {
+                    centres.push(centre);
+                    let mut word = word.clone();
+                    word.push(face);
+                    let turn = if covering { word_turn(&word) } else { 0.0 };
+                    out.push((element, turn));
+                    next.push((element, word));
+                }
+            }
+        }
+        frontier = next;
+    }
+    out
+}
+
 /// The base point at distance `r` from the polygon's centre in the direction `angle`.
 fn base_at(r: f64, angle: f64) -> [f64; 3] {
     [r.sinh() * angle.cos(), r.sinh() * angle.sin(), r.cosh()]
@@ -240,6 +375,17 @@ pub fn default_scene(space: &UnitTangentSpace) -> Sl2rScene {
     )
 }
 
+/// The default lamp's size: the falloff is held at its value there.
+pub const NEAR_LIGHT: f64 = 0.05;
+
+/// The default lamp's power: full (1) at 0.6 inradii from it, but no more than makes the
+/// mean light of all its images (`πλ/vol`, what a small space fills with) ½.
+#[must_use]
+pub fn default_power(space: &UnitTangentSpace, fog_distance: f64) -> f64 {
+    let mean = std::f64::consts::PI * fog_distance / space.volume();
+    (0.6 * space.inradius()).powi(2).min(0.5 / mean)
+}
+
 /// The default scene's fog distance: the polygon's inradius.
 #[must_use]
 pub fn default_fog_distance(space: &UnitTangentSpace) -> f64 {
@@ -258,7 +404,24 @@ pub fn scene_with_parts(space: &UnitTangentSpace, parts: Sl2rParts) -> Sl2rScene
         ambient: 0.3,
         colour_by: crate::scene::ColourBy::Shading,
         walls: None,
+        light: crate::space::sl2r::chart_frame(0.0, 0.0, 0.0),
+        light_sheet: 0,
+        lighting: crate::scene::lighting::Lighting::default(),
+        lamp: light::Sl2rLamp::default(),
+        power: 1.0,
+        near_light: NEAR_LIGHT,
     };
+    // The lamp: over the point half-way between the default camera and the centre, half a
+    // radian up the fibre from the camera's e.
+    let lamp = base_at(0.35 * rho, std::f64::consts::PI);
+    scene
+        .set_lighting(
+            space,
+            (crate::space::sl2r::chart_frame(lamp[0], lamp[1], 0.5), 0),
+            crate::scene::lighting::Lighting::default(),
+        )
+        .expect("the default lighting is in range");
+    scene.power = default_power(space, scene.fog_distance);
     if parts.edges {
         for v in space.vertices() {
             scene.tubes.push(FibreTube {
@@ -561,11 +724,11 @@ fn ball_hit_on_sheet(
     None
 }
 
-/// The colour of `object` where `ray` meets it at `t`, seen along the ray.
-fn shade(scene: &Sl2rScene, object: Sl2rObject, ray: &Sl2rRay<f64>, t: f64) -> DVec3 {
-    let at = flow(ray, t);
-    let [e, f, p] = at.frame;
-    let normal = match object {
+/// The outward unit normal of `object` at the frame `at`, in `at`'s body frame (`X, Y, V`):
+/// for a tube horizontal, away from its fibre; for a ball the distance's gradient.
+fn normal_at(object: Sl2rObject, at: &[[f64; 3]; 3]) -> Option<DVec3> {
+    let [e, f, p] = *at;
+    match object {
         Sl2rObject::Tube(tube) => {
             let q = tube.base;
             // The outward normal: the tangent at p pointing away from q (−q's tangent part).
@@ -575,11 +738,34 @@ fn shade(scene: &Sl2rScene, object: Sl2rObject, ray: &Sl2rRay<f64>, t: f64) -> D
             (len > 0.0).then(|| DVec3::new(lorentz(u, e) / len, lorentz(u, f) / len, 0.0))
         }
         Sl2rObject::Ball(ball) => {
-            crate::space::sl2r::ball::normal(&ball.centre, &at.frame).map(DVec3::from_array)
+            crate::space::sl2r::ball::normal(&ball.centre, at).map(DVec3::from_array)
         }
+    }
+}
+
+/// The colour of the object `hit` met, lit by the scene's lamp ([`light::gather`]; shadow
+/// rays walked through the faces within `max_crossings`).
+fn shade(
+    walker: &Sl2rWalker<DVec4>,
+    scene: &Sl2rScene,
+    hit: &Sl2rHit,
+    max_crossings: usize,
+) -> DVec3 {
+    let at = flow(&hit.segment, hit.t);
+    let Some(normal) = normal_at(hit.object, &at.frame) else {
+        return hit.object.colour() * scene.ambient;
     };
-    let facing = normal.map_or(1.0, |n| (-n.dot(DVec3::from_array(at.velocity))).max(0.0));
-    object.colour() * (scene.ambient + (1.0 - scene.ambient) * facing)
+    let mut occluded = |ray: Sl2rRay<f64>, sheet: u32, length: f64| {
+        walk_to_object(walker, scene, (ray, sheet), length, max_crossings, None).is_some()
+    };
+    let light = light::gather(
+        scene,
+        (&at.frame, hit.sheet, walker.sheets()),
+        normal,
+        &mut occluded,
+    );
+    let lit = scene.ambient + (1.0 - scene.ambient) * scene.power * light;
+    (hit.object.colour() * lit).min(DVec3::ONE)
 }
 
 /// Where a camera ray first meets an object: the distance walked to it, the object, and
@@ -598,6 +784,8 @@ pub struct Sl2rHit<'a> {
     pub crossings: usize,
     /// The last face crossed, if any.
     pub last_face: Option<usize>,
+    /// The fibre cover's sheet of the point met (0 in `UT Σ`).
+    pub sheet: u32,
 }
 
 /// The first object the ray meets within `max_crossings` crossings and the fog's cut-off.
@@ -631,9 +819,22 @@ pub fn first_hit_past_walls<'a>(
     scene: &'a Sl2rScene,
     (ray, sheet): (Sl2rRay<f64>, u32),
     max_crossings: usize,
-    mut walls: Option<(&walls::Sl2rWalls, &mut crate::scene::walls::Veil)>,
+    walls: Option<(&walls::Sl2rWalls, &mut crate::scene::walls::Veil)>,
 ) -> Option<Sl2rHit<'a>> {
     let cutoff = scene.cutoff_distance();
+    walk_to_object(walker, scene, (ray, sheet), cutoff, max_crossings, walls)
+}
+
+/// The first object met by `ray` (on `sheet`) within `length` and `max_crossings`, through
+/// `walls` where given: the camera rays' walk, and the shadow rays'.
+fn walk_to_object<'a>(
+    walker: &Sl2rWalker<DVec4>,
+    scene: &'a Sl2rScene,
+    (ray, sheet): (Sl2rRay<f64>, u32),
+    cutoff: f64,
+    max_crossings: usize,
+    mut walls: Option<(&walls::Sl2rWalls, &mut crate::scene::walls::Veil)>,
+) -> Option<Sl2rHit<'a>> {
     let sheets = walker.sheets();
     let mut ray = Sl2rWalker::<DVec4>::ray_on_sheet(&ray, sheet);
     let mut walked = 0.0;
@@ -649,6 +850,12 @@ pub fn first_hit_past_walls<'a>(
         let within = segment.min(cutoff - walked);
         let on = Sl2rWalker::<DVec4>::sheet_of(&ray);
         if let Some((t, object)) = first_object(scene, &r, on, sheets, within) {
+            let sheet = if sheets > 1 {
+                let climbed = crate::space::sl2r::cover::sheets_climbed(&r, t, &flow(&r, t).frame);
+                crate::space::sl2r::cover::sheet_plus(on, climbed.unwrap_or(0), sheets)
+            } else {
+                0
+            };
             return Some(Sl2rHit {
                 distance: walked + t,
                 object,
@@ -656,6 +863,7 @@ pub fn first_hit_past_walls<'a>(
                 t,
                 crossings,
                 last_face,
+                sheet,
             });
         }
         walked += segment;
@@ -695,7 +903,7 @@ pub fn trace_sl2r_pixel(
     veil.over(match hit {
         Some(hit) => {
             let fade = (-hit.distance / scene.fog_distance).exp();
-            let mut surface = shade(scene, hit.object, &hit.segment, hit.t);
+            let mut surface = shade(walker, scene, &hit, max_crossings);
             if scene.colour_by != crate::scene::ColourBy::Shading {
                 // The holonomy view is refused for this family: crossings and face tint.
                 let tint = scene.colour_by.tint(

@@ -1,12 +1,14 @@
 //! SL̃(2,R) on the GPU against the f64 CPU reference: the default scenes of the bitorus's
 //! and the genus-3 surface's unit tangent bundles, from the default view, from one looking
 //! up the fibre (its rays wind round their own fibre) and one looking down at a slant, in
-//! the teaching views, the bitorus bundle's double cover (a ball on one sheet, and with
-//! walls), and the example scene file in stereo.
+//! the teaching views, lit with shadow rays and by the nearest path alone, the bitorus
+//! bundle's double cover (a ball on one sheet, with walls, with shadows), and the example
+//! scene file in stereo.
 
 use super::{judge, *};
 use bevy_curved_spaces::plugin::components::StereoSettings;
 use bevy_curved_spaces::scene::ColourBy;
+use bevy_curved_spaces::scene::lighting::{LightPaths, Lighting};
 use bevy_curved_spaces::space::FrameSpace;
 use bevy_curved_spaces::space::sl2r::UnitTangentSpace;
 use bevy_curved_spaces::trace::sl2r::{
@@ -49,6 +51,30 @@ fn pitched(camera: Sl2rCamera, pitch: f64) -> Sl2rCamera {
     frame.y_axis = new_up.extend(frame.y_axis.w);
     frame.z_axis = new_back.extend(frame.z_axis.w);
     Sl2rCamera { frame, ..camera }
+}
+
+/// The lighting with shadow rays walked to the four images of the lamp nearest the cell.
+fn shadowed() -> Lighting {
+    Lighting {
+        shadows: 4,
+        ..Lighting::default()
+    }
+}
+
+/// The lighting along the shortest geodesic to the lamp itself only.
+fn nearest() -> Lighting {
+    Lighting {
+        paths: LightPaths::Nearest,
+        ..Lighting::default()
+    }
+}
+
+/// `scene` lit as `lighting` says, its lamp where it is.
+fn lit(space: &UnitTangentSpace, scene: &Sl2rScene, lighting: Lighting) -> Sl2rScene {
+    let mut lit = scene.clone();
+    lit.set_lighting(space, (scene.light, scene.light_sheet), lighting)
+        .expect("the lighting is in range");
+    lit
 }
 
 #[test]
@@ -98,11 +124,24 @@ fn sl2r_spaces_render_on_the_gpu_like_the_cpu_reference() {
                 &mut failures,
             );
         }
-        for colour_by in [ColourBy::Crossings, ColourBy::Face] {
-            let tinted = Sl2rScene {
-                colour_by,
-                ..scene.clone()
-            };
+        for (name, tinted) in [
+            (
+                ColourBy::Crossings.name(),
+                Sl2rScene {
+                    colour_by: ColourBy::Crossings,
+                    ..scene.clone()
+                },
+            ),
+            (
+                ColourBy::Face.name(),
+                Sl2rScene {
+                    colour_by: ColourBy::Face,
+                    ..scene.clone()
+                },
+            ),
+            ("shadows", lit(&space, &scene, shadowed())),
+            ("nearest", lit(&space, &scene, nearest())),
+        ] {
             let reference = cpu(&space, &tinted, &camera, size, StereoSettings::default());
             let gpu = renderer
                 .render_sl2r(
@@ -115,7 +154,7 @@ fn sl2r_spaces_render_on_the_gpu_like_the_cpu_reference() {
                 )
                 .unwrap_or_else(|e| panic!("{word}: {e}"));
             judge(
-                &format!("sl2r-{word}-{}", colour_by.name()),
+                &format!("sl2r-{word}-{name}"),
                 &gpu,
                 &reference,
                 &out,
@@ -144,8 +183,12 @@ fn sl2r_spaces_render_on_the_gpu_like_the_cpu_reference() {
         }),
         ..scene.clone()
     };
+    let shadows = lit(&space, &scene, shadowed());
+    let nearest_lamp = lit(&space, &scene, nearest());
     for (view, scene, camera) in [
         ("crossings", &crossings, default_camera(&space)),
+        ("shadows", &shadows, default_camera(&space)),
+        ("nearest", &nearest_lamp, along(1.0)),
         ("walls", &walled, default_camera(&space)),
         ("stack-up", &scene, along(1.0)),
         ("stack-down", &scene, along(-1.0)),

@@ -60,10 +60,16 @@ fn a_tube_comes_with_its_images_and_the_start_stands_where_written() {
 fn what_is_not_written_yet_and_bad_values_are_refused_with_the_line() {
     for (body, says, line) in [
         (
-            "[[light]]\nposition = [0, 0, 0]\n",
-            "`light` is not written",
-            3,
+            "[[light]]\nposition = [0, 0, 0]\n[[light]]\nposition = [0.1, 0, 0]\n",
+            "has one light",
+            5,
         ),
+        ("[[light]]\nposition = [1e200, 0, 0]\n", "too far", 3),
+        ("[[light]]\nposition = [0, 0]\n", "length", 3),
+        ("[lighting]\nlamp_radius = 0.2\n", "lamp is a point", 4),
+        ("[lighting]\nshadows = 100\n", "shadows must be", 4),
+        ("[lighting]\npaths = \"all\"\n", "light paths", 4),
+        ("[lighting]\nreach = -1\n", "reach", 4),
         ("walls = 2\n", "between 0 (solid walls) and 1", 3),
         (
             "[[object]]\ntype = \"tube\"\nposition = [0, 0]\nradius = 5\n",

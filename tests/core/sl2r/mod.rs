@@ -12,6 +12,7 @@ mod covers;
 mod distance;
 #[cfg(feature = "scene-files")]
 mod files;
+mod light;
 mod pictures;
 mod walks;
 mod walls;

@@ -92,11 +92,16 @@ pub struct ShaderKey {
     pub sl2r_tubes: u32,
     /// The metric balls of an SL̃(2,R) scene (three vec4 each in `SL2R_OBJECT_VECS`, after
     /// the tubes; shader def `SL2R_BALLS` where there are any, so that a scene without them
-    /// compiles no distance solver).
+    /// compiles no ball search).
     pub sl2r_balls: u32,
     /// A fibre cover of a unit tangent bundle (shader def `SL2R_COVER`): the walk counts
     /// sheets, and each ball has a fourth vec4 (its sheet and fibre angle).
     pub sl2r_cover: bool,
+    /// The lamp's images an SL̃(2,R) scene sums, two vec4 each (shader def
+    /// `SL2R_IMAGE_VECS`; for the nearest path the lamp itself, one).
+    pub sl2r_images: u32,
+    /// Whether an SL̃(2,R) scene walks shadow rays (shader def `SL2R_SHADOWS`).
+    pub sl2r_shadows: bool,
 }
 
 /// The vec4s of one Nil object in the uniform (shape, info, colour, its chart box).
@@ -161,6 +166,8 @@ impl ShaderKey {
             sl2r_tubes: 0,
             sl2r_balls: 0,
             sl2r_cover: false,
+            sl2r_images: 0,
+            sl2r_shadows: false,
         }
     }
 
@@ -228,6 +235,13 @@ impl ShaderKey {
             }
             if self.sl2r_cover {
                 defs.push("SL2R_COVER".into());
+            }
+            defs.push(ShaderDefVal::UInt(
+                "SL2R_IMAGE_VECS".into(),
+                2 * self.sl2r_images.max(1),
+            ));
+            if self.sl2r_shadows {
+                defs.push("SL2R_SHADOWS".into());
             }
         }
         if self.straightforward {
@@ -388,7 +402,7 @@ impl ShaderKey {
                 0
             }
             + if self.sl2r {
-                (1 + count(self.sl2r_object_vecs())) * vec4
+                (3 + count(self.sl2r_object_vecs()) + 2 * count(self.sl2r_images.max(1))) * vec4
             } else {
                 0
             }

@@ -3,7 +3,9 @@
 //! 3×3 pairings in a mat4 with what rounding to f32 left out, partners), then the tubes
 //! (base point and radius; colour and `cosh` of the radius) and the balls (the centre's
 //! base point and radius; its `e` and `cosh` of the radius; colour and `sinh` of the radius;
-//! in a fibre cover its sheet and fibre angle). A cover's side turns
+//! in a fibre cover its sheet and fibre angle), then the lamp (power, the falloff's floor,
+//! the reach, the images shadowed; the images' count and the tail's light) and its images
+//! (`f` and the sheet; the base point `q`). A cover's side turns
 //! ([`UnitTangentSpace::side_turn_reference`]) ride in the covectors' fourth entries (the raw
 //! turn at the midpoint) and the rests' unused corner (its lift); the header's third entry is
 //! the number of sheets. With walls, the layout's wall arrays follow: per side its direction
@@ -13,8 +15,10 @@ use super::VIEW_WORDS;
 use super::{DataSources, GpuScene, GpuSceneError, MAX_UNIFORM_BYTES, ShaderKey};
 use crate::geometry::{DoubleDouble, Geometry};
 use crate::plugin::render::layout::{GpuShading, UniformWriter, colour, vec4};
+use crate::scene::lighting::{LightPaths, open_tail_fluence};
 use crate::space::sl2r::UnitTangentSpace;
 use crate::trace::sl2r::Sl2rScene;
+use crate::trace::sl2r::light::{LampImage, MAX_LIGHT_REACH};
 use glam::DVec4;
 use std::sync::Arc;
 
@@ -43,6 +47,30 @@ impl GpuScene {
                 crate::scene::DEFAULT_CUTOFF_WEIGHT,
             )
         });
+        // The lamp's images within the reach, or the lamp itself for the nearest path
+        // (unshadowed, no tail, within the longest reach).
+        let lighting = &scene.lighting;
+        let lamp = LampImage {
+            frame: scene.light,
+            sheet: scene.light_sheet,
+        };
+        let (images, reach, shadows, tail) = match lighting.paths {
+            LightPaths::Images => (
+                scene.lamp.images.clone(),
+                scene.lamp.reach,
+                (lighting.shadows as usize).min(scene.lamp.images.len()),
+                if lighting.tail {
+                    0.25 * open_tail_fluence(
+                        scene.lamp.reach,
+                        scene.fog_distance,
+                        scene.lamp.volume,
+                    )
+                } else {
+                    0.0
+                },
+            ),
+            LightPaths::Nearest => (vec![lamp], MAX_LIGHT_REACH, 0, 0.0),
+        };
         let key = ShaderKey {
             sl2r: true,
             walls: walls.is_some(),
@@ -51,6 +79,8 @@ impl GpuScene {
             sl2r_cover: space.sheets() > 1,
             faces: sides.len() as u32,
             colour_by: scene.colour_by.index(),
+            sl2r_images: images.len() as u32,
+            sl2r_shadows: shadows > 0,
             ..ShaderKey::empty(Geometry::Hyperbolic)
         };
         let bytes = key.uniform_bytes();
@@ -125,6 +155,21 @@ impl GpuScene {
             }
         }
         if scene.tubes.is_empty() && scene.balls.is_empty() {
+            out.push(&[[0.0f32; 4]; 2]);
+        }
+        out.push(&vec4(DVec4::new(
+            scene.power,
+            scene.near_light * scene.near_light,
+            reach,
+            shadows as f64,
+        )));
+        out.push(&vec4(DVec4::new(images.len() as f64, tail, 0.0, 0.0)));
+        for image in &images {
+            let [f, _, q] = image.frame;
+            out.push(&vec4(DVec4::new(f[0], f[1], f[2], f64::from(image.sheet))));
+            out.push(&vec4(DVec4::new(q[0], q[1], q[2], 0.0)));
+        }
+        if images.is_empty() {
             out.push(&[[0.0f32; 4]; 2]);
         }
         // The walls: per side its direction at the midpoint; its pair's colour and how far
