@@ -133,7 +133,7 @@ fn product_outcome(text: &str) -> bool {
 /// A mutated SL̃(2,R) scene file: a finite scene that draws, or an error naming the file.
 fn sl2r_outcome(text: &str) -> bool {
     use bevy_curved_spaces::trace::sl2r::file::parse_sl2r_scene;
-    use bevy_curved_spaces::trace::sl2r::{camera_ray, first_hit};
+    use bevy_curved_spaces::trace::sl2r::{camera_ray, camera_sheet, trace_sl2r_pixel};
     let started = Instant::now();
     match parse_sl2r_scene(text, "fuzz.toml") {
         Ok(file) => {
@@ -149,14 +149,24 @@ fn sl2r_outcome(text: &str) -> bool {
                             && b.radius <= 0.5
                             && b.colour.is_finite())
                     && s.fog_distance.is_finite()
+                    && s.light.iter().flatten().all(|x| x.is_finite())
+                    && s.power.is_finite()
                     && file.start.frame.is_finite(),
                 "a non-finite SL̃(2,R) scene from:\n{text}"
             );
-            // A few camera rays walk and meet what they meet, never panic.
+            // A few camera rays walk, meet what they meet and are lit (shadow rays walked),
+            // never panic, and give a colour.
             let walker =
                 bevy_curved_spaces::space::sl2r::Sl2rWalker::<glam::DVec4>::new(&file.space);
             for (x, y) in [(0.0, 0.0), (0.4, -0.3), (-0.7, 0.5)] {
-                let _ = first_hit(&walker, s, camera_ray(&file.start.frame, x, y), 8);
+                let colour = trace_sl2r_pixel(
+                    (&walker, None),
+                    s,
+                    camera_ray(&file.start.frame, x, y),
+                    camera_sheet(&file.start.frame),
+                    8,
+                );
+                assert!(colour.is_finite(), "a colour {colour} from:\n{text}");
             }
             assert!(started.elapsed().as_secs_f64() < 10.0, "slow:\n{text}");
             true
