@@ -328,6 +328,13 @@ fn sl2r_shortest(ec: vec3<f32>, fc: vec3<f32>, pc: vec3<f32>, at: Sl2rRay, bound
     let g1 = vec3<f32>(sl2r_lorentz(fc, at.e), sl2r_lorentz(fc, at.f), sl2r_lorentz(fc, at.p));
     let g2 = -vec3<f32>(sl2r_lorentz(pc, at.e), sl2r_lorentz(pc, at.f), sl2r_lorentz(pc, at.p));
     var best = vec4<f32>(-1.0, 0.0, 0.0, 0.0);
+    // No geodesic is shorter than the base distance ρ, and one shorter than L has |γ| below
+    // √(L² − ρ²) (its base point's path, √(α² + β²) long, covers ρ).
+    let chord = at.p - pc;
+    let rho = 2.0 * asinh(0.5 * sqrt(max(sl2r_lorentz(chord, chord), 0.0)));
+    if rho >= bound {
+        return best;
+    }
     // The secant method from the principal guess first: a geodesic shorter than the
     // injectivity radius π is the only one that short, so a root it finds below 3 is the
     // answer.
@@ -366,15 +373,15 @@ fn sl2r_shortest(ec: vec3<f32>, fc: vec3<f32>, pc: vec3<f32>, at: Sl2rRay, bound
         }
     }
     var reach = bound;
-    let zero = sl2r_phi(g0, g1, g2, 0.0);
+    let zero = principal;
     for (var side = 0u; side < 2u; side += 1u) {
         let sign = select(1.0, -1.0, side == 1u);
         var a = 0.0;
         var fa = zero.f;
         var last_ok = zero.ok;
-        for (var k = 1u; k < 12u; k += 1u) {
+        for (var k = 1u; k < 26u; k += 1u) {
             let gamma = sign * f32(k) * SL2R_SCAN_STEP;
-            if abs(gamma) - SL2R_SCAN_STEP >= reach {
+            if abs(gamma) - SL2R_SCAN_STEP >= sqrt(max(reach * reach - rho * rho, 0.0)) {
                 break;
             }
             let here = sl2r_phi(g0, g1, g2, gamma);
@@ -569,14 +576,19 @@ fn sl2r_gather(at: Sl2rRay, sheet: f32, normal: vec3<f32>) -> f32 {
     let light = space.sl2r_light;
     let lighting = space.sl2r_lighting;
     let reach = light.z;
+    let cosh_reach = cosh(reach);
     var sum = 0.0;
     for (var k = 0u; k < u32(lighting.x); k += 1u) {
-        let fi = space.sl2r_images[2u * k];
         let qi = space.sl2r_images[2u * k + 1u].xyz;
-        let image = Sl2rRay(fi.xyz, sl2r_perp(qi, fi.xyz), qi, vec3<f32>(0.0));
+        // Past the reach by the base distance (one Lorentz product), then by the floor.
+        if -sl2r_lorentz(qi, at.p) > cosh_reach {
+            continue;
+        }
+        let fi = space.sl2r_images[2u * k];
         if sl2r_floor(fi.xyz, qi, at) > reach {
             continue;
         }
+        let image = Sl2rRay(fi.xyz, sl2r_perp(qi, fi.xyz), qi, vec3<f32>(0.0));
         let path = sl2r_shortest(at.e, at.f, at.p, image, reach);
         if path.x < 0.0 {
             continue;

@@ -176,13 +176,21 @@ fn secant(g: &[[f64; 3]; 3]) -> Option<(f64, [f64; 3])> {
 /// whose geodesic is shorter than `π` is the shortest geodesic and the only one that short:
 /// the secant method from the principal guess is tried first, and where it finds such a
 /// root, that is the answer. Otherwise every geodesic of length `L < π` is a root with
-/// `|γ| ≤ L`, so the roots with `|γ| < bound` are all there is to search: `φ` is scanned
+/// `|γ| ≤ √(L² − ρ²)` (`ρ` the base distance, which the base point's path of length
+/// `√(α² + β²)` must cover), so the roots with `|γ|` below that for `L = bound` are all there
+/// is to search: `φ` is scanned
 /// outwards from `γ = 0` in steps of `SCAN_STEP` (⅛), each sign change that is no jump of the
 /// branch is refined, and the scan stops once `|γ|` passes the shortest length found.
 #[must_use]
 pub fn shortest_within(from: &Frame, to: &Frame, bound: f64) -> Option<(f64, [f64; 3])> {
     let g = relative(from, to);
     let bound = bound.min(TRUSTED_LENGTH);
+    // The base point moves √(α² + β²) along the base, at least the base distance ρ: a
+    // geodesic shorter than L has |γ| below √(L² − ρ²), and none is shorter than ρ.
+    let rho = base_distance(from[2], to[2]);
+    if rho >= bound {
+        return None;
+    }
     let mut best: Option<(f64, [f64; 3])> = None;
     let length_of = |gamma: f64, u: [f64; 3]| (u[0] * u[0] + u[1] * u[1] + gamma * gamma).sqrt();
     let unit = |(length, [x, y, gamma]): (f64, [f64; 3])| {
@@ -211,7 +219,7 @@ pub fn shortest_within(from: &Frame, to: &Frame, bound: f64) -> Option<(f64, [f6
         loop {
             let gamma = side * k * SCAN_STEP;
             let reach = best.map_or(bound, |(l, _)| l.min(bound));
-            if gamma.abs() - SCAN_STEP >= reach {
+            if gamma.abs() - SCAN_STEP >= (reach * reach - rho * rho).max(0.0).sqrt() {
                 break;
             }
             k += 1.0;

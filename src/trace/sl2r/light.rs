@@ -173,7 +173,10 @@ fn path_to(
     image: &LampImage,
     reach: f64,
 ) -> Option<(f64, [f64; 3])> {
-    if distance_floor(&image.frame, x) > reach {
+    // Past the reach by the base distance (one Lorentz product), then by the floor.
+    if -crate::space::sl2r::flow::lorentz(image.frame[2], x[2]) > reach.cosh()
+        || distance_floor(&image.frame, x) > reach
+    {
         return None;
     }
     let (r, l) = shortest_within(x, &image.frame, reach)?;
