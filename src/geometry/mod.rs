@@ -6,6 +6,7 @@
 //! The chart `x = X.xyz / X.w` (gnomonic, Klein, affine) maps geodesics to straight lines.
 
 mod dd;
+pub mod elliptic;
 mod isometry;
 mod ray;
 mod real;

@@ -10,6 +10,7 @@ mod accuracy;
 mod cells;
 mod culling;
 mod edge_answers;
+mod elliptic;
 mod files;
 #[cfg(feature = "scene-files")]
 mod flight;

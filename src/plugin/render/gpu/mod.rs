@@ -39,7 +39,7 @@ pub const TRACER_WGSL: &str = include_str!("../../../../shaders/curved_space.wgs
 /// The tracer's WGSL modules (`#define_import_path curved_spaces::…`), each the twin of a
 /// Rust module, in the order they import each other: the plugin registers them all, so a
 /// game that embeds the crate needs no shader files.
-pub const SHADER_MODULES: [(&str, &str); 19] = [
+pub const SHADER_MODULES: [(&str, &str); 20] = [
     (
         "shaders/layout.wgsl",
         include_str!("../../../../shaders/layout.wgsl"),
@@ -111,6 +111,10 @@ pub const SHADER_MODULES: [(&str, &str); 19] = [
     (
         "shaders/nil.wgsl",
         include_str!("../../../../shaders/nil.wgsl"),
+    ),
+    (
+        "shaders/sl2r_geometry.wgsl",
+        include_str!("../../../../shaders/sl2r_geometry.wgsl"),
     ),
     (
         "shaders/sl2r.wgsl",
