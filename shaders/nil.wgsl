@@ -10,7 +10,7 @@
 #import curved_spaces::layout::{space}
 #import curved_spaces::nil_geometry::{NIL_FAR, NIL_NONE, NIL_PI, NilRay, nil_atan_over, nil_exit, nil_flow, nil_h, nil_product, nil_shortest, nil_through, nil_vertical_exit}
 #ifdef COLOUR_BY
-#import curved_spaces::shading::{colour_by_tint, recolour}
+#import curved_spaces::shading::{recolour_unturned}
 #endif
 
 // ---------------------------------------------------------------------------------------
@@ -530,13 +530,7 @@ fn ray_colour(point: vec4<f32>, tangent: vec4<f32>) -> vec3<f32> {
     var surface = min(o.colour.rgb * lit, vec3<f32>(1.0));
 #ifdef COLOUR_BY
     // A left translation turns nothing: the copy's rotation is always none.
-    let unturned = mat4x4<f32>(
-        vec4<f32>(1.0, 0.0, 0.0, 0.0),
-        vec4<f32>(0.0, 1.0, 0.0, 0.0),
-        vec4<f32>(0.0, 0.0, 1.0, 0.0),
-        vec4<f32>(0.0, 0.0, 0.0, 1.0),
-    );
-    surface = recolour(colour_by_tint(end.crossings, end.last_face, unturned), surface);
+    surface = recolour_unturned(end.crossings, end.last_face, surface);
 #endif
     let w = exp(-end.distance / shading.params.x);
     return nil_behind_walls(w * surface + (1.0 - w) * shading.fog.rgb);

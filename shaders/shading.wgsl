@@ -84,6 +84,19 @@ fn colour_by_tint(crossings: u32, last_face: u32, held: mat4x4<f32>) -> vec3<f32
 #endif
     return vec3<f32>(1.0);
 }
+
+// `surface` recoloured by the tint after `crossings` crossings, the last through
+// `last_face`, in a copy that turns nothing (Nil's left translations; SL̃(2,R), whose
+// holonomy view is not written): the crossings and the face alone.
+fn recolour_unturned(crossings: u32, last_face: u32, surface: vec3<f32>) -> vec3<f32> {
+    let unturned = mat4x4<f32>(
+        vec4<f32>(1.0, 0.0, 0.0, 0.0),
+        vec4<f32>(0.0, 1.0, 0.0, 0.0),
+        vec4<f32>(0.0, 0.0, 1.0, 0.0),
+        vec4<f32>(0.0, 0.0, 0.0, 1.0),
+    );
+    return recolour(colour_by_tint(crossings, last_face, unturned), surface);
+}
 #endif
 
 fn shade(point: vec4<f32>, normal: vec4<f32>, albedo: vec3<f32>, emission: vec3<f32>, d: f32) -> vec3<f32> {

@@ -15,7 +15,7 @@
 #import curved_spaces::layout::{space}
 #import curved_spaces::sl2r_geometry::{SL2R_NONE, SL2R_PI, Sl2rRay, sl2r_crossing, sl2r_floor, sl2r_flow, sl2r_lorentz, sl2r_on_model, sl2r_perp, sl2r_shortest}
 #ifdef COLOUR_BY
-#import curved_spaces::shading::{colour_by_tint, recolour}
+#import curved_spaces::shading::{recolour_unturned}
 #endif
 
 fn sl2r_partner(face: u32) -> u32 {
@@ -475,13 +475,7 @@ fn sl2r_eye_colour(frame: mat4x4<f32>, px: f32, py: f32) -> vec3<f32> {
         surface = sl2r_lit(space.sl2r_objects[2u * end.hit + 1u].rgb, at, on, sl2r_tube_normal(end.hit, at));
     }
 #ifdef COLOUR_BY
-    let unturned = mat4x4<f32>(
-        vec4<f32>(1.0, 0.0, 0.0, 0.0),
-        vec4<f32>(0.0, 1.0, 0.0, 0.0),
-        vec4<f32>(0.0, 0.0, 1.0, 0.0),
-        vec4<f32>(0.0, 0.0, 0.0, 1.0),
-    );
-    surface = recolour(colour_by_tint(end.crossings, end.last_face, unturned), surface);
+    surface = recolour_unturned(end.crossings, end.last_face, surface);
 #endif
     let w = exp(-(end.walked + end.t) / shading.params.x);
     return sl2r_behind_walls(w * surface + (1.0 - w) * shading.fog.rgb);

@@ -3,6 +3,23 @@
 
 use crate::space::sl2r::UnitTangentSpace;
 
+/// The 3×3 identity.
+const IDENTITY: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+
+/// The sides' pairings in `f64`, rows.
+fn pairings(space: &UnitTangentSpace) -> Vec<[[f64; 3]; 3]> {
+    space
+        .sides()
+        .iter()
+        .map(|s| s.pairing.map(|r| r.map(|x| x.hi)))
+        .collect()
+}
+
+/// The product `a b` of 3×3 matrices of rows.
+fn times(a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
+    [0, 1, 2].map(|i| [0, 1, 2].map(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum::<f64>()))
+}
+
 /// `m v` for a 3×3 matrix of rows.
 pub(super) fn apply(m: &[[f64; 3]; 3], v: [f64; 3]) -> [f64; 3] {
     [0, 1, 2].map(|r| m[r][0] * v[0] + m[r][1] * v[1] + m[r][2] * v[2])
@@ -26,15 +43,8 @@ pub(super) fn group_elements_turning(
     q: [f64; 3],
 ) -> Vec<([[f64; 3]; 3], f64)> {
     let covering = space.sheets() > 1;
-    let pairings: Vec<[[f64; 3]; 3]> = space
-        .sides()
-        .iter()
-        .map(|s| s.pairing.map(|r| r.map(|x| x.hi)))
-        .collect();
-    let times = |a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]| {
-        [0, 1, 2].map(|i| [0, 1, 2].map(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum::<f64>()))
-    };
-    let identity = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    let pairings = pairings(space);
+    let identity = IDENTITY;
     let mut seen = vec![(identity, q, 0.0)];
     let mut frontier = vec![(identity, q, 0.0)];
     for _ in 0..4 {
@@ -74,14 +84,7 @@ pub(super) fn elements_within(
     radius: f64,
 ) -> Vec<([[f64; 3]; 3], f64)> {
     let covering = space.sheets() > 1;
-    let pairings: Vec<[[f64; 3]; 3]> = space
-        .sides()
-        .iter()
-        .map(|s| s.pairing.map(|r| r.map(|x| x.hi)))
-        .collect();
-    let times = |a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]| {
-        [0, 1, 2].map(|i| [0, 1, 2].map(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum::<f64>()))
-    };
+    let pairings = pairings(space);
     // The turn of the word m_{w₀}·…·m_{wₖ₋₁} at q: each pairing's at the point the pairings
     // after it have moved q to.
     let word_turn = |word: &[usize]| {
@@ -94,7 +97,7 @@ pub(super) fn elements_within(
         turn
     };
     let bound = (radius + space.circumradius()).cosh() * (1.0 + 1e-12);
-    let identity = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    let identity = IDENTITY;
     let mut centres = vec![[0.0, 0.0, 1.0]];
     let mut out = vec![(identity, 0.0)];
     let mut frontier: Vec<([[f64; 3]; 3], Vec<usize>)> = vec![(identity, Vec::new())];
