@@ -19,6 +19,7 @@ pub mod orbit;
 pub mod product;
 pub mod roots;
 pub mod sl2r;
+pub mod sol;
 pub mod surface;
 mod validate;
 pub mod walk;

@@ -39,6 +39,7 @@ mod render;
 mod several_cells;
 mod sl2r;
 mod soft_shadows;
+mod sol;
 mod spaces;
 mod stereo;
 mod straddling;

@@ -1,5 +1,6 @@
-//! The panel while an SL̃(2,R) space is shown: the picker, the tracer's knobs, the walk's
-//! feel (with the fibre up, and what climbing it does) and the bundle's invariants.
+//! The panel while an SL̃(2,R) space is shown: the picker, the tracer's knobs, the lighting,
+//! the walk's feel (with the fibre up, and what climbing it does) and the bundle's
+//! invariants.
 
 use super::*;
 
@@ -16,6 +17,7 @@ pub(super) fn sl2r_panel(
     diagnostics: Res<DiagnosticsStore>,
     mut cameras: Query<(&mut CurvedSpaceCamera, &PlayerFrame, &Holonomy)>,
     mut picker: Local<SpacePicker>,
+    base: Option<Res<crate::plugin::sl2r::BaseSl2rScene>>,
     mut commands: Commands,
 ) -> Result {
     let Some(space) = active.space.get::<crate::space::sl2r::UnitTangentSpace>() else {
@@ -39,6 +41,13 @@ pub(super) fn sl2r_panel(
             let fog = crate::trace::sl2r::default_fog_distance(space);
             tracer_controls(ui, &mut settings, &status, fog);
             ui.separator();
+            // The lamp is a point: no radius (soft shadows) to set.
+            let shown = base
+                .as_ref()
+                .map_or_else(crate::scene::lighting::Lighting::default, |b| {
+                    b.scene.lighting
+                });
+            super::controls::lighting_controls(ui, &mut settings, Some(shown), false);
             super::controls::walk_feel(
                 ui,
                 &mut player,
