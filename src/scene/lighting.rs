@@ -60,6 +60,52 @@ pub fn nearest_images<T>(mut found: Vec<(T, f64)>, reach: f64, rho: f64) -> (Vec
     (found.into_iter().map(|(q, _)| q).collect(), covered)
 }
 
+/// A lamp's images in a family that finds them by its own search (the product spaces, Nil,
+/// SL̃(2,R)), for [`LightPaths::Images`]: the images, nearest the cell's centre first, the
+/// reach they cover from every point of the cell, and the space's volume (their density, for
+/// the tail).
+#[derive(Clone, Debug, PartialEq)]
+pub struct LampImages<T> {
+    /// The images.
+    pub images: Vec<T>,
+    /// The reach they cover from every point of the cell.
+    pub reach: f64,
+    /// The space's volume.
+    pub volume: f64,
+}
+
+impl<T> Default for LampImages<T> {
+    fn default() -> Self {
+        Self {
+            images: Vec::new(),
+            reach: 0.0,
+            volume: 0.0,
+        }
+    }
+}
+
+impl<T> LampImages<T> {
+    /// The images `search(reach)` finds, with the reach they cover, in a space of `volume`
+    /// (none for [`LightPaths::Nearest`]).
+    #[must_use]
+    pub fn searched(
+        lighting: &Lighting,
+        reach: f64,
+        volume: f64,
+        search: impl FnOnce(f64) -> (Vec<T>, f64),
+    ) -> Self {
+        if lighting.paths == LightPaths::Nearest {
+            return Self::default();
+        }
+        let (images, reach) = search(reach);
+        Self {
+            images,
+            reach,
+            volume,
+        }
+    }
+}
+
 /// Which geodesics from a point to a lamp carry its light.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum LightPaths {

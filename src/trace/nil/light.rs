@@ -17,7 +17,7 @@
 //! the falloff, so each shell adds the same, as in the other families).
 
 use super::NilScene;
-use crate::scene::lighting::{LightPaths, Lighting, SHADOW_OFFSET, open_tail_fluence};
+use crate::scene::lighting::{LampImages, LightPaths, Lighting, SHADOW_OFFSET, open_tail_fluence};
 use crate::space::nil::{NilRay, NilSpace, distance, flow, group_product, shortest};
 use glam::DVec3;
 
@@ -54,18 +54,9 @@ pub fn area_density(r: f64, c: f64) -> f64 {
     (r * r * sinc + r.powi(4) * p).abs()
 }
 
-/// The lamp's images for [`LightPaths::Images`], and the distance within which they are
-/// summed.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct NilLamp {
-    /// The images within `reach + ρ` of the box's centre (`ρ` bounds the distance from the
-    /// centre to any point of the box), nearest the centre first.
-    pub images: Vec<[f64; 3]>,
-    /// The reach they cover from every point of the box.
-    pub reach: f64,
-    /// The space's volume (the images' density, for the tail).
-    pub volume: f64,
-}
+/// The lamp's images (chart points) within `reach + ρ` of the box's centre (`ρ` bounds the
+/// distance from the centre to any point of the box).
+pub type NilLamp = LampImages<[f64; 3]>;
 
 /// A bound on the distance from the box's centre to its points: the horizontal straight
 /// line to `(x, y, 0)` (a geodesic of length `√(x² + y²)`) then the fibre, `√½ + h`.
@@ -86,15 +77,9 @@ impl NilLamp {
     /// [`LightPaths::Nearest`]).
     #[must_use]
     pub fn new(space: &NilSpace, light: [f64; 3], lighting: &Lighting) -> Self {
-        if lighting.paths == LightPaths::Nearest {
-            return Self::default();
-        }
-        let (images, reach) = lamp_images(space, light, reach(space, lighting));
-        Self {
-            images,
-            reach,
-            volume: space.volume(),
-        }
+        Self::searched(lighting, reach(space, lighting), space.volume(), |r| {
+            lamp_images(space, light, r)
+        })
     }
 }
 

@@ -29,7 +29,9 @@
 
 use super::{ProductScene, away_from, dot};
 use crate::geometry::{Geometry, Real};
-use crate::scene::lighting::{LightPaths, Lighting, MAX_LAMP_IMAGES, Occluded, SHADOW_OFFSET};
+use crate::scene::lighting::{
+    LampImages, LightPaths, Lighting, MAX_LAMP_IMAGES, Occluded, SHADOW_OFFSET,
+};
 use crate::space::product::{ProductSpace, ProductWalker};
 use glam::{DMat4, DVec4};
 use std::collections::{HashSet, VecDeque};
@@ -42,33 +44,18 @@ const MAX_CELLS: usize = 64 * MAX_LAMP_IMAGES;
 /// S²) the geodesics that wind round have no one direction and are left out.
 const FOCUS: f64 = 1e-3;
 
-/// The lamp's images for [`LightPaths::Images`], and the distance from a lit point within
-/// which they are summed.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct ProductLamp {
-    /// The images within `reach + ρ` of the cell's centre (`ρ` the cell's circumradius),
-    /// nearest the centre first.
-    pub images: Vec<DVec4>,
-    /// The reach they cover from every point of the cell.
-    pub reach: f64,
-    /// The space's volume, the images' density (the tail).
-    pub volume: f64,
-}
+/// The lamp's images in the cover (their points), within `reach + ρ` of the cell's centre
+/// (`ρ` the cell's circumradius).
+pub type ProductLamp = LampImages<DVec4>;
 
 impl ProductLamp {
     /// The images of the lamp at `light` within `lighting`'s reach (none for
     /// [`LightPaths::Nearest`]).
     #[must_use]
     pub fn new(space: &ProductSpace, light: DVec4, lighting: &Lighting) -> Self {
-        if lighting.paths == LightPaths::Nearest {
-            return Self::default();
-        }
-        let (images, reach) = lamp_images(space, light, reach(space, lighting));
-        Self {
-            images,
-            reach,
-            volume: space.volume(),
-        }
+        Self::searched(lighting, reach(space, lighting), space.volume(), |r| {
+            lamp_images(space, light, r)
+        })
     }
 }
 

@@ -26,7 +26,7 @@
 //! mean, `¼ · 4πλ e^(−R/λ)/vol(M)`, as in the other families.
 
 use super::{Sl2rScene, apply};
-use crate::scene::lighting::{LightPaths, Lighting, SHADOW_OFFSET, open_tail_fluence};
+use crate::scene::lighting::{LampImages, LightPaths, Lighting, SHADOW_OFFSET, open_tail_fluence};
 use crate::space::sl2r::UnitTangentSpace;
 use crate::space::sl2r::cover::{fibre_angle, sheet_plus, sheets_climbed};
 use crate::space::sl2r::distance::{
@@ -96,18 +96,9 @@ pub struct LampImage {
     pub sheet: u32,
 }
 
-/// The lamp's images for [`LightPaths::Images`], and the distance within which they are
-/// summed.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct Sl2rLamp {
-    /// The images whose base point is within `reach + ρ` of the polygon's centre (`ρ` its
-    /// circumradius), nearest the centre first.
-    pub images: Vec<LampImage>,
-    /// The reach they cover from every point of the cell.
-    pub reach: f64,
-    /// The space's volume (the images' density, for the tail).
-    pub volume: f64,
-}
+/// The lamp's images (frames on their sheets) whose base point is within `reach + ρ` of the
+/// polygon's centre (`ρ` its circumradius).
+pub type Sl2rLamp = LampImages<LampImage>;
 
 /// The reach of `lighting` in an SL̃(2,R) space: its inradii times the polygon's inradius,
 /// at most [`MAX_LIGHT_REACH`].
@@ -121,15 +112,9 @@ impl Sl2rLamp {
     /// [`LightPaths::Nearest`]).
     #[must_use]
     pub fn new(space: &UnitTangentSpace, light: LampImage, lighting: &Lighting) -> Self {
-        if lighting.paths == LightPaths::Nearest {
-            return Self::default();
-        }
-        let (images, reach) = lamp_images(space, light, reach(space, lighting));
-        Self {
-            images,
-            reach,
-            volume: space.volume(),
-        }
+        Self::searched(lighting, reach(space, lighting), space.volume(), |r| {
+            lamp_images(space, light, r)
+        })
     }
 }
 
