@@ -237,8 +237,6 @@ fn light_sl2r(
     space: &bevy_curved_spaces::space::sl2r::UnitTangentSpace,
 ) -> Result<(), String> {
     use bevy_curved_spaces::scene::Lighting;
-    use bevy_curved_spaces::space::FrameSpace;
-    use bevy_curved_spaces::space::sl2r::Sl2rWalker;
     use bevy_curved_spaces::trace::sl2r::light::{LampImage, MAX_LIGHT_REACH, reach, sl2r_fluence};
     refuse_radius(args, Family::Sl2r, space.name())?;
     for (flag, value) in [("--reach", args.reach), ("--check", args.check)] {
@@ -251,13 +249,10 @@ fn light_sl2r(
         }
     }
     let point = |x: DVec3, what: &str| -> Result<LampImage, String> {
-        let ray = space
-            .chart_ray(x, DVec3::X)
+        let (frame, sheet) = space
+            .frame_at_chart_point(x)
             .map_err(|m| format!("{what}: {m}"))?;
-        Ok(LampImage {
-            frame: Sl2rWalker::<glam::DVec4>::sl2r_ray(&ray).frame,
-            sheet: Sl2rWalker::<glam::DVec4>::sheet_of(&ray),
-        })
+        Ok(LampImage { frame, sheet })
     };
     let lamp = point(args.light, "--light")?;
     let at = point(args.at, "--at")?;

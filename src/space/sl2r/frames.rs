@@ -132,6 +132,17 @@ impl UnitTangentSpace {
         self.wrap_point(r, 0, 0.0).0
     }
 
+    /// The point of the space at the chart point `[x, y, θ]` (`θ` lifted: its whole turns
+    /// name the sheet of a fibre cover), brought into the cell: its frame (columns `e`, `e⊥`,
+    /// `p`) and its sheet. The message says why a point is refused (as [`FrameSpace::chart_ray`]).
+    pub fn frame_at_chart_point(&self, point: DVec3) -> Result<([[f64; 3]; 3], u32), String> {
+        let ray = self.chart_ray(point, DVec3::X)?;
+        Ok((
+            Sl2rWalker::<DVec4>::sl2r_ray(&ray).frame,
+            Sl2rWalker::<DVec4>::sheet_of(&ray),
+        ))
+    }
+
     /// The sheets a point of `UT H²` climbs as the sides' pairings bring it into the cell
     /// (modulo the cover's `N`): a frame of `UT H²` on sheet `k` is on sheet `k` plus this once
     /// in the cell, whichever sides bring it there (the lifted pairings compose consistently,

@@ -3,8 +3,8 @@
 //! one along the shortest geodesic; the default view; the rays through the lens.
 
 use crate::space::FrameSpace;
+use crate::space::sl2r::UnitTangentSpace;
 use crate::space::sl2r::flow::Sl2rRay;
-use crate::space::sl2r::{Sl2rWalker, UnitTangentSpace};
 use glam::{DMat4, DVec3, DVec4};
 
 /// A camera: its frame (the contract's: the viewer's axes as body vectors with `e` in their
@@ -40,10 +40,7 @@ impl Sl2rCamera {
                 "the field of view must be between 0 and 180 degrees, got {fov_y_degrees}"
             ));
         }
-        let ray = space.chart_ray(point, DVec3::X)?;
-        let r = Sl2rWalker::<DVec4>::sl2r_ray(&ray);
-        let sheet = Sl2rWalker::<DVec4>::sheet_of(&ray);
-        let [e, _, p] = r.frame;
+        let ([e, _, p], sheet) = space.frame_at_chart_point(point)?;
         let frame = DMat4::from_cols(
             DVec4::new(1.0, 0.0, 0.0, e[0]),
             DVec4::new(0.0, 1.0, 0.0, e[1]),

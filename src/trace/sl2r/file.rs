@@ -59,10 +59,9 @@ use crate::scene::file_support::{
     LightingSpec, PointLightSpec, colour, failing, fog_keys, lighting_of, load_family_scene,
     one_light, parse_toml, space_key, walls_of,
 };
-use crate::space::FrameSpace;
 use crate::space::sl2r::ball::MAX_SL2R_BALL_RADIUS;
-use crate::space::sl2r::{Sl2rWalker, UnitTangentSpace, sl2r_space};
-use glam::{DVec3, DVec4};
+use crate::space::sl2r::{UnitTangentSpace, sl2r_space};
+use glam::DVec3;
 use serde::Deserialize;
 use std::path::Path;
 use toml::Spanned;
@@ -242,13 +241,9 @@ pub fn parse_sl2r_scene(text: &str, file: &str) -> Result<Sl2rSceneFile, SceneFi
     if let Some((position, span)) =
         one_light(&spec.lights, "an SL̃(2,R) scene").map_err(|(s, m)| fail(Some(s), m))?
     {
-        let ray = space
-            .chart_ray(DVec3::from_array(position), DVec3::X)
+        light = space
+            .frame_at_chart_point(DVec3::from_array(position))
             .map_err(|m| fail(Some(span), format!("the light's position: {m}")))?;
-        light = (
-            Sl2rWalker::<DVec4>::sl2r_ray(&ray).frame,
-            Sl2rWalker::<DVec4>::sheet_of(&ray),
-        );
     }
     let lighting = match &spec.lighting {
         Some(l) => lighting_of(l).map_err(|(s, m)| fail(Some(s), m))?,
@@ -318,11 +313,9 @@ fn build_object(space: &UnitTangentSpace, spec: &ObjectSpec) -> Result<Built, St
             "radius must be a positive distance of at most {largest:.6} ({what}), got {radius}"
         ));
     }
-    let ray = space
-        .chart_ray(point, DVec3::X)
+    let (frame, sheet) = space
+        .frame_at_chart_point(point)
         .map_err(|m| format!("the object's position: {m}"))?;
-    let frame = Sl2rWalker::<DVec4>::sl2r_ray(&ray).frame;
-    let sheet = Sl2rWalker::<DVec4>::sheet_of(&ray);
     let colour = colour(c)?.min(DVec3::ONE);
     Ok(match spec {
         ObjectSpec::Tube { .. } => Built::Tube(FibreTube {
