@@ -374,3 +374,58 @@ fn hostile_unit_tangent_ids_are_refused_with_a_message() {
         assert!(err.contains("error"), "{id}: no message: {err}");
     }
 }
+
+/// Hostile torus-bundle ids (Sol's, `space::sol::TorusBundle`): every entry at 0, ±1, huge,
+/// non-numbers, doubled and dangling dashes, odd characters — a bundle with a finite
+/// eigenvalue and lattice, or an error that names the id or the gluing; never a panic.
+#[test]
+fn hostile_torus_bundle_ids_are_a_bundle_or_a_message() {
+    use bevy_curved_spaces::space::sol::TorusBundle;
+    let entries = [
+        "0",
+        "1",
+        "-1",
+        "2",
+        "-3",
+        "10000",
+        "-10001",
+        "99999999999999999999",
+        "nan",
+        "inf",
+        "1e3",
+        "",
+        "-",
+        "--2",
+        "2.0",
+        "ä",
+        " 1",
+    ];
+    let (mut bundles, mut refused) = (0, 0);
+    for a in entries {
+        for b in ["1", "-1", "0", a] {
+            for d in ["1", "2", a] {
+                let id = format!("torus-bundle-{a}-{b}-1-{d}");
+                match TorusBundle::from_id(&id).expect("a torus bundle id") {
+                    Ok(bundle) => {
+                        bundles += 1;
+                        assert!(
+                            bundle.lambda > 1.0
+                                && bundle.tau.is_finite()
+                                && bundle.q.iter().flatten().all(|x| x.is_finite()),
+                            "{id}: {bundle:?}"
+                        );
+                    }
+                    Err(e) => {
+                        refused += 1;
+                        let e = e.to_string();
+                        assert!(e.contains(&id) || e.contains("gluing"), "{id}: {e}");
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        bundles > 0 && refused > 0,
+        "{bundles} bundles, {refused} refused"
+    );
+}
